@@ -1,0 +1,37 @@
+/* C interface of the Cam-Clay IX UMAT library (libcamclay9).
+ * The material is called through the standard Abaqus UMAT argument list (Fortran, by reference);
+ * gfortran names it umat_. CMNAME is a character*80 whose hidden length comes last. */
+#ifndef CAMCLAY9_H
+#define CAMCLAY9_H
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+void umat_(double *stress, double *statev, double *ddsdde, double *sse, double *spd, double *scd,
+           double *rpl, double *ddsddt, double *drplde, double *drpldt, const double *stran,
+           const double *dstran, const double *time, const double *dtime, const double *temp,
+           const double *dtemp, const double *predef, const double *dpred, const char *cmname,
+           const int *ndi, const int *nshr, const int *ntens, const int *nstatv, const double *props,
+           const int *nprops, const double *coords, const double *drot, double *pnewdt,
+           const double *celent, const double *dfgrd0, const double *dfgrd1, const int *noel,
+           const int *npt, const int *layer, const int *kspt, const int *jstep, const int *kinc,
+           unsigned long cmname_len);
+
+/* Check PROPS and the sizes without integrating anything. Sets *code = 0 when valid; otherwise
+ * *code is the offending PROPS slot (1-based), or -1 NPROPS, -2 NSTATV, -3 NTENS, -4 NDI, and message
+ * (NUL-terminated, at most message_capacity bytes) names the slot, its value and the allowed range. */
+void camclay9_check_props(const double *props, int nprops, int nstatv, int ntens, int ndi, int *code,
+                          char *message, int message_capacity);
+
+/* STATEV layout (1-based slots, as in docs/umat.md). */
+enum {
+  CAMCLAY9_NSTATV_MIN = 32,
+  CAMCLAY9_NSTATV_DIAGNOSTICS = 36,
+  CAMCLAY9_NPROPS_MIN = 19,
+  CAMCLAY9_NPROPS_WITH_NORMAL = 23
+};
+
+#ifdef __cplusplus
+}
+#endif
+#endif

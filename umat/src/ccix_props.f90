@@ -1,0 +1,227 @@
+!> The PROPS and STATEV contract of the Cam-Clay IX UMAT (../shared/docs/umat-interface.md): slot
+!> numbers, the property checks with their messages, and the frames built from PROPS.
+module ccix_props
+  use, intrinsic :: iso_fortran_env, only: real64
+  use ccix_tensor, only: is_finite
+  use ccix_frame, only: frame_t, frame_new
+  implicit none
+  private
+
+  ! PROPS slots.
+  integer, parameter, public :: ip_phi = 1, ip_hard = 2, ip_soft = 14, ip_tol = 20, ip_normal = 21
+  integer, parameter, public :: nprops_min = 19, nprops_normal = 23
+  ! STATEV slots (first slot of each block); 6 components per tensor whatever NTENS is.
+  integer, parameter, public :: is_sig_hard = 1, is_evp_hard = 7, is_pc_hard = 13, &
+                                is_sig_soft = 14, is_evp_soft = 20, is_pc_soft = 26, &
+                                is_evp_total = 27, nstatv_min = 32
+  ! Optional diagnostics, written only when NSTATV >= nstatv_diag.
+  integer, parameter, public :: is_iterations = 33, is_flags = 34, is_f_hard = 35, is_f_soft = 36, &
+                                nstatv_diag = 36
+  integer, parameter, public :: message_len = 256
+
+  public :: check_props, bedding_normal, frames_from_props
+
+contains
+
+  !> The bedding normal in the UMAT's frame: PROPS(21:23) normalised, or e3 when NPROPS < 23.
+  pure function bedding_normal(props, nprops) result(n)
+    integer, intent(in) :: nprops
+    real(real64), intent(in) :: props(nprops)
+    real(real64) :: n(3)
+    if (nprops >= nprops_normal) then
+      n = props(ip_normal:ip_normal + 2) / norm2(props(ip_normal:ip_normal + 2))
+    else
+      n = [0.0_real64, 0.0_real64, 1.0_real64]
+    end if
+  end function bedding_normal
+
+  !> The hard (transversely isotropic) and soft (isotropic) frames of PROPS. Call check_props first.
+  pure subroutine frames_from_props(props, nprops, hard, soft)
+    integer, intent(in) :: nprops
+    real(real64), intent(in) :: props(nprops)
+    type(frame_t), intent(out) :: hard, soft
+    real(real64) :: n(3)
+    associate (h => props(ip_hard:ip_hard + 11), s => props(ip_soft:ip_soft + 5))
+      n = bedding_normal(props, nprops)
+      !               lambda mu_T  mu_L  a     b     M     lambda_p c1    c2    c3     pc0    eta
+      hard = frame_new(h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8), h(9), h(10), h(11), h(12), n)
+      soft = frame_new(s(1), s(2), s(2), 0.0_real64, 0.0_real64, s(3), s(4), &
+                       1.0_real64, 0.0_real64, 0.0_real64, s(5), s(6), n)
+    end associate
+  end subroutine frames_from_props
+
+  !> Check sizes and properties without integrating anything. code = 0 when valid; otherwise code is
+  !> the first offending PROPS slot (or -1 NPROPS, -2 NSTATV, -3 NTENS, -4 NDI) and message says the
+  !> slot, its value and the allowed range.
+  pure subroutine check_props(props, nprops, nstatv, ntens, ndi, code, message)
+    integer, intent(in) :: nprops, nstatv, ntens, ndi
+    real(real64), intent(in) :: props(*)
+    integer, intent(out) :: code
+    character(len=message_len), intent(out) :: message
+    real(real64) :: lam, mu_t, mu_l, a, b, c33, nrm
+    integer :: i
+
+    code = 0
+    message = ''
+    if (nprops < nprops_min .or. nprops == 21 .or. nprops == 22) then
+      code = -1
+      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: NPROPS = ', nprops, &
+        ' is not allowed: expected 19 or 20 (normal = material 3-axis) or >= 23 (normal in PROPS 21-23)'
+      return
+    end if
+    if (nstatv < nstatv_min) then
+      code = -2
+      write (message, '(a,i0,a,i0,a)') 'Cam-Clay IX UMAT: NSTATV = ', nstatv, &
+        ' is too small: expected >= ', nstatv_min, ' (*DEPVAR)'
+      return
+    end if
+    if (ndi /= 3) then
+      code = -4
+      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: NDI = ', ndi, &
+        ': plane stress is not supported; expected NDI = 3 (3D, plane strain, axisymmetric)'
+      return
+    end if
+    if (ntens /= 6 .and. ntens /= 4) then
+      code = -3
+      write (message, '(a,i0,a)') &
+        'Cam-Clay IX UMAT: NTENS = ', ntens, ': expected 6 (3D) or 4 (plane strain, axisymmetric)'
+      return
+    end if
+    do i = 1, min(nprops, nprops_normal)
+      if (.not. is_finite(props(i))) then
+        call fail(code, message, i, props(i), 'a finite number')
+        return
+      end if
+    end do
+
+    if (.not. (props(ip_phi) >= 0 .and. props(ip_phi) <= 1)) then
+      call fail(code, message, ip_phi, props(ip_phi), &
+        'phi, the volume fraction of the hard frame, in [0, 1]')
+      return
+    end if
+
+    ! Hard frame: positive-definite TI stiffness. In bedding axes the Mandel stiffness splits into
+    ! 2 mu_T, 2 mu_T, 2 mu_L, 2 mu_L and the 2x2 block [[2(lam + mu_T), sqrt2 (lam + a)], [., C33]]
+    ! (theory.md §4.2), so it is positive definite iff these are.
+    lam = props(2); mu_t = props(3); mu_l = props(4); a = props(5); b = props(6)
+    c33 = lam + 2 * mu_t + 2 * a + b + 4 * (mu_l - mu_t)
+    if (.not. (mu_t > 0)) then
+      call fail(code, message, 3, props(3), &
+        'mu_T > 0 (hard frame, shear modulus in the bedding plane)')
+      return
+    end if
+    if (.not. (mu_l > 0)) then
+      call fail(code, message, 4, props(4), &
+        'mu_L > 0 (hard frame, shear modulus normal to the bedding)')
+      return
+    end if
+    if (.not. (lam + mu_t > 0)) then
+      call fail(code, message, 2, props(2), &
+        'lambda > -mu_T (hard frame stiffness positive definite)')
+      return
+    end if
+    if (.not. (c33 > 0 .and. 2 * (lam + mu_t) * c33 > 2 * (lam + a)**2)) then
+      call fail(code, message, 6, props(6), &
+        'b such that the hard-frame stiffness is positive definite: ' // &
+                'C33 = lambda + 2 mu_T + 2a + b + 4(mu_L - mu_T) > 0 and (lambda + mu_T) C33 > (lambda + a)^2')
+      return
+    end if
+    if (.not. (props(7) > 0)) then
+      call fail(code, message, 7, props(7), 'M > 0 (hard frame)')
+      return
+    end if
+    if (.not. (props(8) > 0)) then
+      call fail(code, message, 8, props(8), 'lambda_p > 0 (hard frame)')
+      return
+    end if
+    ! Projection tensor positive definite: c1 > 0, c1 + c2 + c3 > 0, c1 + c3/2 > 0 (theory.md §1.2).
+    if (.not. (props(9) > 0)) then
+      call fail(code, message, 9, props(9), &
+        'c1 > 0 (hard frame projection tensor positive definite)')
+      return
+    end if
+    if (.not. (props(9) + props(10) + props(11) > 0)) then
+      call fail(code, message, 10, props(10), &
+        'c1 + c2 + c3 > 0 (hard frame projection tensor positive definite)')
+      return
+    end if
+    if (.not. (props(9) + props(11) / 2 > 0)) then
+      call fail(code, message, 11, props(11), &
+        'c1 + c3/2 > 0 (hard frame projection tensor positive definite)')
+      return
+    end if
+    if (.not. (props(12) > 0)) then
+      call fail(code, message, 12, props(12), 'pc0 > 0 (hard frame)')
+      return
+    end if
+    if (.not. (props(13) >= 0)) then
+      call fail(code, message, 13, props(13), 'eta >= 0 (hard frame; 0 is rate independent)')
+      return
+    end if
+
+    ! Soft frame: isotropic, positive definite iff mu > 0 and 3 lambda + 2 mu > 0.
+    if (.not. (props(15) > 0)) then
+      call fail(code, message, 15, props(15), 'mu > 0 (soft frame shear modulus)')
+      return
+    end if
+    if (.not. (3 * props(14) + 2 * props(15) > 0)) then
+      call fail(code, message, 14, props(14), 'lambda > -2 mu/3 (soft frame bulk modulus positive)')
+      return
+    end if
+    if (.not. (props(16) > 0)) then
+      call fail(code, message, 16, props(16), 'M > 0 (soft frame)')
+      return
+    end if
+    if (.not. (props(17) > 0)) then
+      call fail(code, message, 17, props(17), 'lambda_p > 0 (soft frame)')
+      return
+    end if
+    if (.not. (props(18) > 0)) then
+      call fail(code, message, 18, props(18), 'pc0 > 0 (soft frame)')
+      return
+    end if
+    if (.not. (props(19) >= 0)) then
+      call fail(code, message, 19, props(19), 'eta >= 0 (soft frame; 0 is rate independent)')
+      return
+    end if
+    if (nprops >= ip_tol) then
+      if (.not. (props(ip_tol) >= 0)) then
+        call fail(code, message, ip_tol, props(ip_tol), 'tol >= 0 (0: no step control)')
+        return
+      end if
+    end if
+    if (nprops >= nprops_normal) then
+      nrm = norm2(props(ip_normal:ip_normal + 2))
+      if (.not. (nrm > 0)) then
+        call fail(code, message, ip_normal, props(ip_normal), &
+          'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
+        return
+      end if
+      if (ntens == 4 .and. abs(props(ip_normal + 2)) > 1.0e-12_real64 * nrm) then
+        call fail(code, message, ip_normal + 2, props(ip_normal + 2), &
+          'n3 = 0: with NTENS = 4 the bedding normal must lie in the 1-2 plane')
+        return
+      end if
+    else if (ntens == 4 .and. props(ip_phi) > 0) then
+      ! (With phi = 0 the hard frame is not used and its normal does not matter.)
+      code = ip_normal
+      message = 'Cam-Clay IX UMAT: NTENS = 4 needs the bedding normal in the 1-2 plane: give NPROPS = 23 ' // &
+                'with (n1, n2, 0) in PROPS 21-23 (without them the normal is the 3-axis, out of plane)'
+      return
+    end if
+
+  end subroutine check_props
+
+  !> The message of an invalid PROPS slot: its number, its value and what was expected.
+  pure subroutine fail(code, message, slot, value, expected)
+    integer, intent(out) :: code
+    character(len=message_len), intent(out) :: message
+    integer, intent(in) :: slot
+    real(real64), intent(in) :: value
+    character(len=*), intent(in) :: expected
+    code = slot
+    write (message, '(a,i0,a,es13.6,a,a)') 'Cam-Clay IX UMAT: PROPS(', slot, ') = ', value, &
+      ': expected ', expected
+  end subroutine fail
+
+end module ccix_props

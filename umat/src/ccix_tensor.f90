@@ -1,0 +1,203 @@
+!> Tensor algebra in Mandel notation and small dense linear algebra.
+!>
+!> Mandel vectors are orthonormal: sigma_hat = [s11, s22, s33, r2*s12, r2*s13, r2*s23] with r2 = sqrt(2),
+!> so A:B = dot(A_hat, B_hat) and fourth-order tensors with minor symmetries are 6x6 matrices
+!> (theory.md §1.1). The Abaqus boundary uses Voigt order 11, 22, 33, 12, 13, 23 with engineering
+!> shear strains; the conversions live here and nowhere else.
+module ccix_tensor
+  use, intrinsic :: iso_fortran_env, only: real64
+  implicit none
+  private
+
+  real(real64), parameter, public :: sqrt2 = 1.4142135623730951_real64
+  !> Second-order identity as a Mandel vector.
+  real(real64), parameter, public :: one6(6) = [1.0_real64, 1.0_real64, 1.0_real64, &
+                                                0.0_real64, 0.0_real64, 0.0_real64]
+  !> Voigt (i,j) index pairs of the six Mandel slots.
+  integer, parameter, public :: voigt_i(6) = [1, 2, 3, 1, 1, 2]
+  integer, parameter, public :: voigt_j(6) = [1, 2, 3, 2, 3, 3]
+  !> Mandel weight of each slot: 1 for normal components, sqrt(2) for shears.
+  real(real64), parameter, public :: mandel_w(6) = [1.0_real64, 1.0_real64, 1.0_real64, &
+                                                    sqrt2, sqrt2, sqrt2]
+
+  public :: identity6, outer6, stress_to_mandel, mandel_to_stress, strain_to_mandel, &
+            mandel_to_strain, tangent_to_abaqus, mandel_to_matrix33, matrix33_to_mandel, &
+            rotate_mandel, lu_factor, lu_solve, invert6, is_finite, cholesky_is_spd
+
+contains
+
+  pure function identity6() result(eye)
+    real(real64) :: eye(6, 6)
+    integer :: i
+    eye = 0.0_real64
+    do i = 1, 6
+      eye(i, i) = 1.0_real64
+    end do
+  end function identity6
+
+  pure function outer6(a, b) result(ab)
+    real(real64), intent(in) :: a(6), b(6)
+    real(real64) :: ab(6, 6)
+    integer :: j
+    do j = 1, 6
+      ab(:, j) = a * b(j)
+    end do
+  end function outer6
+
+  !> Voigt stress (tensor shear components) -> Mandel. theory.md §1.1: sigma_hat = W*STRESS.
+  pure function stress_to_mandel(v) result(m)
+    real(real64), intent(in) :: v(6)
+    real(real64) :: m(6)
+    m = v * mandel_w
+  end function stress_to_mandel
+
+  pure function mandel_to_stress(m) result(v)
+    real(real64), intent(in) :: m(6)
+    real(real64) :: v(6)
+    v = m / mandel_w
+  end function mandel_to_stress
+
+  !> Engineering-shear Voigt strain -> Mandel. theory.md §1.1: eps_hat = W^-1*STRAN.
+  pure function strain_to_mandel(v) result(m)
+    real(real64), intent(in) :: v(6)
+    real(real64) :: m(6)
+    m = v / mandel_w
+  end function strain_to_mandel
+
+  pure function mandel_to_strain(m) result(v)
+    real(real64), intent(in) :: m(6)
+    real(real64) :: v(6)
+    v = m * mandel_w
+  end function mandel_to_strain
+
+  !> Mandel tangent -> Abaqus DDSDDE (first n slots). theory.md §1.1: DDSDDE = W^-1 D_hat W^-1.
+  pure subroutine tangent_to_abaqus(d_hat, n, ddsdde)
+    real(real64), intent(in) :: d_hat(6, 6)
+    integer, intent(in) :: n
+    real(real64), intent(out) :: ddsdde(n, n)
+    integer :: i, j
+    do j = 1, n
+      do i = 1, n
+        ddsdde(i, j) = d_hat(i, j) / (mandel_w(i) * mandel_w(j))
+      end do
+    end do
+  end subroutine tangent_to_abaqus
+
+  pure function mandel_to_matrix33(m) result(a)
+    real(real64), intent(in) :: m(6)
+    real(real64) :: a(3, 3)
+    integer :: k
+    do k = 1, 6
+      a(voigt_i(k), voigt_j(k)) = m(k) / mandel_w(k)
+      a(voigt_j(k), voigt_i(k)) = m(k) / mandel_w(k)
+    end do
+  end function mandel_to_matrix33
+
+  pure function matrix33_to_mandel(a) result(m)
+    real(real64), intent(in) :: a(3, 3)
+    real(real64) :: m(6)
+    integer :: k
+    do k = 1, 6
+      m(k) = 0.5_real64 * (a(voigt_i(k), voigt_j(k)) + a(voigt_j(k), voigt_i(k))) * mandel_w(k)
+    end do
+  end function matrix33_to_mandel
+
+  !> R . A . R^T for a symmetric tensor A given in Mandel form.
+  pure function rotate_mandel(r, m) result(mr)
+    real(real64), intent(in) :: r(3, 3), m(6)
+    real(real64) :: mr(6)
+    mr = matrix33_to_mandel(matmul(r, matmul(mandel_to_matrix33(m), transpose(r))))
+  end function rotate_mandel
+
+  !> LU factorisation with partial pivoting, in place. ok = .false. on an exactly singular pivot.
+  pure subroutine lu_factor(n, a, piv, ok)
+    integer, intent(in) :: n
+    real(real64), intent(inout) :: a(n, n)
+    integer, intent(out) :: piv(n)
+    logical, intent(out) :: ok
+    integer :: i, k, p
+    real(real64) :: tmp(n)
+    ok = .true.
+    do k = 1, n
+      p = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
+      piv(k) = p
+      if (a(p, k) == 0.0_real64) then
+        ok = .false.
+        return
+      end if
+      if (p /= k) then
+        tmp = a(k, :)
+        a(k, :) = a(p, :)
+        a(p, :) = tmp
+      end if
+      a(k+1:n, k) = a(k+1:n, k) / a(k, k)
+      do i = k + 1, n
+        a(k+1:n, i) = a(k+1:n, i) - a(k+1:n, k) * a(k, i)
+      end do
+    end do
+  end subroutine lu_factor
+
+  !> Solve with the factors of lu_factor; b is overwritten by the solution.
+  pure subroutine lu_solve(n, lu, piv, b)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: lu(n, n)
+    integer, intent(in) :: piv(n)
+    real(real64), intent(inout) :: b(n)
+    integer :: i, k
+    real(real64) :: t
+    do k = 1, n
+      if (piv(k) /= k) then
+        t = b(k); b(k) = b(piv(k)); b(piv(k)) = t
+      end if
+    end do
+    do i = 2, n
+      b(i) = b(i) - dot_product(lu(i, 1:i-1), b(1:i-1))
+    end do
+    do i = n, 1, -1
+      b(i) = (b(i) - dot_product(lu(i, i+1:n), b(i+1:n))) / lu(i, i)
+    end do
+  end subroutine lu_solve
+
+  !> Inverse of a 6x6 matrix; ok = .false. if singular.
+  pure subroutine invert6(a, ainv, ok)
+    real(real64), intent(in) :: a(6, 6)
+    real(real64), intent(out) :: ainv(6, 6)
+    logical, intent(out) :: ok
+    real(real64) :: lu(6, 6)
+    integer :: piv(6), j
+    lu = a
+    call lu_factor(6, lu, piv, ok)
+    ainv = identity6()
+    if (.not. ok) return
+    do j = 1, 6
+      call lu_solve(6, lu, piv, ainv(:, j))
+    end do
+  end subroutine invert6
+
+  !> True when a symmetric n x n matrix is positive definite (Cholesky succeeds).
+  pure function cholesky_is_spd(n, a) result(spd)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: a(n, n)
+    logical :: spd
+    real(real64) :: l(n, n), s
+    integer :: i, j
+    l = 0.0_real64
+    spd = .false.
+    do j = 1, n
+      s = a(j, j) - dot_product(l(j, 1:j-1), l(j, 1:j-1))
+      if (.not. (s > 0.0_real64)) return
+      l(j, j) = sqrt(s)
+      do i = j + 1, n
+        l(i, j) = (a(i, j) - dot_product(l(i, 1:j-1), l(j, 1:j-1))) / l(j, j)
+      end do
+    end do
+    spd = .true.
+  end function cholesky_is_spd
+
+  elemental function is_finite(x) result(ok)
+    real(real64), intent(in) :: x
+    logical :: ok
+    ok = (x == x) .and. abs(x) <= huge(x)
+  end function is_finite
+
+end module ccix_tensor

@@ -1,0 +1,140 @@
+!> Abaqus UMAT entry point of the Cam-Clay IX model (Yin, Liu & Borja 2021; Borja, Yin & Zhao 2020).
+!>
+!> This routine only adapts the Abaqus conventions (Voigt order 11, 22, 33, 12, 13, 23, engineering
+!> shear strains, NTENS = 4 or 6, DROT, PNEWDT, STATEV layout) to the Mandel-notation mixture in
+!> ccix_mixture. The contract is ../shared/docs/umat-interface.md and docs/umat.md.
+subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &
+                stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, &
+                ndi, nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, &
+                celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, jstep, kinc)
+  use, intrinsic :: iso_fortran_env, only: real64, error_unit
+  use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
+                         tangent_to_abaqus, rotate_mandel
+  use ccix_props, only: ip_phi, ip_tol, is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, &
+                        is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
+                        is_f_hard, is_f_soft, nstatv_diag, message_len
+  use ccix_frame, only: yield_function, flag_floor, flag_tension, flag_fallback
+  use ccix_mixture, only: mixture_state_t, step_info_t, mixture_integrate, hard, soft
+  use ccix_material_cache, only: prepare_material, current_frames
+  implicit none
+  character(len=80), intent(in) :: cmname
+  integer, intent(in) :: ndi, nshr, ntens, nstatv, nprops, noel, npt, layer, kspt, jstep(*), kinc
+  real(real64), intent(inout) :: stress(ntens), statev(nstatv), sse, spd, scd, pnewdt
+  real(real64), intent(out) :: ddsdde(ntens, ntens), rpl, ddsddt(ntens), drplde(ntens), drpldt
+  real(real64), intent(in) :: stran(ntens), dstran(ntens), time(2), dtime, temp, dtemp, &
+                              predef(*), dpred(*), props(nprops), coords(3), drot(3, 3), &
+                              celent, dfgrd0(3, 3), dfgrd1(3, 3)
+
+  type(mixture_state_t) :: state_n, state
+  type(step_info_t) :: info
+  real(real64) :: deps(6), sig(6), d(6, 6), sig_full(6), phi, tol, ratio, frac(2), de_el(6)
+  real(real64), parameter :: cutback = 0.25_real64, max_growth = 1.5_real64
+  integer :: code, k, flags
+  character(len=message_len) :: message
+
+  rpl = 0
+  ddsddt = 0
+  drplde = 0
+  drpldt = 0
+
+  ! Sizes and PROPS, checked whenever they change (theory.md §6; umat-interface.md "Bad properties").
+  call prepare_material(props, nprops, nstatv, ntens, ndi, code, message)
+  if (code /= 0) then
+    write (error_unit, '(a)') trim(message)
+    write (error_unit, '(a,i0,a,i0,a,a)') 'Cam-Clay IX UMAT: stopping at element ', noel, &
+      ', integration point ', npt, ', material ', trim(cmname)
+    error stop 'Cam-Clay IX UMAT: invalid material properties'
+  end if
+  phi = props(ip_phi)
+  tol = 0
+  if (nprops >= ip_tol) tol = props(ip_tol)
+
+  ! State at the start of the increment. pc_hard <= 0 marks an uninitialised state: both frames
+  ! start at the stress passed in, with pc = pc0 and no viscoplastic strain (theory.md §2).
+  sig_full = 0
+  sig_full(1:ntens) = stress
+  if (.not. (statev(is_pc_hard) > 0)) then
+    do k = hard, soft
+      state_n%sig(:, k) = stress_to_mandel(sig_full)
+      state_n%pc(k) = current_frames(k)%pc0
+    end do
+  else
+    state_n%sig(:, hard) = stress_to_mandel(statev(is_sig_hard:is_sig_hard + 5))
+    state_n%sig(:, soft) = stress_to_mandel(statev(is_sig_soft:is_sig_soft + 5))
+    state_n%evp(:, hard) = strain_to_mandel(statev(is_evp_hard:is_evp_hard + 5))
+    state_n%evp(:, soft) = strain_to_mandel(statev(is_evp_soft:is_evp_soft + 5))
+    state_n%evp_total = strain_to_mandel(statev(is_evp_total:is_evp_total + 5))
+    state_n%pc = [statev(is_pc_hard), statev(is_pc_soft)]
+  end if
+  ! Rigid rotation of the increment (umat-interface.md): rotate the stored tensors, not the normal.
+  if (any(drot /= reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3]))) then
+    do k = hard, soft
+      state_n%sig(:, k) = rotate_mandel(drot, state_n%sig(:, k))
+      state_n%evp(:, k) = rotate_mandel(drot, state_n%evp(:, k))
+    end do
+    state_n%evp_total = rotate_mandel(drot, state_n%evp_total)
+  end if
+
+  ! Strain increment: NTENS = 4 is 11, 22, 33, 12 with 13 = 23 = 0 (plane strain, axisymmetric).
+  deps = 0
+  deps(1:ntens) = dstran
+  deps = strain_to_mandel(deps)
+
+  call mixture_integrate(current_frames, phi, state_n, deps, dtime, tol > 0 .and. dtime > 0, &
+                         state, sig, d, info)
+  if (info%failed) then
+    ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
+    pnewdt = min(pnewdt, cutback)
+    call tangent_to_abaqus(phi * current_frames(hard)%c + (1 - phi) * current_frames(soft)%c, &
+                           ntens, ddsdde)
+    return
+  end if
+  ! Step control on the viscoplastic strain increment (PROPS(20) = tol > 0, theory.md §3.6).
+  if (tol > 0 .and. dtime > 0) then
+    ratio = info%err_est / tol
+    if (ratio > 1) then
+      pnewdt = min(pnewdt, max(cutback, 0.8_real64 / sqrt(ratio)))
+      call tangent_to_abaqus(d, ntens, ddsdde)
+      return
+    end if
+    if (ratio > 0) then
+      pnewdt = min(pnewdt, min(max_growth, max(1.0_real64, 0.8_real64 / sqrt(ratio))))
+    else
+      pnewdt = min(pnewdt, max_growth)
+    end if
+  end if
+
+  ! Energies per unit volume: elastic (SSE) and viscoplastic dissipation (SPD), midpoint rule.
+  frac = [phi, 1 - phi]
+  do k = hard, soft
+    if (frac(k) <= 0) cycle
+    de_el = deps - (state%evp(:, k) - state_n%evp(:, k))
+    sse = sse + frac(k) * 0.5_real64 * dot_product(state_n%sig(:, k) + state%sig(:, k), de_el)
+    spd = spd + frac(k) * 0.5_real64 * dot_product(state_n%sig(:, k) + state%sig(:, k), &
+                                                   state%evp(:, k) - state_n%evp(:, k))
+  end do
+
+  sig_full = mandel_to_stress(sig)
+  stress = sig_full(1:ntens)
+  call tangent_to_abaqus(d, ntens, ddsdde)
+  statev(is_sig_hard:is_sig_hard + 5) = mandel_to_stress(state%sig(:, hard))
+  statev(is_evp_hard:is_evp_hard + 5) = mandel_to_strain(state%evp(:, hard))
+  statev(is_pc_hard) = state%pc(hard)
+  statev(is_sig_soft:is_sig_soft + 5) = mandel_to_stress(state%sig(:, soft))
+  statev(is_evp_soft:is_evp_soft + 5) = mandel_to_strain(state%evp(:, soft))
+  statev(is_pc_soft) = state%pc(soft)
+  statev(is_evp_total:is_evp_total + 5) = mandel_to_strain(state%evp_total)
+  if (nstatv >= nstatv_diag) then
+    ! Diagnostics (docs/umat.md): iterations, flags, yield function values at the end of the step.
+    flags = 0
+    do k = hard, soft
+      if (iand(info%flags(k), flag_floor) /= 0) flags = ior(flags, 2**(k - 1))
+      if (iand(info%flags(k), flag_tension) /= 0) flags = ior(flags, 4 * 2**(k - 1))
+      if (iand(info%flags(k), flag_fallback) /= 0) flags = ior(flags, 16)
+    end do
+    statev(is_iterations) = info%iterations
+    statev(is_flags) = flags
+    statev(is_f_hard) = yield_function(current_frames(hard), state%sig(:, hard), state%pc(hard))
+    statev(is_f_soft) = yield_function(current_frames(soft), state%sig(:, soft), state%pc(soft))
+  end if
+end subroutine umat
