@@ -268,7 +268,9 @@ contains
     scale_sig = max(norm2(sig), norm2(sig_tr), pc, fr%p_floor)
     err_eps = norm2(r(1:6)) * fr%e_ref / scale_sig
     err_y = abs(r(7)) / (fr%lambda_p * (1 + abs(y)) + abs(dg * trn))
-    err_f = abs(r(8)) / max(sf * (q2 / fr%m_slope**2 + pp**2 + abs(pp) * pc) + sg * dg, &
+    ! f against the size of its terms and of the current surface (pc^2), which keeps the test
+    ! meaningful at the apex p' = q' = 0, where every term of f vanishes.
+    err_f = abs(r(8)) / max(sf * (q2 / fr%m_slope**2 + pp**2 + abs(pp) * pc + pc**2) + sg * dg, &
                             tiny(1.0_real64))
     err = max(err_eps, err_y, err_f)
   end subroutine local_system
