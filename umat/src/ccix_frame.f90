@@ -5,9 +5,20 @@
 !> Everything here is pure: one call integrates one frame over one step, from its converged state at
 !> the start of the step, and returns the new state and the algorithmic tangent. The soft frame is the
 !> isotropic special case (P = I) of the same frame.
+!>
+!> How the 8 x 8 local problem of theory.md §3.3 is solved. With N = H:sigma + (pc/3) P:1 linear in
+!> sigma (§1.3), the strain residual R_eps = C^-1:(sigma - sigma_tr) + dgamma N = 0 gives sigma exactly
+!> for given (dgamma, pc):  (C^-1 + dgamma H) sigma = C^-1 sigma_tr - dgamma (pc/3) P:1  (the
+!> observation behind the fallback of §3.4). C^-1 and H are diagonalised together once per material:
+!> V^T C^-1 V = I, V^T H V = Lambda (H is positive semi-definite, Lambda >= 0). In those coordinates,
+!> sigma = V xi with
+!>     xi_i = (a_i - dgamma (pc/3) b_i) / (1 + dgamma Lambda_i),  a = V^-1 sigma_tr,  b = V^T P:1,
+!> and f = 1/2 xi.Lambda.xi + (pc/3) b.xi (f is quadratic in sigma with Hessian H). What remains are the
+!> two scalar equations R_y = 0 and R_f = 0 of §3.3 in (dgamma, y), each evaluation O(6). The
+!> consistent tangent is the same top-left block of J^-1 as in §3.5, written in these coordinates.
 module ccix_frame
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: one6, identity6, outer6, lu_factor, lu_solve, invert6, is_finite
+  use ccix_tensor, only: one6, identity6, outer6, is_finite, cholesky_lower, lower_inverse, jacobi_eigen
   use ccix_elasticity, only: ti_stiffness_mandel
   use ccix_projection, only: projection_mandel
   implicit none
@@ -16,12 +27,15 @@ module ccix_frame
   !> Material constants of one frame, with everything derived from them that the return map needs.
   type, public :: frame_t
     real(real64) :: c(6, 6) = 0       !< elastic stiffness (Mandel)
-    real(real64) :: cinv(6, 6) = 0    !< its inverse
     real(real64) :: p(6, 6) = 0       !< projection tensor P (Mandel), theory.md §1.2
     real(real64) :: h(6, 6) = 0       !< H = dN/dsigma = P:[(2/9) 1(x)1 + (3/M^2) I_dev]:P, §1.3
     real(real64) :: p1(6) = 0         !< P:1
-    real(real64) :: h1(6) = 0         !< H:1
     real(real64) :: tr_p1 = 0         !< tr(P:1) = 3 c1 + c2 + c3
+    real(real64) :: v(6, 6) = 0       !< V: V^T C^-1 V = I, V^T H V = diag(lambda_h)
+    real(real64) :: v_inv(6, 6) = 0   !< V^-1 = V^T C^-1
+    real(real64) :: lambda_h(6) = 0   !< generalised eigenvalues of (H, C^-1), >= 0
+    real(real64) :: b(6) = 0          !< V^T P:1
+    real(real64) :: h1(6) = 0         !< V^T H:1, so that tr N = h1.xi + (pc/3) tr(P:1)
     real(real64) :: m_slope = 1       !< M, slope of the critical state line
     real(real64) :: lambda_p = 1      !< plastic compressibility
     real(real64) :: pc0 = 1           !< initial preconsolidation pressure
@@ -37,10 +51,23 @@ module ccix_frame
   !> Bits of the flags word.
   integer, parameter, public :: flag_floor = 1, flag_tension = 2, flag_fallback = 4
 
-  integer, parameter :: nx = 8              ! local unknowns: sigma(6), dgamma, y = ln(pc/pc_n)
-  integer, parameter :: max_newton = 30
-  real(real64), parameter :: newton_tol = 1.0e-11_real64
+  integer, parameter :: max_newton = 40
+  real(real64), parameter :: newton_tol = 1.0e-12_real64
   real(real64), parameter :: y_max = 50.0_real64, dy_max = 2.0_real64
+
+  !> The two scalar equations of one step, evaluated at (dgamma, y): everything the Newton iteration,
+  !> the fallback and the tangent need.
+  type :: local_eval_t
+    real(real64) :: pc, xi(6), n_xi(6), d(6)   ! pc, stress and flow direction in V-coordinates, 1/(1+g lambda)
+    real(real64) :: f, trn, r_y, r_f, err
+    real(real64) :: j_yg, j_yy, j_fg, j_fy      ! d(R_y, R_f)/d(dgamma, y)
+  end type local_eval_t
+
+  !> Fixed data of one step.
+  type :: step_t
+    real(real64) :: a(6), pc_n, sf, sg, y_floor
+    logical :: floor_active
+  end type step_t
 
   public :: frame_new, yield_function, flow_direction, frame_integrate
 
@@ -51,10 +78,9 @@ contains
       result(fr)
     real(real64), intent(in) :: lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n(3)
     type(frame_t) :: fr
-    real(real64) :: k(6, 6)
+    real(real64) :: k(6, 6), l(6, 6), q(6, 6)
     logical :: ok
     fr%c = ti_stiffness_mandel(lam, mu_t, mu_l, a, b, n)
-    call invert6(fr%c, fr%cinv, ok)
     fr%p = projection_mandel(c1, c2, c3, n)
     fr%isotropic = (c1 == 1.0_real64 .and. c2 == 0.0_real64 .and. c3 == 0.0_real64)
     ! K = d n'/d sigma' = (2/9) 1(x)1 + (3/M^2) I_dev ;  H = P:K:P   (theory.md §1.3)
@@ -62,8 +88,15 @@ contains
         + (2.0_real64 / 9.0_real64) * outer6(one6, one6)
     fr%h = matmul(fr%p, matmul(k, fr%p))
     fr%p1 = matmul(fr%p, one6)
-    fr%h1 = matmul(fr%h, one6)
     fr%tr_p1 = sum(fr%p1(1:3))
+    ! Simultaneous diagonalisation: C = L L^T, L^T H L = Q Lambda Q^T, V = L Q, V^-1 = Q^T L^-1.
+    call cholesky_lower(6, fr%c, l, ok)
+    call jacobi_eigen(6, matmul(transpose(l), matmul(fr%h, l)), fr%lambda_h, q)
+    fr%lambda_h = max(fr%lambda_h, 0.0_real64)   ! H is positive semi-definite; drop round-off
+    fr%v = matmul(l, q)
+    fr%v_inv = matmul(transpose(q), lower_inverse(6, l))
+    fr%b = matmul(transpose(fr%v), fr%p1)
+    fr%h1 = matmul(transpose(fr%v), matmul(fr%h, one6))
     fr%m_slope = m_slope
     fr%lambda_p = lambda_p
     fr%pc0 = pc0
@@ -98,7 +131,7 @@ contains
     f = q2 / fr%m_slope**2 + pp * (pp - pc)
   end function yield_function
 
-  !> f, p', q'^2 and the flow direction N = df/dsigma = P:n' = H:sigma + (pc/3) P:1 (theory.md §1.3).
+  !> f, p', q'^2 and the flow direction N = df/dsigma = P:n' (theory.md §1.3).
   pure subroutine flow_direction(fr, sig, pc, f, pp, q2, n_dir)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig(6), pc
@@ -130,10 +163,11 @@ contains
     integer, intent(out) :: iterations, status, flags
     real(real64), intent(out) :: err_est
 
-    real(real64) :: sig_tr(6), f_tr, pc_r, denom, sf, sg, y_floor, x(nx), x_start(nx)
-    real(real64) :: lu(nx, nx), rs(nx), cs(nx), z(nx), f, pp, q2, n_dir(6)
-    integer :: piv(nx), j, it2
-    logical :: ok, at_floor
+    type(step_t) :: st
+    type(local_eval_t) :: ev
+    real(real64) :: sig_tr(6), f_tr, pc_r, denom, g, y, f, pp, q2, n_dir(6)
+    integer :: it2
+    logical :: ok
 
     flags = 0
     iterations = 0
@@ -144,7 +178,7 @@ contains
     ! Trial step (§3.2).
     sig_tr = sig_n + matmul(fr%c, deps)
     sig = sig_tr
-    if (.not. all(is_finite(sig_tr))) then
+    if (.not. is_finite(sum(sig_tr))) then
       status = frame_failed
       return
     end if
@@ -159,32 +193,33 @@ contains
     ! sf = dt E_r / (dt E_r pc_r^2 + eta), sg = eta E_r / (dt E_r pc_r^2 + eta).
     pc_r = max(pc_n, fr%p_floor)
     denom = dt * fr%e_ref * pc_r**2 + fr%eta
-    sf = dt * fr%e_ref / denom
-    sg = fr%eta * fr%e_ref / denom
-    y_floor = log(fr%p_floor / pc_n)
+    st%sf = dt * fr%e_ref / denom
+    st%sg = fr%eta * fr%e_ref / denom
+    st%pc_n = pc_n
+    st%y_floor = log(fr%p_floor / pc_n)
+    st%a = matmul(fr%v_inv, sig_tr)
+    st%floor_active = .false.
 
     ! Newton from the elastic predictor (§3.4); pc bounded below by the floor while iterating.
-    x_start = [sig_tr, 0.0_real64, 0.0_real64]
-    x = x_start
     status = frame_newton
-    call newton_solve(fr, sig_tr, pc_n, sf, sg, y_floor, .false., x, lu, piv, rs, cs, &
-                      iterations, ok)
-    at_floor = .false.
-    if (.not. ok .and. x(8) <= y_floor) then
+    g = 0
+    y = 0
+    call newton_solve(fr, st, g, y, ev, iterations, ok)
+    if (.not. ok .and. y <= st%y_floor) then
       ! The hardening wants pc below the floor: hold pc at the floor and solve again.
-      x = x_start
-      at_floor = .true.
-      call newton_solve(fr, sig_tr, pc_n, sf, sg, y_floor, .true., x, lu, piv, rs, cs, it2, ok)
+      st%floor_active = .true.
+      g = 0
+      y = 0
+      call newton_solve(fr, st, g, y, ev, it2, ok)
       iterations = iterations + it2
     end if
     if (.not. ok) then
-      ! Bracketed fallback (§3.4), then a Newton polish that also gives the Jacobian.
+      ! Bracketed fallback (§3.4), then Newton from its solution for the exact root and the tangent.
       status = frame_fallback
       flags = ior(flags, flag_fallback)
-      call fallback_solve(fr, sig_tr, pc_n, sf, sg, y_floor, x, at_floor, ok)
+      call fallback_solve(fr, st, g, y, ok)
       if (ok) then
-        call newton_solve(fr, sig_tr, pc_n, sf, sg, y_floor, at_floor, x, lu, piv, rs, cs, &
-                          it2, ok)
+        call newton_solve(fr, st, g, y, ev, it2, ok)
         iterations = iterations + it2
       end if
     end if
@@ -196,20 +231,13 @@ contains
       return
     end if
 
-    sig = x(1:6)
-    pc = pc_n * exp(x(8))
+    pc = ev%pc
+    sig = matmul(fr%v, ev%xi)
     call flow_direction(fr, sig, pc, f, pp, q2, n_dir)
-    devp = x(7) * n_dir
-    if (at_floor) flags = ior(flags, flag_floor)
+    devp = g * n_dir
+    if (st%floor_active) flags = ior(flags, flag_floor)
     if (pp < 0) flags = ior(flags, flag_tension)
-    ! Consistent tangent = top-left 6x6 block of J^-1 (§3.5). J was equilibrated as
-    ! Jt = diag(rs) J diag(cs), so J^-1 = diag(cs) Jt^-1 diag(rs).
-    do j = 1, 6
-      z = 0
-      z(j) = rs(j)
-      call lu_solve(nx, lu, piv, z)
-      d(:, j) = cs(1:6) * z(1:6)
-    end do
+    d = consistent_tangent(fr, st, g, ev)
     if (want_error) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
   end subroutine frame_integrate
 
@@ -226,209 +254,214 @@ contains
     err = norm2(devp - (dt * max(f, 0.0_real64) / fr%eta) * n_dir)
   end function start_rate_error
 
-  !> Local residual R(x) and Jacobian J(x) of theory.md §3.3-3.4 (R_f row scaled), with the relative
-  !> size err of the residual.
-  pure subroutine local_system(fr, sig_tr, pc_n, sf, sg, y_floor, floor_active, x, r, jac, err)
+  !> R_y and R_f of theory.md §3.3 at (dgamma, y) with sigma eliminated exactly, their Jacobian and
+  !> the relative size of the residual.
+  pure function local_eval(fr, st, g, y) result(ev)
     type(frame_t), intent(in) :: fr
-    real(real64), intent(in) :: sig_tr(6), pc_n, sf, sg, y_floor, x(nx)
-    logical, intent(in) :: floor_active
-    real(real64), intent(out) :: r(nx), jac(nx, nx), err
-    real(real64) :: sig(6), dg, y, pc, f, pp, q2, n_dir(6), trn, scale_sig, err_eps, err_y, err_f
-    sig = x(1:6)
-    dg = x(7)
-    y = x(8)
-    pc = pc_n * exp(y)
-    call flow_direction(fr, sig, pc, f, pp, q2, n_dir)
-    trn = n_dir(1) + n_dir(2) + n_dir(3)
-
-    ! R_eps = C^-1:(sigma - sigma_tr) + dgamma N
-    r(1:6) = matmul(fr%cinv, sig - sig_tr) + dg * n_dir
-    jac(1:6, 1:6) = fr%cinv + dg * fr%h
-    jac(1:6, 7) = n_dir
-    jac(1:6, 8) = (dg * pc / 3) * fr%p1
-    if (floor_active) then
+    type(step_t), intent(in) :: st
+    real(real64), intent(in) :: g, y
+    type(local_eval_t) :: ev
+    real(real64) :: c3, pc3, q_terms, bxi, f_g, f_y, trn_g, trn_y, nd(6)
+    ev%pc = st%pc_n * exp(y)
+    pc3 = ev%pc / 3
+    c3 = g * pc3
+    ev%d = 1 / (1 + g * fr%lambda_h)
+    ev%xi = (st%a - c3 * fr%b) * ev%d                 ! stress
+    ev%n_xi = fr%lambda_h * ev%xi + pc3 * fr%b        ! flow direction N, V^T N
+    q_terms = 0.5_real64 * dot_product(fr%lambda_h * ev%xi, ev%xi)   ! q'^2/M^2 + p'^2
+    bxi = dot_product(fr%b, ev%xi)                                    ! = -3 p'
+    ev%f = q_terms + pc3 * bxi
+    ev%trn = dot_product(fr%h1, ev%xi) + pc3 * fr%tr_p1
+    ! d xi/d dgamma = -n_xi d ;  d xi/dy = -c3 b d ;  d f/d xi = n_xi ;  d f/d pc = bxi/3
+    nd = ev%n_xi * ev%d
+    f_g = -dot_product(ev%n_xi, nd)
+    f_y = -c3 * dot_product(fr%b, nd) + pc3 * bxi
+    trn_g = -dot_product(fr%h1, nd)
+    trn_y = -c3 * dot_product(fr%h1, fr%b * ev%d) + pc3 * fr%tr_p1
+    if (st%floor_active) then
       ! pc held at the floor: R_y = lambda_p (y - y_floor)
-      r(7) = fr%lambda_p * (y - y_floor)
-      jac(7, 1:7) = 0
-      jac(7, 8) = fr%lambda_p
+      ev%r_y = fr%lambda_p * (y - st%y_floor)
+      ev%j_yg = 0
+      ev%j_yy = fr%lambda_p
     else
       ! R_y = lambda_p y + dgamma tr N   (pc_n+1 = pc_n exp(-d eps_v^vp / lambda_p), §1.4)
-      r(7) = fr%lambda_p * y + dg * trn
-      jac(7, 1:6) = dg * fr%h1
-      jac(7, 7) = trn
-      jac(7, 8) = fr%lambda_p + (dg * pc / 3) * fr%tr_p1
+      ev%r_y = fr%lambda_p * y + g * ev%trn
+      ev%j_yg = ev%trn + g * trn_g
+      ev%j_yy = fr%lambda_p + g * trn_y
     end if
     ! R_f = sf f - sg dgamma
-    r(8) = sf * f - sg * dg
-    jac(8, 1:6) = sf * n_dir
-    jac(8, 7) = -sg
-    jac(8, 8) = -sf * pp * pc
+    ev%r_f = st%sf * ev%f - st%sg * g
+    ev%j_fg = st%sf * f_g - st%sg
+    ev%j_fy = st%sf * f_y
+    ! Relative residuals: each against the size of its terms; f also against the surface size pc^2,
+    ! which keeps the test meaningful at the apex p' = q' = 0 where every term of f vanishes.
+    ev%err = max(abs(ev%r_y) / (fr%lambda_p * (1 + abs(y)) + abs(g * ev%trn)), &
+                 abs(ev%r_f) / max(st%sf * (q_terms + abs(pc3 * bxi) + ev%pc**2) + st%sg * g, &
+                                   tiny(1.0_real64)))
+  end function local_eval
 
-    ! Relative residuals: each against the size of the terms that make it up.
-    scale_sig = max(norm2(sig), norm2(sig_tr), pc, fr%p_floor)
-    err_eps = norm2(r(1:6)) * fr%e_ref / scale_sig
-    err_y = abs(r(7)) / (fr%lambda_p * (1 + abs(y)) + abs(dg * trn))
-    ! f against the size of its terms and of the current surface (pc^2), which keeps the test
-    ! meaningful at the apex p' = q' = 0, where every term of f vanishes.
-    err_f = abs(r(8)) / max(sf * (q2 / fr%m_slope**2 + pp**2 + abs(pp) * pc + pc**2) + sg * dg, &
-                            tiny(1.0_real64))
-    err = max(err_eps, err_y, err_f)
-  end subroutine local_system
-
-  !> Clipped, projected Newton on the local system (theory.md §3.4). On success the equilibrated
-  !> Jacobian at the converged point is returned factorised (lu, piv, rs, cs) for the tangent. One
-  !> more Newton step is taken after the test passes, so that the stress is exact to round-off.
-  pure subroutine newton_solve(fr, sig_tr, pc_n, sf, sg, y_floor, floor_active, x, lu, piv, rs, &
-                               cs, iterations, ok)
+  !> Clipped, projected Newton on (dgamma, y) (theory.md §3.4). One more Newton step is taken after
+  !> the test passes, so that the state is exact to round-off; ev is the evaluation at the result.
+  pure subroutine newton_solve(fr, st, g, y, ev, iterations, ok)
     type(frame_t), intent(in) :: fr
-    real(real64), intent(in) :: sig_tr(6), pc_n, sf, sg, y_floor
-    logical, intent(in) :: floor_active
-    real(real64), intent(inout) :: x(nx)
-    real(real64), intent(out) :: lu(nx, nx), rs(nx), cs(nx)
-    integer, intent(out) :: piv(nx), iterations
+    type(step_t), intent(in) :: st
+    real(real64), intent(inout) :: g, y
+    type(local_eval_t), intent(out) :: ev
+    integer, intent(out) :: iterations
     logical, intent(out) :: ok
-    real(real64) :: r(nx), dx(nx), err, y_low
-    integer :: it, i
-    logical :: converged, factored
+    real(real64) :: det, dg, dy, y_low
+    integer :: it
+    logical :: converged
 
-    y_low = merge(-y_max, max(y_floor, -y_max), floor_active)
+    y_low = merge(-y_max, max(st%y_floor, -y_max), st%floor_active)
     converged = .false.
     ok = .false.
     iterations = 0
     do it = 1, max_newton + 1
-      call local_system(fr, sig_tr, pc_n, sf, sg, y_floor, floor_active, x, r, lu, err)
-      if (.not. (all(is_finite(r)) .and. all(is_finite(lu)))) return
-      ! Row then column equilibration of J before LU.
-      do i = 1, nx
-        rs(i) = 1 / max(maxval(abs(lu(i, :))), tiny(1.0_real64))
-        lu(i, :) = lu(i, :) * rs(i)
-      end do
-      do i = 1, nx
-        cs(i) = 1 / max(maxval(abs(lu(:, i))), tiny(1.0_real64))
-        lu(:, i) = lu(:, i) * cs(i)
-      end do
-      call lu_factor(nx, lu, piv, factored)
-      if (.not. factored) return
+      ev = local_eval(fr, st, g, y)
+      if (.not. is_finite(ev%err + ev%j_yg + ev%j_yy + ev%j_fg + ev%j_fy)) return
       if (converged) then
-        ok = err <= 1.0e3_real64 * newton_tol
+        ok = ev%err <= 1.0e3_real64 * newton_tol
         return
       end if
       if (it > max_newton) return
-      converged = err <= newton_tol
-      dx = -rs * r
-      call lu_solve(nx, lu, piv, dx)
-      dx = cs * dx
-      x(1:6) = x(1:6) + dx(1:6)
-      x(7) = max(0.0_real64, x(7) + dx(7))
-      x(8) = min(max(x(8) + min(max(dx(8), -dy_max), dy_max), y_low), y_max)
+      converged = ev%err <= newton_tol
+      det = ev%j_yg * ev%j_fy - ev%j_yy * ev%j_fg
+      if (.not. (abs(det) > 0)) return
+      dg = -(ev%j_fy * ev%r_y - ev%j_yy * ev%r_f) / det
+      dy = -(ev%j_yg * ev%r_f - ev%j_fg * ev%r_y) / det
+      g = max(0.0_real64, g + dg)
+      y = min(max(y + min(max(dy, -dy_max), dy_max), y_low), y_max)
       iterations = iterations + 1
     end do
   end subroutine newton_solve
 
-  !> Fallback of theory.md §3.4 for the states where Newton stalls: for a fixed dgamma the stress is
-  !> linear in pc, sigma = a - pc b, so the hardening equation is one scalar equation in y, solved by
-  !> bracketing; the scaled consistency g(dgamma) = sf f - sg dgamma is then bracketed in dgamma.
-  pure subroutine fallback_solve(fr, sig_tr, pc_n, sf, sg, y_floor, x, at_floor, ok)
+  !> The consistent tangent dsigma/deps (theory.md §3.5): with sigma = V xi(a, dgamma, y) and
+  !> a = V^-1 (sigma_n + C deps), d xi/deps at fixed (dgamma, y) is diag(d) V^T, so
+  !>   D = V diag(d) V^T - u_n (x) dg/deps - (dgamma pc/3) u_b (x) dy/deps,
+  !> with u_n = V (n_xi d), u_b = V (b d), and (dg, dy)/deps from the 2 x 2 Jacobian G of (R_y, R_f):
+  !>   G (dg, dy)/deps = -(dgamma u_h, sf u_n),  u_h = V (h1 d)  (u_h absent when pc is at the floor).
+  pure function consistent_tangent(fr, st, g, ev) result(d)
     type(frame_t), intent(in) :: fr
-    real(real64), intent(in) :: sig_tr(6), pc_n, sf, sg, y_floor
-    real(real64), intent(out) :: x(nx)
-    logical, intent(out) :: at_floor, ok
-    real(real64) :: dg_lo, dg_hi, g_lo, g_hi, dg, g, sig(6), y, f, pp, q2, n_tr(6), cn
+    type(step_t), intent(in) :: st
+    real(real64), intent(in) :: g
+    type(local_eval_t), intent(in) :: ev
+    real(real64) :: d(6, 6), u_n(6), u_b(6), u_h(6), ry_e(6), rf_e(6), dg_e(6), dy_e(6), det, c3
+    integer :: i, j
+    u_n = matmul(fr%v, ev%n_xi * ev%d)
+    u_b = matmul(fr%v, fr%b * ev%d)
+    c3 = g * ev%pc / 3
+    if (st%floor_active) then
+      ry_e = 0
+    else
+      u_h = matmul(fr%v, fr%h1 * ev%d)
+      ry_e = g * u_h
+    end if
+    rf_e = st%sf * u_n
+    det = ev%j_yg * ev%j_fy - ev%j_yy * ev%j_fg
+    dg_e = -(ev%j_fy * ry_e - ev%j_yy * rf_e) / det
+    dy_e = -(ev%j_yg * rf_e - ev%j_fg * ry_e) / det
+    do j = 1, 6
+      do i = j, 6
+        d(i, j) = sum(fr%v(i, :) * ev%d * fr%v(j, :))
+        d(j, i) = d(i, j)
+      end do
+    end do
+    do j = 1, 6
+      d(:, j) = d(:, j) - u_n * dg_e(j) - c3 * u_b * dy_e(j)
+    end do
+  end function consistent_tangent
+
+  !> Fallback of theory.md §3.4 for the states where Newton stalls: for a fixed dgamma the hardening
+  !> equation R_y = 0 is one scalar equation in y, solved by bisection; the scaled consistency
+  !> R_f(dgamma) is then bracketed in dgamma (Illinois regula falsi).
+  pure subroutine fallback_solve(fr, st, g, y, ok)
+    type(frame_t), intent(in) :: fr
+    type(step_t), intent(inout) :: st
+    real(real64), intent(out) :: g, y
+    logical, intent(out) :: ok
+    real(real64) :: g_lo, g_hi, r_lo, r_hi, r, y_hi_sol, n2
+    type(local_eval_t) :: ev
     integer :: k
-    logical :: fl, okg
+    logical :: okc
 
     ok = .false.
-    at_floor = .false.
-    x = [sig_tr, 0.0_real64, 0.0_real64]
-    dg_lo = 0
-    g_lo = sf * yield_function(fr, sig_tr, pc_n)
+    st%floor_active = .false.
+    g = 0
+    y = 0
+    g_lo = 0
+    ev = local_eval(fr, st, 0.0_real64, 0.0_real64)
+    r_lo = ev%r_f
     ! First guess of the upper bracket: the elastic-predictor estimate f_tr / (N:C:N).
-    call flow_direction(fr, sig_tr, pc_n, f, pp, q2, n_tr)
-    cn = dot_product(n_tr, matmul(fr%c, n_tr))
-    dg_hi = merge(f / cn, 1 / (fr%e_ref * pc_n), cn > 0 .and. f / cn > 0)
+    n2 = dot_product(ev%n_xi, ev%n_xi)
+    g_hi = merge(ev%f / n2, 1 / (fr%e_ref * st%pc_n), n2 > 0 .and. ev%f > 0)
     do k = 1, 200
-      call consistency_at(dg_hi, g_hi, sig, y, fl, okg)
-      if (okg .and. g_hi < 0) exit
-      if (okg) then
-        dg_lo = dg_hi
+      call consistency_at(fr, st, g_hi, r_hi, y_hi_sol, okc)
+      if (okc .and. r_hi < 0) exit
+      if (okc) then
         g_lo = g_hi
+        r_lo = r_hi
       end if
-      dg_hi = 4 * dg_hi
-      if (k == 200 .or. .not. is_finite(dg_hi)) return
+      g_hi = 4 * g_hi
+      if (k == 200 .or. .not. is_finite(g_hi)) return
     end do
-    ! Illinois regula falsi on [dg_lo, dg_hi], g_lo > 0 > g_hi.
     do k = 1, 300
-      dg = (dg_lo * g_hi - dg_hi * g_lo) / (g_hi - g_lo)
-      if (.not. (dg > dg_lo .and. dg < dg_hi)) dg = 0.5_real64 * (dg_lo + dg_hi)
-      call consistency_at(dg, g, sig, y, fl, okg)
-      if (.not. okg) return
-      if (g > 0) then
-        dg_lo = dg; g_lo = g
-        g_hi = 0.5_real64 * g_hi
+      g = (g_lo * r_hi - g_hi * r_lo) / (r_hi - r_lo)
+      if (.not. (g > g_lo .and. g < g_hi)) g = 0.5_real64 * (g_lo + g_hi)
+      call consistency_at(fr, st, g, r, y, okc)
+      if (.not. okc) return
+      if (r > 0) then
+        g_lo = g; r_lo = r
+        r_hi = 0.5_real64 * r_hi
       else
-        dg_hi = dg; g_hi = g
-        g_lo = 0.5_real64 * g_lo
+        g_hi = g; r_hi = r
+        r_lo = 0.5_real64 * r_lo
       end if
-      if (dg_hi - dg_lo <= 1.0e-15_real64 * dg_hi .or. g == 0) exit
+      if (g_hi - g_lo <= 1.0e-15_real64 * g_hi .or. r == 0) exit
     end do
-    x = [sig, dg, y]
-    at_floor = fl
-    ok = .true.
-
-  contains
-
-    !> g(dgamma) with the hardening equation solved exactly for this dgamma.
-    pure subroutine consistency_at(dgam, gval, sig_out, y_out, floor_hit, okc)
-      real(real64), intent(in) :: dgam
-      real(real64), intent(out) :: gval, sig_out(6), y_out
-      logical, intent(out) :: floor_hit, okc
-      real(real64) :: amat(6, 6), va(6), vb(6), alpha, beta, ylo, yhi, rlo, rhi, ym, rm, pcv
-      integer :: pv(6), kk
-      logical :: okf
-      okc = .false.
-      floor_hit = .false.
-      gval = 0
-      sig_out = sig_tr
-      y_out = 0
-      ! (C^-1 + dgamma H) sigma = C^-1 sigma_tr - dgamma (pc/3) P:1   =>   sigma = a - pc b
-      amat = fr%cinv + dgam * fr%h
-      call lu_factor(6, amat, pv, okf)
-      if (.not. okf) return
-      va = matmul(fr%cinv, sig_tr)
-      call lu_solve(6, amat, pv, va)
-      vb = (dgam / 3) * fr%p1
-      call lu_solve(6, amat, pv, vb)
-      ! tr N = alpha + beta pc ;  R_y(y) = lambda_p y + dgamma (alpha + beta pc_n e^y)
-      alpha = dot_product(fr%h1, va)
-      beta = fr%tr_p1 / 3 - dot_product(fr%h1, vb)
-      ylo = max(y_floor, -y_max)
-      yhi = y_max
-      rlo = fr%lambda_p * ylo + dgam * (alpha + beta * pc_n * exp(ylo))
-      rhi = fr%lambda_p * yhi + dgam * (alpha + beta * pc_n * exp(yhi))
-      if (rlo >= 0) then
-        y_out = ylo
-        floor_hit = .true.
-      else if (rhi <= 0) then
-        return
-      else
-        do kk = 1, 200
-          ym = 0.5_real64 * (ylo + yhi)
-          rm = fr%lambda_p * ym + dgam * (alpha + beta * pc_n * exp(ym))
-          if (rm < 0) then
-            ylo = ym
-          else
-            yhi = ym
-          end if
-          if (yhi - ylo <= 1.0e-15_real64 * max(1.0_real64, abs(ym))) exit
-        end do
-        y_out = 0.5_real64 * (ylo + yhi)
-      end if
-      pcv = pc_n * exp(y_out)
-      sig_out = va - pcv * vb
-      gval = sf * yield_function(fr, sig_out, pcv) - sg * dgam
-      okc = is_finite(gval)
-    end subroutine consistency_at
+    call consistency_at(fr, st, g, r, y, okc)
+    ok = okc
 
   end subroutine fallback_solve
+
+  !> R_f(dgamma) with the hardening equation solved for y (pc at the floor if it wants to go below).
+  pure subroutine consistency_at(fr, st, gam, rf, y_sol, okc)
+    type(frame_t), intent(in) :: fr
+    type(step_t), intent(inout) :: st
+    real(real64), intent(in) :: gam
+    real(real64), intent(out) :: rf, y_sol
+    logical, intent(out) :: okc
+    real(real64) :: ylo, yhi, ym
+    type(local_eval_t) :: e
+    integer :: kk
+    okc = .false.
+    rf = 0
+    st%floor_active = .false.
+    ylo = max(st%y_floor, -y_max)
+    yhi = y_max
+    e = local_eval(fr, st, gam, ylo)
+    if (e%r_y >= 0) then
+      y_sol = ylo
+      st%floor_active = .true.
+    else
+      e = local_eval(fr, st, gam, yhi)
+      if (e%r_y <= 0) return
+      do kk = 1, 200
+        ym = 0.5_real64 * (ylo + yhi)
+        e = local_eval(fr, st, gam, ym)
+        if (e%r_y < 0) then
+          ylo = ym
+        else
+          yhi = ym
+        end if
+        if (yhi - ylo <= 1.0e-15_real64 * max(1.0_real64, abs(ym))) exit
+      end do
+      y_sol = 0.5_real64 * (ylo + yhi)
+    end if
+    e = local_eval(fr, st, gam, y_sol)
+    rf = e%r_f
+    okc = is_finite(rf)
+  end subroutine consistency_at
+
 
 end module ccix_frame

@@ -205,8 +205,8 @@ contains
     else if (ntens == 4 .and. props(ip_phi) > 0) then
       ! (With phi = 0 the hard frame is not used and its normal does not matter.)
       code = ip_normal
-      message = 'Cam-Clay IX UMAT: NTENS = 4 needs the bedding normal in the 1-2 plane: give NPROPS = 23 ' // &
-                'with (n1, n2, 0) in PROPS 21-23 (without them the normal is the 3-axis, out of plane)'
+      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: PROPS(21) to PROPS(23), the bedding normal, are missing (NPROPS = ', &
+        nprops, '): with NTENS = 4 and phi > 0 give NPROPS = 23 with a normal (n1, n2, 0) in the 1-2 plane'
       return
     end if
 

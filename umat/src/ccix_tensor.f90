@@ -22,7 +22,8 @@ module ccix_tensor
 
   public :: identity6, outer6, stress_to_mandel, mandel_to_stress, strain_to_mandel, &
             mandel_to_strain, tangent_to_abaqus, mandel_to_matrix33, matrix33_to_mandel, &
-            rotate_mandel, lu_factor, lu_solve, invert6, is_finite, cholesky_is_spd
+            rotate_mandel, lu_factor, lu_solve, invert6, is_finite, cholesky_is_spd, &
+            cholesky_lower, lower_inverse, jacobi_eigen
 
 contains
 
@@ -110,29 +111,43 @@ contains
   end function rotate_mandel
 
   !> LU factorisation with partial pivoting, in place. ok = .false. on an exactly singular pivot.
+  !> Written with scalar loops (no array temporaries): it runs in the innermost loop of the UMAT.
   pure subroutine lu_factor(n, a, piv, ok)
     integer, intent(in) :: n
     real(real64), intent(inout) :: a(n, n)
     integer, intent(out) :: piv(n)
     logical, intent(out) :: ok
-    integer :: i, k, p
-    real(real64) :: tmp(n)
+    integer :: i, j, k, p
+    real(real64) :: t, big, rpiv
     ok = .true.
     do k = 1, n
-      p = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
+      p = k
+      big = abs(a(k, k))
+      do i = k + 1, n
+        if (abs(a(i, k)) > big) then
+          big = abs(a(i, k))
+          p = i
+        end if
+      end do
       piv(k) = p
-      if (a(p, k) == 0.0_real64) then
+      if (big == 0.0_real64) then
         ok = .false.
         return
       end if
       if (p /= k) then
-        tmp = a(k, :)
-        a(k, :) = a(p, :)
-        a(p, :) = tmp
+        do j = 1, n
+          t = a(k, j); a(k, j) = a(p, j); a(p, j) = t
+        end do
       end if
-      a(k+1:n, k) = a(k+1:n, k) / a(k, k)
+      rpiv = 1 / a(k, k)
       do i = k + 1, n
-        a(k+1:n, i) = a(k+1:n, i) - a(k+1:n, k) * a(k, i)
+        a(i, k) = a(i, k) * rpiv
+      end do
+      do j = k + 1, n
+        t = a(k, j)
+        do i = k + 1, n
+          a(i, j) = a(i, j) - a(i, k) * t
+        end do
       end do
     end do
   end subroutine lu_factor
@@ -150,11 +165,19 @@ contains
         t = b(k); b(k) = b(piv(k)); b(piv(k)) = t
       end if
     end do
-    do i = 2, n
-      b(i) = b(i) - dot_product(lu(i, 1:i-1), b(1:i-1))
+    ! Forward (unit lower) and back substitution, column by column (contiguous access).
+    do k = 1, n - 1
+      t = b(k)
+      do i = k + 1, n
+        b(i) = b(i) - lu(i, k) * t
+      end do
     end do
-    do i = n, 1, -1
-      b(i) = (b(i) - dot_product(lu(i, i+1:n), b(i+1:n))) / lu(i, i)
+    do k = n, 1, -1
+      b(k) = b(k) / lu(k, k)
+      t = b(k)
+      do i = 1, k - 1
+        b(i) = b(i) - lu(i, k) * t
+      end do
     end do
   end subroutine lu_solve
 
@@ -193,6 +216,93 @@ contains
     end do
     spd = .true.
   end function cholesky_is_spd
+
+  !> Lower Cholesky factor L of a symmetric positive definite matrix (A = L L^T); ok = .false. if not SPD.
+  pure subroutine cholesky_lower(n, a, l, ok)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: a(n, n)
+    real(real64), intent(out) :: l(n, n)
+    logical, intent(out) :: ok
+    real(real64) :: s
+    integer :: i, j
+    l = 0.0_real64
+    ok = .false.
+    do j = 1, n
+      s = a(j, j) - dot_product(l(j, 1:j-1), l(j, 1:j-1))
+      if (.not. (s > 0.0_real64)) return
+      l(j, j) = sqrt(s)
+      do i = j + 1, n
+        l(i, j) = (a(i, j) - dot_product(l(i, 1:j-1), l(j, 1:j-1))) / l(j, j)
+      end do
+    end do
+    ok = .true.
+  end subroutine cholesky_lower
+
+  !> Inverse of a non-singular lower triangular matrix.
+  pure function lower_inverse(n, l) result(li)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: l(n, n)
+    real(real64) :: li(n, n)
+    integer :: i, j
+    li = 0.0_real64
+    do j = 1, n
+      li(j, j) = 1 / l(j, j)
+      do i = j + 1, n
+        li(i, j) = -dot_product(l(i, j:i-1), li(j:i-1, j)) / l(i, i)
+      end do
+    end do
+  end function lower_inverse
+
+  !> Eigenvalues w and orthonormal eigenvectors (columns of q) of a symmetric matrix, by cyclic Jacobi
+  !> rotations. Used once per material, never per call.
+  pure subroutine jacobi_eigen(n, a, w, q)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: a(n, n)
+    real(real64), intent(out) :: w(n), q(n, n)
+    real(real64) :: b(n, n), off, theta, t, c, s, bip, biq
+    integer :: sweep, p, r, i
+    b = 0.5_real64 * (a + transpose(a))
+    q = 0.0_real64
+    do i = 1, n
+      q(i, i) = 1.0_real64
+    end do
+    do sweep = 1, 100
+      off = 0.0_real64
+      do p = 1, n - 1
+        do r = p + 1, n
+          off = off + b(p, r)**2
+        end do
+      end do
+      if (off <= (1.0e-17_real64 * maxval(abs(b)))**2) exit
+      do p = 1, n - 1
+        do r = p + 1, n
+          if (b(p, r) == 0.0_real64) cycle
+          theta = (b(r, r) - b(p, p)) / (2 * b(p, r))
+          t = sign(1.0_real64, theta) / (abs(theta) + sqrt(theta**2 + 1))
+          c = 1 / sqrt(t**2 + 1)
+          s = t * c
+          do i = 1, n
+            bip = b(i, p); biq = b(i, r)
+            b(i, p) = c * bip - s * biq
+            b(i, r) = s * bip + c * biq
+          end do
+          do i = 1, n
+            bip = b(p, i); biq = b(r, i)
+            b(p, i) = c * bip - s * biq
+            b(r, i) = s * bip + c * biq
+          end do
+          do i = 1, n
+            bip = q(i, p); biq = q(i, r)
+            q(i, p) = c * bip - s * biq
+            q(i, r) = s * bip + c * biq
+          end do
+        end do
+      end do
+    end do
+    do i = 1, n
+      w(i) = b(i, i)
+    end do
+  end subroutine jacobi_eigen
 
   elemental function is_finite(x) result(ok)
     real(real64), intent(in) :: x

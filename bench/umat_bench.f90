@@ -1,0 +1,123 @@
+!> Time per UMAT call (benchmark, not a test): elastic, viscoplastic (both frames) and rate-independent
+!> steps, 3D (NTENS 6) and plane strain (NTENS 4). Each case cycles through 64 slightly different
+!> strain increments from one start state, so the local iteration counts vary as in a real mesh.
+!> Prints one Markdown table row per case: median ns per call over the repetitions, the spread, and
+!> the median local Newton iterations. Usage: umat_bench [calls_per_repetition] [repetitions]
+program umat_bench
+  use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
+  implicit none
+  integer, parameter :: nstatv = 36, nvar = 64
+  real(real64), parameter :: pi = 3.141592653589793_real64
+  real(real64) :: woodford(23)
+  integer :: ncalls, nrep
+  character(len=32) :: arg
+
+  woodford = [0.5_real64, 2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
+    1.46_real64, 0.00013_real64, 0.73_real64, -0.20_real64, 0.40_real64, 2.0_real64, 1.3e13_real64, &
+    4600.0_real64, 3100.0_real64, 1.46_real64, 0.0026_real64, 35.0_real64, 1.3e10_real64, 0.0_real64, &
+    0.0_real64, 0.0_real64, 1.0_real64]
+  ncalls = 200000
+  nrep = 7
+  if (command_argument_count() >= 1) then
+    call get_command_argument(1, arg); read (arg, *) ncalls
+  end if
+  if (command_argument_count() >= 2) then
+    call get_command_argument(2, arg); read (arg, *) nrep
+  end if
+
+  write (output_unit, '(a)') '| case | NTENS | median ns/call | min-max ns/call | median local iterations |'
+  write (output_unit, '(a)') '|---|---|---|---|---|'
+  call run_case('elastic (both frames inside)', 6, 'elastic')
+  call run_case('viscoplastic, both frames yield', 6, 'vp')
+  call run_case('rate-independent (eta = 0), both frames', 6, 'ri')
+  call run_case('elastic (both frames inside)', 4, 'elastic')
+  call run_case('viscoplastic, both frames yield', 4, 'vp')
+  call run_case('rate-independent (eta = 0), both frames', 4, 'ri')
+
+contains
+
+  subroutine run_case(name, ntens, kind)
+    character(len=*), intent(in) :: name, kind
+    integer, intent(in) :: ntens
+    real(real64) :: props(23), stress0(ntens), statev0(nstatv), stress(ntens), statev(nstatv)
+    real(real64) :: dstran(ntens, nvar), ddsdde(ntens, ntens), pnewdt, dtime, u(6), times(nrep), th
+    real(real64), parameter :: base(6) = [-1.0_real64, -1.0_real64, -3.0_real64, 0.0_real64, 0.0_real64, 0.0_real64]
+    real(real64) :: iters(nvar), sse, spd, scd, rpl, ddsddt(ntens), drplde(ntens), drpldt, stran(ntens), &
+                    time(2), temp, dtemp, predef(1), dpred(1), coords(3), drot(3, 3), celent, f0(3, 3), f1(3, 3)
+    integer :: i, k, r, jstep(4)
+    integer(int64) :: t0, t1, rate
+    character(len=80) :: cmname
+    external :: umat
+
+    props = woodford
+    th = 30 * pi / 180
+    if (ntens == 4) then
+      props(21:23) = [sin(th), cos(th), 0.0_real64]
+    else
+      props(21:23) = [sin(th), 0.0_real64, cos(th)]
+    end if
+    statev0 = 0
+    statev0(1:6) = [-35.0_real64, -35.0_real64, -35.0_real64, 0.0_real64, 0.0_real64, 0.0_real64]
+    statev0(14:19) = statev0(1:6)
+    stress0 = statev0(1:ntens)
+    dtime = 10
+    select case (kind)
+    case ('elastic')
+      statev0(13) = 60; statev0(26) = 60       ! both surfaces well outside -35 MPa
+    case ('vp')
+      statev0(13) = 2; statev0(26) = 35        ! the paper's start: hard far outside, soft on its surface
+    case default
+      props(13) = 0; props(19) = 0
+      statev0(13) = 30; statev0(26) = 35
+    end select
+    call random_seed(put=[(1234 + i, i = 1, 64)])
+    do k = 1, nvar
+      call random_number(u)
+      dstran(:, k) = 1.0e-5_real64 * (base(1:ntens) + (u(1:ntens) - 0.5_real64))
+    end do
+    if (kind == 'elastic') dstran = 0.1_real64 * dstran
+    sse = 0; spd = 0; scd = 0; stran = 0; time = 0; temp = 0; dtemp = 0; predef = 0; dpred = 0; coords = 0
+    drot = reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3]); celent = 1; f0 = 0; f1 = 0; jstep = 1
+    cmname = 'CAMCLAY9'
+    do k = 1, nvar
+      stress = stress0; statev = statev0; pnewdt = 1
+      call umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, stran, dstran(:, k), &
+                time, dtime, temp, dtemp, predef, dpred, cmname, 3, ntens - 3, ntens, nstatv, props, 23, &
+                coords, drot, pnewdt, celent, f0, f1, 1, 1, 1, 1, jstep, 1)
+      iters(k) = statev(33)
+    end do
+    do r = 1, nrep
+      call system_clock(t0, rate)
+      do i = 1, ncalls
+        k = 1 + mod(i, nvar)
+        stress = stress0; statev = statev0
+        call umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, stran, dstran(:, k), &
+                  time, dtime, temp, dtemp, predef, dpred, cmname, 3, ntens - 3, ntens, nstatv, props, 23, &
+                  coords, drot, pnewdt, celent, f0, f1, 1, 1, 1, 1, jstep, 1)
+      end do
+      call system_clock(t1)
+      times(r) = real(t1 - t0, real64) / rate / ncalls * 1e9_real64
+    end do
+    write (output_unit, '(a,a,a,i0,a,f9.1,a,f9.1,a,f9.1,a,f5.1,a)') '| ', name, ' | ', ntens, ' | ', median(times), &
+      ' | ', minval(times), ' - ', maxval(times), ' | ', median(iters), ' |'
+  end subroutine run_case
+
+  function median(x) result(m)
+    real(real64), intent(in) :: x(:)
+    real(real64) :: m, y(size(x)), t
+    integer :: i, j
+    y = x
+    do i = 2, size(y)
+      t = y(i)
+      j = i - 1
+      do while (j >= 1)
+        if (y(j) <= t) exit
+        y(j + 1) = y(j)
+        j = j - 1
+      end do
+      y(j + 1) = t
+    end do
+    m = 0.5_real64 * (y((size(y) + 1) / 2) + y(size(y) / 2 + 1))
+  end function median
+
+end program umat_bench

@@ -1,0 +1,48 @@
+/* The library from C, as the FE driver uses it: camclay9_check_props and umat_ (issue #2). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "camclay9.h"
+
+static int failures = 0, checks = 0;
+static void check(int ok, const char *what) {
+  ++checks;
+  if (!ok) { ++failures; printf("FAIL %s\n", what); }
+}
+
+int main(void) {
+  double props[23] = {0.5, 2900, 18000, 13000, 4100, 6900, 1.46, 0.00013, 0.73, -0.20, 0.40, 2.0, 1.3e13,
+                      4600, 3100, 1.46, 0.0026, 35.0, 1.3e10, 0.0, 0.0, 0.0, 1.0};
+  char msg[256];
+  int code;
+  camclay9_check_props(props, 23, 32, 6, 3, &code, msg, sizeof msg);
+  check(code == 0, "valid PROPS accepted");
+  props[7] = -1.0;
+  camclay9_check_props(props, 23, 32, 6, 3, &code, msg, sizeof msg);
+  printf("C API message: %s\n", msg);
+  check(code == 8 && strstr(msg, "PROPS(8)") != NULL, "lambda_p < 0 rejected, naming PROPS(8)");
+  camclay9_check_props(props, 23, 32, 6, 3, &code, msg, 10);
+  check(strlen(msg) == 9, "message truncated to the buffer");
+  props[7] = 0.00013;
+
+  /* One elastic call (DTIME = 0): STRESS = C:DSTRAN from the stress-free state, DDSDDE = C. */
+  double stress[6] = {0}, statev[32] = {0}, ddsdde[36], sse = 0, spd = 0, scd = 0, rpl, ddsddt[6], drplde[6],
+         drpldt, stran[6] = {0}, dstran[6] = {0, 0, -1e-4, 0, 0, 0}, time[2] = {0, 0}, dtime = 0, temp = 0,
+         dtemp = 0, predef[1] = {0}, dpred[1] = {0}, coords[3] = {0}, drot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1},
+         pnewdt = 1, celent = 1, dfgrd0[9] = {0}, dfgrd1[9] = {0};
+  int ndi = 3, nshr = 3, ntens = 6, nstatv = 32, nprops = 23, noel = 1, npt = 1, layer = 1, kspt = 1,
+      jstep[4] = {1, 1, 0, 0}, kinc = 1;
+  char cmname[80];
+  memset(cmname, ' ', sizeof cmname);
+  memcpy(cmname, "CAMCLAY9", 8);
+  umat_(stress, statev, ddsdde, &sse, &spd, &scd, &rpl, ddsddt, drplde, &drpldt, stran, dstran, time, &dtime,
+        &temp, &dtemp, predef, dpred, cmname, &ndi, &nshr, &ntens, &nstatv, props, &nprops, coords, drot, &pnewdt,
+        &celent, dfgrd0, dfgrd1, &noel, &npt, &layer, &kspt, jstep, &kinc, 80);
+  /* Mixture C33 (theta = 0, phi = 0.5) = 0.5*34000 + 0.5*(4600 + 6200) = 22400 MPa; C13 = 0.5*7000 + 0.5*4600. */
+  check(fabs(stress[2] - (-1e-4 * 22400.0)) < 1e-12, "sigma33 = C33 deps33");
+  check(fabs(stress[0] - (-1e-4 * 5800.0)) < 1e-12, "sigma11 = C13 deps33");
+  check(fabs(ddsdde[2 * 6 + 2] - 22400.0) < 1e-9, "DDSDDE(3,3) = C33");
+  check(statev[12] == 2.0 && statev[25] == 35.0, "state initialised from PROPS: pc0 hard 2, soft 35");
+  printf("test_capi: %d passed, %d failed\n", checks - failures, failures);
+  return failures != 0;
+}
