@@ -2,7 +2,8 @@
 !> steps, 3D (NTENS 6) and plane strain (NTENS 4). Each case cycles through 64 slightly different
 !> strain increments from one start state, so the local iteration counts vary as in a real mesh.
 !> Prints one Markdown table row per case: median ns per call over the repetitions, the spread, and
-!> the median local Newton iterations. Usage: umat_bench [calls_per_repetition] [repetitions]
+!> the median local Newton iterations.
+!> Usage: umat_bench [calls_per_repetition] [repetitions] [elastic|vp|ri]
 program umat_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
   implicit none
@@ -10,7 +11,7 @@ program umat_bench
   real(real64), parameter :: pi = 3.141592653589793_real64
   real(real64) :: woodford(23)
   integer :: ncalls, nrep
-  character(len=32) :: arg
+  character(len=32) :: arg, only
 
   woodford = [0.5_real64, 2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
     1.46_real64, 0.00013_real64, 0.73_real64, -0.20_real64, 0.40_real64, 2.0_real64, 1.3e13_real64, &
@@ -24,6 +25,8 @@ program umat_bench
   if (command_argument_count() >= 2) then
     call get_command_argument(2, arg); read (arg, *) nrep
   end if
+  only = ''
+  if (command_argument_count() >= 3) call get_command_argument(3, only)   ! run only this kind
 
   write (output_unit, '(a)') '| case | NTENS | median ns/call | min-max ns/call | median local iterations |'
   write (output_unit, '(a)') '|---|---|---|---|---|'
@@ -48,6 +51,8 @@ contains
     integer(int64) :: t0, t1, rate
     character(len=80) :: cmname
     external :: umat
+
+    if (len_trim(only) > 0 .and. trim(only) /= kind) return
 
     props = woodford
     th = 30 * pi / 180

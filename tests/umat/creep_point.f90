@@ -8,8 +8,9 @@ program creep_point
   use test_support
   implicit none
   real(real64) :: props(23), theta, t_end, ratio, stress(6), statev(nstatv_test), stran(6), dstran(6)
-  real(real64) :: target(6), d(6, 6), dt, t, eps0_33
+  real(real64) :: target(6), d(6, 6), dt, t, eps0_33, hold, hold_ratio
   integer :: nsteps, k
+  integer, parameter :: hold_steps = 400
   logical :: ok
   character(len=64) :: arg
 
@@ -20,12 +21,32 @@ program creep_point
   if (command_argument_count() >= 4) then
     call get_command_argument(4, arg); read (arg, *) ratio
   end if
+  hold = 0
+  if (command_argument_count() >= 5) then
+    call get_command_argument(5, arg); read (arg, *) hold
+  end if
   theta = theta * pi / 180
   props = props_with(0.5_real64, [sin(theta), 0.0_real64, cos(theta)])
 
   stress = [-35.0_real64, -35.0_real64, -35.0_real64, 0.0_real64, 0.0_real64, 0.0_real64]
   statev = 0
   stran = 0
+  target = stress
+  if (hold > 0) then
+    ! Hold the confinement; steps grow geometrically from 1e-3 s.
+    hold_ratio = 1.05_real64
+    dt = hold * (hold_ratio - 1) / (hold_ratio**hold_steps - 1)
+    t = 0
+    do k = 1, hold_steps
+      if (k == hold_steps) dt = hold - t
+      dstran = 0
+      call mixed_step(props, 6, stress, statev, stran, dstran, [(.true., k = 1, 6)], target, dt, d, ok)
+      if (.not. ok) stop 'creep_point: hold failed'
+      stran = stran + dstran
+      t = t + dt
+      dt = dt * hold_ratio
+    end do
+  end if
   target = [-35.0_real64, -35.0_real64, -75.0_real64, 0.0_real64, 0.0_real64, 0.0_real64]
   ! Elastic jump at t = 0+ (DTIME = 0), all six components under stress control.
   dstran = 0

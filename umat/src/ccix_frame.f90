@@ -155,17 +155,18 @@ contains
   !> algorithmic tangent d = dsigma/deps (Mandel). If want_error, err_est is the local error estimate
   !> |deps_vp - dt * rate_vp(start of step)| of theory.md §3.6 (zero for eta = 0).
   pure subroutine frame_integrate(fr, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
-                                  iterations, status, flags, err_est)
+                                  iterations, status, flags, err_est, f_end)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig_n(6), pc_n, deps(6), dt
     logical, intent(in) :: want_error
     real(real64), intent(out) :: sig(6), pc, devp(6), d(6, 6)
     integer, intent(out) :: iterations, status, flags
     real(real64), intent(out) :: err_est
+    real(real64), intent(out) :: f_end   !< yield function at the end of the step
 
     type(step_t) :: st
     type(local_eval_t) :: ev
-    real(real64) :: sig_tr(6), f_tr, pc_r, denom, g, y, f, pp, q2, n_dir(6)
+    real(real64) :: sig_tr(6), f_tr, pc_r, denom, g, y, n_dir(6)
     integer :: it2
     logical :: ok
 
@@ -183,6 +184,7 @@ contains
       return
     end if
     f_tr = yield_function(fr, sig_tr, pc_n)
+    f_end = f_tr
     if (dt <= 0 .or. .not. (f_tr > 0)) then
       status = frame_elastic
       if (want_error .and. dt > 0) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
@@ -225,6 +227,7 @@ contains
     end if
     if (.not. ok) then
       status = frame_failed
+      f_end = f_tr
       sig = sig_n
       pc = pc_n
       d = fr%c
@@ -233,10 +236,11 @@ contains
 
     pc = ev%pc
     sig = matmul(fr%v, ev%xi)
-    call flow_direction(fr, sig, pc, f, pp, q2, n_dir)
+    f_end = ev%f
+    n_dir = matmul(fr%h, sig) + (pc / 3) * fr%p1          ! N = H:sigma + (pc/3) P:1, §1.3
     devp = g * n_dir
     if (st%floor_active) flags = ior(flags, flag_floor)
-    if (pp < 0) flags = ior(flags, flag_tension)
+    if (dot_product(fr%b, ev%xi) > 0) flags = ior(flags, flag_tension)   ! p' = -b.xi/3 < 0
     d = consistent_tangent(fr, st, g, ev)
     if (want_error) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
   end subroutine frame_integrate

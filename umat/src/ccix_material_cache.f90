@@ -6,7 +6,8 @@
 module ccix_material_cache
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_frame, only: frame_t
-  use ccix_props, only: check_props, frames_from_props, message_len, nprops_normal
+  use ccix_props, only: check_props, frames_from_props, message_len, nprops_normal, ip_phi
+  use ccix_mixture, only: material_t, material_new
   implicit none
   private
 
@@ -17,16 +18,17 @@ module ccix_material_cache
   end type cache_t
 
   type(cache_t), save :: cache
-  !> The frames of the PROPS last passed to prepare_material (hard, soft). Read-only outside.
-  type(frame_t), save, public, protected :: current_frames(2)
-  !$omp threadprivate(cache, current_frames)
+  type(frame_t), save :: frames(2)
+  !> The material of the PROPS last passed to prepare_material. Read-only outside.
+  type(material_t), save, public, protected :: current_material
+  !$omp threadprivate(cache, frames, current_material)
 
   public :: prepare_material
 
 contains
 
-  !> Make current_frames those of PROPS, checked; code /= 0 (with message) if PROPS or the sizes are
-  !> invalid. Returning the frames by reference through current_frames avoids copying them per call.
+  !> Make current_material that of PROPS, checked; code /= 0 (with message) if PROPS or the sizes are
+  !> invalid. Handing the material over by reference (current_material) avoids copying it per call.
   subroutine prepare_material(props, nprops, nstatv, ntens, ndi, code, message)
     integer, intent(in) :: nprops, nstatv, ntens, ndi
     real(real64), intent(in) :: props(nprops)
@@ -48,7 +50,8 @@ contains
       return
     end if
     same_frames = same_sizes .and. all(props(2:n) == cache%props(2:n))
-    if (.not. same_frames) call frames_from_props(props, nprops, current_frames(1), current_frames(2))
+    if (.not. same_frames) call frames_from_props(props, nprops, frames(1), frames(2))
+    current_material = material_new(frames(1), frames(2), props(ip_phi))
     cache%valid = .true.
     cache%nprops = nprops; cache%ntens = ntens; cache%ndi = ndi; cache%nstatv = nstatv
     cache%props = 0

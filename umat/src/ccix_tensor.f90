@@ -76,12 +76,16 @@ contains
     real(real64), intent(in) :: d_hat(6, 6)
     integer, intent(in) :: n
     real(real64), intent(out) :: ddsdde(n, n)
-    integer :: i, j
-    do j = 1, n
-      do i = 1, n
-        ddsdde(i, j) = d_hat(i, j) / (mandel_w(i) * mandel_w(j))
-      end do
-    end do
+    ! 1/(w_i w_j): 1 normal-normal, 1/sqrt2 normal-shear, 1/2 shear-shear
+    real(real64), parameter :: h = 0.7071067811865476_real64
+    real(real64), parameter :: winv2(6, 6) = reshape([ &
+      1.0_real64, 1.0_real64, 1.0_real64, h, h, h, &
+      1.0_real64, 1.0_real64, 1.0_real64, h, h, h, &
+      1.0_real64, 1.0_real64, 1.0_real64, h, h, h, &
+      h, h, h, 0.5_real64, 0.5_real64, 0.5_real64, &
+      h, h, h, 0.5_real64, 0.5_real64, 0.5_real64, &
+      h, h, h, 0.5_real64, 0.5_real64, 0.5_real64], [6, 6])
+    ddsdde = d_hat(1:n, 1:n) * winv2(1:n, 1:n)
   end subroutine tangent_to_abaqus
 
   pure function mandel_to_matrix33(m) result(a)

@@ -13,9 +13,9 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   use ccix_props, only: ip_phi, ip_tol, is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, &
                         is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
                         is_f_hard, is_f_soft, nstatv_diag, message_len
-  use ccix_frame, only: yield_function, flag_floor, flag_tension, flag_fallback
+  use ccix_frame, only: flag_floor, flag_tension, flag_fallback
   use ccix_mixture, only: mixture_state_t, step_info_t, mixture_integrate, hard, soft
-  use ccix_material_cache, only: prepare_material, current_frames
+  use ccix_material_cache, only: prepare_material, current_material
   implicit none
   character(len=80), intent(in) :: cmname
   integer, intent(in) :: ndi, nshr, ntens, nstatv, nprops, noel, npt, layer, kspt, jstep(*), kinc
@@ -54,9 +54,11 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   sig_full = 0
   sig_full(1:ntens) = stress
   if (.not. (statev(is_pc_hard) > 0)) then
+    state_n%evp = 0
+    state_n%evp_total = 0
     do k = hard, soft
       state_n%sig(:, k) = stress_to_mandel(sig_full)
-      state_n%pc(k) = current_frames(k)%pc0
+      state_n%pc(k) = current_material%frames(k)%pc0
     end do
   else
     state_n%sig(:, hard) = stress_to_mandel(statev(is_sig_hard:is_sig_hard + 5))
@@ -80,13 +82,13 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   deps(1:ntens) = dstran
   deps = strain_to_mandel(deps)
 
-  call mixture_integrate(current_frames, phi, state_n, deps, dtime, tol > 0 .and. dtime > 0, &
+  call mixture_integrate(current_material, state_n, deps, dtime, tol > 0 .and. dtime > 0, &
                          state, sig, d, info)
   if (info%failed) then
     ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
     pnewdt = min(pnewdt, cutback)
-    call tangent_to_abaqus(phi * current_frames(hard)%c + (1 - phi) * current_frames(soft)%c, &
-                           ntens, ddsdde)
+    call tangent_to_abaqus(phi * current_material%frames(hard)%c &
+                           + (1 - phi) * current_material%frames(soft)%c, ntens, ddsdde)
     return
   end if
   ! Step control on the viscoplastic strain increment (PROPS(20) = tol > 0, theory.md §3.6).
@@ -134,7 +136,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
     end do
     statev(is_iterations) = info%iterations
     statev(is_flags) = flags
-    statev(is_f_hard) = yield_function(current_frames(hard), state%sig(:, hard), state%pc(hard))
-    statev(is_f_soft) = yield_function(current_frames(soft), state%sig(:, soft), state%pc(soft))
+    statev(is_f_hard) = info%f(hard)
+    statev(is_f_soft) = info%f(soft)
   end if
 end subroutine umat

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# UMAT speed benchmark: builds (Release) and writes the table to docs/performance.md (UMAT section).
+# Usage: bench/run_umat_bench.sh [calls_per_repetition] [repetitions]
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+calls=${1:-200000}
+reps=${2:-9}
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j "$(nproc)" --target umat_bench > /dev/null
+table=$(build/bench/umat_bench "$calls" "$reps")
+echo "$table"
+cpu=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
+fc=$(gfortran --version | head -1)
+out=docs/performance.md
+section=$(cat <<MD
+## UMAT: time per call
+
+Command: \`bench/run_umat_bench.sh $calls $reps\` ($reps repetitions of $calls calls each; median and
+range of the per-call time over the repetitions). Machine: $cpu, $(nproc) cores, shared and noisy.
+Compiler: $fc, \`-O3 -funroll-loops\` (the default Release build; no \`-march=native\`). Measured
+$(date -u +%Y-%m-%d).
+
+Each case starts every call from the same state and cycles through 64 strain increments of
+~1e-5 (elastic: ~1e-6): *elastic*, both frames inside their surfaces (pc = 60 MPa at -35 MPa);
+*viscoplastic*, the paper's start (hard frame far outside with pc0 = 2 MPa, soft frame on its
+surface), Woodford viscosities, dt = 10 s; *rate-independent*, eta = 0 in both frames. Plane strain
+is NTENS = 4 with the normal in the 1-2 plane. Local iterations are Newton updates of the worse frame.
+
+$table
+
+Goals of issue #2: <= 1 us per viscoplastic call and <= 0.1 us per elastic call.
+MD
+)
+python3 - "$out" "$section" <<'PY'
+import re, sys
+path, section = sys.argv[1], sys.argv[2]
+try:
+    text = open(path).read()
+except FileNotFoundError:
+    text = "# Performance\n\nBenchmarks print numbers and write them here; none is a timed test.\n"
+pattern = re.compile(r"## UMAT: time per call\n.*?(?=\n## |\Z)", re.S)
+text = pattern.sub(lambda m: section + "\n", text) if pattern.search(text) else text.rstrip() + "\n\n" + section + "\n"
+open(path, "w").write(text)
+PY
+echo "written: $out"
