@@ -152,7 +152,8 @@ contains
   !>
   !> sig_n, pc_n: state at the start of the step; deps: strain increment; dt: time increment.
   !> Returns the stress, pc and viscoplastic strain increment at the end of the step and the
-  !> algorithmic tangent d = dsigma/deps (Mandel). If want_error, err_est is the local error estimate
+  !> algorithmic tangent d = dsigma/deps (Mandel; only on viscoplastic steps, else it is fr%c).
+  !> If want_error, err_est is the local error estimate
   !> |deps_vp - dt * rate_vp(start of step)| of theory.md §3.6 (zero for eta = 0).
   pure subroutine frame_integrate(fr, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
                                   iterations, status, flags, err_est, f_end)
@@ -175,8 +176,7 @@ contains
     err_est = 0
     devp = 0
     pc = pc_n
-    d = fr%c
-    ! Trial step (§3.2).
+    ! Trial step (§3.2). On elastic and failed steps d is not set: the tangent is fr%c.
     sig_tr = sig_n + matmul(fr%c, deps)
     sig = sig_tr
     if (.not. is_finite(sum(sig_tr))) then
@@ -230,7 +230,6 @@ contains
       f_end = f_tr
       sig = sig_n
       pc = pc_n
-      d = fr%c
       return
     end if
 

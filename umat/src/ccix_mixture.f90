@@ -18,24 +18,14 @@ module ccix_mixture
     real(real64) :: cbar_inv(6, 6) = 0
   end type material_t
 
-  !> State of the mixture at one point, Mandel components.
-  type, public :: mixture_state_t
-    ! No default initialisation: these live in the hot path of every UMAT call.
-    real(real64) :: sig(6, 2)     !< frame stresses (hard, soft)
-    real(real64) :: evp(6, 2)     !< frame viscoplastic strains
-    real(real64) :: pc(2)         !< frame preconsolidation pressures
-    real(real64) :: evp_total(6)  !< overall viscoplastic strain, Y21 eq. 3
-  end type mixture_state_t
-
-  !> What one step did: local iterations (max over frames), flags per frame, whether any frame
-  !> yielded, the worst local error estimate and each frame's yield function at the end of the step.
+  !> What one step did (no default initialisation: this is in the hot path of every call).
   type, public :: step_info_t
-    integer :: iterations
-    integer :: flags(2)
-    logical :: viscoplastic
-    logical :: failed
-    real(real64) :: err_est
-    real(real64) :: f(2)
+    integer :: iterations          !< local Newton iterations, the larger of the two frames
+    integer :: flags(2)            !< ccix_frame flag bits per frame
+    logical :: viscoplastic        !< some frame flowed
+    logical :: failed              !< some frame failed: nothing was updated
+    real(real64) :: err_est        !< worst local error estimate (theory.md §3.6)
+    real(real64) :: f(2)           !< yield function of each frame at the end of the step
   end type step_info_t
 
   public :: material_new, mixture_integrate
@@ -54,17 +44,17 @@ contains
     call invert6(phi * hard_frame%c + (1 - phi) * soft_frame%c, mat%cbar_inv, ok)
   end function material_new
 
-  !> Integrate both frames over one step. On failure the state is returned unchanged and
-  !> info%failed is set.
-  pure subroutine mixture_integrate(mat, state_n, deps, dt, want_error, state, sig, d, info)
+  !> Integrate both frames over one step (Mandel components). In: the frame stresses and pc at the
+  !> start. Out: frame stresses and pc at the end, the frame viscoplastic strain increments and that of
+  !> the mixture (Y21 eq. 3), the mixture stress and tangent. If info%failed, nothing is meaningful.
+  pure subroutine mixture_integrate(mat, sig_n, pc_n, deps, dt, want_error, sig_frames, pc, &
+                                    devp, devp_total, sig, d, info)
     type(material_t), intent(in) :: mat
-    real(real64), intent(in) :: deps(6), dt
-    type(mixture_state_t), intent(in) :: state_n
+    real(real64), intent(in) :: sig_n(6, 2), pc_n(2), deps(6), dt
     logical, intent(in) :: want_error
-    type(mixture_state_t), intent(out) :: state
-    real(real64), intent(out) :: sig(6), d(6, 6)
+    real(real64), intent(out) :: sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6), sig(6), d(6, 6)
     type(step_info_t), intent(out) :: info
-    real(real64) :: frac(2), devp(6, 2), d_frame(6, 6), err(2)
+    real(real64) :: frac(2), d_frame(6, 6), err(2)
     integer :: k, it, status
 
     frac = [mat%phi, 1 - mat%phi]
@@ -73,26 +63,30 @@ contains
     info%viscoplastic = .false.
     info%failed = .false.
     info%f = 0
-    state = state_n
+    sig_frames = sig_n
+    pc = pc_n
     sig = 0
     d = 0
     devp = 0
+    devp_total = 0
     err = 0
     do k = 1, 2
       if (frac(k) <= 0) cycle
-      call frame_integrate(mat%frames(k), state_n%sig(:, k), state_n%pc(k), deps, dt, want_error, &
-                           state%sig(:, k), state%pc(k), devp(:, k), d_frame, it, status, &
+      call frame_integrate(mat%frames(k), sig_n(:, k), pc_n(k), deps, dt, want_error, &
+                           sig_frames(:, k), pc(k), devp(:, k), d_frame, it, status, &
                            info%flags(k), err(k), info%f(k))
       info%iterations = max(info%iterations, it)
       if (status == frame_failed) then
         info%failed = .true.
-        state = state_n
         return
       end if
-      if (status /= frame_elastic) info%viscoplastic = .true.
-      state%evp(:, k) = state_n%evp(:, k) + devp(:, k)
-      sig = sig + frac(k) * state%sig(:, k)
-      d = d + frac(k) * d_frame
+      sig = sig + frac(k) * sig_frames(:, k)
+      if (status == frame_elastic) then
+        d = d + frac(k) * mat%frames(k)%c
+      else
+        info%viscoplastic = .true.
+        d = d + frac(k) * d_frame
+      end if
     end do
     info%err_est = maxval(err)
 
@@ -100,13 +94,12 @@ contains
     ! the moduli are constant, so it is updated with the increments. Output only.
     if (info%viscoplastic) then
       if (mat%phi >= 1) then
-        state%evp_total = state%evp(:, hard)
+        devp_total = devp(:, hard)
       else if (mat%phi <= 0) then
-        state%evp_total = state%evp(:, soft)
+        devp_total = devp(:, soft)
       else
-        state%evp_total = state_n%evp_total + matmul(mat%cbar_inv, &
-          mat%phi * matmul(mat%frames(hard)%c, devp(:, hard)) &
-          + (1 - mat%phi) * matmul(mat%frames(soft)%c, devp(:, soft)))
+        devp_total = matmul(mat%cbar_inv, mat%phi * matmul(mat%frames(hard)%c, devp(:, hard)) &
+                                          + (1 - mat%phi) * matmul(mat%frames(soft)%c, devp(:, soft)))
       end if
     end if
   end subroutine mixture_integrate

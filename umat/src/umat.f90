@@ -14,7 +14,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                         is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
                         is_f_hard, is_f_soft, nstatv_diag, message_len
   use ccix_frame, only: flag_floor, flag_tension, flag_fallback
-  use ccix_mixture, only: mixture_state_t, step_info_t, mixture_integrate, hard, soft
+  use ccix_mixture, only: step_info_t, mixture_integrate, hard, soft
   use ccix_material_cache, only: prepare_material, current_material
   implicit none
   character(len=80), intent(in) :: cmname
@@ -25,11 +25,13 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                               predef(*), dpred(*), props(nprops), coords(3), drot(3, 3), &
                               celent, dfgrd0(3, 3), dfgrd1(3, 3)
 
-  type(mixture_state_t) :: state_n, state
   type(step_info_t) :: info
-  real(real64) :: deps(6), sig(6), d(6, 6), sig_full(6), phi, tol, ratio, frac(2), de_el(6)
+  real(real64) :: deps(6), sig(6), d(6, 6), sig_full(6), phi, tol, ratio, frac(2)
+  real(real64) :: sig_n(6, 2), pc_n(2), sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6)
   real(real64), parameter :: cutback = 0.25_real64, max_growth = 1.5_real64
+  integer, parameter :: sig_slot(2) = [is_sig_hard, is_sig_soft], evp_slot(2) = [is_evp_hard, is_evp_soft]
   integer :: code, k, flags
+  logical :: initialise
   character(len=message_len) :: message
 
   rpl = 0
@@ -51,30 +53,21 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
 
   ! State at the start of the increment. pc_hard <= 0 marks an uninitialised state: both frames
   ! start at the stress passed in, with pc = pc0 and no viscoplastic strain (theory.md §2).
-  sig_full = 0
-  sig_full(1:ntens) = stress
-  if (.not. (statev(is_pc_hard) > 0)) then
-    state_n%evp = 0
-    state_n%evp_total = 0
+  initialise = .not. (statev(is_pc_hard) > 0)
+  if (initialise) then
+    sig_full = 0
+    sig_full(1:ntens) = stress
     do k = hard, soft
-      state_n%sig(:, k) = stress_to_mandel(sig_full)
-      state_n%pc(k) = current_material%frames(k)%pc0
+      sig_n(:, k) = stress_to_mandel(sig_full)
+      pc_n(k) = current_material%frames(k)%pc0
     end do
   else
-    state_n%sig(:, hard) = stress_to_mandel(statev(is_sig_hard:is_sig_hard + 5))
-    state_n%sig(:, soft) = stress_to_mandel(statev(is_sig_soft:is_sig_soft + 5))
-    state_n%evp(:, hard) = strain_to_mandel(statev(is_evp_hard:is_evp_hard + 5))
-    state_n%evp(:, soft) = strain_to_mandel(statev(is_evp_soft:is_evp_soft + 5))
-    state_n%evp_total = strain_to_mandel(statev(is_evp_total:is_evp_total + 5))
-    state_n%pc = [statev(is_pc_hard), statev(is_pc_soft)]
-  end if
-  ! Rigid rotation of the increment (umat-interface.md): rotate the stored tensors, not the normal.
-  if (any(drot /= reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3]))) then
+    ! Rigid rotation of the increment (umat-interface.md): rotate the stored tensors, not the normal.
+    if (any(drot /= reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3]))) call rotate_state(statev)
     do k = hard, soft
-      state_n%sig(:, k) = rotate_mandel(drot, state_n%sig(:, k))
-      state_n%evp(:, k) = rotate_mandel(drot, state_n%evp(:, k))
+      sig_n(:, k) = stress_to_mandel(statev(sig_slot(k):sig_slot(k) + 5))
     end do
-    state_n%evp_total = rotate_mandel(drot, state_n%evp_total)
+    pc_n = [statev(is_pc_hard), statev(is_pc_soft)]
   end if
 
   ! Strain increment: NTENS = 4 is 11, 22, 33, 12 with 13 = 23 = 0 (plane strain, axisymmetric).
@@ -82,8 +75,8 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   deps(1:ntens) = dstran
   deps = strain_to_mandel(deps)
 
-  call mixture_integrate(current_material, state_n, deps, dtime, tol > 0 .and. dtime > 0, &
-                         state, sig, d, info)
+  call mixture_integrate(current_material, sig_n, pc_n, deps, dtime, tol > 0 .and. dtime > 0, &
+                         sig_frames, pc, devp, devp_total, sig, d, info)
   if (info%failed) then
     ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
     pnewdt = min(pnewdt, cutback)
@@ -110,22 +103,30 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   frac = [phi, 1 - phi]
   do k = hard, soft
     if (frac(k) <= 0) cycle
-    de_el = deps - (state%evp(:, k) - state_n%evp(:, k))
-    sse = sse + frac(k) * 0.5_real64 * dot_product(state_n%sig(:, k) + state%sig(:, k), de_el)
-    spd = spd + frac(k) * 0.5_real64 * dot_product(state_n%sig(:, k) + state%sig(:, k), &
-                                                   state%evp(:, k) - state_n%evp(:, k))
+    sse = sse + frac(k) * 0.5_real64 * dot_product(sig_n(:, k) + sig_frames(:, k), deps - devp(:, k))
+    if (info%viscoplastic) spd = spd + frac(k) * 0.5_real64 * dot_product(sig_n(:, k) + sig_frames(:, k), &
+                                                                          devp(:, k))
   end do
 
   sig_full = mandel_to_stress(sig)
   stress = sig_full(1:ntens)
   call tangent_to_abaqus(d, ntens, ddsdde)
-  statev(is_sig_hard:is_sig_hard + 5) = mandel_to_stress(state%sig(:, hard))
-  statev(is_evp_hard:is_evp_hard + 5) = mandel_to_strain(state%evp(:, hard))
-  statev(is_pc_hard) = state%pc(hard)
-  statev(is_sig_soft:is_sig_soft + 5) = mandel_to_stress(state%sig(:, soft))
-  statev(is_evp_soft:is_evp_soft + 5) = mandel_to_strain(state%evp(:, soft))
-  statev(is_pc_soft) = state%pc(soft)
-  statev(is_evp_total:is_evp_total + 5) = mandel_to_strain(state%evp_total)
+  do k = hard, soft
+    statev(sig_slot(k):sig_slot(k) + 5) = mandel_to_stress(sig_frames(:, k))
+  end do
+  statev(is_pc_hard) = pc(hard)
+  statev(is_pc_soft) = pc(soft)
+  if (initialise) then
+    statev(is_evp_hard:is_evp_hard + 5) = 0
+    statev(is_evp_soft:is_evp_soft + 5) = 0
+    statev(is_evp_total:is_evp_total + 5) = 0
+  end if
+  if (info%viscoplastic) then
+    do k = hard, soft
+      statev(evp_slot(k):evp_slot(k) + 5) = statev(evp_slot(k):evp_slot(k) + 5) + mandel_to_strain(devp(:, k))
+    end do
+    statev(is_evp_total:is_evp_total + 5) = statev(is_evp_total:is_evp_total + 5) + mandel_to_strain(devp_total)
+  end if
   if (nstatv >= nstatv_diag) then
     ! Diagnostics (docs/umat.md): iterations, flags, yield function values at the end of the step.
     flags = 0
@@ -139,4 +140,21 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
     statev(is_f_hard) = info%f(hard)
     statev(is_f_soft) = info%f(soft)
   end if
+
+contains
+
+  !> R A R^T for every stored tensor: frame stresses, frame and overall viscoplastic strains.
+  pure subroutine rotate_state(sv)
+    real(real64), intent(inout) :: sv(:)
+    integer :: kk
+    do kk = hard, soft
+      sv(sig_slot(kk):sig_slot(kk) + 5) = mandel_to_stress(rotate_mandel(drot, &
+                                            stress_to_mandel(sv(sig_slot(kk):sig_slot(kk) + 5))))
+      sv(evp_slot(kk):evp_slot(kk) + 5) = mandel_to_strain(rotate_mandel(drot, &
+                                            strain_to_mandel(sv(evp_slot(kk):evp_slot(kk) + 5))))
+    end do
+    sv(is_evp_total:is_evp_total + 5) = mandel_to_strain(rotate_mandel(drot, &
+                                          strain_to_mandel(sv(is_evp_total:is_evp_total + 5))))
+  end subroutine rotate_state
+
 end subroutine umat
