@@ -9,6 +9,11 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j "$(nproc)" --target umat_bench > /dev/null
 table=$(build/bench/umat_bench "$calls" "$reps")
 echo "$table"
+instructions="(valgrind not installed: no instruction counts)"
+if command -v valgrind > /dev/null; then
+  instructions=$(bench/instructions_per_call.sh 5000 | awk 'BEGIN {print "| case | instructions per call |"; print "|---|---|"} {print "| " $1 " | " $2 " |"}')
+  echo "$instructions"
+fi
 cpu=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
 fc=$(gfortran --version | head -1)
 out=docs/performance.md
@@ -27,6 +32,11 @@ surface), Woodford viscosities, dt = 10 s; *rate-independent*, eta = 0 in both f
 is NTENS = 4 with the normal in the 1-2 plane. Local iterations are Newton updates of the worse frame.
 
 $table
+
+Instructions per call (valgrind callgrind, \`bench/instructions_per_call.sh\`; deterministic, the
+same whatever else the machine is doing; mean of NTENS 6 and 4; elastic / vp / ri as above):
+
+$instructions
 
 Goals of issue #2: <= 1 us per viscoplastic call and <= 0.1 us per elastic call.
 MD

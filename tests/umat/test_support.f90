@@ -58,15 +58,17 @@ contains
 
   !> One step with components i where mask(i) is true under stress control (target sig_target(i))
   !> and the rest under strain control (dstran_known). Newton on the unknown strain components with
-  !> DDSDDE; returns the converged dstran and the UMAT outputs; ok = .false. on failure.
+  !> DDSDDE; returns the converged dstran and the UMAT outputs; ok = .false. on failure or when the
+  !> UMAT asks for a smaller step (PNEWDT < 1, returned in pnewdt_out).
   subroutine mixed_step(props, ntens, stress, statev, stran, dstran, mask, sig_target, dtime, &
-                        ddsdde, ok)
+                        ddsdde, ok, pnewdt_out)
     real(real64), intent(in) :: props(:), stran(ntens), sig_target(ntens), dtime
     integer, intent(in) :: ntens
     logical, intent(in) :: mask(ntens)
     real(real64), intent(inout) :: stress(ntens), statev(nstatv_test), dstran(ntens)
     real(real64), intent(out) :: ddsdde(ntens, ntens)
     logical, intent(out) :: ok
+    real(real64), intent(out), optional :: pnewdt_out   !< the UMAT's PNEWDT of the last call
     real(real64) :: s_try(ntens), v_try(nstatv_test), pnewdt, r(ntens), k(ntens, ntens), scale
     integer :: it, idx(ntens), m, ipiv(ntens)
     logical :: factored
@@ -75,8 +77,9 @@ contains
     ok = .false.
     scale = max(maxval(abs(sig_target)), 1.0_real64)
     do it = 1, 50
-      s_try = stress; v_try = statev; pnewdt = 1
+      s_try = stress; v_try = statev; pnewdt = huge(1.0_real64)   ! as Abaqus: large before each call
       call call_umat(props, ntens, s_try, v_try, stran, dstran, dtime, ddsdde, pnewdt)
+      if (present(pnewdt_out)) pnewdt_out = pnewdt
       if (pnewdt < 1) return
       r(1:m) = s_try(idx(1:m)) - sig_target(idx(1:m))
       if (m == 0 .or. maxval(abs(r(1:m))) <= 1e-12_real64 * scale) then

@@ -357,8 +357,8 @@ contains
     type(step_t), intent(in) :: st
     real(real64), intent(in) :: g
     type(local_eval_t), intent(in) :: ev
-    real(real64) :: d(6, 6), u_n(6), u_b(6), u_h(6), ry_e(6), rf_e(6), dg_e(6), dy_e(6), det, c3
-    integer :: i, j
+    real(real64) :: d(6, 6), u_n(6), u_b(6), u_h(6), ry_e(6), rf_e(6), dg_e(6), dy_e(6), det, c3, vd(6)
+    integer :: j, k
     u_n = matmul(fr%v, ev%n_xi * ev%d)
     u_b = matmul(fr%v, fr%b * ev%d)
     c3 = g * ev%pc / 3
@@ -372,14 +372,15 @@ contains
     det = ev%j_yg * ev%j_fy - ev%j_yy * ev%j_fg
     dg_e = -(ev%j_fy * ry_e - ev%j_yy * rf_e) / det
     dy_e = -(ev%j_yg * rf_e - ev%j_fg * ry_e) / det
+    ! D = sum_k d_k V(:,k) V(:,k)^T - u_n dg_e^T - c3 u_b dy_e^T, column by column (contiguous).
     do j = 1, 6
-      do i = j, 6
-        d(i, j) = sum(fr%v(i, :) * ev%d * fr%v(j, :))
-        d(j, i) = d(i, j)
-      end do
+      d(:, j) = -u_n * dg_e(j) - c3 * u_b * dy_e(j)
     end do
-    do j = 1, 6
-      d(:, j) = d(:, j) - u_n * dg_e(j) - c3 * u_b * dy_e(j)
+    do k = 1, 6
+      vd = fr%v(:, k) * ev%d(k)
+      do j = 1, 6
+        d(:, j) = d(:, j) + vd * fr%v(j, k)
+      end do
     end do
   end function consistent_tangent
 

@@ -3,7 +3,7 @@
 !> zero volume fraction is not integrated and keeps its state.
 module ccix_mixture
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: invert6
+  use ccix_tensor, only: invert6, tangent_to_abaqus
   use ccix_frame, only: frame_t, frame_integrate, frame_failed, frame_elastic
   implicit none
   private
@@ -15,7 +15,9 @@ module ccix_mixture
   type, public :: material_t
     type(frame_t) :: frames(2)
     real(real64) :: phi = 0
+    real(real64) :: cbar(6, 6) = 0          !< Cbar (Mandel): the tangent when no frame flows
     real(real64) :: cbar_inv(6, 6) = 0
+    real(real64) :: cbar_abaqus(6, 6) = 0   !< Cbar as an Abaqus DDSDDE (engineering shear)
   end type material_t
 
   !> What one step did (no default initialisation: this is in the hot path of every call).
@@ -41,7 +43,9 @@ contains
     mat%frames(hard) = hard_frame
     mat%frames(soft) = soft_frame
     mat%phi = phi
-    call invert6(phi * hard_frame%c + (1 - phi) * soft_frame%c, mat%cbar_inv, ok)
+    mat%cbar = phi * hard_frame%c + (1 - phi) * soft_frame%c
+    call invert6(mat%cbar, mat%cbar_inv, ok)
+    call tangent_to_abaqus(mat%cbar, 6, mat%cbar_abaqus)
   end function material_new
 
   !> Integrate both frames over one step (Mandel components). In: the frame stresses and pc at the
@@ -54,10 +58,11 @@ contains
     logical, intent(in) :: want_error
     real(real64), intent(out) :: sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6), sig(6), d(6, 6)
     type(step_info_t), intent(out) :: info
-    real(real64) :: frac(2), d_frame(6, 6), err(2)
-    integer :: k, it, status
+    real(real64) :: frac(2), d_frames(6, 6, 2), err(2)
+    integer :: k, it, status(2)
 
-    frac = [mat%phi, 1 - mat%phi]
+    frac(hard) = mat%phi
+    frac(soft) = 1 - mat%phi
     info%iterations = 0
     info%flags = 0
     info%viscoplastic = .false.
@@ -66,28 +71,37 @@ contains
     sig_frames = sig_n
     pc = pc_n
     sig = 0
-    d = 0
     devp = 0
     devp_total = 0
     err = 0
+    status = frame_elastic
     do k = 1, 2
       if (frac(k) <= 0) cycle
       call frame_integrate(mat%frames(k), sig_n(:, k), pc_n(k), deps, dt, want_error, &
-                           sig_frames(:, k), pc(k), devp(:, k), d_frame, it, status, &
+                           sig_frames(:, k), pc(k), devp(:, k), d_frames(:, :, k), it, status(k), &
                            info%flags(k), err(k), info%f(k))
       info%iterations = max(info%iterations, it)
-      if (status == frame_failed) then
+      if (status(k) == frame_failed) then
         info%failed = .true.
         return
       end if
       sig = sig + frac(k) * sig_frames(:, k)
-      if (status == frame_elastic) then
-        d = d + frac(k) * mat%frames(k)%c
-      else
-        info%viscoplastic = .true.
-        d = d + frac(k) * d_frame
-      end if
     end do
+    ! Tangent: Cbar while both frames are elastic, else the fraction-weighted frame tangents.
+    info%viscoplastic = any(status /= frame_elastic)
+    if (.not. info%viscoplastic) then
+      d = mat%cbar
+    else
+      d = 0
+      do k = 1, 2
+        if (frac(k) <= 0) cycle
+        if (status(k) == frame_elastic) then
+          d = d + frac(k) * mat%frames(k)%c
+        else
+          d = d + frac(k) * d_frames(:, :, k)
+        end if
+      end do
+    end if
     info%err_est = maxval(err)
 
     ! Overall viscoplastic strain (Y21 eq. 3): evp = Cbar^-1 (phi C_h evp_h + (1-phi) C_s evp_s);

@@ -9,7 +9,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                 celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, jstep, kinc)
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
-                         tangent_to_abaqus, rotate_mandel
+                         tangent_to_abaqus, rotate_mandel, mandel_w
   use ccix_props, only: ip_phi, ip_tol, is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, &
                         is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
                         is_f_hard, is_f_soft, nstatv_diag, message_len
@@ -63,11 +63,14 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
     end do
   else
     ! Rigid rotation of the increment (umat-interface.md): rotate the stored tensors, not the normal.
-    if (any(drot /= reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3]))) call rotate_state(statev)
+    if (drot(1, 1) /= 1 .or. drot(2, 2) /= 1 .or. drot(3, 3) /= 1 .or. drot(1, 2) /= 0 .or. &
+        drot(2, 1) /= 0 .or. drot(1, 3) /= 0 .or. drot(3, 1) /= 0 .or. drot(2, 3) /= 0 .or. &
+        drot(3, 2) /= 0) call rotate_state(statev)
     do k = hard, soft
-      sig_n(:, k) = stress_to_mandel(statev(sig_slot(k):sig_slot(k) + 5))
+      sig_n(:, k) = statev(sig_slot(k):sig_slot(k) + 5) * mandel_w   ! Voigt stress -> Mandel
     end do
-    pc_n = [statev(is_pc_hard), statev(is_pc_soft)]
+    pc_n(hard) = statev(is_pc_hard)
+    pc_n(soft) = statev(is_pc_soft)
   end if
 
   ! Strain increment: NTENS = 4 is 11, 22, 33, 12 with 13 = 23 = 0 (plane strain, axisymmetric).
@@ -80,8 +83,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   if (info%failed) then
     ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
     pnewdt = min(pnewdt, cutback)
-    call tangent_to_abaqus(phi * current_material%frames(hard)%c &
-                           + (1 - phi) * current_material%frames(soft)%c, ntens, ddsdde)
+    ddsdde = current_material%cbar_abaqus(1:ntens, 1:ntens)
     return
   end if
   ! Step control on the viscoplastic strain increment (PROPS(20) = tol > 0, theory.md §3.6).
@@ -100,7 +102,8 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   end if
 
   ! Energies per unit volume: elastic (SSE) and viscoplastic dissipation (SPD), midpoint rule.
-  frac = [phi, 1 - phi]
+  frac(hard) = phi
+  frac(soft) = 1 - phi
   do k = hard, soft
     if (frac(k) <= 0) cycle
     sse = sse + frac(k) * 0.5_real64 * dot_product(sig_n(:, k) + sig_frames(:, k), deps - devp(:, k))
@@ -110,9 +113,13 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
 
   sig_full = mandel_to_stress(sig)
   stress = sig_full(1:ntens)
-  call tangent_to_abaqus(d, ntens, ddsdde)
+  if (info%viscoplastic) then
+    call tangent_to_abaqus(d, ntens, ddsdde)
+  else
+    ddsdde = current_material%cbar_abaqus(1:ntens, 1:ntens)
+  end if
   do k = hard, soft
-    statev(sig_slot(k):sig_slot(k) + 5) = mandel_to_stress(sig_frames(:, k))
+    statev(sig_slot(k):sig_slot(k) + 5) = sig_frames(:, k) / mandel_w
   end do
   statev(is_pc_hard) = pc(hard)
   statev(is_pc_soft) = pc(soft)
@@ -123,9 +130,9 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   end if
   if (info%viscoplastic) then
     do k = hard, soft
-      statev(evp_slot(k):evp_slot(k) + 5) = statev(evp_slot(k):evp_slot(k) + 5) + mandel_to_strain(devp(:, k))
+      statev(evp_slot(k):evp_slot(k) + 5) = statev(evp_slot(k):evp_slot(k) + 5) + devp(:, k) * mandel_w
     end do
-    statev(is_evp_total:is_evp_total + 5) = statev(is_evp_total:is_evp_total + 5) + mandel_to_strain(devp_total)
+    statev(is_evp_total:is_evp_total + 5) = statev(is_evp_total:is_evp_total + 5) + devp_total * mandel_w
   end if
   if (nstatv >= nstatv_diag) then
     ! Diagnostics (docs/umat.md): iterations, flags, yield function values at the end of the step.
