@@ -1,17 +1,12 @@
 !> Transversely isotropic elasticity of one solid frame (theory.md §4.2, Yin et al. 2021 eq. 21).
 module ccix_elasticity
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: voigt_i, voigt_j, mandel_w
+  use ccix_tensor, only: voigt_i, voigt_j, mandel_w, kron => kronecker
   implicit none
   private
   public :: ti_stiffness_mandel
 
 contains
-
-  pure real(real64) function kron(i, j)
-    integer, intent(in) :: i, j
-    kron = merge(1.0_real64, 0.0_real64, i == j)
-  end function kron
 
   !> Mandel 6x6 stiffness for any unit bedding normal n (theory.md §4.2):
   !>   C_ijkl = lam d_ij d_kl + muT (d_ik d_jl + d_il d_jk) + a (d_ij n_k n_l + n_i n_j d_kl)

@@ -4,17 +4,12 @@
 !> so that sigma' = P:sigma = c1 sigma + c2 (n.sigma.n) m + (c3/2)[n (x) sigma n + sigma n (x) n].
 module ccix_projection
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: voigt_i, voigt_j, mandel_w
+  use ccix_tensor, only: voigt_i, voigt_j, mandel_w, kron => kronecker
   implicit none
   private
   public :: projection_mandel
 
 contains
-
-  pure real(real64) function kron(i, j)
-    integer, intent(in) :: i, j
-    kron = merge(1.0_real64, 0.0_real64, i == j)
-  end function kron
 
   !> Symmetric Mandel 6x6 form of P. c1 = 1, c2 = c3 = 0 gives the identity (the soft frame).
   pure function projection_mandel(c1, c2, c3, n) result(p6)

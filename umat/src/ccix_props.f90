@@ -88,120 +88,59 @@ contains
       return
     end if
     do i = 1, min(nprops, nprops_normal)
-      if (.not. is_finite(props(i))) then
-        call fail(code, message, i, props(i), 'a finite number')
-        return
-      end if
+      call require(code, message, props, is_finite(props(i)), i, 'a finite number')
     end do
+    if (code /= 0) return
 
-    if (.not. (props(ip_phi) >= 0 .and. props(ip_phi) <= 1)) then
-      call fail(code, message, ip_phi, props(ip_phi), &
-        'phi, the volume fraction of the hard frame, in [0, 1]')
-      return
-    end if
-
+    ! Each check acts only while no earlier one has failed, so the first offending slot is reported.
+    call require(code, message, props, props(ip_phi) >= 0 .and. props(ip_phi) <= 1, ip_phi, &
+                 'phi, the volume fraction of the hard frame, in [0, 1]')
     ! Hard frame: positive-definite TI stiffness. In bedding axes the Mandel stiffness splits into
     ! 2 mu_T, 2 mu_T, 2 mu_L, 2 mu_L and the 2x2 block [[2(lam + mu_T), sqrt2 (lam + a)], [., C33]]
     ! (theory.md §4.2), so it is positive definite iff these are.
     lam = props(2); mu_t = props(3); mu_l = props(4); a = props(5); b = props(6)
     c33 = lam + 2 * mu_t + 2 * a + b + 4 * (mu_l - mu_t)
-    if (.not. (mu_t > 0)) then
-      call fail(code, message, 3, props(3), &
-        'mu_T > 0 (hard frame, shear modulus in the bedding plane)')
-      return
-    end if
-    if (.not. (mu_l > 0)) then
-      call fail(code, message, 4, props(4), &
-        'mu_L > 0 (hard frame, shear modulus normal to the bedding)')
-      return
-    end if
-    if (.not. (lam + mu_t > 0)) then
-      call fail(code, message, 2, props(2), &
-        'lambda > -mu_T (hard frame stiffness positive definite)')
-      return
-    end if
-    if (.not. (c33 > 0 .and. 2 * (lam + mu_t) * c33 > 2 * (lam + a)**2)) then
-      call fail(code, message, 6, props(6), &
-        'b such that the hard-frame stiffness is positive definite: ' // &
-                'C33 = lambda + 2 mu_T + 2a + b + 4(mu_L - mu_T) > 0 and (lambda + mu_T) C33 > (lambda + a)^2')
-      return
-    end if
-    if (.not. (props(7) > 0)) then
-      call fail(code, message, 7, props(7), 'M > 0 (hard frame)')
-      return
-    end if
-    if (.not. (props(8) > 0)) then
-      call fail(code, message, 8, props(8), 'lambda_p > 0 (hard frame)')
-      return
-    end if
+    call require(code, message, props, mu_t > 0, 3, &
+                 'mu_T > 0 (hard frame, shear modulus in the bedding plane)')
+    call require(code, message, props, mu_l > 0, 4, &
+                 'mu_L > 0 (hard frame, shear modulus normal to the bedding)')
+    call require(code, message, props, lam + mu_t > 0, 2, &
+                 'lambda > -mu_T (hard frame stiffness positive definite)')
+    call require(code, message, props, c33 > 0 .and. 2 * (lam + mu_t) * c33 > 2 * (lam + a)**2, 6, &
+                 'b such that the hard-frame stiffness is positive definite: ' // &
+                 'C33 = lambda + 2 mu_T + 2a + b + 4(mu_L - mu_T) > 0 and (lambda + mu_T) C33 > (lambda + a)^2')
+    call require(code, message, props, props(7) > 0, 7, 'M > 0 (hard frame)')
+    call require(code, message, props, props(8) > 0, 8, 'lambda_p > 0 (hard frame)')
     ! Projection tensor positive definite: c1 > 0, c1 + c2 + c3 > 0, c1 + c3/2 > 0 (theory.md §1.2).
-    if (.not. (props(9) > 0)) then
-      call fail(code, message, 9, props(9), &
-        'c1 > 0 (hard frame projection tensor positive definite)')
-      return
-    end if
-    if (.not. (props(9) + props(10) + props(11) > 0)) then
-      call fail(code, message, 10, props(10), &
-        'c1 + c2 + c3 > 0 (hard frame projection tensor positive definite)')
-      return
-    end if
-    if (.not. (props(9) + props(11) / 2 > 0)) then
-      call fail(code, message, 11, props(11), &
-        'c1 + c3/2 > 0 (hard frame projection tensor positive definite)')
-      return
-    end if
-    if (.not. (props(12) > 0)) then
-      call fail(code, message, 12, props(12), 'pc0 > 0 (hard frame)')
-      return
-    end if
-    if (.not. (props(13) >= 0)) then
-      call fail(code, message, 13, props(13), 'eta >= 0 (hard frame; 0 is rate independent)')
-      return
-    end if
-
+    call require(code, message, props, props(9) > 0, 9, &
+                 'c1 > 0 (hard frame projection tensor positive definite)')
+    call require(code, message, props, props(9) + props(10) + props(11) > 0, 10, &
+                 'c1 + c2 + c3 > 0 (hard frame projection tensor positive definite)')
+    call require(code, message, props, props(9) + props(11) / 2 > 0, 11, &
+                 'c1 + c3/2 > 0 (hard frame projection tensor positive definite)')
+    call require(code, message, props, props(12) > 0, 12, 'pc0 > 0 (hard frame)')
+    call require(code, message, props, props(13) >= 0, 13, &
+                 'eta >= 0 (hard frame; 0 is rate independent)')
     ! Soft frame: isotropic, positive definite iff mu > 0 and 3 lambda + 2 mu > 0.
-    if (.not. (props(15) > 0)) then
-      call fail(code, message, 15, props(15), 'mu > 0 (soft frame shear modulus)')
-      return
-    end if
-    if (.not. (3 * props(14) + 2 * props(15) > 0)) then
-      call fail(code, message, 14, props(14), 'lambda > -2 mu/3 (soft frame bulk modulus positive)')
-      return
-    end if
-    if (.not. (props(16) > 0)) then
-      call fail(code, message, 16, props(16), 'M > 0 (soft frame)')
-      return
-    end if
-    if (.not. (props(17) > 0)) then
-      call fail(code, message, 17, props(17), 'lambda_p > 0 (soft frame)')
-      return
-    end if
-    if (.not. (props(18) > 0)) then
-      call fail(code, message, 18, props(18), 'pc0 > 0 (soft frame)')
-      return
-    end if
-    if (.not. (props(19) >= 0)) then
-      call fail(code, message, 19, props(19), 'eta >= 0 (soft frame; 0 is rate independent)')
-      return
-    end if
-    if (nprops >= ip_tol) then
-      if (.not. (props(ip_tol) >= 0)) then
-        call fail(code, message, ip_tol, props(ip_tol), 'tol >= 0 (0: no step control)')
-        return
-      end if
-    end if
+    call require(code, message, props, props(15) > 0, 15, 'mu > 0 (soft frame shear modulus)')
+    call require(code, message, props, 3 * props(14) + 2 * props(15) > 0, 14, &
+                 'lambda > -2 mu/3 (soft frame bulk modulus positive)')
+    call require(code, message, props, props(16) > 0, 16, 'M > 0 (soft frame)')
+    call require(code, message, props, props(17) > 0, 17, 'lambda_p > 0 (soft frame)')
+    call require(code, message, props, props(18) > 0, 18, 'pc0 > 0 (soft frame)')
+    call require(code, message, props, props(19) >= 0, 19, &
+                 'eta >= 0 (soft frame; 0 is rate independent)')
+    if (code /= 0) return
+    if (nprops >= ip_tol) call require(code, message, props, props(ip_tol) >= 0, ip_tol, &
+                 'tol >= 0 (0: no step control)')
+    if (code /= 0) return
     if (nprops >= nprops_normal) then
       nrm = norm2(props(ip_normal:ip_normal + 2))
-      if (.not. (nrm > 0)) then
-        call fail(code, message, ip_normal, props(ip_normal), &
-          'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
-        return
-      end if
-      if (ntens == 4 .and. abs(props(ip_normal + 2)) > 1.0e-12_real64 * nrm) then
-        call fail(code, message, ip_normal + 2, props(ip_normal + 2), &
-          'n3 = 0: with NTENS = 4 the bedding normal must lie in the 1-2 plane')
-        return
-      end if
+      call require(code, message, props, nrm > 0, ip_normal, &
+                   'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
+      call require(code, message, props, &
+                   ntens /= 4 .or. abs(props(ip_normal + 2)) <= 1.0e-12_real64 * nrm, ip_normal + 2, &
+                   'n3 = 0: with NTENS = 4 the bedding normal must lie in the 1-2 plane')
     else if (ntens == 4 .and. props(ip_phi) > 0) then
       ! (With phi = 0 the hard frame is not used and its normal does not matter.)
       code = ip_normal
@@ -212,16 +151,19 @@ contains
 
   end subroutine check_props
 
-  !> The message of an invalid PROPS slot: its number, its value and what was expected.
-  pure subroutine fail(code, message, slot, value, expected)
-    integer, intent(out) :: code
-    character(len=message_len), intent(out) :: message
+  !> If no check has failed yet (code = 0) and ok is false: code = slot and the message names the
+  !> slot, its value and what was expected.
+  pure subroutine require(code, message, props, ok, slot, expected)
+    integer, intent(inout) :: code
+    character(len=message_len), intent(inout) :: message
+    real(real64), intent(in) :: props(*)
+    logical, intent(in) :: ok
     integer, intent(in) :: slot
-    real(real64), intent(in) :: value
     character(len=*), intent(in) :: expected
+    if (code /= 0 .or. ok) return
     code = slot
-    write (message, '(a,i0,a,es13.6,a,a)') 'Cam-Clay IX UMAT: PROPS(', slot, ') = ', value, &
+    write (message, '(a,i0,a,es13.6,a,a)') 'Cam-Clay IX UMAT: PROPS(', slot, ') = ', props(slot), &
       ': expected ', expected
-  end subroutine fail
+  end subroutine require
 
 end module ccix_props

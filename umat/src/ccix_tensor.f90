@@ -23,7 +23,7 @@ module ccix_tensor
   public :: identity6, outer6, stress_to_mandel, mandel_to_stress, strain_to_mandel, &
             mandel_to_strain, tangent_to_abaqus, mandel_to_matrix33, matrix33_to_mandel, &
             rotate_mandel, lu_factor, lu_solve, invert6, is_finite, cholesky_is_spd, &
-            cholesky_lower, lower_inverse, jacobi_eigen
+            cholesky_lower, lower_inverse, jacobi_eigen, kronecker
 
 contains
 
@@ -206,19 +206,8 @@ contains
     integer, intent(in) :: n
     real(real64), intent(in) :: a(n, n)
     logical :: spd
-    real(real64) :: l(n, n), s
-    integer :: i, j
-    l = 0.0_real64
-    spd = .false.
-    do j = 1, n
-      s = a(j, j) - dot_product(l(j, 1:j-1), l(j, 1:j-1))
-      if (.not. (s > 0.0_real64)) return
-      l(j, j) = sqrt(s)
-      do i = j + 1, n
-        l(i, j) = (a(i, j) - dot_product(l(i, 1:j-1), l(j, 1:j-1))) / l(j, j)
-      end do
-    end do
-    spd = .true.
+    real(real64) :: l(n, n)
+    call cholesky_lower(n, a, l, spd)
   end function cholesky_is_spd
 
   !> Lower Cholesky factor L of a symmetric positive definite matrix (A = L L^T); ok = .false. if not SPD.
@@ -307,6 +296,12 @@ contains
       w(i) = b(i, i)
     end do
   end subroutine jacobi_eigen
+
+  !> Kronecker delta as a real number.
+  pure real(real64) function kronecker(i, j)
+    integer, intent(in) :: i, j
+    kronecker = merge(1.0_real64, 0.0_real64, i == j)
+  end function kronecker
 
   elemental function is_finite(x) result(ok)
     real(real64), intent(in) :: x
