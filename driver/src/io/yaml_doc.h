@@ -1,0 +1,51 @@
+/* A YAML document as a small tree that remembers where each node came from, so that every error
+ * about a scene can name the file, the line and the key (libyaml does the parsing). */
+#ifndef YAML_DOC_H
+#define YAML_DOC_H
+
+#include <stddef.h>
+
+typedef enum { YD_SCALAR, YD_SEQUENCE, YD_MAPPING } YdKind;
+
+typedef struct YdNode YdNode;
+struct YdNode {
+  YdKind   kind;
+  int      line;      /* 1-based line in the file */
+  char    *text;      /* scalar text (YD_SCALAR) */
+  size_t   n;         /* children: sequence items, or mapping pairs */
+  YdNode **items;     /* sequence items, or mapping values */
+  char   **keys;      /* mapping keys (YD_MAPPING) */
+  int     *key_lines; /* line of each key */
+  int     *used;      /* mapping: set when a reader asked for the key (unknown-key check) */
+};
+
+typedef struct {
+  char   *file;
+  YdNode *root;
+} YdDoc;
+
+/* Parse a file. Returns 0 on success; else fills err (file:line: message) and returns 1. */
+int  yd_load(const char *file, YdDoc *doc, char *err, size_t errlen);
+void yd_free(YdDoc *doc);
+
+/* Mapping lookup; NULL if absent. Marks the key as used. */
+YdNode *yd_get(YdNode *map, const char *key);
+/* Line of key in map (or of map if absent). */
+int yd_key_line(const YdNode *map, const char *key);
+
+/* Typed reads; each returns 0 on success, else writes "file:line: key 'path': expected ..., got ..."
+ * into err and returns 1. 'path' is the dotted key path used in messages. */
+int yd_double(const YdDoc *doc, const YdNode *node, const char *path, double *value, char *err, size_t errlen);
+int yd_int(const YdDoc *doc, const YdNode *node, const char *path, int *value, char *err, size_t errlen);
+int yd_bool(const YdDoc *doc, const YdNode *node, const char *path, int *value, char *err, size_t errlen);
+int yd_string(const YdDoc *doc, const YdNode *node, const char *path, const char **value, char *err, size_t errlen);
+/* A sequence of exactly n numbers (n < 0: any length up to -n; count returned in *got). */
+int yd_doubles(const YdDoc *doc, const YdNode *node, const char *path, double *values, int n, int *got, char *err,
+               size_t errlen);
+/* Expect a node of a kind. */
+int yd_expect(const YdDoc *doc, const YdNode *node, YdKind kind, const char *path, char *err, size_t errlen);
+/* After reading a mapping: any key never asked for is an error naming it and the allowed keys. */
+int yd_check_unused(const YdDoc *doc, const YdNode *map, const char *path, const char *allowed, char *err,
+                    size_t errlen);
+
+#endif

@@ -1,0 +1,109 @@
+#include "material_input.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "camclay9.h"
+
+/* Cam-Clay IX PROPS slot names (docs/umat.md), in slot order. */
+static const char *slot_names[] = {"phi",   "lambda_hard", "muT_hard",      "muL_hard", "a_hard",     "b_hard",
+                                   "M_hard", "lambda_p_hard", "c1",          "c2",       "c3",         "pc0_hard",
+                                   "eta_hard", "lambda_soft", "mu_soft",    "M_soft",   "lambda_p_soft", "pc0_soft",
+                                   "eta_soft", "tol",         "n1",          "n2",       "n3"};
+enum { NSLOTS = 23 };
+
+/* Yin, Liu & Borja (2021), Tables 1-2 (docs/umat.md). */
+static const double woodford[19] = {0.5,  2900, 18000, 13000, 4100, 6900, 1.46,   0.00013, 0.73,  -0.20,
+                                    0.40, 2.0,  1.3e13, 4600, 3100, 1.46, 0.0026, 35.0,    1.3e10};
+
+int material_slot(const char *name) {
+  for (int i = 0; i < NSLOTS; i++)
+    if (!strcmp(slot_names[i], name)) return i;
+  return -1;
+}
+
+int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen) {
+  if (yd_expect(doc, node, YD_MAPPING, "material", err, errlen)) return 1;
+  const char *umat_name = "camclay9", *name = "CAMCLAY9";
+  YdNode     *nd;
+  if ((nd = yd_get(node, "umat")) && yd_string(doc, nd, "material.umat", &umat_name, err, errlen)) return 1;
+  if ((nd = yd_get(node, "name")) && yd_string(doc, nd, "material.name", &name, err, errlen)) return 1;
+  int camclay = !strcmp(umat_name, "camclay9");
+  memset(mat, 0, sizeof *mat);
+  mat->ntens  = ntens;
+  mat->nstatv = camclay ? CAMCLAY9_NSTATV_DIAGNOSTICS : 0;
+  umat_material_set_name(mat, name);
+
+  YdNode *props = yd_get(node, "props");
+  if (!props) {
+    snprintf(err, errlen, "%s:%d: key 'material.props' is missing: expected 'woodford' or a list of numbers",
+             doc->file, node->line);
+    return 1;
+  }
+  if (props->kind == YD_SCALAR && !strcmp(props->text, "woodford")) {
+    memcpy(mat->props, woodford, sizeof woodford);
+    mat->nprops = camclay ? 23 : 19;
+    mat->props[22] = 1.0; /* normal e3 unless set below */
+  } else if (yd_doubles(doc, props, "material.props", mat->props, -UMAT_MAX_PROPS, &mat->nprops, err, errlen)) {
+    return 1;
+  }
+  if ((nd = yd_get(node, "set"))) {
+    if (yd_expect(doc, nd, YD_MAPPING, "material.set", err, errlen)) return 1;
+    for (size_t i = 0; i < nd->n; i++) {
+      int  slot = material_slot(nd->keys[i]);
+      char path[128];
+      snprintf(path, sizeof path, "material.set.%s", nd->keys[i]);
+      if (slot < 0) {
+        snprintf(err, errlen,
+                 "%s:%d: unknown key '%s': the PROPS slot names are phi, lambda_hard, muT_hard, muL_hard, a_hard, "
+                 "b_hard, M_hard, lambda_p_hard, c1, c2, c3, pc0_hard, eta_hard, lambda_soft, mu_soft, M_soft, "
+                 "lambda_p_soft, pc0_soft, eta_soft, tol, n1, n2, n3",
+                 doc->file, nd->key_lines[i], path);
+        return 1;
+      }
+      nd->used[i] = 1;
+      if (yd_double(doc, nd->items[i], path, &mat->props[slot], err, errlen)) return 1;
+      if (slot + 1 > mat->nprops) mat->nprops = slot + 1 < 20 ? 20 : 23;
+    }
+  }
+  /* Bedding: an angle theta to the loading axis (theory.md §4.1), or the normal itself. */
+  YdNode *bed = yd_get(node, "bedding_angle"), *normal = yd_get(node, "normal");
+  if (bed && normal) {
+    snprintf(err, errlen, "%s:%d: give either 'material.bedding_angle' or 'material.normal', not both", doc->file,
+             yd_key_line(node, "normal"));
+    return 1;
+  }
+  if (bed) {
+    double theta;
+    if (yd_double(doc, bed, "material.bedding_angle", &theta, err, errlen)) return 1;
+    theta *= M_PI / 180;
+    /* 3D: load along x3, n = (sin, 0, cos); plane strain / axisymmetric: load along x2, n = (sin, cos, 0). */
+    double n[3] = {sin(theta), ntens == 6 ? 0.0 : cos(theta), ntens == 6 ? cos(theta) : 0.0};
+    memcpy(&mat->props[20], n, sizeof n);
+    mat->nprops = 23;
+  } else if (normal) {
+    if (yd_doubles(doc, normal, "material.normal", &mat->props[20], 3, NULL, err, errlen)) return 1;
+    mat->nprops = 23;
+  } else if (camclay && ntens == 4 && !strcmp(props->kind == YD_SCALAR ? props->text : "", "woodford")) {
+    mat->props[20] = 0, mat->props[21] = 1, mat->props[22] = 0; /* plane strain: load along x2 */
+  }
+  if ((nd = yd_get(node, "nstatv")) && yd_int(doc, nd, "material.nstatv", &mat->nstatv, err, errlen)) return 1;
+  if (mat->nstatv < 0 || mat->nstatv > UMAT_MAX_STATEV) {
+    snprintf(err, errlen, "%s:%d: key 'material.nstatv': expected 0 to %d, got %d", doc->file,
+             yd_key_line(node, "nstatv"), UMAT_MAX_STATEV, mat->nstatv);
+    return 1;
+  }
+  if (yd_check_unused(doc, node, "material", "umat, name, props, set, bedding_angle, normal, nstatv", err, errlen))
+    return 1;
+  if (camclay) {
+    char msg[256];
+    int  code;
+    camclay9_check_props(mat->props, mat->nprops, mat->nstatv, ntens, 3, &code, msg, sizeof msg);
+    if (code) {
+      snprintf(err, errlen, "%s:%d: material: %s", doc->file, node->line, msg);
+      return 1;
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,15 @@
+/* The 'material:' block of a scene: which PROPS the UMAT gets (theory.md's Woodford values by name,
+ * overrides by slot name), the bedding normal, NSTATV; checked with the UMAT's own property check. */
+#ifndef MATERIAL_INPUT_H
+#define MATERIAL_INPUT_H
+
+#include "../io/yaml_doc.h"
+#include "umat_call.h"
+
+/* Read the block into mat (ntens must already be set). Returns 0, or 1 with err filled. */
+int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen);
+
+/* Index (0-based) of a named Cam-Clay IX PROPS slot, or -1. */
+int material_slot(const char *name);
+
+#endif

@@ -1,0 +1,364 @@
+/* Reading a material-point scene from YAML; every error names the file, the line and the key. */
+#include "point_scene.h"
+
+#include <errno.h>
+#include <libgen.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../material/material_input.h"
+
+static const char *component_names[6] = {"11", "22", "33", "12", "13", "23"};
+
+int point_component(const char *key) {
+  for (int i = 0; i < 6; i++)
+    if (!strcmp(key, component_names[i])) return i;
+  return -1;
+}
+
+#define FAIL(...)                            \
+  do {                                       \
+    snprintf(err, errlen, __VA_ARGS__);      \
+    return 1;                                \
+  } while (0)
+
+/* A CSV file with a header: the columns named in 'want' (ncol of them), as numbers. */
+static int read_table(const char *path, const char *scene_file, int line, char **want, int ncol, double **data,
+                      int *rows, char *err, size_t errlen) {
+  FILE *fp = fopen(path, "r");
+  if (!fp) FAIL("%s:%d: table file '%s': cannot open: %s", scene_file, line, path, strerror(errno));
+  char buf[8192];
+  int  idx[16];
+  if (!fgets(buf, sizeof buf, fp)) {
+    fclose(fp);
+    FAIL("%s:%d: table file '%s' is empty", scene_file, line, path);
+  }
+  char *names[64];
+  int   nnames = 0;
+  for (char *tok = strtok(buf, ",\r\n"); tok && nnames < 64; tok = strtok(NULL, ",\r\n")) names[nnames++] = tok;
+  for (int c = 0; c < ncol; c++) {
+    idx[c] = -1;
+    for (int k = 0; k < nnames; k++)
+      if (!strcmp(names[k], want[c])) idx[c] = k;
+    if (idx[c] < 0) {
+      fclose(fp);
+      FAIL("%s:%d: table file '%s' has no column '%s'", scene_file, line, path, want[c]);
+    }
+  }
+  int cap = 64;
+  *data   = malloc(sizeof(double) * cap * ncol);
+  *rows   = 0;
+  int fileline = 1;
+  while (fgets(buf, sizeof buf, fp)) {
+    fileline++;
+    if (buf[0] == '\n' || buf[0] == '#') continue;
+    double vals[64];
+    int    nv = 0;
+    for (char *tok = strtok(buf, ",\r\n"); tok && nv < 64; tok = strtok(NULL, ",\r\n")) {
+      char *end;
+      vals[nv] = strtod(tok, &end);
+      if (end == tok) {
+        fclose(fp);
+        FAIL("%s:%d: not a number: '%s'", path, fileline, tok);
+      }
+      nv++;
+    }
+    if (*rows == cap) *data = realloc(*data, sizeof(double) * (cap *= 2) * ncol);
+    for (int c = 0; c < ncol; c++) {
+      if (idx[c] >= nv) {
+        fclose(fp);
+        FAIL("%s:%d: row has %d values, column '%s' is number %d", path, fileline, nv, want[c], idx[c] + 1);
+      }
+      (*data)[*rows * ncol + c] = vals[idx[c]];
+    }
+    (*rows)++;
+  }
+  fclose(fp);
+  if (*rows < 2) FAIL("%s:%d: table file '%s' needs at least two rows", scene_file, line, path);
+  return 0;
+}
+
+/* {stress: x} or {strain: x} (or {strain: {column: name, factor: f}} in a table segment). */
+static int read_equation(YdDoc *doc, YdNode *nd, const char *path, Equation *eq, char **table_cols, int *ntable,
+                         char *err, size_t errlen) {
+  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  YdNode *s = yd_get(nd, "stress"), *e = yd_get(nd, "strain");
+  if ((s != NULL) == (e != NULL)) FAIL("%s:%d: key '%s': expected exactly one of 'stress' or 'strain'", doc->file, nd->line, path);
+  eq->kind         = s ? EQ_STRESS : EQ_STRAIN;
+  eq->table_column = -1;
+  YdNode *v        = s ? s : e;
+  char    sub[160];
+  snprintf(sub, sizeof sub, "%s.%s", path, s ? "stress" : "strain");
+  if (v->kind == YD_MAPPING) {
+    const char *col;
+    eq->table_factor = 1;
+    if (yd_string(doc, yd_get(v, "column"), sub, &col, err, errlen)) return 1;
+    YdNode *f = yd_get(v, "factor");
+    if (f && yd_double(doc, f, sub, &eq->table_factor, err, errlen)) return 1;
+    if (yd_check_unused(doc, v, sub, "column, factor", err, errlen)) return 1;
+    table_cols[*ntable] = (char *)col;
+    eq->table_column    = (*ntable)++;
+  } else if (yd_double(doc, v, sub, &eq->target, err, errlen)) {
+    return 1;
+  }
+  return yd_check_unused(doc, nd, path, "stress, strain", err, errlen);
+}
+
+static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *sg, char *err, size_t errlen) {
+  char path[64], sub[160];
+  snprintf(path, sizeof path, "segments[%d]", index);
+  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  memset(sg, 0, sizeof *sg);
+  const char *s;
+  YdNode     *x;
+  snprintf(sg->name, sizeof sg->name, "segment%d", index);
+  if ((x = yd_get(nd, "name"))) {
+    if (yd_string(doc, x, "name", &s, err, errlen)) return 1;
+    snprintf(sg->name, sizeof sg->name, "%s", s);
+  }
+  snprintf(sub, sizeof sub, "%s.duration", path);
+  if (yd_double(doc, yd_get(nd, "duration"), sub, &sg->duration, err, errlen)) return 1;
+  if (sg->duration < 0) FAIL("%s:%d: key '%s': expected a duration >= 0, got %g", doc->file, yd_key_line(nd, "duration"), sub, sg->duration);
+  if ((x = yd_get(nd, "load"))) {
+    if (yd_string(doc, x, "load", &s, err, errlen)) return 1;
+    if (!strcmp(s, "instant")) sg->instant = 1;
+    else if (strcmp(s, "linear"))
+      FAIL("%s:%d: key '%s.load': expected 'instant' or 'linear', got '%s'", doc->file, x->line, path, s);
+  }
+
+  /* Control of each component. */
+  char   *table_cols[8];
+  int     ntable = 0;
+  YdNode *ctl    = yd_get(nd, "control");
+  snprintf(sub, sizeof sub, "%s.control", path);
+  if (yd_expect(doc, ctl, YD_MAPPING, sub, err, errlen)) return 1;
+  int given[6] = {0};
+  for (size_t i = 0; i < ctl->n; i++) {
+    if (!strcmp(ctl->keys[i], "others")) continue;
+    int c = point_component(ctl->keys[i]);
+    if (c < 0 || c >= ntens)
+      FAIL("%s:%d: unknown key '%s.%s': expected a component %s or 'others'", doc->file, ctl->key_lines[i], sub,
+           ctl->keys[i], ntens == 6 ? "11, 22, 33, 12, 13, 23" : "11, 22, 33, 12 (NTENS = 4)");
+    ctl->used[i] = 1;
+    char p2[200];
+    snprintf(p2, sizeof p2, "%s.%s", sub, ctl->keys[i]);
+    if (read_equation(doc, ctl->items[i], p2, &sg->eq[c], table_cols, &ntable, err, errlen)) return 1;
+    given[c] = 1;
+  }
+  YdNode *others = yd_get(ctl, "others");
+  for (int c = 0; c < ntens; c++) {
+    if (given[c]) continue;
+    if (!others)
+      FAIL("%s:%d: key '%s': component %s is not controlled: give it ({stress: ...} or {strain: ...}) or 'others'",
+           doc->file, ctl->line, sub, component_names[c]);
+    char p2[200];
+    snprintf(p2, sizeof p2, "%s.others", sub);
+    if (read_equation(doc, others, p2, &sg->eq[c], table_cols, &ntable, err, errlen)) return 1;
+  }
+
+  /* Linear constraints replace the equation of one component each. */
+  if ((x = yd_get(nd, "constraints"))) {
+    snprintf(sub, sizeof sub, "%s.constraints", path);
+    if (yd_expect(doc, x, YD_SEQUENCE, sub, err, errlen)) return 1;
+    for (size_t k = 0; k < x->n; k++) {
+      YdNode *cn = x->items[k];
+      char    p2[200];
+      snprintf(p2, sizeof p2, "%s[%zu]", sub, k);
+      if (yd_expect(doc, cn, YD_MAPPING, p2, err, errlen)) return 1;
+      const char *rep;
+      char        p3[240];
+      snprintf(p3, sizeof p3, "%s.replaces", p2);
+      if (yd_string(doc, yd_get(cn, "replaces"), p3, &rep, err, errlen)) return 1;
+      int c = point_component(rep);
+      if (c < 0 || c >= ntens) FAIL("%s:%d: key '%s': expected a component, got '%s'", doc->file, cn->line, p3, rep);
+      Equation *eq = &sg->eq[c];
+      memset(eq, 0, sizeof *eq);
+      eq->kind         = EQ_LINEAR;
+      eq->table_column = -1;
+      eq->value        = NAN;
+      const char *parts[2] = {"strain", "stress"};
+      for (int part = 0; part < 2; part++) {
+        YdNode *coef = yd_get(cn, parts[part]);
+        if (!coef) continue;
+        snprintf(p3, sizeof p3, "%s.%s", p2, parts[part]);
+        if (yd_expect(doc, coef, YD_MAPPING, p3, err, errlen)) return 1;
+        for (size_t j = 0; j < coef->n; j++) {
+          int cc = point_component(coef->keys[j]);
+          if (cc < 0 || cc >= ntens) FAIL("%s:%d: unknown key '%s.%s': expected a component", doc->file, coef->key_lines[j], p3, coef->keys[j]);
+          coef->used[j] = 1;
+          if (yd_double(doc, coef->items[j], p3, part ? &eq->b[cc] : &eq->a[cc], err, errlen)) return 1;
+        }
+      }
+      YdNode *val = yd_get(cn, "value");
+      if (val && yd_double(doc, val, p2, &eq->value, err, errlen)) return 1;
+      if (yd_check_unused(doc, cn, p2, "replaces, strain, stress, value (omitted: keep the value at the segment start)", err, errlen)) return 1;
+    }
+  }
+
+  /* Steps. */
+  sg->count = 1;
+  sg->ratio = 1;
+  sg->growth = 1.5;
+  if ((x = yd_get(nd, "steps"))) {
+    snprintf(sub, sizeof sub, "%s.steps", path);
+    if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen)) return 1;
+    YdNode *a = yd_get(x, "adaptive");
+    if (a && yd_bool(doc, a, sub, &sg->adaptive, err, errlen)) return 1;
+    if (sg->adaptive) {
+      sg->dt_first = sg->duration / 100, sg->dt_min = 1e-12 * fmax(sg->duration, 1), sg->dt_max = sg->duration;
+      YdNode *v;
+      if ((v = yd_get(x, "first")) && yd_double(doc, v, sub, &sg->dt_first, err, errlen)) return 1;
+      if ((v = yd_get(x, "min")) && yd_double(doc, v, sub, &sg->dt_min, err, errlen)) return 1;
+      if ((v = yd_get(x, "max")) && yd_double(doc, v, sub, &sg->dt_max, err, errlen)) return 1;
+      if ((v = yd_get(x, "growth")) && yd_double(doc, v, sub, &sg->growth, err, errlen)) return 1;
+      if (!(sg->dt_first > 0 && sg->dt_min > 0 && sg->dt_max >= sg->dt_min && sg->growth >= 1))
+        FAIL("%s:%d: key '%s': expected first > 0, min > 0, max >= min, growth >= 1", doc->file, x->line, sub);
+      if (yd_check_unused(doc, x, sub, "adaptive, first, min, max, growth", err, errlen)) return 1;
+    } else {
+      YdNode *v;
+      if ((v = yd_get(x, "count")) && yd_int(doc, v, sub, &sg->count, err, errlen)) return 1;
+      if (sg->count < 1) FAIL("%s:%d: key '%s.count': expected >= 1, got %d", doc->file, x->line, sub, sg->count);
+      if ((v = yd_get(x, "spacing"))) {
+        if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+        if (!strcmp(s, "geometric")) {
+          sg->ratio = 1.05;
+          YdNode *r = yd_get(x, "ratio");
+          if (r && yd_double(doc, r, sub, &sg->ratio, err, errlen)) return 1;
+          if (!(sg->ratio > 0)) FAIL("%s:%d: key '%s.ratio': expected > 0", doc->file, x->line, sub);
+        } else if (strcmp(s, "linear"))
+          FAIL("%s:%d: key '%s.spacing': expected 'linear' or 'geometric', got '%s'", doc->file, v->line, sub, s);
+      }
+      if (yd_check_unused(doc, x, sub, "count, spacing, ratio (fixed steps) or adaptive, first, min, max, growth", err, errlen)) return 1;
+    }
+  }
+
+  /* End condition. */
+  if ((x = yd_get(nd, "until"))) {
+    snprintf(sub, sizeof sub, "%s.until", path);
+    if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen) || x->n != 1)
+      FAIL("%s:%d: key '%s': expected one of evp_rate_below, q_above, q_below, p_above", doc->file, x->line, sub);
+    const char *k = x->keys[0];
+    sg->until     = !strcmp(k, "evp_rate_below") ? UNTIL_EVP_RATE_BELOW
+                    : !strcmp(k, "q_above")      ? UNTIL_Q_ABOVE
+                    : !strcmp(k, "q_below")      ? UNTIL_Q_BELOW
+                    : !strcmp(k, "p_above")      ? UNTIL_P_ABOVE
+                                                 : UNTIL_NONE;
+    if (sg->until == UNTIL_NONE)
+      FAIL("%s:%d: unknown key '%s.%s': expected evp_rate_below, q_above, q_below or p_above", doc->file, x->key_lines[0], sub, k);
+    x->used[0] = 1;
+    if (yd_double(doc, x->items[0], sub, &sg->until_value, err, errlen)) return 1;
+  }
+  if ((x = yd_get(nd, "creep")) && yd_bool(doc, x, "creep", &sg->creep, err, errlen)) return 1;
+  sg->axis = ntens == 6 ? 2 : 1;
+  if ((x = yd_get(nd, "axis"))) {
+    if (yd_string(doc, x, "axis", &s, err, errlen)) return 1;
+    int c = point_component(s);
+    if (c < 0 || c > 2) FAIL("%s:%d: key '%s.axis': expected 11, 22 or 33, got '%s'", doc->file, x->line, path, s);
+    sg->axis = c;
+  }
+
+  /* Table of lab data driving targets. */
+  YdNode *tab = yd_get(nd, "table");
+  if (ntable && !tab) FAIL("%s:%d: key '%s': a component reads a table column but the segment has no 'table'", doc->file, nd->line, path);
+  if (tab) {
+    snprintf(sub, sizeof sub, "%s.table", path);
+    if (yd_expect(doc, tab, YD_MAPPING, sub, err, errlen)) return 1;
+    const char *file, *tcol;
+    double      tfac = 1;
+    if (yd_string(doc, yd_get(tab, "file"), sub, &file, err, errlen)) return 1;
+    if (yd_string(doc, yd_get(tab, "time"), sub, &tcol, err, errlen)) return 1;
+    YdNode *f = yd_get(tab, "time_factor");
+    if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
+    if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
+    char  resolved[1024], dirbuf[1024];
+    snprintf(dirbuf, sizeof dirbuf, "%s", doc->file);
+    if (file[0] == '/') snprintf(resolved, sizeof resolved, "%s", file);
+    else snprintf(resolved, sizeof resolved, "%s/%s", dirname(dirbuf), file);
+    char   *want[9];
+    want[0] = (char *)tcol;
+    for (int c = 0; c < ntable; c++) want[c + 1] = table_cols[c];
+    double *data;
+    int     rows;
+    if (read_table(resolved, doc->file, tab->line, want, ntable + 1, &data, &rows, err, errlen)) return 1;
+    sg->table_rows = rows;
+    sg->table_cols = ntable;
+    sg->table_time = malloc(sizeof(double) * rows);
+    sg->table      = malloc(sizeof(double) * rows * (ntable ? ntable : 1));
+    for (int r = 0; r < rows; r++) {
+      sg->table_time[r] = data[r * (ntable + 1)] * tfac;
+      for (int c = 0; c < ntable; c++) sg->table[r * ntable + c] = data[r * (ntable + 1) + c + 1];
+      if (r && !(sg->table_time[r] > sg->table_time[r - 1])) {
+        free(data);
+        FAIL("%s: table time must increase (row %d)", resolved, r + 2);
+      }
+    }
+    free(data);
+  }
+  return yd_check_unused(doc, nd, path,
+                         "name, duration, load, control, constraints, steps, until, creep, axis, table", err, errlen);
+}
+
+int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
+  memset(sc, 0, sizeof *sc);
+  YdNode     *root = doc->root, *x;
+  const char *s;
+  if (yd_string(doc, yd_get(root, "scene"), "scene", &s, err, errlen)) return 1;
+  snprintf(sc->name, sizeof sc->name, "point");
+  if ((x = yd_get(root, "name"))) {
+    if (yd_string(doc, x, "name", &s, err, errlen)) return 1;
+    snprintf(sc->name, sizeof sc->name, "%s", s);
+  }
+  if ((x = yd_get(root, "units"))) { /* stated for the reader; the UMAT's units are MPa and s */
+    if (yd_expect(doc, x, YD_MAPPING, "units", err, errlen)) return 1;
+    for (size_t i = 0; i < x->n; i++) x->used[i] = 1;
+  }
+  int ntens = 6;
+  if ((x = yd_get(root, "ntens")) && yd_int(doc, x, "ntens", &ntens, err, errlen)) return 1;
+  if (ntens != 6 && ntens != 4) FAIL("%s:%d: key 'ntens': expected 6 (3D) or 4 (plane strain), got %d", doc->file, x->line, ntens);
+  if (material_read(doc, yd_get(root, "material"), ntens, &sc->mat, err, errlen)) return 1;
+
+  if ((x = yd_get(root, "initial"))) {
+    if (yd_expect(doc, x, YD_MAPPING, "initial", err, errlen)) return 1;
+    YdNode *v;
+    if ((v = yd_get(x, "stress")) && yd_doubles(doc, v, "initial.stress", sc->stress0, ntens, NULL, err, errlen)) return 1;
+    if ((v = yd_get(x, "statev"))) {
+      int got;
+      if (yd_doubles(doc, v, "initial.statev", sc->statev0, -sc->mat.nstatv, &got, err, errlen)) return 1;
+    }
+    if (yd_check_unused(doc, x, "initial", "stress (both frames), statev", err, errlen)) return 1;
+  }
+  snprintf(sc->outdir, sizeof sc->outdir, "out/point/%s", sc->name);
+  sc->progress_every = 0;
+  if ((x = yd_get(root, "output"))) {
+    if (yd_expect(doc, x, YD_MAPPING, "output", err, errlen)) return 1;
+    YdNode *v;
+    if ((v = yd_get(x, "directory"))) {
+      if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
+      snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
+    }
+    if ((v = yd_get(x, "progress_every")) && yd_int(doc, v, "output.progress_every", &sc->progress_every, err, errlen)) return 1;
+    if (yd_check_unused(doc, x, "output", "directory, progress_every", err, errlen)) return 1;
+  }
+  if ((x = yd_get(root, "check_tangent")) && yd_bool(doc, x, "check_tangent", &sc->check_tangent, err, errlen)) return 1;
+
+  YdNode *segs = yd_get(root, "segments");
+  if (yd_expect(doc, segs, YD_SEQUENCE, "segments", err, errlen)) return 1;
+  if (segs->n == 0) FAIL("%s:%d: key 'segments': expected at least one segment", doc->file, segs->line);
+  sc->nseg = (int)segs->n;
+  sc->seg  = calloc(segs->n, sizeof *sc->seg);
+  for (int i = 0; i < sc->nseg; i++)
+    if (read_segment(doc, segs->items[i], i, ntens, &sc->seg[i], err, errlen)) return 1;
+  return yd_check_unused(doc, root, "", "scene, name, units, ntens, material, initial, output, check_tangent, segments",
+                         err, errlen);
+}
+
+void point_scene_free(PointScene *sc) {
+  for (int i = 0; i < sc->nseg; i++) {
+    free(sc->seg[i].table_time);
+    free(sc->seg[i].table);
+  }
+  free(sc->seg);
+  memset(sc, 0, sizeof *sc);
+}
