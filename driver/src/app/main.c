@@ -29,7 +29,8 @@ static const char help[] =
 int main(int argc, char **argv) {
   char      input[PETSC_MAX_PATH_LEN] = "";
   PetscBool given = PETSC_FALSE, check = PETSC_FALSE, help_asked = PETSC_FALSE;
-  char      err[2048];
+  char      err[2048], outdir[PETSC_MAX_PATH_LEN] = "";
+  PetscInt  replay_step = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-help", &help_asked));
@@ -37,6 +38,10 @@ int main(int argc, char **argv) {
   PetscCall(PetscOptionsString("-input", "scene file (YAML)", NULL, input, input, sizeof input, &given));
   PetscCall(PetscOptionsBool("-check_tangent", "compare DDSDDE with central differences at every step", NULL, check,
                              &check, NULL));
+  PetscCall(PetscOptionsString("-output_dir", "write the output here instead of the scene's output.directory", NULL,
+                               outdir, outdir, sizeof outdir, NULL));
+  PetscCall(PetscOptionsInt("-write_replay_at_step", "write a replay scene of the UMAT call of this step", NULL,
+                            replay_step, &replay_step, NULL));
   PetscOptionsEnd();
   if (!given) {
     if (!help_asked) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n"));
@@ -59,6 +64,8 @@ int main(int argc, char **argv) {
     if (point_scene_read(&doc, &sc, err, sizeof err)) rc = 2;
     else {
       if (check) sc.check_tangent = 1;
+      if (outdir[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir);
+      sc.replay_step = (int)replay_step;
       rc = point_run(&sc, &sum, err, sizeof err);
       PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                             "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative)%s -> %s/history.csv\n",

@@ -256,6 +256,14 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
   memcpy(cur.stress, sc->stress0, sizeof cur.stress);
   memcpy(cur.statev, sc->statev0, sizeof cur.statev);
   cur.noel = cur.npt = cur.kstep = cur.kinc = 1;
+  /* A zero increment (DSTRAN = 0, DTIME = 0) first: the UMAT initialises its state from STRESS if it
+   * needs to (Cam-Clay IX's uninitialised-state rule), so that row 0 shows the real initial state. */
+  umat_invoke(mat, &cur);
+  if (cur.pnewdt < 1) {
+    snprintf(err, errlen, "the UMAT rejected the initial state (a zero increment returned PNEWDT = %g)", cur.pnewdt);
+    fclose(csv);
+    return 1;
+  }
   double  t = 0, last_deps[6] = {0}, last_dt = 0;
   double *t_start = calloc(sc->nseg, sizeof(double)), *t_end = calloc(sc->nseg, sizeof(double));
   write_row(csv, mat, &cur, t, 0, 0, 0, 0, 0);
@@ -327,6 +335,15 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
       }
       if (sc->check_tangent && dt_step > 0) sum->worst_tangent_error = fmax(sum->worst_tangent_error, tangent_check(mat, &cur, &next));
       sum->worst_control_error = fmax(sum->worst_control_error, res.control_error);
+      if (sc->replay_step > 0 && sum->steps + 1 == sc->replay_step) {
+        UmatCall in = cur;
+        memcpy(in.dstran, next.dstran, sizeof in.dstran);
+        in.dtime = dt_step;
+        char rp[1100];
+        snprintf(rp, sizeof rp, "%s/replay_step_%d.yaml", sc->outdir, sc->replay_step);
+        if (umat_write_replay(rp, mat, &in, &next, "requested with -write_replay_at_step"))
+          fprintf(stderr, "driver: could not write %s\n", rp);
+      }
       /* Commit. */
       double evp_old[6];
       for (int i = 0; i < 6; i++) evp_old[i] = statev_or_zero(mat, &cur, SV_EVP + i);

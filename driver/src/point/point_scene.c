@@ -31,10 +31,12 @@ static int read_table(const char *path, const char *scene_file, int line, char *
   if (!fp) FAIL("%s:%d: table file '%s': cannot open: %s", scene_file, line, path, strerror(errno));
   char buf[8192];
   int  idx[16];
-  if (!fgets(buf, sizeof buf, fp)) {
-    fclose(fp);
-    FAIL("%s:%d: table file '%s' is empty", scene_file, line, path);
-  }
+  do { /* the header is the first line that is not a comment */
+    if (!fgets(buf, sizeof buf, fp)) {
+      fclose(fp);
+      FAIL("%s:%d: table file '%s' has no header line", scene_file, line, path);
+    }
+  } while (buf[0] == '#');
   char *names[64];
   int   nnames = 0;
   for (char *tok = strtok(buf, ",\r\n"); tok && nnames < 64; tok = strtok(NULL, ",\r\n")) names[nnames++] = tok;

@@ -47,6 +47,7 @@ typedef struct {
   Segment     *seg;
   int          check_tangent;  /* compare DDSDDE with central differences at every step */
   int          progress_every;
+  int          replay_step;    /* > 0: write a replay scene of the UMAT call that ended this step */
 } PointScene;
 
 int  point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen);
