@@ -8,6 +8,7 @@
 #include "../io/yaml_doc.h"
 #include "../point/point_run.h"
 #include "../point/replay.h"
+#include "../point/sweep.h"
 
 static const char help[] =
   "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project.\n"
@@ -23,6 +24,8 @@ static const char help[] =
   "               steps: {count: N, spacing: linear | geometric, ratio: r} | {adaptive: true, first, min, max, growth},\n"
   "               until: {evp_rate_below: v | q_above: v | q_below: v | p_above: v}, creep: bool, axis: 33,\n"
   "               table: {file: data.csv, time: column, time_factor: f}}\n"
+  "Extremes sweep (scene: sweep): material, matrix: {dt, eta, strain_increment, bedding_angle, phi},\n"
+  "  reference_steps, output: {directory}\n"
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
   "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
 
@@ -76,10 +79,12 @@ int main(int argc, char **argv) {
                               sum.worst_tangent_error));
       point_scene_free(&sc);
     }
+  } else if (!strcmp(kind, "sweep")) {
+    rc = sweep_run(&doc, outdir, err, sizeof err);
   } else if (!strcmp(kind, "replay")) {
     rc = replay_run(&doc, err, sizeof err);
   } else {
-    snprintf(err, sizeof err, "%s:%d: key 'scene': expected 'point' or 'replay' (finite-element scenes come with issue #4), got '%s'",
+    snprintf(err, sizeof err, "%s:%d: key 'scene': expected 'point', 'replay' or 'sweep' (finite-element scenes come with issue #4), got '%s'",
              doc.file, yd_key_line(doc.root, "scene"), kind);
     rc = 2;
   }

@@ -20,7 +20,7 @@ static double statev_or_zero(const UmatMaterial *mat, const UmatCall *c, int slo
   return slot < mat->nstatv ? c->statev[slot] : 0.0;
 }
 
-static int mkdirs(const char *path) {
+int make_directories(const char *path) {
   char buf[1024];
   snprintf(buf, sizeof buf, "%s", path);
   for (char *p = buf + 1; *p; p++)
@@ -97,7 +97,7 @@ static double residual_of(const Equation *eq, int i, int n, const double eps[6],
 }
 
 typedef struct {
-  int    newton, local;
+  int    newton;
   double control_error;
   double pnewdt;
   UmatCall failed_in, failed_out; /* the last call that asked for a smaller step */
@@ -238,18 +238,23 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
   const UmatMaterial *mat = &sc->mat;
   int                 n   = mat->ntens;
   memset(sum, 0, sizeof *sum);
-  if (mkdirs(sc->outdir)) {
-    snprintf(err, errlen, "output directory '%s': cannot create: %s", sc->outdir, strerror(errno));
-    return 1;
+  /* No output directory: run without files (the extremes sweep runs thousands of points). */
+  FILE *csv = fopen("/dev/null", "w");
+  if (sc->outdir[0]) {
+    fclose(csv);
+    if (make_directories(sc->outdir)) {
+      snprintf(err, errlen, "output directory '%s': cannot create: %s", sc->outdir, strerror(errno));
+      return 1;
+    }
+    char path[1100];
+    snprintf(path, sizeof path, "%s/history.csv", sc->outdir);
+    csv = fopen(path, "w");
+    if (!csv) {
+      snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+      return 1;
+    }
+    write_header(csv);
   }
-  char path[1100];
-  snprintf(path, sizeof path, "%s/history.csv", sc->outdir);
-  FILE *csv = fopen(path, "w");
-  if (!csv) {
-    snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-    return 1;
-  }
-  write_header(csv);
 
   UmatCall cur;
   memset(&cur, 0, sizeof cur);
@@ -398,7 +403,11 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
     t_end[s] = t;
   }
   fclose(csv);
-  write_json(sc, t_start, t_end);
+  memcpy(sum->final_stress, cur.stress, sizeof sum->final_stress);
+  sum->finite = 1;
+  for (int i = 0; i < n; i++) sum->finite &= isfinite(cur.stress[i]);
+  for (int i = 0; i < mat->nstatv; i++) sum->finite &= isfinite(cur.statev[i]);
+  if (sc->outdir[0]) write_json(sc, t_start, t_end);
   free(t_start);
   free(t_end);
   return rc;

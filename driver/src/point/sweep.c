@@ -1,0 +1,157 @@
+#include "sweep.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "../material/material_input.h"
+#include "point_run.h"
+
+#define MAXV 16
+
+typedef struct {
+  int    n;
+  double v[MAXV];
+} List;
+
+static int read_list(YdDoc *doc, YdNode *m, const char *key, List *l, const double *dflt, int ndflt, char *err,
+                     size_t errlen) {
+  char path[64];
+  snprintf(path, sizeof path, "matrix.%s", key);
+  YdNode *nd = yd_get(m, key);
+  if (!nd) {
+    l->n = ndflt;
+    memcpy(l->v, dflt, sizeof(double) * ndflt);
+    return 0;
+  }
+  return yd_doubles(doc, nd, path, l->v, -MAXV, &l->n, err, errlen);
+}
+
+enum { START_CONFINED, START_TENSION, START_TINY_PC, NSTARTS };
+static const char *start_names[NSTARTS] = {"confined", "tension", "tiny_pc"};
+
+/* Initial stress and Cam-Clay IX state of a start: confined at -35 MPa (state from PROPS), isotropic
+ * tension +5 MPa with pc = 30 MPa, or -1 MPa with pc = 1e-5 MPa (a collapsed surface). */
+static void start_state(int which, PointScene *sc) {
+  double s = which == START_CONFINED ? -35 : which == START_TENSION ? 5 : -1;
+  double pc = which == START_TENSION ? 30 : 1e-5;
+  memset(sc->statev0, 0, sizeof sc->statev0);
+  for (int i = 0; i < 6; i++) sc->stress0[i] = i < 3 ? s : 0;
+  if (which == START_CONFINED) return;
+  for (int i = 0; i < 3; i++) sc->statev0[i] = sc->statev0[13 + i] = s;
+  sc->statev0[12] = sc->statev0[25] = pc;
+}
+
+int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
+  YdNode     *root = doc->root, *m, *x;
+  const char *name = "extremes";
+  char        outdir[512];
+  if ((x = yd_get(root, "name")) && yd_string(doc, x, "name", &name, err, errlen)) return 1;
+  PointScene base;
+  memset(&base, 0, sizeof base);
+  if (material_read(doc, yd_get(root, "material"), 6, &base.mat, err, errlen)) return 1;
+  if (yd_expect(doc, m = yd_get(root, "matrix"), YD_MAPPING, "matrix", err, errlen)) return 1;
+  static const double d_dt[] = {0, 1e-12, 1e-8, 1e-4, 1, 1e4, 1e8, 1e12}, d_eta[] = {0, 1e10, 1e13, 1e20, 1e30},
+                      d_inc[] = {1e-4, 1e-2, 0.1}, d_ang[] = {0, 45, 90}, d_phi[] = {0, 0.5, 1};
+  List dt, eta, inc, ang, phi;
+  if (read_list(doc, m, "dt", &dt, d_dt, 8, err, errlen) || read_list(doc, m, "eta", &eta, d_eta, 5, err, errlen) ||
+      read_list(doc, m, "strain_increment", &inc, d_inc, 3, err, errlen) ||
+      read_list(doc, m, "bedding_angle", &ang, d_ang, 3, err, errlen) ||
+      read_list(doc, m, "phi", &phi, d_phi, 3, err, errlen))
+    return 1;
+  if (yd_check_unused(doc, m, "matrix", "dt, eta, strain_increment, bedding_angle, phi", err, errlen)) return 1;
+  int ref_steps = 400;
+  if ((x = yd_get(root, "reference_steps")) && yd_int(doc, x, "reference_steps", &ref_steps, err, errlen)) return 1;
+  snprintf(outdir, sizeof outdir, "out/sweep/%s", name);
+  if ((x = yd_get(root, "output"))) {
+    const char *d;
+    if (yd_string(doc, yd_get(x, "directory"), "output.directory", &d, err, errlen)) return 1;
+    snprintf(outdir, sizeof outdir, "%s", d);
+    if (yd_check_unused(doc, x, "output", "directory", err, errlen)) return 1;
+  }
+  if (outdir_override && outdir_override[0]) snprintf(outdir, sizeof outdir, "%s", outdir_override);
+  if (yd_check_unused(doc, root, "", "scene, name, material, matrix, reference_steps, output", err, errlen)) return 1;
+
+  /* Two directions of the strain increment: compression with shear, and extension with shear. */
+  static const double dirs[2][6] = {{-0.5, 0.2, -1.0, 0.4, -0.3, 0.2}, {0.6, 0.3, 0.8, -0.4, 0.2, 0.3}};
+  char path[600];
+  make_directories(outdir);
+  snprintf(path, sizeof path, "%s/sweep.csv", outdir);
+  FILE *fp = fopen(path, "w");
+  if (!fp) {
+    snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+    return 1;
+  }
+  fprintf(fp, "dt,eta,strain_increment,direction,bedding_angle,phi,start,status,cutbacks,finite,error_vs_reference\n");
+  int    count[3] = {0}, cases = 0, nonfinite = 0;
+  double worst_err = 0;
+  /* error statistics per time-step decade: converged single steps only */
+  for (int a = 0; a < ang.n; a++)
+    for (int f = 0; f < phi.n; f++)
+      for (int e = 0; e < eta.n; e++)
+        for (int s = 0; s < NSTARTS; s++)
+          for (int i = 0; i < inc.n; i++)
+            for (int d = 0; d < 2; d++)
+              for (int t = 0; t < dt.n; t++) {
+                PointScene sc = base;
+                Segment    sg;
+                memset(&sg, 0, sizeof sg);
+                double th = ang.v[a] * M_PI / 180, nn[3] = {sin(th), 0, cos(th)}, norm = 0;
+                memcpy(&sc.mat.props[20], nn, sizeof nn);
+                sc.mat.nprops  = 23;
+                sc.mat.props[0] = phi.v[f];
+                sc.mat.props[12] = sc.mat.props[18] = eta.v[e];
+                sc.mat.props[19] = 0; /* no accuracy control: the single step is judged, not resized */
+                start_state(s, &sc);
+                for (int k = 0; k < 6; k++) norm += dirs[d][k] * dirs[d][k];
+                for (int k = 0; k < 6; k++) {
+                  sg.eq[k].kind         = EQ_STRAIN;
+                  sg.eq[k].target       = inc.v[i] * dirs[d][k] / sqrt(norm);
+                  sg.eq[k].table_column = -1;
+                }
+                snprintf(sg.name, sizeof sg.name, "step");
+                sg.duration = dt.v[t];
+                sg.count    = 1;
+                sg.ratio    = 1;
+                sg.instant  = dt.v[t] == 0;
+                sc.seg      = &sg;
+                sc.nseg     = 1;
+                sc.outdir[0] = '\0';
+                PointSummary one, fine;
+                char         e1[1024];
+                int          rc = point_run(&sc, &one, e1, sizeof e1);
+                int status = rc ? 2 : one.cutbacks ? 1 : 0; /* converged / cut back / failed */
+                double error = NAN;
+                if (!rc && dt.v[t] > 0) {
+                  sg.count = ref_steps;
+                  sg.ratio = 1;
+                  if (!point_run(&sc, &fine, e1, sizeof e1)) {
+                    double num = 0, den = 0;
+                    for (int k = 0; k < 6; k++) {
+                      num += pow(one.final_stress[k] - fine.final_stress[k], 2);
+                      den += pow(fine.final_stress[k], 2);
+                    }
+                    error = sqrt(num) / fmax(sqrt(den), 1.0);
+                    worst_err = fmax(worst_err, error);
+                  }
+                } else if (!rc) error = 0; /* dt = 0 is the elastic update by definition */
+                count[status]++;
+                cases++;
+                if (!one.finite) nonfinite++;
+                fprintf(fp, "%g,%g,%g,%s,%g,%g,%s,%s,%d,%d,%.3e\n", dt.v[t], eta.v[e], inc.v[i],
+                        d ? "extension" : "compression", ang.v[a], phi.v[f], start_names[s],
+                        status == 0 ? "converged" : status == 1 ? "cut back" : "failed", one.cutbacks, one.finite,
+                        error);
+              }
+  fclose(fp);
+  printf("extremes sweep %s: %d cases: %d converged in one step, %d cut back, %d failed, %d non-finite; "
+         "largest error of a single step against %d steps: %.3e -> %s\n",
+         name, cases, count[0], count[1], count[2], nonfinite, ref_steps, worst_err, path);
+  if (count[2] || nonfinite) {
+    snprintf(err, errlen, "extremes sweep: %d failed and %d non-finite cases (see %s)", count[2], nonfinite, path);
+    return 1;
+  }
+  return 0;
+}
