@@ -71,8 +71,8 @@ int main(int argc, char **argv) {
       sc.replay_step = (int)replay_step;
       rc = point_run(&sc, &sum, err, sizeof err);
       PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                            "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative)%s -> %s/history.csv\n",
-                            sc.name, sum.steps, sum.cutbacks, sum.worst_control_error, rc ? ", FAILED" : "",
+                            "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative), %.4f s%s -> %s/history.csv\n",
+                            sc.name, sum.steps, sum.cutbacks, sum.worst_control_error, sum.wall, rc ? ", FAILED" : "",
                             sc.outdir));
       if (sc.check_tangent)
         PetscCall(PetscPrintf(PETSC_COMM_WORLD, "tangent check: worst |DDSDDE - central differences| / |DDSDDE| = %.3e\n",

@@ -16,6 +16,12 @@
 enum { SV_SIG_HARD = 0, SV_EVP_HARD = 6, SV_PC_HARD = 12, SV_SIG_SOFT = 13, SV_EVP_SOFT = 19, SV_PC_SOFT = 25,
        SV_EVP = 26, SV_ITERATIONS = 32, SV_FLAGS = 33 };
 
+static double seconds_since(const struct timespec *t0) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
+}
+
 static double statev_or_zero(const UmatMaterial *mat, const UmatCall *c, int slot) {
   return slot < mat->nstatv ? c->statev[slot] : 0.0;
 }
@@ -272,7 +278,8 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
   double  t = 0, last_deps[6] = {0}, last_dt = 0;
   double *t_start = calloc(sc->nseg, sizeof(double)), *t_end = calloc(sc->nseg, sizeof(double));
   write_row(csv, mat, &cur, t, 0, 0, 0, 0, 0);
-  clock_t wall0 = clock();
+  struct timespec wall0;
+  clock_gettime(CLOCK_MONOTONIC, &wall0);
   int     rc    = 0;
 
   for (int s = 0; s < sc->nseg && !rc; s++) {
@@ -364,7 +371,7 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
       if (sc->progress_every > 0 && sum->steps % sc->progress_every == 0)
         printf("step %6d  segment %-12s t = %-11.5g dt = %-10.4g newton %d  local %d  cutbacks %d  wall %.2f s\n",
                sum->steps, sg->name, t, dt_step, res.newton, (int)statev_or_zero(mat, &cur, SV_ITERATIONS),
-               sum->cutbacks, (double)(clock() - wall0) / CLOCKS_PER_SEC);
+               sum->cutbacks, seconds_since(&wall0));
       if (instant_pending) {
         instant_pending = 0;
         continue;
@@ -404,6 +411,7 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
   }
   fclose(csv);
   memcpy(sum->final_stress, cur.stress, sizeof sum->final_stress);
+  sum->wall = seconds_since(&wall0);
   sum->finite = 1;
   for (int i = 0; i < n; i++) sum->finite &= isfinite(cur.stress[i]);
   for (int i = 0; i < mat->nstatv; i++) sum->finite &= isfinite(cur.statev[i]);

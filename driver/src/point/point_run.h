@@ -12,6 +12,7 @@ typedef struct {
   double worst_control_error; /* largest relative residual of a controlled component at convergence */
   double final_stress[6];     /* stress at the end of the run */
   int    finite;              /* every stress and state variable stayed finite */
+  double wall;                /* seconds spent in the run (no start-up, no scene reading) */
 } PointSummary;
 
 /* Returns 0 when every segment completed; 1 with err filled otherwise (and, if a UMAT call failed for
