@@ -9,6 +9,7 @@
 #include "../point/point_run.h"
 #include "../point/replay.h"
 #include "../point/sweep.h"
+#include "../fe/fe_run.h"
 
 static const char help[] =
   "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project.\n"
@@ -79,12 +80,14 @@ int main(int argc, char **argv) {
                               sum.worst_tangent_error));
       point_scene_free(&sc);
     }
+  } else if (!strcmp(kind, "fe")) {
+    rc = fe_run(&doc, outdir, err, sizeof err);
   } else if (!strcmp(kind, "sweep")) {
     rc = sweep_run(&doc, outdir, err, sizeof err);
   } else if (!strcmp(kind, "replay")) {
     rc = replay_run(&doc, err, sizeof err);
   } else {
-    snprintf(err, sizeof err, "%s:%d: key 'scene': expected 'point', 'replay' or 'sweep' (finite-element scenes come with issue #4), got '%s'",
+    snprintf(err, sizeof err, "%s:%d: key 'scene': expected fe, point, replay or sweep, got '%s'",
              doc.file, yd_key_line(doc.root, "scene"), kind);
     rc = 2;
   }

@@ -1,0 +1,437 @@
+#include "fe_problem.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+#include <time.h>
+
+/* Index of the state of point (local cell c, quadrature point q). */
+#define SV(p, c, q) (((c) - (p)->cStart) * (p)->nq + (q))
+
+enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
+
+/* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
+static const PetscInt vi[6] = {0, 1, 2, 0, 0, 1}, vj[6] = {0, 1, 2, 1, 2, 2};
+
+PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, DM *dm) {
+  DM dist = NULL;
+  PetscFunctionBeginUser;
+  /* Physical groups become labels named after them, points included. */
+  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
+  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "true"));
+  PetscCall(DMPlexCreateFromFile(comm, msh, "mesh", PETSC_TRUE, dm));
+  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
+  if (dist) {
+    PetscCall(DMDestroy(dm));
+    *dm = dist;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u,
+                              void *ctx) {
+  for (PetscInt c = 0; c < Nc; c++) u[c] = 0;
+  return 0;
+}
+
+/* Consistent nodal forces of a unit pressure on the boundary faces of a group: t = -p n (n outward).
+ * Faces of simplices are flat: P1 triangles give A/3 to each vertex, P2 triangles A/3 to each edge
+ * node and nothing to the corners; in 2D (edges) P1 gives L/2 per vertex, P2 L/6, L/6, 2L/3. */
+static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *f) {
+  DM           dm = p->dm;
+  DMLabel      label;
+  PetscSection s;
+  Vec          floc;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLabel(dm, group, &label));
+  PetscCheck(label, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
+             "pressure: the mesh has no physical group '%s'", group);
+  PetscCall(DMGetLocalSection(dm, &s));
+  PetscCall(DMGetLocalVector(dm, &floc));
+  PetscCall(VecZeroEntries(floc));
+  PetscCall(VecGetArray(floc, &a));
+  PetscInt fStart, fEnd;
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  IS              valueIS;
+  const PetscInt *values;
+  PetscInt        nvalues;
+  PetscCall(DMLabelGetValueIS(label, &valueIS));
+  PetscCall(ISGetLocalSize(valueIS, &nvalues));
+  PetscCall(ISGetIndices(valueIS, &values));
+  for (PetscInt v = 0; v < nvalues; v++) {
+    IS              pointIS;
+    const PetscInt *points;
+    PetscInt        npoints;
+    PetscCall(DMLabelGetStratumIS(label, values[v], &pointIS));
+    if (!pointIS) continue;
+    PetscCall(ISGetLocalSize(pointIS, &npoints));
+    PetscCall(ISGetIndices(pointIS, &points));
+    for (PetscInt k = 0; k < npoints; k++) {
+      PetscInt face = points[k], nsupport;
+      if (face < fStart || face >= fEnd) continue; /* vertices and edges of the group */
+      PetscCall(DMPlexGetSupportSize(dm, face, &nsupport));
+      if (nsupport != 1) continue;                 /* an interior face: no load */
+      const PetscInt *support;
+      PetscReal       area, fc[3], n[3], cc[3], vol;
+      PetscCall(DMPlexGetSupport(dm, face, &support));
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, face, &area, fc, n));
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, support[0], &vol, cc, NULL));
+      PetscReal out = 0;
+      for (PetscInt d = 0; d < p->dim; d++) out += (fc[d] - cc[d]) * n[d];
+      if (out < 0)
+        for (PetscInt d = 0; d < p->dim; d++) n[d] = -n[d];
+      PetscInt *closure = NULL, nclosure;
+      PetscCall(DMPlexGetTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
+      for (PetscInt j = 0; j < nclosure; j++) {
+        PetscInt pt = closure[2 * j], depth, ndof, off;
+        PetscCall(DMPlexGetPointDepth(dm, pt, &depth));
+        PetscCall(PetscSectionGetDof(s, pt, &ndof));
+        if (!ndof) continue;
+        PetscReal share;
+        if (p->dim == 3) share = p->order == 1 ? (depth == 0 ? area / 3 : 0) : (depth == 1 ? area / 3 : 0);
+        else share = p->order == 1 ? (depth == 0 ? area / 2 : 0) : (depth == 0 ? area / 6 : 2 * area / 3);
+        PetscCall(PetscSectionGetOffset(s, pt, &off));
+        for (PetscInt d = 0; d < p->dim; d++) a[off + d] -= share * n[d];
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
+    }
+    PetscCall(ISRestoreIndices(pointIS, &points));
+    PetscCall(ISDestroy(&pointIS));
+  }
+  PetscCall(ISRestoreIndices(valueIS, &values));
+  PetscCall(ISDestroy(&valueIS));
+  PetscCall(VecRestoreArray(floc, &a));
+  PetscCall(DMCreateGlobalVector(dm, f));
+  PetscCall(VecZeroEntries(*f));
+  PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, *f));
+  PetscCall(DMRestoreLocalVector(dm, &floc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatMaterial *mat, const FeFixed *fixed,
+                                PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure) {
+  PetscFunctionBeginUser;
+  p->dm    = dm;
+  p->order = order;
+  p->mat   = *mat;
+  PetscCall(DMGetDimension(dm, &p->dim));
+  PetscCheck(p->dim == 3, PetscObjectComm((PetscObject)dm), PETSC_ERR_SUP,
+             "this FE driver handles 3D meshes so far (plane strain and axisymmetry: issue #4)");
+  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), p->dim, p->dim, PETSC_TRUE, order,
+                                  2 * (order - 1), &p->fe));
+  PetscCall(PetscObjectSetName((PetscObject)p->fe, "displacement"));
+  { /* The smallest symmetric rule exact for B^T D B (degree 2(k-1)): 1 point for P1, 4 for P2. */
+    PetscQuadrature q;
+    PetscCall(PetscDTSimplexQuadrature(p->dim, PetscMax(2 * (order - 1), 1), PETSCDTSIMPLEXQUAD_MINSYM, &q));
+    PetscCall(PetscFESetQuadrature(p->fe, q));
+    PetscCall(PetscQuadratureDestroy(&q));
+  }
+  PetscCall(DMSetField(dm, 0, NULL, (PetscObject)p->fe));
+  PetscCall(DMCreateDS(dm)); /* before the boundary conditions, which the section then constrains */
+  for (PetscInt k = 0; k < nfixed; k++) {
+    DMLabel label;
+    PetscCall(DMGetLabel(dm, fixed[k].group, &label));
+    PetscCheck(label, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
+               "boundary condition: the mesh has no physical group '%s'", fixed[k].group);
+    IS              valueIS;
+    const PetscInt *values;
+    PetscInt        nvalues;
+    PetscCall(DMLabelGetValueIS(label, &valueIS));
+    PetscCall(ISGetLocalSize(valueIS, &nvalues));
+    PetscCall(ISGetIndices(valueIS, &values));
+    PetscCall(DMAddBoundary(dm, DM_BC_ESSENTIAL, fixed[k].group, label, nvalues, values, 0, fixed[k].ncomp,
+                            fixed[k].comp, (void (*)(void))zero_bc, NULL, NULL, NULL));
+    PetscCall(ISRestoreIndices(valueIS, &values));
+    PetscCall(ISDestroy(&valueIS));
+  }
+  PetscCall(PetscFEGetQuadrature(p->fe, &p->quad));
+  PetscCall(PetscQuadratureGetData(p->quad, NULL, NULL, &p->nq, NULL, &p->qweights));
+  PetscCall(PetscFEGetCellTabulation(p->fe, 1, &p->tab));
+  p->nb = p->tab->Nb;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &p->cStart, &p->cEnd));
+  p->npoint = (p->cEnd - p->cStart) * p->nq;
+  p->nsv    = ST_STATEV + mat->nstatv;
+  PetscCall(PetscCalloc3(p->npoint * p->nsv, &p->state, p->npoint * p->nsv, &p->trial, p->npoint * 36, &p->ddsdde));
+  PetscCall(PetscMalloc1(p->cEnd - p->cStart, &p->phi));
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->props[0];
+  p->npressure = npressure;
+  for (PetscInt g = 0; g < npressure; g++) {
+    PetscCall(PetscStrncpy(p->pressure_group[g], pressure_groups[g], 64));
+    PetscCall(unit_pressure_force(p, pressure_groups[g], &p->unit_force[g]));
+    p->pressure[g] = 0;
+  }
+  PetscCall(DMCreateGlobalVector(dm, &p->fext));
+  PetscCall(VecZeroEntries(p->fext));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_problem_destroy(FeProblem *p) {
+  PetscFunctionBeginUser;
+  for (PetscInt g = 0; g < p->npressure; g++) PetscCall(VecDestroy(&p->unit_force[g]));
+  PetscCall(VecDestroy(&p->fext));
+  PetscCall(VecDestroy(&p->ddsdde_u));
+  PetscCall(PetscFree3(p->state, p->trial, p->ddsdde));
+  PetscCall(PetscFree(p->phi));
+  PetscCall(PetscFEDestroy(&p->fe));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_problem_set_initial_stress(FeProblem *p, const PetscReal stress0[6]) {
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < p->npoint; k++) {
+    PetscReal *st = &p->state[k * p->nsv];
+    PetscCall(PetscArrayzero(st, p->nsv));
+    PetscCall(PetscArraycpy(st + ST_STRESS, stress0, 6));
+  }
+  PetscCall(PetscArraycpy(p->trial, p->state, p->npoint * p->nsv));
+  PetscFunctionReturn(0);
+}
+
+/* splitmix64: a counter-based generator, so phi depends on (seed, cell centroid) only. */
+static uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, PetscReal lo, PetscReal hi,
+                                  PetscInt seed) {
+  PetscFunctionBeginUser;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscReal vol, x[3] = {0, 0, 0}, v = mean;
+    PetscCall(DMPlexComputeCellGeometryFVM(p->dm, c, &vol, x, NULL));
+    uint64_t key = mix64((uint64_t)seed);
+    for (PetscInt d = 0; d < p->dim; d++) key = mix64(key ^ (uint64_t)(int64_t)llround(x[d] * 1e6));
+    for (int draw = 0; std > 0 && draw < 1000; draw++) { /* Box-Muller, redrawn until within [lo, hi] */
+      uint64_t  a = mix64(key + 2 * (uint64_t)draw), b = mix64(key + 2 * (uint64_t)draw + 1);
+      PetscReal u1 = ((a >> 11) + 0.5) / 9007199254740992.0, u2 = ((b >> 11) + 0.5) / 9007199254740992.0;
+      v = mean + std * sqrt(-2 * log(u1)) * cos(2 * M_PI * u2);
+      if (v >= lo && v <= hi) break;
+    }
+    p->phi[c - p->cStart] = PetscMin(PetscMax(v, lo), hi);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* B (Voigt, engineering shear; 6 x nb) at quadrature point q of a cell from the reference derivatives
+ * and the inverse Jacobian: eps_I = sum_b B[vI][b] u_b. */
+static void strain_operator(const FeProblem *p, PetscInt q, const PetscReal *invJ, PetscReal *B) {
+  const PetscInt   nb = p->nb, nc = p->dim, dim = p->dim;
+  const PetscReal *D  = &p->tab->T[1][q * nb * nc * dim];
+  for (PetscInt b = 0; b < nb; b++) {
+    PetscReal g[3][3] = {{0}}; /* g[c][d] = d phi_{b,c} / d x_d */
+    for (PetscInt c = 0; c < nc; c++)
+      for (PetscInt d = 0; d < dim; d++)
+        for (PetscInt e = 0; e < dim; e++) g[c][d] += D[(b * nc + c) * dim + e] * invJ[e * dim + d];
+    for (PetscInt vI = 0; vI < 6; vI++)
+      B[vI * nb + b] = vI < 3 ? g[vi[vI]][vj[vI]] : g[vi[vI]][vj[vI]] + g[vj[vI]][vi[vI]];
+  }
+}
+
+/* The element loop: residual (F = F_int - F_ext) and, with the same UMAT calls, the tangent cache. */
+PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
+  FeProblem   *p  = (FeProblem *)ctx;
+  DM           dm = p->dm;
+  Vec          Uloc, Floc;
+  PetscSection s;
+  PetscReal    v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], B[6 * 90];
+  PetscScalar *ue = NULL, re[90];
+  PetscReal    min_pnewdt = PETSC_MAX_REAL;
+  clock_t      t0         = clock();
+  PetscFunctionBeginUser;
+  PetscCheck(p->nq <= 64 && p->nb <= 90, PETSC_COMM_SELF, PETSC_ERR_SUP, "element too large");
+  PetscCall(DMGetLocalSection(dm, &s));
+  PetscCall(DMGetLocalVector(dm, &Uloc));
+  PetscCall(DMGetLocalVector(dm, &Floc));
+  PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
+  PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, Uloc, p->time, NULL, NULL, NULL));
+  PetscCall(VecZeroEntries(Floc));
+  const PetscInt ntens = p->mat.ntens;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
+    PetscCall(DMPlexVecGetClosure(dm, s, Uloc, c, NULL, &ue));
+    PetscCall(PetscArrayzero(re, p->nb));
+    UmatMaterial mat = p->mat;
+    mat.props[0]     = p->phi[c - p->cStart];
+    for (PetscInt q = 0; q < p->nq; q++) {
+      strain_operator(p, q, &invJ[q * 9], B);
+      PetscReal eps[6] = {0};
+      for (PetscInt vI = 0; vI < 6; vI++)
+        for (PetscInt b = 0; b < p->nb; b++) eps[vI] += B[vI * p->nb + b] * PetscRealPart(ue[b]);
+      const PetscReal *st = &p->state[SV(p, c, q) * p->nsv];
+      UmatCall         call;
+      PetscCall(PetscArraycpy(call.stress, st + ST_STRESS, 6));
+      PetscCall(PetscArraycpy(call.statev, st + ST_STATEV, p->mat.nstatv));
+      PetscCall(PetscArraycpy(call.stran, st + ST_STRAN, 6));
+      for (PetscInt vI = 0; vI < 6; vI++) call.dstran[vI] = eps[vI] - st[ST_STRAN + vI];
+      call.time[0] = call.time[1] = p->time - p->dt;
+      call.dtime                  = p->dt;
+      call.noel                   = (int)c + 1;
+      call.npt                    = (int)q + 1;
+      call.kstep = call.kinc = 1;
+      call.sse = call.spd = call.scd = 0;
+      umat_invoke(&mat, &call);
+      p->umat_calls++;
+      min_pnewdt       = PetscMin(min_pnewdt, call.pnewdt);
+      PetscReal *tr    = &p->trial[SV(p, c, q) * p->nsv];
+      PetscCall(PetscArraycpy(tr + ST_STRESS, call.stress, 6));
+      PetscCall(PetscArraycpy(tr + ST_STRAN, eps, 6));
+      PetscCall(PetscArraycpy(tr + ST_STATEV, call.statev, p->mat.nstatv));
+      PetscCall(PetscArraycpy(&p->ddsdde[SV(p, c, q) * 36], call.ddsdde, ntens * ntens));
+      const PetscReal w = p->qweights[q] * detJ[q];
+      for (PetscInt b = 0; b < p->nb; b++) {
+        PetscReal sum = 0;
+        for (PetscInt vI = 0; vI < ntens; vI++) sum += B[vI * p->nb + b] * call.stress[vI];
+        re[b] += w * sum;
+      }
+    }
+    PetscCall(DMPlexVecRestoreClosure(dm, s, Uloc, c, NULL, &ue));
+    PetscCall(DMPlexVecSetClosure(dm, s, Floc, c, re, ADD_VALUES));
+  }
+  PetscCall(VecZeroEntries(F));
+  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, F));
+  PetscCall(VecAXPY(F, -1.0, p->fext));
+  PetscCall(DMRestoreLocalVector(dm, &Uloc));
+  PetscCall(DMRestoreLocalVector(dm, &Floc));
+  PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  p->ddsdde_valid = 1;
+  if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
+  PetscCall(VecCopy(U, p->ddsdde_u));
+  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
+  FeProblem       *p = (FeProblem *)ctx;
+  DM               dm = p->dm;
+  PetscReal        v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], B[6 * 90], DB[6 * 90];
+  PetscScalar     *Ke;
+  PetscBool        same = PETSC_FALSE;
+  clock_t          t0   = clock();
+  PetscFunctionBeginUser;
+  if (p->ddsdde_valid) PetscCall(VecEqual(U, p->ddsdde_u, &same));
+  if (!same) { /* the cached tangents belong to another U: evaluate there first */
+    Vec F;
+    PetscCall(VecDuplicate(U, &F));
+    PetscCall(fe_residual(snes, U, F, ctx));
+    PetscCall(VecDestroy(&F));
+  }
+  PetscCall(MatZeroEntries(P));
+  PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
+  const PetscInt n = p->mat.ntens, nb = p->nb;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
+    PetscCall(PetscArrayzero(Ke, nb * nb));
+    for (PetscInt q = 0; q < p->nq; q++) {
+      strain_operator(p, q, &invJ[q * 9], B);
+      const PetscReal *D = &p->ddsdde[SV(p, c, q) * 36]; /* column-major n x n */
+      const PetscReal  w = p->qweights[q] * detJ[q];
+      for (PetscInt b = 0; b < nb; b++)
+        for (PetscInt vI = 0; vI < n; vI++) {
+          PetscReal sum = 0;
+          for (PetscInt vK = 0; vK < n; vK++) sum += D[vI + n * vK] * B[vK * nb + b];
+          DB[vI * nb + b] = sum;
+        }
+      for (PetscInt a = 0; a < nb; a++)
+        for (PetscInt b = 0; b < nb; b++) {
+          PetscReal sum = 0;
+          for (PetscInt vI = 0; vI < n; vI++) sum += B[vI * nb + a] * DB[vI * nb + b];
+          Ke[a * nb + b] += w * sum;
+        }
+    }
+    PetscCall(DMPlexMatSetClosure(dm, NULL, NULL, P, c, Ke, ADD_VALUES));
+  }
+  PetscCall(PetscFree(Ke));
+  PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  if (Jac != P) {
+    PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
+  }
+  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_problem_update_loads(FeProblem *p) {
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(p->fext));
+  for (PetscInt g = 0; g < p->npressure; g++) PetscCall(VecAXPY(p->fext, p->pressure[g], p->unit_force[g]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_problem_commit(FeProblem *p) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(p->state, p->trial, p->npoint * p->nsv));
+  PetscFunctionReturn(0);
+}
+
+static int cmp_real(const void *a, const void *b) {
+  PetscReal x = *(const PetscReal *)a, y = *(const PetscReal *)b;
+  return (x > y) - (x < y);
+}
+
+PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool use_trial) {
+  MPI_Comm        comm = PetscObjectComm((PetscObject)p->dm);
+  PetscReal       v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], loc[14] = {0}, glob[14];
+  const PetscReal *src = use_trial ? p->trial : p->state;
+  PetscMPIInt     size, rank;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(s, sizeof *s));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscReal *vals;
+  PetscCall(PetscMalloc1(2 * p->npoint + 1, &vals));
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscCall(DMPlexComputeCellGeometryFEM(p->dm, c, p->quad, v0, J, invJ, detJ));
+    for (PetscInt q = 0; q < p->nq; q++) {
+      const PetscReal *st = &src[SV(p, c, q) * p->nsv], *old = &p->state[SV(p, c, q) * p->nsv];
+      PetscReal        w  = p->qweights[q] * detJ[q];
+      loc[0] += w;
+      for (PetscInt vI = 0; vI < 6; vI++) loc[1 + vI] += w * st[ST_STRAN + vI], loc[7 + vI] += w * st[ST_STRESS + vI];
+      if (p->mat.nstatv >= 32) {
+        PetscReal d2 = 0;
+        for (PetscInt vI = 0; vI < 6; vI++) d2 += PetscSqr(st[ST_STATEV + 26 + vI] - old[ST_STATEV + 26 + vI]);
+        loc[13] += w * PetscSqrtReal(d2);
+        vals[SV(p, c, q)]             = st[ST_STATEV + 6 + axis];  /* hard frame axial vp strain */
+        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + 19 + axis]; /* soft frame */
+      }
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, glob, 14, MPIU_REAL, MPIU_SUM, comm));
+  s->volume = glob[0];
+  for (PetscInt vI = 0; vI < 6; vI++) s->strain_mean[vI] = glob[1 + vI] / glob[0], s->stress_mean[vI] = glob[7 + vI] / glob[0];
+  s->evp_rate = p->dt > 0 ? glob[13] / glob[0] / p->dt : 0;
+  if (p->mat.nstatv >= 32) {
+    /* Gather both frames' values on rank 0 for the quantiles. */
+    PetscMPIInt n = (PetscMPIInt)p->npoint, *counts = NULL, *displs = NULL, total = 0;
+    if (!rank) PetscCall(PetscMalloc2(size, &counts, size, &displs));
+    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
+    if (!rank)
+      for (PetscMPIInt r = 0; r < size; r++) displs[r] = total, total += counts[r];
+    PetscReal *all = NULL;
+    if (!rank) PetscCall(PetscMalloc1(total + 1, &all));
+    for (PetscInt f = 0; f < 2; f++) {
+      PetscCallMPI(MPI_Gatherv(vals + f * p->npoint, n, MPIU_REAL, all, counts, displs, MPIU_REAL, 0, comm));
+      if (!rank && total) {
+        qsort(all, (size_t)total, sizeof(PetscReal), cmp_real);
+        PetscReal mean = 0;
+        for (PetscMPIInt k = 0; k < total; k++) mean += all[k];
+        s->frame_evp[f][0] = mean / total;
+        s->frame_evp[f][1] = all[0];
+        s->frame_evp[f][2] = all[total / 4];
+        s->frame_evp[f][3] = all[total / 2];
+        s->frame_evp[f][4] = all[(3 * total) / 4];
+        s->frame_evp[f][5] = all[total - 1];
+      }
+    }
+    if (!rank) {
+      PetscCall(PetscFree(all));
+      PetscCall(PetscFree2(counts, displs));
+    }
+  }
+  PetscCall(PetscFree(vals));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,79 @@
+/* The finite-element problem: a DMPlex mesh with a vector Lagrange field (P1 or P2 on simplices), the
+ * UMAT at every quadrature point with its state (committed at converged steps, trial while iterating),
+ * essential boundary conditions as section constraints, pressure loads, and the hand-written element
+ * loop that assembles the residual and the consistent Jacobian (B^T DDSDDE B). */
+#ifndef FE_PROBLEM_H
+#define FE_PROBLEM_H
+
+#include <petscdmplex.h>
+#include <petscfe.h>
+#include <petscsnes.h>
+
+#include "../material/umat_call.h"
+
+#define FE_MAX_GROUPS 8
+
+typedef struct {
+  char     group[64];      /* a physical group of the mesh (a DMPlex label) */
+  PetscInt ncomp, comp[3]; /* fixed components */
+} FeFixed;
+
+typedef struct FeProblem {
+  DM              dm;
+  PetscFE         fe;
+  PetscQuadrature quad;
+  PetscTabulation tab;
+  PetscInt        dim, order, nq, nb; /* nb: basis functions of the vector field on a cell */
+  const PetscReal *qweights;
+  PetscInt        cStart, cEnd;
+  UmatMaterial    mat;
+  PetscReal      *phi;     /* hard-frame fraction per local cell (PROPS(1) per cell) */
+  PetscInt        npoint;  /* quadrature points on this rank */
+  PetscInt        nsv;     /* doubles per point: stress(6), strain(6), statev */
+  PetscReal      *state, *trial, *ddsdde;
+  PetscInt        ddsdde_valid;         /* the tangent cache belongs to the last residual's U ... */
+  Vec             ddsdde_u;             /* ... which is this one */
+  PetscReal       time, dt;             /* end of the step being solved, its length */
+  PetscReal       min_pnewdt;           /* smallest PNEWDT of the last residual evaluation (all ranks) */
+  PetscInt        umat_calls;
+  double          assembly_seconds;
+  /* pressure loads: unit-pressure force vectors per group, and the pressures at the step's end */
+  PetscInt        npressure;
+  char            pressure_group[FE_MAX_GROUPS][64];
+  Vec             unit_force[FE_MAX_GROUPS];
+  PetscReal       pressure[FE_MAX_GROUPS];
+  Vec             fext;
+  /* replay of a failing call */
+  char            outdir[512];
+} FeProblem;
+
+/* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */
+PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, DM *dm);
+/* Field, boundary conditions, quadrature, state. fixed: essential conditions (zero values). */
+PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatMaterial *mat, const FeFixed *fixed,
+                                PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure);
+PetscErrorCode fe_problem_destroy(FeProblem *p);
+/* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */
+PetscErrorCode fe_problem_set_initial_stress(FeProblem *p, const PetscReal stress0[6]);
+/* phi per cell: seeded normal (mean, std) kept within [lo, hi], a function of the cell centroid and the
+ * seed only, so the same on any number of ranks. std = 0: uniform mean. */
+PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, PetscReal lo, PetscReal hi,
+                                  PetscInt seed);
+/* SNES callbacks. */
+PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx);
+PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
+/* Update the external force for the current pressures. */
+PetscErrorCode fe_problem_update_loads(FeProblem *p);
+/* Commit the trial state (call after a converged step, with the residual evaluated at the solution). */
+PetscErrorCode fe_problem_commit(FeProblem *p);
+
+/* Scalars over the quadrature points of all ranks, for the history. */
+typedef struct {
+  PetscReal volume, strain_mean[6], stress_mean[6];
+  PetscReal evp_rate;                 /* volume-mean |d eps_vp| / dt of the last step */
+  PetscReal frame_evp[2][6];          /* axial vp strain of each frame over the points: mean, min, q1,
+                                         median, q3, max (Yin et al. 2021 Fig. 18) */
+} FeStats;
+PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool trial);
+
+#endif

@@ -1,0 +1,441 @@
+#include "fe_run.h"
+
+#include <errno.h>
+#include <math.h>
+#include <petscsnes.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "../material/material_input.h"
+#include "../point/point_run.h"
+#include "fe_problem.h"
+
+#define MAXSTAGES 16
+
+typedef struct {
+  char      name[64];
+  double    duration;
+  int       instant, adaptive, count, creep;
+  double    ratio, dt_first, dt_min, dt_max, growth;
+  double    pressure[FE_MAX_GROUPS]; /* at the end of the stage; NAN: keep */
+  double    evp_rate_below;          /* 0: no end condition */
+} Stage;
+
+typedef struct {
+  char         name[128], outdir[512], msh[1024];
+  char         geometry[1024], gmsh_params[1024]; /* a gmsh .geo meshed at run time, with -setnumber */
+  int          order;
+  UmatMaterial mat;
+  double       phi_mean, phi_std, phi_lo, phi_hi;
+  int          phi_seed;
+  double       stress0[6], pressure0[FE_MAX_GROUPS];
+  int          nfixed;
+  FeFixed      fixed[8];
+  int          npressure;
+  char         pressure_group[FE_MAX_GROUPS][64];
+  int          nstage;
+  Stage        stage[MAXSTAGES];
+  int          axis;
+} FeScene;
+
+#define FAIL(...)                       \
+  do {                                  \
+    snprintf(err, errlen, __VA_ARGS__); \
+    return 1;                           \
+  } while (0)
+
+static int read_steps(YdDoc *doc, YdNode *x, const char *path, Stage *st, char *err, size_t errlen) {
+  YdNode *v;
+  st->count = 1, st->ratio = 1, st->growth = 1.5;
+  if (!x) return 0;
+  if (yd_expect(doc, x, YD_MAPPING, path, err, errlen)) return 1;
+  if ((v = yd_get(x, "adaptive")) && yd_bool(doc, v, path, &st->adaptive, err, errlen)) return 1;
+  if (st->adaptive) {
+    st->dt_first = st->duration / 100, st->dt_min = 1e-12 * fmax(st->duration, 1), st->dt_max = st->duration;
+    if ((v = yd_get(x, "first")) && yd_double(doc, v, path, &st->dt_first, err, errlen)) return 1;
+    if ((v = yd_get(x, "min")) && yd_double(doc, v, path, &st->dt_min, err, errlen)) return 1;
+    if ((v = yd_get(x, "max")) && yd_double(doc, v, path, &st->dt_max, err, errlen)) return 1;
+    if ((v = yd_get(x, "growth")) && yd_double(doc, v, path, &st->growth, err, errlen)) return 1;
+    if (!(st->dt_first > 0 && st->dt_min > 0 && st->dt_max >= st->dt_min && st->growth >= 1))
+      FAIL("%s:%d: key '%s': expected first > 0, min > 0, max >= min, growth >= 1", doc->file, x->line, path);
+    return yd_check_unused(doc, x, path, "adaptive, first, min, max, growth", err, errlen);
+  }
+  if ((v = yd_get(x, "count")) && yd_int(doc, v, path, &st->count, err, errlen)) return 1;
+  if (st->count < 1) FAIL("%s:%d: key '%s.count': expected >= 1", doc->file, x->line, path);
+  if ((v = yd_get(x, "ratio")) && yd_double(doc, v, path, &st->ratio, err, errlen)) return 1;
+  return yd_check_unused(doc, x, path, "count, ratio (fixed) or adaptive, first, min, max, growth", err, errlen);
+}
+
+static int component_of(const char *s) {
+  return !strcmp(s, "x") || !strcmp(s, "0") ? 0 : !strcmp(s, "y") || !strcmp(s, "1") ? 1 : !strcmp(s, "z") || !strcmp(s, "2") ? 2 : -1;
+}
+
+static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
+  YdNode     *root = doc->root, *x, *v;
+  const char *s;
+  memset(sc, 0, sizeof *sc);
+  snprintf(sc->name, sizeof sc->name, "fe");
+  yd_get(root, "scene");
+  if ((x = yd_get(root, "name"))) {
+    if (yd_string(doc, x, "name", &s, err, errlen)) return 1;
+    snprintf(sc->name, sizeof sc->name, "%s", s);
+  }
+  if ((x = yd_get(root, "units")))
+    for (size_t i = 0; i < x->n; i++) x->used[i] = 1;
+  snprintf(sc->outdir, sizeof sc->outdir, "out/%s", sc->name);
+  if ((x = yd_get(root, "output"))) {
+    if ((v = yd_get(x, "directory"))) {
+      if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
+      snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
+    }
+    if (yd_check_unused(doc, x, "output", "directory", err, errlen)) return 1;
+  }
+  /* Mesh: a gmsh geometry (meshed now, with parameters), a .msh file, or a box (tests). */
+  YdNode *mesh = yd_get(root, "mesh");
+  if (yd_expect(doc, mesh, YD_MAPPING, "mesh", err, errlen)) return 1;
+  sc->order = 1;
+  if ((v = yd_get(mesh, "order")) && yd_int(doc, v, "mesh.order", &sc->order, err, errlen)) return 1;
+  if (sc->order != 1 && sc->order != 2) FAIL("%s:%d: key 'mesh.order': expected 1 or 2, got %d", doc->file, v->line, sc->order);
+  YdNode *geo = yd_get(mesh, "geometry"), *file = yd_get(mesh, "file");
+  if (!!geo + !!file != 1)
+    FAIL("%s:%d: key 'mesh': give exactly one of geometry (a gmsh .geo, meshed now) or file (a .msh)", doc->file, mesh->line);
+  {
+    const char *path;
+    if (yd_string(doc, geo ? geo : file, geo ? "mesh.geometry" : "mesh.file", &path, err, errlen)) return 1;
+    FILE *fp = fopen(path, "r");
+    if (!fp) FAIL("%s:%d: key 'mesh.%s': cannot open '%s': %s", doc->file, (geo ? geo : file)->line,
+                  geo ? "geometry" : "file", path, strerror(errno));
+    fclose(fp);
+    snprintf(file ? sc->msh : sc->geometry, sizeof sc->msh, "%s", path);
+    if ((v = yd_get(mesh, "parameters"))) {
+      if (yd_expect(doc, v, YD_MAPPING, "mesh.parameters", err, errlen)) return 1;
+      for (size_t i = 0; i < v->n; i++) {
+        double val;
+        v->used[i] = 1;
+        if (yd_double(doc, v->items[i], "mesh.parameters", &val, err, errlen)) return 1;
+        size_t len = strlen(sc->gmsh_params);
+        snprintf(sc->gmsh_params + len, sizeof sc->gmsh_params - len, " -setnumber %s %.17g", v->keys[i], val);
+      }
+    }
+  }
+  if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order", err, errlen)) return 1;
+
+  if (material_read(doc, yd_get(root, "material"), 6, &sc->mat, err, errlen)) return 1;
+  sc->phi_mean = sc->mat.props[0];
+  sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
+  if ((x = yd_get(root, "phi"))) {
+    if (yd_double(doc, yd_get(x, "mean"), "phi.mean", &sc->phi_mean, err, errlen)) return 1;
+    if ((v = yd_get(x, "std")) && yd_double(doc, v, "phi.std", &sc->phi_std, err, errlen)) return 1;
+    if ((v = yd_get(x, "min")) && yd_double(doc, v, "phi.min", &sc->phi_lo, err, errlen)) return 1;
+    if ((v = yd_get(x, "max")) && yd_double(doc, v, "phi.max", &sc->phi_hi, err, errlen)) return 1;
+    if ((v = yd_get(x, "seed")) && yd_int(doc, v, "phi.seed", &sc->phi_seed, err, errlen)) return 1;
+    if (!(0 <= sc->phi_lo && sc->phi_lo <= sc->phi_mean && sc->phi_mean <= sc->phi_hi && sc->phi_hi <= 1 && sc->phi_std >= 0))
+      FAIL("%s:%d: key 'phi': expected 0 <= min <= mean <= max <= 1 and std >= 0", doc->file, x->line);
+    if (yd_check_unused(doc, x, "phi", "mean, std, min, max, seed", err, errlen)) return 1;
+  }
+  YdNode *initial_pressure = NULL;
+  if ((x = yd_get(root, "initial"))) {
+    if ((v = yd_get(x, "stress")) && yd_doubles(doc, v, "initial.stress", sc->stress0, 6, NULL, err, errlen)) return 1;
+    initial_pressure = yd_get(x, "pressure");
+    if (yd_check_unused(doc, x, "initial", "stress (both frames), pressure (in equilibrium with it)", err, errlen)) return 1;
+  }
+  YdNode *bc = yd_get(root, "boundary");
+  if (yd_expect(doc, bc, YD_MAPPING, "boundary", err, errlen)) return 1;
+  if ((x = yd_get(bc, "fixed"))) {
+    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
+    for (size_t k = 0; k < x->n && k < 8; k++) {
+      YdNode *f = x->items[k], *comps;
+      char    path[64];
+      snprintf(path, sizeof path, "boundary.fixed[%zu]", k);
+      if (yd_expect(doc, f, YD_MAPPING, path, err, errlen)) return 1;
+      if (yd_string(doc, yd_get(f, "group"), path, &s, err, errlen)) return 1;
+      snprintf(sc->fixed[k].group, sizeof sc->fixed[k].group, "%s", s);
+      if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, path, err, errlen)) return 1;
+      for (size_t j = 0; j < comps->n && j < 3; j++) {
+        int c = comps->items[j]->kind == YD_SCALAR ? component_of(comps->items[j]->text) : -1;
+        if (c < 0) FAIL("%s:%d: key '%s.components': expected x, y or z", doc->file, comps->items[j]->line, path);
+        sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
+      }
+      if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
+      sc->nfixed++;
+    }
+  }
+  if ((x = yd_get(bc, "pressure"))) {
+    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.pressure", err, errlen)) return 1;
+    for (size_t k = 0; k < x->n && k < FE_MAX_GROUPS; k++) {
+      if (yd_string(doc, x->items[k], "boundary.pressure", &s, err, errlen)) return 1;
+      snprintf(sc->pressure_group[sc->npressure++], 64, "%s", s);
+    }
+  }
+  if (yd_check_unused(doc, bc, "boundary", "fixed, pressure", err, errlen)) return 1;
+  for (int k = 0; k < FE_MAX_GROUPS; k++) sc->pressure0[k] = 0;
+  if (initial_pressure) {
+    if (yd_expect(doc, initial_pressure, YD_MAPPING, "initial.pressure", err, errlen)) return 1;
+    for (size_t k = 0; k < initial_pressure->n; k++) {
+      int gi = -1;
+      for (int j = 0; j < sc->npressure; j++)
+        if (!strcmp(sc->pressure_group[j], initial_pressure->keys[k])) gi = j;
+      if (gi < 0) FAIL("%s:%d: key 'initial.pressure.%s': not a group listed in boundary.pressure", doc->file,
+                       initial_pressure->key_lines[k], initial_pressure->keys[k]);
+      initial_pressure->used[k] = 1;
+      if (yd_double(doc, initial_pressure->items[k], "initial.pressure", &sc->pressure0[gi], err, errlen)) return 1;
+    }
+  }
+
+  YdNode *stages = yd_get(root, "stages");
+  if (yd_expect(doc, stages, YD_SEQUENCE, "stages", err, errlen)) return 1;
+  if (stages->n == 0 || stages->n > MAXSTAGES) FAIL("%s:%d: key 'stages': expected 1 to %d stages", doc->file, stages->line, MAXSTAGES);
+  sc->nstage = (int)stages->n;
+  for (int i = 0; i < sc->nstage; i++) {
+    YdNode *st = stages->items[i];
+    Stage  *g  = &sc->stage[i];
+    char    path[64], sub[96];
+    snprintf(path, sizeof path, "stages[%d]", i);
+    if (yd_expect(doc, st, YD_MAPPING, path, err, errlen)) return 1;
+    snprintf(g->name, sizeof g->name, "stage%d", i);
+    if ((v = yd_get(st, "name"))) {
+      if (yd_string(doc, v, path, &s, err, errlen)) return 1;
+      snprintf(g->name, sizeof g->name, "%s", s);
+    }
+    snprintf(sub, sizeof sub, "%s.duration", path);
+    if (yd_double(doc, yd_get(st, "duration"), sub, &g->duration, err, errlen)) return 1;
+    if (g->duration < 0) FAIL("%s:%d: key '%s': expected >= 0", doc->file, st->line, sub);
+    if ((v = yd_get(st, "load"))) {
+      if (yd_string(doc, v, path, &s, err, errlen)) return 1;
+      if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s.load': expected instant or linear", doc->file, v->line, path);
+      g->instant = !strcmp(s, "instant");
+    }
+    for (int k = 0; k < FE_MAX_GROUPS; k++) g->pressure[k] = NAN;
+    if ((v = yd_get(st, "pressure"))) {
+      snprintf(sub, sizeof sub, "%s.pressure", path);
+      if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+      for (size_t k = 0; k < v->n; k++) {
+        int gi = -1;
+        for (int j = 0; j < sc->npressure; j++)
+          if (!strcmp(sc->pressure_group[j], v->keys[k])) gi = j;
+        if (gi < 0) FAIL("%s:%d: key '%s.%s': not a group listed in boundary.pressure", doc->file, v->key_lines[k], sub, v->keys[k]);
+        v->used[k] = 1;
+        if (yd_double(doc, v->items[k], sub, &g->pressure[gi], err, errlen)) return 1;
+      }
+    }
+    snprintf(sub, sizeof sub, "%s.steps", path);
+    if (read_steps(doc, yd_get(st, "steps"), sub, g, err, errlen)) return 1;
+    if ((v = yd_get(st, "until"))) {
+      if (yd_double(doc, yd_get(v, "evp_rate_below"), "until.evp_rate_below", &g->evp_rate_below, err, errlen)) return 1;
+      if (yd_check_unused(doc, v, "until", "evp_rate_below", err, errlen)) return 1;
+    }
+    if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
+    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, steps, until, creep", err, errlen)) return 1;
+  }
+  sc->axis = 2;
+  return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, stages, output, solver",
+                         err, errlen);
+}
+
+int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
+  FeScene     sc;
+  MPI_Comm    comm = PETSC_COMM_WORLD;
+  PetscMPIInt rank;
+  MPI_Comm_rank(comm, &rank);
+  if (fe_scene_read(doc, &sc, err, errlen)) return 2;
+  if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
+  if (!rank && make_directories(sc.outdir)) {
+    snprintf(err, errlen, "output directory '%s': cannot create: %s", sc.outdir, strerror(errno));
+    return 2;
+  }
+  /* Writable? (nothing already written is touched when it is not) */
+  char probe[700];
+  snprintf(probe, sizeof probe, "%s/.writable", sc.outdir);
+  int writable = 1;
+  if (!rank) {
+    FILE *fp = fopen(probe, "w");
+    writable = fp != NULL;
+    if (fp) fclose(fp), remove(probe);
+  }
+  MPI_Bcast(&writable, 1, MPI_INT, 0, comm);
+  if (!writable) {
+    snprintf(err, errlen, "output directory '%s' is not writable", sc.outdir);
+    return 2;
+  }
+  if (sc.geometry[0]) { /* mesh the geometry with gmsh, into the output directory */
+    char cmd[4096];
+    int  rc = 0;
+    snprintf(sc.msh, sizeof sc.msh, "%s/mesh.msh", sc.outdir);
+    snprintf(cmd, sizeof cmd, "gmsh -3 -format msh41 -v 1 %s%s -o %s", sc.geometry, sc.gmsh_params, sc.msh);
+    if (!rank) rc = system(cmd);
+    MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
+    if (rc) {
+      snprintf(err, errlen, "meshing failed: %s", cmd);
+      return 1;
+    }
+  }
+
+  DM        dm;
+  FeProblem p;
+  memset(&p, 0, sizeof p);
+  PetscErrorCode ierr = fe_mesh_create(comm, sc.msh, &dm);
+  if (ierr) {
+    snprintf(err, errlen, "cannot read the mesh '%s'", sc.msh);
+    return 1;
+  }
+  ierr = fe_problem_setup(&p, dm, sc.order, &sc.mat, sc.fixed, sc.nfixed, (const char(*)[64])sc.pressure_group, sc.npressure);
+  if (ierr) {
+    snprintf(err, errlen, "setting up the problem failed (see the PETSc message above: a missing physical group?)");
+    return 1;
+  }
+  snprintf(p.outdir, sizeof p.outdir, "%s", sc.outdir);
+  {
+    PetscInt ncell = p.cEnd - p.cStart, nall, ndof;
+    Vec      tmp;
+    PetscCall(MPIU_Allreduce(&ncell, &nall, 1, MPIU_INT, MPI_SUM, comm));
+    PetscCall(DMCreateGlobalVector(dm, &tmp));
+    PetscCall(VecGetSize(tmp, &ndof));
+    PetscCall(VecDestroy(&tmp));
+    PetscCall(PetscPrintf(comm, "fe scene %s: %d cells, P%d, %d quadrature points per cell, %d unknowns, %d UMAT state slots per point\n",
+                          sc.name, (int)nall, sc.order, (int)p.nq, (int)ndof, (int)p.nsv));
+  }
+  PetscCall(fe_problem_set_initial_stress(&p, sc.stress0));
+  PetscCall(fe_problem_set_phi(&p, sc.phi_mean, sc.phi_std, sc.phi_lo, sc.phi_hi, sc.phi_seed));
+
+  SNES snes;
+  Mat  J;
+  Vec  U, R, U0;
+  PetscCall(SNESCreate(comm, &snes));
+  PetscCall(DMCreateMatrix(dm, &J));
+  PetscCall(DMCreateGlobalVector(dm, &U));
+  PetscCall(VecDuplicate(U, &R));
+  PetscCall(VecDuplicate(U, &U0));
+  PetscCall(VecZeroEntries(U));
+  PetscCall(SNESSetFunction(snes, R, fe_residual, &p));
+  PetscCall(SNESSetJacobian(snes, J, J, fe_jacobian, &p));
+  {
+    KSP         ksp;
+    PC          pc;
+    PetscMPIInt size;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+    MPI_Comm_size(comm, &size);
+    if (size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    /* Force scale for the absolute tolerance: the largest pressure on all loaded faces. */
+    PetscReal pmax = 1, fref = 0;
+    for (int i = 0; i < sc.nstage; i++)
+      for (int g = 0; g < sc.npressure; g++)
+        if (!isnan(sc.stage[i].pressure[g])) pmax = PetscMax(pmax, fabs(sc.stage[i].pressure[g]));
+    for (int g = 0; g < sc.npressure; g++) {
+      PetscReal nrm;
+      PetscCall(VecNorm(p.unit_force[g], NORM_2, &nrm));
+      fref += nrm;
+    }
+    PetscCall(SNESSetTolerances(snes, 1e-10 * pmax * PetscMax(fref, 1e-12), 1e-12, 1e-14, 25, 1000));
+    PetscCall(SNESSetFromOptions(snes));
+  }
+
+  char path[800];
+  snprintf(path, sizeof path, "%s/history.csv", sc.outdir);
+  FILE *hist = NULL;
+  if (!rank) {
+    hist = fopen(path, "w");
+    fprintf(hist, "time,stage,step,dt,newton_its,cutbacks");
+    for (int g = 0; g < sc.npressure; g++) fprintf(hist, ",pressure_%s", sc.pressure_group[g]);
+    fprintf(hist, ",eps_11,eps_22,eps_33,eps_12,eps_13,eps_23,sig_11,sig_22,sig_33,sig_12,sig_13,sig_23,evp_rate");
+    const char *fr[2] = {"hard", "soft"}, *st[6] = {"mean", "min", "q1", "median", "q3", "max"};
+    for (int f = 0; f < 2; f++)
+      for (int k = 0; k < 6; k++) fprintf(hist, ",evp33_%s_%s", fr[f], st[k]);
+    fprintf(hist, ",umat_calls,wall\n");
+  }
+  struct timespec w0, w1;
+  clock_gettime(CLOCK_MONOTONIC, &w0);
+  double  t = 0, pressure_now[FE_MAX_GROUPS];
+  for (int k = 0; k < FE_MAX_GROUPS; k++) pressure_now[k] = p.pressure[k] = sc.pressure0[k];
+  PetscCall(fe_problem_update_loads(&p));
+  int     step = 0, rc = 0, total_cutbacks = 0;
+  FeStats stats;
+  /* Row 0: the initial state (the UMAT initialises its state on a zero increment). */
+  p.time = 0, p.dt = 0;
+  PetscCall(fe_residual(snes, U, R, &p));
+  PetscCall(fe_problem_commit(&p));
+  for (int s = 0; s < sc.nstage && !rc; s++) {
+    Stage *g = &sc.stage[s];
+    double start[FE_MAX_GROUPS], target[FE_MAX_GROUPS], t_stage = 0;
+    for (int k = 0; k < sc.npressure; k++) start[k] = pressure_now[k], target[k] = isnan(g->pressure[k]) ? start[k] : g->pressure[k];
+    double dt_plan = g->adaptive ? g->dt_first : g->ratio == 1 ? g->duration / g->count : g->duration * (g->ratio - 1) / (pow(g->ratio, g->count) - 1);
+    double dt = dt_plan;
+    int    pending_instant = g->instant, cut = 0;
+    while (!rc) {
+      double h = pending_instant ? 0 : fmin(dt, g->duration - t_stage);
+      if (!pending_instant && (t_stage >= g->duration * (1 - 1e-12))) break;
+      double lambda = g->instant || g->duration == 0 ? 1 : (t_stage + h) / g->duration;
+      for (int k = 0; k < sc.npressure; k++) p.pressure[k] = start[k] + lambda * (target[k] - start[k]);
+      PetscCall(fe_problem_update_loads(&p));
+      p.time = t + h, p.dt = h;
+      PetscCall(VecCopy(U, U0));
+      SNESConvergedReason reason;
+      PetscInt            its;
+      PetscCall(SNESSolve(snes, NULL, U));
+      PetscCall(SNESGetConvergedReason(snes, &reason));
+      PetscCall(SNESGetIterationNumber(snes, &its));
+      if (reason > 0) PetscCall(fe_residual(snes, U, R, &p)); /* trial state at the solution */
+      if (reason <= 0 || p.min_pnewdt < 1) {
+        PetscCall(VecCopy(U0, U));
+        total_cutbacks++;
+        double factor = reason > 0 ? fmax(fmin(p.min_pnewdt, 0.5), 0.1) : 0.25;
+        if (h == 0 || ++cut > 30 || (g->adaptive && h * factor < g->dt_min)) {
+          snprintf(err, errlen, "stage '%s': step failed for good at t = %.6g s (dt = %.3g s): %s", g->name, t, h,
+                   reason <= 0 ? SNESConvergedReasons[reason] : "the UMAT asked for a smaller step");
+          rc = 1;
+          break;
+        }
+        dt = h * factor;
+        continue;
+      }
+      PetscCall(fe_problem_stats(&p, sc.axis, &stats, PETSC_TRUE));
+      PetscCall(fe_problem_commit(&p));
+      for (int k = 0; k < sc.npressure; k++) pressure_now[k] = p.pressure[k];
+      t += h, t_stage += h, step++;
+      clock_gettime(CLOCK_MONOTONIC, &w1);
+      double wall = (double)(w1.tv_sec - w0.tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
+      PetscReal rnorm;
+      PetscCall(SNESGetFunctionNorm(snes, &rnorm));
+      if (!rank) {
+        fprintf(hist, "%.17g,%d,%d,%.17g,%d,%d", t, s, step, h, (int)its, cut);
+        for (int k = 0; k < sc.npressure; k++) fprintf(hist, ",%.12g", p.pressure[k]);
+        for (int vI = 0; vI < 6; vI++) fprintf(hist, ",%.12g", stats.strain_mean[vI]);
+        for (int vI = 0; vI < 6; vI++) fprintf(hist, ",%.12g", stats.stress_mean[vI]);
+        fprintf(hist, ",%.6g", stats.evp_rate);
+        for (int f = 0; f < 2; f++)
+          for (int k = 0; k < 6; k++) fprintf(hist, ",%.12g", stats.frame_evp[f][k]);
+        fprintf(hist, ",%d,%.4f\n", (int)p.umat_calls, wall);
+        fflush(hist);
+        printf("step %5d  %-8s t = %-11.5g dt = %-10.4g newton %2d  |R| %.2e  cutbacks %d  wall %7.2f s  stage %3.0f%%\n",
+               step, g->name, t, h, (int)its, (double)rnorm, total_cutbacks, wall,
+               g->duration > 0 ? 100 * t_stage / g->duration : 100.0);
+        fflush(stdout);
+      }
+      cut = 0;
+      if (pending_instant) {
+        pending_instant = 0;
+        continue;
+      }
+      if (g->adaptive) dt = fmin(fmax(h * fmin(p.min_pnewdt, g->growth), g->dt_min), g->dt_max);
+      else dt *= g->ratio;
+      if (g->evp_rate_below > 0 && stats.evp_rate < g->evp_rate_below) break;
+    }
+  }
+  if (!rank) {
+    fclose(hist);
+    printf("fe scene %s: %d steps, %d cutbacks, %d UMAT calls, assembly %.2f s -> %s\n", sc.name, step, total_cutbacks,
+           (int)p.umat_calls, p.assembly_seconds, path);
+  }
+  PetscCall(VecDestroy(&U));
+  PetscCall(VecDestroy(&U0));
+  PetscCall(VecDestroy(&R));
+  PetscCall(MatDestroy(&J));
+  PetscCall(SNESDestroy(&snes));
+  PetscCall(fe_problem_destroy(&p));
+  PetscCall(DMDestroy(&dm));
+  return rc;
+}
