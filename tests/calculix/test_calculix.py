@@ -286,7 +286,7 @@ def test_cylinder_creep(ccx, umat, tmp_path, theta):
           f"{ezz[origin]:.4e} (point {e_point[origin]:.4e}); creep at 36000 s {c_ccx[-1]:.3e} "
           f"(point, 10x finer steps: {c_pt[-1]:.3e}); worst creep difference after 100 s {err:.1%}")
     assert abs(ezz[origin] / e_point[origin] - 1) < 0.01
-    assert err < 0.05
+    assert err < 0.06                        # measured 4.4 % (theta = 0) and 4.8 % (90), early in the creep
 
 
 @pytest.mark.xfail(strict=True, reason="the UMAT writes PNEWDT = min(PNEWDT, x), and CalculiX passes "

@@ -155,7 +155,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatM
   p->nsv    = ST_STATEV + mat->nstatv;
   PetscCall(PetscCalloc3(p->npoint * p->nsv, &p->state, p->npoint * p->nsv, &p->trial, p->npoint * 36, &p->ddsdde));
   PetscCall(PetscMalloc1(p->cEnd - p->cStart, &p->phi));
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->props[0];
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->phi_slot >= 0 ? mat->props[mat->phi_slot] : 0;
   p->npressure = npressure;
   for (PetscInt g = 0; g < npressure; g++) {
     PetscCall(PetscStrncpy(p->pressure_group[g], pressure_groups[g], 64));
@@ -255,7 +255,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
     PetscCall(DMPlexVecGetClosure(dm, s, Uloc, c, NULL, &ue));
     PetscCall(PetscArrayzero(re, p->nb));
     UmatMaterial mat = p->mat;
-    mat.props[0]     = p->phi[c - p->cStart];
+    if (mat.phi_slot >= 0) mat.props[mat.phi_slot] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
       strain_operator(p, q, &invJ[q * 9], B);
       PetscReal eps[6] = {0};
@@ -404,6 +404,10 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
   s->volume = glob[0];
   for (PetscInt vI = 0; vI < 6; vI++) s->strain_mean[vI] = glob[1 + vI] / glob[0], s->stress_mean[vI] = glob[7 + vI] / glob[0];
   s->evp_rate = p->dt > 0 ? glob[13] / glob[0] / p->dt : 0;
+  PetscReal spread = 0;
+  for (PetscInt k = 0; k < p->npoint; k++)
+    for (PetscInt vI = 0; vI < 6; vI++) spread = PetscMax(spread, PetscAbsReal(src[k * p->nsv + ST_STRAN + vI] - s->strain_mean[vI]));
+  PetscCall(MPIU_Allreduce(&spread, &s->strain_spread, 1, MPIU_REAL, MPIU_MAX, comm));
   if (p->mat.nstatv >= 32) {
     /* Gather both frames' values on rank 0 for the quantiles. */
     PetscMPIInt n = (PetscMPIInt)p->npoint, *counts = NULL, *displs = NULL, total = 0;

@@ -70,6 +70,7 @@ PetscErrorCode fe_problem_commit(FeProblem *p);
 /* Scalars over the quadrature points of all ranks, for the history. */
 typedef struct {
   PetscReal volume, strain_mean[6], stress_mean[6];
+  PetscReal strain_spread;            /* max over points and components of |eps - volume mean| */
   PetscReal evp_rate;                 /* volume-mean |d eps_vp| / dt of the last step */
   PetscReal frame_evp[2][6];          /* axial vp strain of each frame over the points: mean, min, q1,
                                          median, q3, max (Yin et al. 2021 Fig. 18) */

@@ -123,9 +123,10 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order", err, errlen)) return 1;
 
   if (material_read(doc, yd_get(root, "material"), 6, &sc->mat, err, errlen)) return 1;
-  sc->phi_mean = sc->mat.props[0];
+  sc->phi_mean = sc->mat.phi_slot >= 0 ? sc->mat.props[sc->mat.phi_slot] : 0;
   sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
   if ((x = yd_get(root, "phi"))) {
+    if (sc->mat.phi_slot < 0) FAIL("%s:%d: key 'phi': this UMAT has no hard-frame fraction", doc->file, x->line);
     if (yd_double(doc, yd_get(x, "mean"), "phi.mean", &sc->phi_mean, err, errlen)) return 1;
     if ((v = yd_get(x, "std")) && yd_double(doc, v, "phi.std", &sc->phi_std, err, errlen)) return 1;
     if ((v = yd_get(x, "min")) && yd_double(doc, v, "phi.min", &sc->phi_lo, err, errlen)) return 1;
@@ -341,7 +342,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
     hist = fopen(path, "w");
     fprintf(hist, "time,stage,step,dt,newton_its,cutbacks");
     for (int g = 0; g < sc.npressure; g++) fprintf(hist, ",pressure_%s", sc.pressure_group[g]);
-    fprintf(hist, ",eps_11,eps_22,eps_33,eps_12,eps_13,eps_23,sig_11,sig_22,sig_33,sig_12,sig_13,sig_23,evp_rate");
+    fprintf(hist, ",eps_11,eps_22,eps_33,eps_12,eps_13,eps_23,sig_11,sig_22,sig_33,sig_12,sig_13,sig_23,eps_spread,evp_rate");
     const char *fr[2] = {"hard", "soft"}, *st[6] = {"mean", "min", "q1", "median", "q3", "max"};
     for (int f = 0; f < 2; f++)
       for (int k = 0; k < 6; k++) fprintf(hist, ",evp33_%s_%s", fr[f], st[k]);
@@ -403,9 +404,9 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       if (!rank) {
         fprintf(hist, "%.17g,%d,%d,%.17g,%d,%d", t, s, step, h, (int)its, cut);
         for (int k = 0; k < sc.npressure; k++) fprintf(hist, ",%.12g", p.pressure[k]);
-        for (int vI = 0; vI < 6; vI++) fprintf(hist, ",%.12g", stats.strain_mean[vI]);
-        for (int vI = 0; vI < 6; vI++) fprintf(hist, ",%.12g", stats.stress_mean[vI]);
-        fprintf(hist, ",%.6g", stats.evp_rate);
+        for (int vI = 0; vI < 6; vI++) fprintf(hist, ",%.15g", stats.strain_mean[vI]);
+        for (int vI = 0; vI < 6; vI++) fprintf(hist, ",%.15g", stats.stress_mean[vI]);
+        fprintf(hist, ",%.6g,%.6g", stats.strain_spread, stats.evp_rate);
         for (int f = 0; f < 2; f++)
           for (int k = 0; k < 6; k++) fprintf(hist, ",%.12g", stats.frame_evp[f][k]);
         fprintf(hist, ",%d,%.4f\n", (int)p.umat_calls, wall);

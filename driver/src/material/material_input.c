@@ -33,6 +33,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   memset(mat, 0, sizeof *mat);
   mat->ntens  = ntens;
   mat->nstatv = camclay ? CAMCLAY9_NSTATV_DIAGNOSTICS : 0;
+  mat->phi_slot = camclay ? 0 : -1;
   umat_material_set_name(mat, name);
 
   YdNode *props = yd_get(node, "props");

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Plots of a triaxial creep run of the FE driver (input/triaxial*.yaml): the axial creep strain after
+sigma_d is applied with its Lomnitz fit eps = B ln(1 + t/tau) (natural log), printed beside the paper's
+(Yin, Liu & Borja 2021, Fig. 17), and the per-frame axial viscoplastic strain over the integration
+points vs time: mean, quartiles and range (their Fig. 18).
+
+Usage: post/triaxial_plots.py RUN_DIR [--theta 0|90]     (writes creep.png, frames.png, creep_fit.json)
+"""
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from lomnitz import lomnitz, lomnitz_fit  # noqa: E402
+
+PAPER = {0: (9.97e-5, 385.0), 90: (6.74e-5, 364.0)}   # Yin et al. 2021, Fig. 17: B, tau
+
+
+def load(run):
+    path = Path(run) / "history.csv"
+    try:
+        h = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
+    except OSError as e:
+        raise SystemExit(f"{path}: {e}")
+    for col in ("time", "stage", "eps_33", "evp33_hard_mean", "evp33_soft_mean"):
+        if col not in h.dtype.names:
+            raise SystemExit(f"{path}: column '{col}' is missing")
+    return h
+
+
+def creep_rows(h):
+    """Rows of the last stage (the creep stage), from its first row (the instant load)."""
+    return np.where(h["stage"] == h["stage"].max())[0]
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run")
+    ap.add_argument("--theta", type=int, choices=(0, 90), default=0)
+    a = ap.parse_args(argv)
+    h = load(a.run)
+    rows = creep_rows(h)
+    t = h["time"][rows] - h["time"][rows[0]]
+    eps = -(h["eps_33"][rows] - h["eps_33"][rows[0]])        # compression positive
+    B, tau = lomnitz_fit(t, eps)
+    Bp, taup = PAPER[a.theta]
+    print(f"creep fit: B = {B:.3e}, tau = {tau:.0f} s   (paper, theta = {a.theta}: B = {Bp:.3e}, tau = {taup:.0f} s)")
+    (Path(a.run) / "creep_fit.json").write_text(json.dumps({"B": B, "tau": tau, "paper_B": Bp, "paper_tau": taup}))
+
+    fig = Figure(figsize=(6, 4))
+    ax = fig.subplots()
+    ax.plot(t / 3600, eps, "k.", ms=3, label="FE cylinder (volume-mean axial strain)")
+    ax.plot(t / 3600, lomnitz(t, B, tau), "C1-", label=f"Lomnitz fit: B = {B:.2e}, tau = {tau:.0f} s")
+    ax.plot(t / 3600, lomnitz(t, Bp, taup), "C0--", label=f"paper's fit: B = {Bp:.2e}, tau = {taup:.0f} s")
+    ax.set_xlabel("time after loading [h]")
+    ax.set_ylabel("axial creep strain (compression +)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(Path(a.run) / "creep.png", dpi=110)
+
+    fig = Figure(figsize=(7, 4))
+    ax = fig.subplots()
+    for frame, color in (("hard", "C0"), ("soft", "C3")):
+        base = {k: h[f"evp33_{frame}_{k}"][rows[0]] for k in ("mean", "min", "q1", "q3", "max", "median")}
+        m = -(h[f"evp33_{frame}_mean"][rows] - base["mean"])
+        ax.plot(t[1:] / 3600, m[1:], color=color, label=f"{frame} frame: mean")
+        ax.fill_between(t[1:] / 3600, -(h[f"evp33_{frame}_q1"][rows] - base["q1"])[1:],
+                        -(h[f"evp33_{frame}_q3"][rows] - base["q3"])[1:], color=color, alpha=0.35, label=f"{frame}: quartiles")
+        ax.fill_between(t[1:] / 3600, -(h[f"evp33_{frame}_min"][rows] - base["min"])[1:],
+                        -(h[f"evp33_{frame}_max"][rows] - base["max"])[1:], color=color, alpha=0.12, label=f"{frame}: range")
+    ax.set_xlabel("time after loading [h]")
+    ax.set_ylabel("axial viscoplastic strain since loading (compression +)")
+    ax.set_title("per frame over the integration points (cf. Yin et al. 2021 Fig. 18)", fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(Path(a.run) / "frames.png", dpi=110)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

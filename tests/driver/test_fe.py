@@ -1,0 +1,142 @@
+"""The finite-element driver (issue #4, first part): traction patch tests on unstructured tetrahedra
+(P1 and P2, a linear-elastic UMAT linked instead of Cam-Clay IX, and Cam-Clay IX in its elastic
+range), and a homogeneous triaxial creep box against the material-point driver.
+
+$DRIVER and $DRIVER_ELASTIC are the driver executables (CTest sets them).
+"""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests" / "reference"))
+import camclay9_reference as ref  # noqa: E402
+
+DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
+DRIVER_ELASTIC = os.environ.get("DRIVER_ELASTIC", str(ROOT / "build" / "bin" / "driver_elastic"))
+
+
+def run(exe, scene_text, tmp, name):
+    scene = tmp / f"{name}.yaml"
+    scene.write_text(scene_text)
+    proc = subprocess.run([exe, "-input", str(scene), "-output_dir", str(tmp / name)], capture_output=True,
+                          text=True, cwd=ROOT)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return np.atleast_1d(np.genfromtxt(tmp / name / "history.csv", delimiter=",", names=True)), proc.stdout
+
+
+BOX = """
+scene: fe
+mesh: {{geometry: meshes/box.geo, parameters: {{Lx: 2, Ly: 1, Lz: 1.5, size: 0.45}}, order: {order}}}
+material: {material}
+initial: {initial}
+boundary:
+  fixed: [{{group: x0, components: [x]}}, {{group: y0, components: [y]}}, {{group: z0, components: [z]}}]
+  pressure: [x1, y1, z1]
+stages:
+{stages}
+"""
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_patch_linear_elastic_umat(tmp_path, order):
+    """Uniform pressures on three faces, rollers on the others: the exact solution is a uniform strain,
+    eps = C^-1 sigma with sigma = -diag(px, py, pz); every quadrature point must carry it."""
+    E, nu, px, py, pz = 1000.0, 0.25, 3.0, 5.0, 7.0
+    h, out = run(DRIVER_ELASTIC, BOX.format(
+        order=order, material="{umat: elastic, props: [1000.0, 0.25], nstatv: 0}", initial="{stress: [0, 0, 0, 0, 0, 0]}",
+        stages=f"  - {{name: load, duration: 1, pressure: {{x1: {px}, y1: {py}, z1: {pz}}}, steps: {{count: 1}}}}"),
+        tmp_path, f"elastic_p{order}")
+    s = -np.array([px, py, pz])
+    exact = (s - nu * (s.sum() - s)) / E
+    got = np.array([h["eps_11"][-1], h["eps_22"][-1], h["eps_33"][-1]])
+    print(out.splitlines()[0], f"\nP{order}: strain {got}, exact {exact}, spread {h['eps_spread'][-1]:.2e}")
+    assert np.max(np.abs(got - exact)) <= 1e-10 * np.max(np.abs(exact))
+    assert h["eps_spread"][-1] <= 1e-10 * np.max(np.abs(exact))
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_patch_camclay_elastic_range(tmp_path, order):
+    """The same with Cam-Clay IX inside its yield surfaces (pc0 = 500 MPa in both frames), bedding normal
+    along x1 (theta = 90: the rollers admit a uniform state only when the material axes are the box
+    axes): uniform strain C^-1 (sigma - sigma0) with the transversely isotropic mixture stiffness built
+    independently (tests/reference, from theory.md §4.2)."""
+    n = [1.0, 0.0, 0.0]
+    h, _ = run(DRIVER, BOX.format(
+        order=order,
+        material="{props: woodford, set: {pc0_hard: 500, pc0_soft: 500}, bedding_angle: 90}",
+        initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
+        stages="  - {name: load, duration: 1, pressure: {x1: 38, y1: 41, z1: 50}, steps: {count: 2}}"),
+        tmp_path, f"camclay_p{order}")
+    props = ref.WOODFORD
+    C = 0.5 * ref.stiffness_voigt(*props[1:6], n) + 0.5 * ref.stiffness_voigt(props[13], props[14], props[14], 0, 0, n)
+    dsig = -np.array([3.0, 6.0, 15.0, 0, 0, 0])
+    exact = np.linalg.solve(C, dsig)
+    got = np.array([h[k][-1] for k in ("eps_11", "eps_22", "eps_33", "eps_12", "eps_13", "eps_23")])
+    print(f"P{order}: strain {got}\n   exact {exact}, spread {h['eps_spread'][-1]:.2e}")
+    assert np.max(np.abs(got - exact)) <= 1e-10 * np.max(np.abs(exact))
+    assert h["eps_spread"][-1] <= 1e-10 * np.max(np.abs(exact))
+
+
+def test_homogeneous_triaxial_creep_matches_the_point(tmp_path):
+    """A box with frictionless ends and uniform phi is homogeneous: with the same steps, its axial
+    creep must be the material point's to 1e-6 (here: hold 1e6 s, then sigma_d = 40 MPa for 1 h)."""
+    steps_hold = "{count: 60, ratio: 1.2}"
+    steps_creep = "{count: 40, ratio: 1.15}"
+    fe, _ = run(DRIVER, BOX.format(
+        order=1, material="{props: woodford, bedding_angle: 0}",
+        initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
+        stages=f"  - {{name: hold, duration: 1.0e6, pressure: {{x1: 35, y1: 35, z1: 35}}, steps: {steps_hold}}}\n"
+               f"  - {{name: creep, duration: 3600, load: instant, pressure: {{x1: 35, y1: 35, z1: 75}}, steps: {steps_creep}}}"),
+        tmp_path, "box_creep")
+    point_scene = f"""
+scene: point
+material: {{props: woodford, bedding_angle: 0}}
+initial: {{stress: [-35, -35, -35, 0, 0, 0]}}
+segments:
+  - {{name: hold, duration: 1.0e6, steps: {{count: 60, spacing: geometric, ratio: 1.2}},
+     control: {{11: {{stress: -35}}, 22: {{stress: -35}}, 33: {{stress: -35}}, others: {{stress: 0}}}}}}
+  - {{name: creep, duration: 3600, load: instant, steps: {{count: 40, spacing: geometric, ratio: 1.15}},
+     control: {{11: {{stress: -35}}, 22: {{stress: -35}}, 33: {{stress: -75}}, others: {{stress: 0}}}}}}
+"""
+    scene = tmp_path / "point.yaml"
+    scene.write_text(point_scene)
+    subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "point")], check=True,
+                   capture_output=True, cwd=ROOT)
+    pt = np.genfromtxt(tmp_path / "point" / "history.csv", delimiter=",", names=True)
+    fe_rows = np.where(fe["stage"] == 1)[0]
+    pt_rows = np.where(pt["segment"] == 1)[0]
+    creep_fe = fe["eps_33"][fe_rows] - fe["eps_33"][fe_rows[0]]
+    creep_pt = pt["eps_33"][pt_rows] - pt["eps_33"][pt_rows[0]]
+    assert len(creep_fe) == len(creep_pt)
+    err = np.max(np.abs(creep_fe - creep_pt)) / np.max(np.abs(creep_pt))
+    print(f"homogeneous box vs point: creep at 1 h {creep_fe[-1]:.10e} vs {creep_pt[-1]:.10e}, "
+          f"largest relative difference {err:.2e}; strain spread {fe['eps_spread'][-1]:.1e}")
+    assert err < 1e-6
+
+
+def test_one_and_two_ranks_agree(tmp_path):
+    """The heterogeneous cylinder (phi drawn per cell from its centroid and the seed) on 1 and 2 MPI
+    ranks: the same history to 1e-8 (a coarse mesh, hold and 10 min of creep)."""
+    text = (ROOT / "input" / "triaxial.yaml").read_text()
+    text = text.replace("size: 6.0", "size: 9.0").replace("duration: 36000", "duration: 600")
+    scene = tmp_path / "cyl.yaml"
+    scene.write_text(text)
+    hist = {}
+    for n in (1, 2):
+        out = tmp_path / f"ranks{n}"
+        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(n), DRIVER, "-input", str(scene),
+               "-output_dir", str(out)]
+        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        hist[n] = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    assert len(hist[1]) == len(hist[2])
+    for col in ("time", "eps_33", "eps_11", "evp33_soft_median", "evp33_hard_max"):
+        a, b = hist[1][col], hist[2][col]
+        err = np.max(np.abs(a - b)) / max(np.max(np.abs(a)), 1e-300)
+        print(f"{col}: 1 vs 2 ranks, largest relative difference {err:.2e}")
+        assert err < 1e-8, col
