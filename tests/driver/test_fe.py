@@ -140,3 +140,23 @@ def test_one_and_two_ranks_agree(tmp_path):
         err = np.max(np.abs(a - b)) / max(np.max(np.abs(a)), 1e-300)
         print(f"{col}: 1 vs 2 ranks, largest relative difference {err:.2e}")
         assert err < 1e-8, col
+
+
+def test_newton_converges_quadratically(tmp_path):
+    """One large viscoplastic step (axial pressure 35 -> 60 MPa in 1000 s, theta = 30, P2): the residual
+    sequence of SNES on the consistent tangent falls quadratically, r_{k+1} ~ C r_k^2."""
+    import re
+    scene = tmp_path / "newton.yaml"
+    scene.write_text(BOX.format(
+        order=2, material="{props: woodford, bedding_angle: 30}",
+        initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
+        stages="  - {name: load, duration: 1000, pressure: {x1: 35, y1: 35, z1: 60}, steps: {count: 1}}"))
+    proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "o"), "-snes_monitor"],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert proc.returncode == 0, proc.stdout
+    r = [float(x) for x in re.findall(r"SNES Function norm ([0-9.eE+-]+)", proc.stdout)]
+    print("residual sequence:", ", ".join(f"{x:.3e}" for x in r))
+    c = [r[k + 1] / r[k] ** 2 for k in range(1, len(r) - 1)]
+    print("r_{k+1} / r_k^2:", ", ".join(f"{x:.2e}" for x in c))
+    assert len(r) <= 6 and r[-1] < 1e-10 * r[0]
+    assert max(c) / min(c) < 10          # a constant ratio: quadratic convergence

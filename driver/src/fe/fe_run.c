@@ -281,6 +281,34 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
     snprintf(err, errlen, "cannot read the mesh '%s'", sc.msh);
     return 1;
   }
+  { /* every group the scene names must be a physical group of the mesh */
+    const char *missing = NULL;
+    PetscBool   has;
+    for (int k = 0; k < sc.nfixed && !missing; k++) {
+      PetscCall(DMHasLabel(dm, sc.fixed[k].group, &has));
+      if (!has) missing = sc.fixed[k].group;
+    }
+    for (int k = 0; k < sc.npressure && !missing; k++) {
+      PetscCall(DMHasLabel(dm, sc.pressure_group[k], &has));
+      if (!has) missing = sc.pressure_group[k];
+    }
+    if (missing) {
+      char     groups[512] = "";
+      PetscInt nl;
+      PetscCall(DMGetNumLabels(dm, &nl));
+      for (PetscInt l = 0; l < nl; l++) {
+        const char *ln;
+        PetscCall(DMGetLabelName(dm, l, &ln));
+        if (!strcmp(ln, "depth") || !strcmp(ln, "celltype")) continue;
+        size_t len = strlen(groups);
+        snprintf(groups + len, sizeof groups - len, "%s%s", len ? ", " : "", ln);
+      }
+      snprintf(err, errlen, "%s: key 'boundary': group '%s' is not a physical group of the mesh %s (it has: %s)",
+               doc->file, missing, sc.msh, groups);
+      PetscCall(DMDestroy(&dm));
+      return 2;
+    }
+  }
   ierr = fe_problem_setup(&p, dm, sc.order, &sc.mat, sc.fixed, sc.nfixed, (const char(*)[64])sc.pressure_group, sc.npressure);
   if (ierr) {
     snprintf(err, errlen, "setting up the problem failed (see the PETSc message above: a missing physical group?)");
