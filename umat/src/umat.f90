@@ -82,7 +82,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                          sig_frames, pc, devp, devp_total, sig, d, info)
   if (info%failed) then
     ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
-    pnewdt = min(pnewdt, cutback)
+    call suggest_step(pnewdt, cutback)
     ddsdde = current_material%cbar_abaqus(1:ntens, 1:ntens)
     return
   end if
@@ -90,14 +90,14 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   if (tol > 0 .and. dtime > 0) then
     ratio = info%err_est / tol
     if (ratio > 1) then
-      pnewdt = min(pnewdt, max(cutback, 0.8_real64 / sqrt(ratio)))
+      call suggest_step(pnewdt, max(cutback, 0.8_real64 / sqrt(ratio)))
       call tangent_to_abaqus(d, ntens, ddsdde)
       return
     end if
     if (ratio > 0) then
-      pnewdt = min(pnewdt, min(max_growth, max(1.0_real64, 0.8_real64 / sqrt(ratio))))
+      call suggest_step(pnewdt, min(max_growth, max(1.0_real64, 0.8_real64 / sqrt(ratio))))
     else
-      pnewdt = min(pnewdt, max_growth)
+      call suggest_step(pnewdt, max_growth)
     end if
   end if
 
@@ -149,6 +149,19 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   end if
 
 contains
+
+  !> Hosts differ in what PNEWDT holds on entry: Abaqus sets it large and takes the smallest request;
+  !> CalculiX passes -1 ("no request") and redoes the increment for ANY positive value, above 1 too
+  !> (docs/calculix.md). So with PNEWDT <= 0 on entry only a cutback (< 1) is written.
+  pure subroutine suggest_step(pnewdt, ratio)
+    real(real64), intent(inout) :: pnewdt
+    real(real64), intent(in) :: ratio
+    if (pnewdt > 0) then
+      pnewdt = min(pnewdt, ratio)
+    else if (ratio < 1) then
+      pnewdt = ratio
+    end if
+  end subroutine suggest_step
 
   !> R A R^T for every stored tensor: frame stresses, frame and overall viscoplastic strains.
   pure subroutine rotate_state(sv)

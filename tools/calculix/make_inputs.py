@@ -1,0 +1,265 @@
+#!/usr/bin/env python3
+"""Write the Abaqus/CalculiX inputs of input/abaqus/ (issue #6). Run from anywhere:
+
+    python3 tools/calculix/make_inputs.py [OUTDIR]      (default: input/abaqus)
+
+The files are committed; tests/calculix checks that they equal what this script writes. Cards follow
+docs/umat.md: material ABAQUS_WOODFORD, CONSTANTS=20 (CalculiX keeps at most 21), bedding normal
+through *ORIENTATION (local 3-axis), both frames at -35 MPa through *INITIAL CONDITIONS, TYPE=STRESS
+(one line per element and integration point in CalculiX), confinement with a constant amplitude.
+Units mm, N, MPa, s.
+"""
+import math
+import os
+import sys
+
+PROPS = """*USER MATERIAL, CONSTANTS=20, UNSYMM
+** phi, lam_h, muT_h, muL_h, a_h, b_h, M_h, lambdap_h
+ 0.5, 2900., 18000., 13000., 4100., 6900., 1.46, 0.00013
+** c1_h, c2_h, c3_h, pc0_h, eta_h, lam_s, mu_s, M_s
+ 0.73, -0.20, 0.40, 2.0, 1.3E13, 4600., 3100., 1.46
+** lambdap_s, pc0_s, eta_s, tol (0 = no step control: CalculiX ignores this UMAT's PNEWDT, docs/calculix.md)
+ 0.0026, 35.0, 1.3E10, 0.
+*DEPVAR
+ 36
+"""
+
+# Local 1 and 2 axes of *ORIENTATION (local 3 = 1 x 2 is the bedding normal), per bedding angle.
+# theta = 0: the global axes (normal = z, the load axis). theta = 90: local 1 = y, local 2 = z,
+# so the normal is x, as in docs/umat.md.
+ORIENTATION = {0: ((1., 0., 0.), (0., 1., 0.)), 90: ((0., 1., 0.), (0., 0., 1.))}
+
+# Fixed increments of the one-element runs: (increment, step period) per *STEP. Steps 1-3: hold the
+# confinement 1e6 s (the hard frame compacts, pc_h 2 -> ~28 MPa); step 4: ramp the deviator to
+# 40 MPa in 1 s; steps 5-8: creep 36000 s. Increments grow where the rates fall.
+HOLD = [(100., 1000.), (9900., 99000.), (1e5, 9e5)]
+RAMP = [(0.25, 1.)]
+CREEP = [(10., 100.), (90., 900.), (900., 9000.), (2000., 26000.)]
+# The same for the conventions probe (prescribed strain with shear, 100 s).
+PROBE = [(25., 100.)]
+
+# Tight Newton tolerances (residual and correction ratios 1e-12 instead of 0.005/0.01) and patient
+# iteration counts: CalculiX symmetrises DDSDDE, so its Newton converges linearly (docs/calculix.md).
+CONTROLS = """*CONTROLS, PARAMETERS=FIELD
+ 1.E-12, 1.E-12, 0., 0., 1.E-12, 1.E-5, 1.E-3, 1.E-13
+*CONTROLS, PARAMETERS=TIME INCREMENTATION
+ 30, 40, 9, 60, 60, 4, 0, 5
+"""
+
+CUBE_NODES = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+# Side of the one-element cube (mm). CalculiX sets an equilibrium residual below 1e-6 force units to
+# zero and then declares convergence (nonlingeo.c), whatever *CONTROLS says: with a 1 mm cube (nodal
+# forces ~9 N) that leaves stress errors of ~1e-7 relative; with 100 mm (~9e4 N), ~1e-11.
+SIDE = 100
+
+# General strain of the conventions probe (tensor components, order 11, 22, 33, 12, 13, 23) and its
+# oblique bedding: normal n = (sin 30 cos 20, sin 30 sin 20, cos 30).
+PROBE_STRAIN = (-4.0e-4, 1.5e-4, -9.0e-4, 2.0e-4, -3.0e-4, 1.0e-4)
+
+
+def probe_axes():
+    th, az = math.radians(30.), math.radians(20.)
+    n = (math.sin(th) * math.cos(az), math.sin(th) * math.sin(az), math.cos(th))
+    a = (math.cos(th) * math.cos(az), math.cos(th) * math.sin(az), -math.sin(th))   # unit, normal to n
+    return a, (n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0])  # b = n x a
+
+
+def fmt(v):
+    """CalculiX reads a number from at most 20 characters (f20.0): 15 significant digits fit."""
+    text = f"{v:.15g}"
+    return text if any(c in text for c in ".en") else text + "."
+
+
+def orientation(a, b):
+    return ("*ORIENTATION, NAME=BEDDING, SYSTEM=RECTANGULAR\n " + ", ".join(fmt(x) for x in a + b) + "\n")
+
+
+def material(axes):
+    return (orientation(*axes) + "*SOLID SECTION, ELSET=EALL, MATERIAL=ABAQUS_WOODFORD, ORIENTATION=BEDDING\n"
+            + "*MATERIAL, NAME=ABAQUS_WOODFORD\n" + PROPS)
+
+
+def initial_stress(elements, points):
+    lines = "".join(f" {e}, {i}, -35., -35., -35., 0., 0., 0.\n" for e in elements for i in range(1, points + 1))
+    return "** both frames start at -35 MPa: the UMAT copies STRESS into both on its first call\n" \
+           "*INITIAL CONDITIONS, TYPE=STRESS\n" + lines
+
+
+def steps(plan, output):
+    """One *STEP with fixed increments per (increment, period, loads); *CONTROLS once, in the first."""
+    return "".join(f"*STEP, INC=100000\n*STATIC, DIRECT\n {fmt(dt)}, {fmt(period)}\n" + (CONTROLS if k == 0 else "")
+                   + loads + output + "*END STEP\n" for k, (dt, period, loads) in enumerate(plan))
+
+
+def one_element(theta):
+    nodes = "".join(f" {i}, {SIDE * x}., {SIDE * y}., {SIDE * z}.\n" for i, (x, y, z) in enumerate(CUBE_NODES, 1))
+    out = ("*EL PRINT, ELSET=EALL, GLOBAL=YES\n S, E, SDV\n*NODE PRINT, NSET=NALL\n U\n"
+           "*NODE FILE\n U\n*EL FILE\n S, E, SDV\n")
+    conf = "*DSLOAD, AMPLITUDE=CONST\n SIDES, P, 35.\n TOP, P, 35.\n"
+    dev = "** the top pressure ramps from 35 to 75 MPa over this step (sigma_d = 40 MPa)\n*DSLOAD\n TOP, P, 75.\n"
+    plan = [(dt, T, conf if k == 0 else "") for k, (dt, T) in enumerate(HOLD)]
+    plan += [(dt, T, dev) for dt, T in RAMP]
+    plan += [(dt, T, "") for dt, T in CREEP]
+    return f"""** Triaxial creep of one C3D8 element (cube of side {SIDE} mm), theta = {theta} deg: Cam-Clay IX UMAT.
+** Both frames start at -35 MPa; confinement 35 MPa held 1e6 s; deviator 40 MPa ramped in 1 s; creep 36000 s.
+** Homogeneous: pressure on the faces x = 1, y = 1, z = 1, rollers on x = 0, y = 0, z = 0.
+** Fixed increments and tight *CONTROLS so that tests/calculix can replay the same increments at one point.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s.
+*HEADING
+Cam-Clay IX triaxial creep, one C3D8, theta = {theta}
+*NODE, NSET=NALL
+{nodes}*ELEMENT, TYPE=C3D8, ELSET=EALL
+ 1, 1, 2, 3, 4, 5, 6, 7, 8
+*NSET, NSET=X0
+ 1, 4, 5, 8
+*NSET, NSET=Y0
+ 1, 2, 5, 6
+*NSET, NSET=Z0
+ 1, 2, 3, 4
+*SURFACE, NAME=SIDES, TYPE=ELEMENT
+ 1, S4
+ 1, S5
+*SURFACE, NAME=TOP, TYPE=ELEMENT
+ 1, S2
+{material(ORIENTATION[theta])}*AMPLITUDE, NAME=CONST
+ 0., 1., 1.E10, 1.
+*BOUNDARY
+ X0, 1
+ Y0, 2
+ Z0, 3
+{initial_stress([1], 8)}{steps(plan, out)}"""
+
+
+def probe():
+    e = PROBE_STRAIN
+    E = [[e[0], e[3], e[4]], [e[3], e[1], e[5]], [e[4], e[5], e[2]]]
+    nodes = "".join(f" {i}, {x}., {y}., {z}.\n" for i, (x, y, z) in enumerate(CUBE_NODES, 1))
+    bcs = "*BOUNDARY\n"
+    for i, x in enumerate(CUBE_NODES, 1):
+        for d in range(3):
+            bcs += f" {i}, {d + 1}, {d + 1}, {fmt(sum(E[d][j] * x[j] for j in range(3)))}\n"
+    out = ("*EL PRINT, ELSET=EALL\n S, E\n*EL PRINT, ELSET=EALL, GLOBAL=YES\n S, E, SDV\n"
+           "*EL FILE\n S, E, SDV\n")
+    return f"""** Conventions probe: one C3D8 (unit cube) whose every node follows u = E x, a general strain with
+** shear ({', '.join(fmt(v) for v in e)}; tensor components 11 22 33 12 13 23), bedding normal oblique
+** (30 deg from z, azimuth 20 deg) through *ORIENTATION. Shows the order of the shear components in .dat
+** and .frd, local versus global output, the strain measure, and the rotation of STRESS and DDSDDE.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s.
+*HEADING
+Cam-Clay IX conventions probe, one C3D8, prescribed general strain
+*NODE, NSET=NALL
+{nodes}*ELEMENT, TYPE=C3D8, ELSET=EALL
+ 1, 1, 2, 3, 4, 5, 6, 7, 8
+{material(probe_axes())}{initial_stress([1], 8)}{steps([(dt, T, bcs) for dt, T in PROBE], out)}"""
+
+
+# The cylinder of the triaxial scene (shared docs/scenes.md §5): diameter 25.4 mm, height 50.8 mm,
+# uniform phi = 0.5 so that it stays homogeneous and can be compared with one point. Coarse O-grid:
+# a core square of CORE x CORE elements, one ring out to the circle, LAYERS element layers.
+RADIUS, HEIGHT, CORE, LAYERS = 12.7, 50.8, 4, 4
+# Automatic incrementation (initial, period, minimum, maximum) per phase.
+CYL_STEPS = [(10., 1e6, 1., 2e5), (0.25, 1., 1e-6, 0.25), (1., 36000., 0.1, 2000.)]
+
+
+def disk():
+    """Nodes (x, y) and counterclockwise quads of the O-grid disk."""
+    a, n = 0.5 * RADIUS, CORE
+    xy = [(a * (2 * i / n - 1), a * (2 * j / n - 1)) for j in range(n + 1) for i in range(n + 1)]
+    quads = [(j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i)
+             for j in range(n) for i in range(n)]
+    # Core perimeter, counterclockwise from (a, -a): each of its nodes gets a partner on the circle.
+    ring = [(n, j) for j in range(n)] + [(n - i, n) for i in range(n)] + \
+           [(0, n - j) for j in range(n)] + [(i, 0) for i in range(n)]
+    inner = [j * (n + 1) + i for i, j in ring]
+    outer = []
+    for k in inner:
+        x, y = xy[k]
+        r = math.hypot(x, y)
+        outer.append(len(xy))
+        xy.append((RADIUS * x / r, RADIUS * y / r))
+    m = len(inner)
+    quads += [(inner[k], outer[k], outer[(k + 1) % m], inner[(k + 1) % m]) for k in range(m)]
+    return xy, quads, len(quads) - m
+
+
+CYL_INIT = "triaxial_cylinder_initial_stress.inc"
+
+
+def ids_lines(ids, per_line=12):
+    """Node or element numbers, a few per line (CalculiX reads at most 132 characters a line)."""
+    ids = [str(i) for i in ids]
+    return "".join(" " + ", ".join(ids[k:k + per_line]) + "\n" for k in range(0, len(ids), per_line))
+
+
+def cylinder(theta):
+    xy, quads, n_core = disk()
+    per = len(xy)
+    node = lambda k, layer: layer * per + k + 1                       # noqa: E731
+    nodes = "".join(f" {node(k, l)}, {fmt(x)}, {fmt(y)}, {fmt(HEIGHT * l / LAYERS)}\n"
+                    for l in range(LAYERS + 1) for k, (x, y) in enumerate(xy))
+    elems, sides, top = "", "", ""
+    e = 0
+    for l in range(LAYERS):
+        for q, quad in enumerate(quads):
+            e += 1
+            ids = [node(k, l) for k in quad] + [node(k, l + 1) for k in quad]
+            elems += f" {e}, " + ", ".join(str(i) for i in ids) + "\n"
+            if q >= n_core:
+                sides += f" {e}, S4\n"                                  # nodes 2, 3 lie on the circle
+            if l == LAYERS - 1:
+                top += f" {e}, S2\n"
+    centre = node(xy.index((0.0, 0.0)), 0)
+    on_x = node(min(range(per), key=lambda k: math.hypot(xy[k][0] - RADIUS, xy[k][1])), 0)
+    bottom = ids_lines(node(k, 0) for k in range(per))
+    tops = ids_lines(node(k, LAYERS) for k in range(per))
+    mid = (LAYERS // 2) * len(quads) + 1                                 # a core element at mid-height
+    conf = "*DSLOAD, AMPLITUDE=CONST\n OUTER, P, 35.\n TOP, P, 35.\n"
+    dev = "** the top pressure ramps from 35 to 75 MPa over this step (sigma_d = 40 MPa)\n*DSLOAD\n TOP, P, 75.\n"
+    out = "*NODE PRINT, NSET=NTOP\n U\n*EL PRINT, ELSET=EMID, GLOBAL=YES\n S, SDV\n"
+    text = ""
+    for k, ((dt, period, tmin, tmax), loads) in enumerate(zip(CYL_STEPS, [conf, dev, ""])):
+        text += (f"*STEP, INC=100000\n*STATIC\n {fmt(dt)}, {fmt(period)}, {fmt(tmin)}, {fmt(tmax)}\n"
+                 + (CONTROLS if k == 0 else "") + loads + out + "*END STEP\n")
+    return f"""** Triaxial creep of a cylinder (diameter {2 * RADIUS} mm, height {HEIGHT} mm), theta = {theta} deg, C3D8,
+** {e} elements: Cam-Clay IX UMAT, uniform phi = 0.5 (the scene draws phi per element; uniform here so
+** that the cylinder stays homogeneous and matches one material point). Both frames start at -35 MPa;
+** confinement 35 MPa held 1e6 s; deviator 40 MPa ramped in 1 s; creep 36000 s. Bottom on rollers,
+** centre node pinned, one node on the x axis held in y. Automatic incrementation.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s.
+*HEADING
+Cam-Clay IX triaxial creep, cylinder, theta = {theta}
+*NODE, NSET=NALL
+{nodes}*ELEMENT, TYPE=C3D8, ELSET=EALL
+{elems}*ELSET, ELSET=EMID
+ {mid}
+*NSET, NSET=NBOTTOM
+{bottom}*NSET, NSET=NTOP
+{tops}*SURFACE, NAME=OUTER, TYPE=ELEMENT
+{sides}*SURFACE, NAME=TOP, TYPE=ELEMENT
+{top}{material(ORIENTATION[theta])}*AMPLITUDE, NAME=CONST
+ 0., 1., 1.E10, 1.
+*BOUNDARY
+ NBOTTOM, 3
+ {centre}, 1, 2
+ {on_x}, 2
+** both frames start at -35 MPa (one line per element and integration point, in a file of its own)
+*INITIAL CONDITIONS, TYPE=STRESS
+*INCLUDE, INPUT={CYL_INIT}
+{text}"""
+
+
+def write(outdir):
+    os.makedirs(outdir, exist_ok=True)
+    files = {"triaxial_c3d8_theta0.inp": one_element(0), "triaxial_c3d8_theta90.inp": one_element(90),
+             "conventions_c3d8.inp": probe(), "triaxial_cylinder_theta0.inp": cylinder(0),
+             "triaxial_cylinder_theta90.inp": cylinder(90),
+             CYL_INIT: initial_stress(range(1, LAYERS * len(disk()[1]) + 1), 8).split("TYPE=STRESS\n")[1]}
+    for name, text in files.items():
+        with open(os.path.join(outdir, name), "w") as f:
+            f.write(text)
+    return sorted(files)
+
+
+if __name__ == "__main__":
+    here = os.path.dirname(os.path.abspath(__file__))
+    print("\n".join(write(sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "..", "input", "abaqus"))))
