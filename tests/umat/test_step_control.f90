@@ -21,6 +21,7 @@ program test_step_control
   call check_true('steps grow with 1/tol', steps(1) < steps(2) .and. steps(2) < steps(3))
   call check_true('tol = 1e-7 within 1e-3 of Radau', err(3) < 1e-3_real64)
   call rejected_step_leaves_state()
+  call calculix_convention()
   call finish('test_step_control')
 
 contains
@@ -77,5 +78,22 @@ contains
     call check_true('rejected step: STATEV unchanged', all(statev == v0))
     call check_true('rejected step: DDSDDE finite', all(abs(d) < huge(1.0_real64)))
   end subroutine rejected_step_leaves_state
+
+  !> CalculiX passes PNEWDT = -1 ("no request") and redoes the increment for any positive value: a
+  !> rejected step must come back below 1, an accepted one must leave -1 alone (no growth advice).
+  subroutine calculix_convention()
+    real(real64) :: props(23), stress(6), statev(nstatv_test), d(6, 6), pnewdt, s0(6), v0(nstatv_test)
+    props = props_with(0.5_real64, [0.0_real64, 0.0_real64, 1.0_real64], tol=1e-8_real64)
+    stress = [-35.0_real64, -35.0_real64, -35.0_real64, 0.0_real64, 0.0_real64, 0.0_real64]
+    statev = 0; pnewdt = -1
+    call call_umat(props, 6, stress, statev, [0d0, 0d0, 0d0, 0d0, 0d0, 0d0], [0d0, 0d0, -1d-9, 0d0, 0d0, 0d0], &
+                   1.0e-6_real64, d, pnewdt)
+    call check_close('PNEWDT = -1 in, tiny accepted step: left at -1', pnewdt, -1.0_real64, 0.0_real64)
+    s0 = stress; v0 = statev; pnewdt = -1
+    call call_umat(props, 6, stress, statev, [0d0, 0d0, 0d0, 0d0, 0d0, 0d0], [0d0, 0d0, -1d-4, 0d0, 0d0, 0d0], &
+                   1.0e4_real64, d, pnewdt)
+    call check_true('PNEWDT = -1 in, rejected step: a cutback in (0, 1)', pnewdt > 0 .and. pnewdt < 1)
+    call check_true('rejected step (CalculiX convention): state unchanged', all(stress == s0) .and. all(statev == v0))
+  end subroutine calculix_convention
 
 end program test_step_control
