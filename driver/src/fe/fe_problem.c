@@ -155,6 +155,35 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatM
   p->nsv    = ST_STATEV + mat->nstatv;
   PetscCall(PetscCalloc3(p->npoint * p->nsv, &p->state, p->npoint * p->nsv, &p->trial, p->npoint * 36, &p->ddsdde));
   PetscCall(PetscMalloc1(p->cEnd - p->cStart, &p->phi));
+  PetscCall(PetscMalloc2(p->npoint * 9, &p->invJ, p->npoint, &p->wdetJ));
+  { /* closure dofs of each cell in the local vector, once: the residual gathers and scatters with them */
+    PetscSection ls, gs;
+    PetscCall(DMGetLocalSection(dm, &ls));
+    PetscCall(DMGetGlobalSection(dm, &gs));
+    PetscCall(PetscMalloc2((p->cEnd - p->cStart) * p->nb, &p->cell_dofs, (p->cEnd - p->cStart) * p->nb, &p->cell_rows));
+    for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+      PetscInt  n, *idx = NULL;
+      PetscCall(DMPlexGetClosureIndices(dm, ls, ls, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+      PetscCheck(n == p->nb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "closure of cell %d has %d dofs, expected %d", (int)c, (int)n, (int)p->nb);
+      for (PetscInt b = 0; b < n; b++) p->cell_dofs[(c - p->cStart) * p->nb + b] = idx[b] < 0 ? -(idx[b] + 1) : idx[b];
+      PetscCall(DMPlexRestoreClosureIndices(dm, ls, ls, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+      PetscCall(DMPlexGetClosureIndices(dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+      for (PetscInt b = 0; b < n; b++) p->cell_rows[(c - p->cStart) * p->nb + b] = idx[b];
+      PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+    }
+  }
+  {
+    PetscReal v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64];
+    PetscCheck(p->nq <= 64, PETSC_COMM_SELF, PETSC_ERR_SUP, "too many quadrature points");
+    for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+      PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
+      for (PetscInt q = 0; q < p->nq; q++) {
+        PetscCheck(detJ[q] > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "cell %d is inverted (det J = %g)", (int)c, (double)detJ[q]);
+        PetscCall(PetscArraycpy(&p->invJ[SV(p, c, q) * 9], &invJ[q * 9], 9));
+        p->wdetJ[SV(p, c, q)] = p->qweights[q] * detJ[q];
+      }
+    }
+  }
   for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->phi_slot >= 0 ? mat->props[mat->phi_slot] : 0;
   p->npressure = npressure;
   for (PetscInt g = 0; g < npressure; g++) {
@@ -174,6 +203,8 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(VecDestroy(&p->ddsdde_u));
   PetscCall(PetscFree3(p->state, p->trial, p->ddsdde));
   PetscCall(PetscFree(p->phi));
+  PetscCall(PetscFree2(p->invJ, p->wdetJ));
+  PetscCall(PetscFree2(p->cell_dofs, p->cell_rows));
   PetscCall(PetscFEDestroy(&p->fe));
   PetscFunctionReturn(0);
 }
@@ -237,8 +268,8 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   DM           dm = p->dm;
   Vec          Uloc, Floc;
   PetscSection s;
-  PetscReal    v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], B[6 * 90];
-  PetscScalar *ue = NULL, re[90];
+  PetscReal    B[6 * 90];
+  PetscScalar  ue[90], re[90], *ua, *fa;
   PetscReal    min_pnewdt = PETSC_MAX_REAL;
   clock_t      t0         = clock();
   PetscFunctionBeginUser;
@@ -249,15 +280,17 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, Uloc, p->time, NULL, NULL, NULL));
   PetscCall(VecZeroEntries(Floc));
+  PetscCall(VecGetArray(Uloc, &ua));
+  PetscCall(VecGetArray(Floc, &fa));
   const PetscInt ntens = p->mat.ntens;
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
-    PetscCall(DMPlexVecGetClosure(dm, s, Uloc, c, NULL, &ue));
+    const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
+    for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]];
     PetscCall(PetscArrayzero(re, p->nb));
     UmatMaterial mat = p->mat;
     if (mat.phi_slot >= 0) mat.props[mat.phi_slot] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
-      strain_operator(p, q, &invJ[q * 9], B);
+      strain_operator(p, q, &p->invJ[SV(p, c, q) * 9], B);
       PetscReal eps[6] = {0};
       for (PetscInt vI = 0; vI < 6; vI++)
         for (PetscInt b = 0; b < p->nb; b++) eps[vI] += B[vI * p->nb + b] * PetscRealPart(ue[b]);
@@ -281,16 +314,17 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
       PetscCall(PetscArraycpy(tr + ST_STRAN, eps, 6));
       PetscCall(PetscArraycpy(tr + ST_STATEV, call.statev, p->mat.nstatv));
       PetscCall(PetscArraycpy(&p->ddsdde[SV(p, c, q) * 36], call.ddsdde, ntens * ntens));
-      const PetscReal w = p->qweights[q] * detJ[q];
+      const PetscReal w = p->wdetJ[SV(p, c, q)];
       for (PetscInt b = 0; b < p->nb; b++) {
         PetscReal sum = 0;
         for (PetscInt vI = 0; vI < ntens; vI++) sum += B[vI * p->nb + b] * call.stress[vI];
         re[b] += w * sum;
       }
     }
-    PetscCall(DMPlexVecRestoreClosure(dm, s, Uloc, c, NULL, &ue));
-    PetscCall(DMPlexVecSetClosure(dm, s, Floc, c, re, ADD_VALUES));
+    for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
   }
+  PetscCall(VecRestoreArray(Uloc, &ua));
+  PetscCall(VecRestoreArray(Floc, &fa));
   PetscCall(VecZeroEntries(F));
   PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, F));
   PetscCall(VecAXPY(F, -1.0, p->fext));
@@ -306,14 +340,14 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
 
 PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   FeProblem       *p = (FeProblem *)ctx;
-  DM               dm = p->dm;
-  PetscReal        v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], B[6 * 90], DB[6 * 90];
+  PetscReal        B[6 * 90], DB[6 * 90];
   PetscScalar     *Ke;
   PetscBool        same = PETSC_FALSE;
   clock_t          t0   = clock();
   PetscFunctionBeginUser;
   if (p->ddsdde_valid) PetscCall(VecEqual(U, p->ddsdde_u, &same));
   if (!same) { /* the cached tangents belong to another U: evaluate there first */
+    p->tangent_recomputes++;
     Vec F;
     PetscCall(VecDuplicate(U, &F));
     PetscCall(fe_residual(snes, U, F, ctx));
@@ -323,12 +357,11 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
   const PetscInt n = p->mat.ntens, nb = p->nb;
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
     PetscCall(PetscArrayzero(Ke, nb * nb));
     for (PetscInt q = 0; q < p->nq; q++) {
-      strain_operator(p, q, &invJ[q * 9], B);
+      strain_operator(p, q, &p->invJ[SV(p, c, q) * 9], B);
       const PetscReal *D = &p->ddsdde[SV(p, c, q) * 36]; /* column-major n x n */
-      const PetscReal  w = p->qweights[q] * detJ[q];
+      const PetscReal  w = p->wdetJ[SV(p, c, q)];
       for (PetscInt b = 0; b < nb; b++)
         for (PetscInt vI = 0; vI < n; vI++) {
           PetscReal sum = 0;
@@ -342,7 +375,9 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
           Ke[a * nb + b] += w * sum;
         }
     }
-    PetscCall(DMPlexMatSetClosure(dm, NULL, NULL, P, c, Ke, ADD_VALUES));
+    /* constrained dofs have negative rows: MatSetValues skips them */
+    const PetscInt *rows = &p->cell_rows[(c - p->cStart) * nb];
+    PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));
   }
   PetscCall(PetscFree(Ke));
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
@@ -375,7 +410,7 @@ static int cmp_real(const void *a, const void *b) {
 
 PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool use_trial) {
   MPI_Comm        comm = PetscObjectComm((PetscObject)p->dm);
-  PetscReal       v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], loc[14] = {0}, glob[14];
+  PetscReal       loc[14] = {0}, glob[14];
   const PetscReal *src = use_trial ? p->trial : p->state;
   PetscMPIInt     size, rank;
   PetscFunctionBeginUser;
@@ -385,10 +420,9 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
   PetscReal *vals;
   PetscCall(PetscMalloc1(2 * p->npoint + 1, &vals));
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    PetscCall(DMPlexComputeCellGeometryFEM(p->dm, c, p->quad, v0, J, invJ, detJ));
     for (PetscInt q = 0; q < p->nq; q++) {
       const PetscReal *st = &src[SV(p, c, q) * p->nsv], *old = &p->state[SV(p, c, q) * p->nsv];
-      PetscReal        w  = p->qweights[q] * detJ[q];
+      PetscReal        w  = p->wdetJ[SV(p, c, q)];
       loc[0] += w;
       for (PetscInt vI = 0; vI < 6; vI++) loc[1 + vI] += w * st[ST_STRAN + vI], loc[7 + vI] += w * st[ST_STRESS + vI];
       if (p->mat.nstatv >= 32) {

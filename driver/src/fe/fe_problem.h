@@ -31,11 +31,15 @@ typedef struct FeProblem {
   PetscInt        npoint;  /* quadrature points on this rank */
   PetscInt        nsv;     /* doubles per point: stress(6), strain(6), statev */
   PetscReal      *state, *trial, *ddsdde;
+  PetscInt       *cell_dofs;       /* per cell: the local-vector index of each closure dof (nb) */
+  PetscInt       *cell_rows;       /* per cell: global matrix index of each closure dof, < 0 if constrained */
+  PetscReal      *invJ, *wdetJ;   /* per cell and quadrature point: inverse Jacobian (9), weight x detJ
+                                     (fixed: small strain, and the geometry is computed once) */
   PetscInt        ddsdde_valid;         /* the tangent cache belongs to the last residual's U ... */
   Vec             ddsdde_u;             /* ... which is this one */
   PetscReal       time, dt;             /* end of the step being solved, its length */
   PetscReal       min_pnewdt;           /* smallest PNEWDT of the last residual evaluation (all ranks) */
-  PetscInt        umat_calls;
+  PetscInt        umat_calls, tangent_recomputes;
   double          assembly_seconds;
   /* pressure loads: unit-pressure force vectors per group, and the pressures at the step's end */
   PetscInt        npressure;

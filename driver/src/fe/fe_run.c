@@ -359,6 +359,12 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       PetscCall(VecNorm(p.unit_force[g], NORM_2, &nrm));
       fref += nrm;
     }
+    { /* Full Newton steps on the consistent tangent (cut back by the stepper when they fail), as
+         Abaqus does; -snes_linesearch_type bt restores a backtracking line search. */
+      SNESLineSearch ls;
+      PetscCall(SNESGetLineSearch(snes, &ls));
+      PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+    }
     PetscCall(SNESSetTolerances(snes, 1e-10 * pmax * PetscMax(fref, 1e-12), 1e-12, 1e-14, 25, 1000));
     PetscCall(SNESSetFromOptions(snes));
   }
@@ -458,6 +464,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
     fclose(hist);
     printf("fe scene %s: %d steps, %d cutbacks, %d UMAT calls, assembly %.2f s -> %s\n", sc.name, step, total_cutbacks,
            (int)p.umat_calls, p.assembly_seconds, path);
+    printf("  (%d tangent evaluations away from the last residual)\n", (int)p.tangent_recomputes);
   }
   PetscCall(VecDestroy(&U));
   PetscCall(VecDestroy(&U0));
