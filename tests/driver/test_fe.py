@@ -160,3 +160,30 @@ def test_newton_converges_quadratically(tmp_path):
     print("r_{k+1} / r_k^2:", ", ".join(f"{x:.2e}" for x in c))
     assert len(r) <= 6 and r[-1] < 1e-10 * r[0]
     assert max(c) / min(c) < 10          # a constant ratio: quadratic convergence
+
+
+def test_fields_for_paraview(tmp_path):
+    """fields.h5 + fields.xmf: every dataset the XDMF names exists with the dimensions it states, the
+    components are named 11 22 33 12 13 23, and the last stress field is the applied pressures."""
+    import xml.etree.ElementTree as ET
+    import h5py
+    h, _ = run(DRIVER, BOX.format(
+        order=1, material="{props: woodford, set: {pc0_hard: 500, pc0_soft: 500}, bedding_angle: 90}",
+        initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
+        stages="  - {name: load, duration: 1, pressure: {x1: 38, y1: 41, z1: 50}, steps: {count: 2}}"),
+        tmp_path, "fields")
+    out = tmp_path / "fields"
+    tree = ET.parse(out / "fields.xmf")
+    names = set()
+    with h5py.File(out / "fields.h5") as f:
+        for item in tree.iter("DataItem"):
+            if item.get("Format") == "HDF":
+                path = item.text.split(":", 1)[1]
+                dims = tuple(int(x) for x in item.get("Dimensions").split())
+                assert path in f and f[path].shape == dims, (path, dims)
+        for att in tree.iter("Attribute"):
+            names.add(att.get("Name"))
+        stress = f["/cell_fields/stress_P0"][-1]
+    assert {"stress_11", "stress_23", "evp_soft_13", "pc_hard", "phi", "displacement_z"} <= names
+    assert np.allclose(stress[:, :3].mean(axis=0), [-38, -41, -50], rtol=1e-10)
+    assert len(list(tree.iter("Time"))) == 2      # the start and the end of the stage

@@ -10,6 +10,7 @@
 
 #include "../material/material_input.h"
 #include "../point/point_run.h"
+#include "fe_output.h"
 #include "fe_problem.h"
 
 #define MAXSTAGES 16
@@ -38,6 +39,7 @@ typedef struct {
   int          nstage;
   Stage        stage[MAXSTAGES];
   int          axis;
+  int          fields_every;  /* field output every N steps, besides the start and each stage's end */
 } FeScene;
 
 #define FAIL(...)                       \
@@ -90,7 +92,8 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
-    if (yd_check_unused(doc, x, "output", "directory", err, errlen)) return 1;
+    if ((v = yd_get(x, "fields_every")) && yd_int(doc, v, "output.fields_every", &sc->fields_every, err, errlen)) return 1;
+    if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
   }
   /* Mesh: a gmsh geometry (meshed now, with parameters), a .msh file, or a box (tests). */
   YdNode *mesh = yd_get(root, "mesh");
@@ -382,6 +385,9 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       for (int k = 0; k < 6; k++) fprintf(hist, ",evp33_%s_%s", fr[f], st[k]);
     fprintf(hist, ",umat_calls,wall\n");
   }
+  FeOutput out;
+  PetscCall(fe_output_open(&p, sc.outdir, &out));
+  PetscCall(fe_output_write(&p, U, 0.0, &out));
   struct timespec w0, w1;
   clock_gettime(CLOCK_MONOTONIC, &w0);
   double  t = 0, pressure_now[FE_MAX_GROUPS];
@@ -451,6 +457,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
         fflush(stdout);
       }
       cut = 0;
+      if (sc.fields_every > 0 && step % sc.fields_every == 0) PetscCall(fe_output_write(&p, U, t, &out));
       if (pending_instant) {
         pending_instant = 0;
         continue;
@@ -459,7 +466,10 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       else dt *= g->ratio;
       if (g->evp_rate_below > 0 && stats.evp_rate < g->evp_rate_below) break;
     }
+    if (!rc && (out.nout == 0 || out.times[out.nout - 1] != t)) PetscCall(fe_output_write(&p, U, t, &out)); /* stage end */
   }
+  if (out.nout == 0 || out.times[out.nout - 1] != t) PetscCall(fe_output_write(&p, U, t, &out));
+  PetscCall(fe_output_close(&p, &out));
   if (!rank) {
     fclose(hist);
     printf("fe scene %s: %d steps, %d cutbacks, %d UMAT calls, assembly %.2f s -> %s\n", sc.name, step, total_cutbacks,
