@@ -29,18 +29,28 @@ static PetscErrorCode p0_dm(DM dm, PetscInt nc, DM *out) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, FeOutput *o) {
+PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append, FeOutput *o) {
   char path[700];
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(o, sizeof *o));
   PetscCall(PetscSNPrintf(o->dir, sizeof o->dir, "%s", outdir));
   PetscCall(PetscSNPrintf(path, sizeof path, "%s/fields.h5", outdir));
-  PetscCall(PetscViewerHDF5Open(PetscObjectComm((PetscObject)p->dm), path, FILE_MODE_WRITE, &o->viewer));
+  PetscCall(PetscViewerHDF5Open(PetscObjectComm((PetscObject)p->dm), path, append ? FILE_MODE_APPEND : FILE_MODE_WRITE,
+                                 &o->viewer));
   PetscCall(PetscViewerPushFormat(o->viewer, PETSC_VIEWER_HDF5_VIZ));
-  PetscCall(DMView(p->dm, o->viewer));
+  if (!append) PetscCall(DMView(p->dm, o->viewer));
   PetscCall(PetscViewerHDF5PushTimestepping(o->viewer));
   PetscCall(p0_dm(p->dm, 6, &o->dm6));
   PetscCall(p0_dm(p->dm, 1, &o->dm1));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_output_resume(FeOutput *o, PetscInt nout, const PetscReal *times) {
+  PetscFunctionBeginUser;
+  o->cap = PetscMax(64, 2 * nout);
+  PetscCall(PetscMalloc1(o->cap, &o->times));
+  PetscCall(PetscArraycpy(o->times, times, nout));
+  o->nout = nout;
   PetscFunctionReturn(0);
 }
 

@@ -17,7 +17,9 @@ typedef struct {
   char        dir[512];
 } FeOutput;
 
-PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, FeOutput *o);
+/* append: continue the fields.h5 of a checkpointed run (-restart), whose times fe_output_resume gives. */
+PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append, FeOutput *o);
+PetscErrorCode fe_output_resume(FeOutput *o, PetscInt nout, const PetscReal *times);
 PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o);
 PetscErrorCode fe_output_close(FeProblem *p, FeOutput *o);
 

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "../material/material_input.h"
 #include "../point/point_run.h"
@@ -238,6 +239,112 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
                          err, errlen);
 }
 
+/* Where a run is: what a checkpoint saves (with U and the state of every quadrature point). */
+typedef struct {
+  int        step, stage, in_stage, pending_instant, total_cutbacks;
+  double     t, t_stage, dt, start[FE_MAX_GROUPS], pressure_now[FE_MAX_GROUPS];
+  PetscInt   nout;
+  PetscReal *out_times;
+} Progress;
+
+#define CHECKPOINT_MAGIC 0x43433943 /* "CC9C" */
+
+static void checkpoint_path(const FeScene *sc, int rank, char *path, size_t n) {
+  snprintf(path, n, "%s/checkpoint.rank%d.bin", sc->outdir, rank);
+}
+
+/* One file per rank, written to a temporary name and renamed, so a crash never leaves half a file. */
+static int write_checkpoint(const FeScene *sc, FeProblem *p, Vec U, const Progress *pr, long history_offset,
+                            char *err, size_t errlen) {
+  PetscMPIInt rank, size;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  char path[700], tmp[710];
+  checkpoint_path(sc, rank, path, sizeof path);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  FILE *fp = fopen(tmp, "wb");
+  if (!fp) {
+    snprintf(err, errlen, "%s: cannot write the checkpoint: %s", tmp, strerror(errno));
+    return 1;
+  }
+  PetscInt           nloc, npoint = p->npoint, nsv = p->nsv;
+  const PetscScalar *u;
+  int                magic = CHECKPOINT_MAGIC;
+  VecGetLocalSize(U, &nloc);
+  VecGetArrayRead(U, &u);
+  fwrite(&magic, sizeof magic, 1, fp);
+  fwrite(&size, sizeof size, 1, fp);
+  fwrite(pr, sizeof *pr, 1, fp);
+  fwrite(pr->out_times, sizeof(PetscReal), (size_t)pr->nout, fp);
+  fwrite(&history_offset, sizeof history_offset, 1, fp);
+  fwrite(&p->umat_calls, sizeof p->umat_calls, 1, fp);
+  fwrite(&nloc, sizeof nloc, 1, fp);
+  fwrite(u, sizeof(PetscScalar), (size_t)nloc, fp);
+  fwrite(&npoint, sizeof npoint, 1, fp);
+  fwrite(&nsv, sizeof nsv, 1, fp);
+  fwrite(p->state, sizeof(PetscReal), (size_t)(npoint * nsv), fp);
+  fwrite(&magic, sizeof magic, 1, fp);
+  VecRestoreArrayRead(U, &u);
+  if (fclose(fp) || rename(tmp, path)) {
+    snprintf(err, errlen, "%s: cannot write the checkpoint: %s", path, strerror(errno));
+    return 1;
+  }
+  return 0;
+}
+
+static int read_checkpoint(const FeScene *sc, FeProblem *p, Vec U, Progress *pr, long *history_offset, char *err,
+                           size_t errlen) {
+  PetscMPIInt rank, size, saved_size;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  char path[700];
+  checkpoint_path(sc, rank, path, sizeof path);
+  FILE *fp = fopen(path, "rb");
+  if (!fp) {
+    snprintf(err, errlen, "-restart: %s: cannot open: %s (run with -checkpoint_every N first)", path, strerror(errno));
+    return 1;
+  }
+  int         magic = 0, end = 0, ok = 1;
+  PetscInt    nloc, mine, npoint, nsv;
+  PetscScalar *u;
+  ok &= fread(&magic, sizeof magic, 1, fp) == 1 && magic == CHECKPOINT_MAGIC;
+  ok &= fread(&saved_size, sizeof saved_size, 1, fp) == 1;
+  if (ok && saved_size != size) {
+    fclose(fp);
+    snprintf(err, errlen, "-restart: %s was written by %d ranks; restart with mpiexec -n %d", path, saved_size, saved_size);
+    return 1;
+  }
+  ok &= fread(pr, sizeof *pr, 1, fp) == 1;
+  if (ok) {
+    pr->out_times = malloc(sizeof(PetscReal) * (size_t)(pr->nout > 0 ? pr->nout : 1));
+    ok &= fread(pr->out_times, sizeof(PetscReal), (size_t)pr->nout, fp) == (size_t)pr->nout;
+  }
+  ok &= fread(history_offset, sizeof *history_offset, 1, fp) == 1;
+  ok &= fread(&p->umat_calls, sizeof p->umat_calls, 1, fp) == 1;
+  ok &= fread(&nloc, sizeof nloc, 1, fp) == 1;
+  VecGetLocalSize(U, &mine);
+  if (ok && nloc != mine) {
+    fclose(fp);
+    snprintf(err, errlen, "-restart: %s holds %d unknowns on this rank, the scene gives %d: not the same scene or mesh",
+             path, (int)nloc, (int)mine);
+    return 1;
+  }
+  VecGetArray(U, &u);
+  ok &= fread(u, sizeof(PetscScalar), (size_t)nloc, fp) == (size_t)nloc;
+  VecRestoreArray(U, &u);
+  ok &= fread(&npoint, sizeof npoint, 1, fp) == 1 && fread(&nsv, sizeof nsv, 1, fp) == 1;
+  ok &= npoint == p->npoint && nsv == p->nsv;
+  ok &= ok && fread(p->state, sizeof(PetscReal), (size_t)(npoint * nsv), fp) == (size_t)(npoint * nsv);
+  ok &= fread(&end, sizeof end, 1, fp) == 1 && end == CHECKPOINT_MAGIC;
+  fclose(fp);
+  if (!ok) {
+    snprintf(err, errlen, "-restart: %s is not a complete checkpoint of this scene", path);
+    return 1;
+  }
+  memcpy(p->trial, p->state, sizeof(PetscReal) * (size_t)(npoint * nsv));
+  return 0;
+}
+
 int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   FeScene     sc;
   MPI_Comm    comm = PETSC_COMM_WORLD;
@@ -372,10 +479,30 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
     PetscCall(SNESSetFromOptions(snes));
   }
 
+  /* Checkpoints (-checkpoint_every N steps; one file per rank) and -restart from the last one. */
+  PetscInt  checkpoint_every = 0, max_steps = -1;
+  PetscBool restart = PETSC_FALSE;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-checkpoint_every", &checkpoint_every, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-max_steps", &max_steps, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-restart", &restart, NULL));
+  Progress pr;
+  memset(&pr, 0, sizeof pr);
+  for (int k = 0; k < FE_MAX_GROUPS; k++) pr.pressure_now[k] = sc.pressure0[k];
+  long history_offset = 0;
+  if (restart) {
+    if (read_checkpoint(&sc, &p, U, &pr, &history_offset, err, errlen)) return 2;
+  }
   char path[800];
   snprintf(path, sizeof path, "%s/history.csv", sc.outdir);
   FILE *hist = NULL;
-  if (!rank) {
+  if (!rank && restart) {
+    /* continue the history of the checkpointed run: drop the rows written after the checkpoint */
+    if (truncate(path, history_offset)) {
+      snprintf(err, errlen, "%s: cannot truncate to the checkpoint: %s", path, strerror(errno));
+      return 1;
+    }
+    hist = fopen(path, "a");
+  } else if (!rank) {
     hist = fopen(path, "w");
     fprintf(hist, "time,stage,step,dt,newton_its,cutbacks");
     for (int g = 0; g < sc.npressure; g++) fprintf(hist, ",pressure_%s", sc.pressure_group[g]);
@@ -386,26 +513,36 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
     fprintf(hist, ",umat_calls,wall\n");
   }
   FeOutput out;
-  PetscCall(fe_output_open(&p, sc.outdir, &out));
-  PetscCall(fe_output_write(&p, U, 0.0, &out));
+  PetscCall(fe_output_open(&p, sc.outdir, restart, &out));
+  if (restart) PetscCall(fe_output_resume(&out, pr.nout, pr.out_times));
+  else PetscCall(fe_output_write(&p, U, 0.0, &out));
   struct timespec w0, w1;
   clock_gettime(CLOCK_MONOTONIC, &w0);
-  double  t = 0, pressure_now[FE_MAX_GROUPS];
-  for (int k = 0; k < FE_MAX_GROUPS; k++) pressure_now[k] = p.pressure[k] = sc.pressure0[k];
+  for (int k = 0; k < FE_MAX_GROUPS; k++) p.pressure[k] = pr.pressure_now[k];
   PetscCall(fe_problem_update_loads(&p));
-  int     step = 0, rc = 0, total_cutbacks = 0;
+  int     rc = 0, stopped = 0;
   FeStats stats;
-  /* Row 0: the initial state (the UMAT initialises its state on a zero increment). */
-  p.time = 0, p.dt = 0;
-  PetscCall(fe_residual(snes, U, R, &p));
-  PetscCall(fe_problem_commit(&p));
-  for (int s = 0; s < sc.nstage && !rc; s++) {
+  double  t = pr.t;
+  int     step = pr.step, total_cutbacks = pr.total_cutbacks;
+  double *pressure_now = pr.pressure_now;
+  if (!restart) { /* row 0: the initial state (the UMAT initialises its state on a zero increment) */
+    p.time = 0, p.dt = 0;
+    PetscCall(fe_residual(snes, U, R, &p));
+    PetscCall(fe_problem_commit(&p));
+  }
+  int resume_in_stage = restart && pr.in_stage; /* only the first stage of a restart resumes midway */
+  for (int s = pr.stage; s < sc.nstage && !rc && !stopped; s++) {
     Stage *g = &sc.stage[s];
-    double start[FE_MAX_GROUPS], target[FE_MAX_GROUPS], t_stage = 0;
-    for (int k = 0; k < sc.npressure; k++) start[k] = pressure_now[k], target[k] = isnan(g->pressure[k]) ? start[k] : g->pressure[k];
+    double target[FE_MAX_GROUPS];
     double dt_plan = g->adaptive ? g->dt_first : g->ratio == 1 ? g->duration / g->count : g->duration * (g->ratio - 1) / (pow(g->ratio, g->count) - 1);
-    double dt = dt_plan;
-    int    pending_instant = g->instant, cut = 0;
+    if (!resume_in_stage) { /* a new stage (a resumed one keeps its saved progress) */
+      for (int k = 0; k < sc.npressure; k++) pr.start[k] = pressure_now[k];
+      pr.t_stage = 0, pr.dt = dt_plan, pr.pending_instant = g->instant;
+    }
+    resume_in_stage = 0;
+    double *start = pr.start, t_stage = pr.t_stage, dt = pr.dt;
+    int     pending_instant = pr.pending_instant, cut = 0;
+    for (int k = 0; k < sc.npressure; k++) target[k] = isnan(g->pressure[k]) ? start[k] : g->pressure[k];
     while (!rc) {
       double h = pending_instant ? 0 : fmin(dt, g->duration - t_stage);
       if (!pending_instant && (t_stage >= g->duration * (1 - 1e-12))) break;
@@ -458,17 +595,33 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       }
       cut = 0;
       if (sc.fields_every > 0 && step % sc.fields_every == 0) PetscCall(fe_output_write(&p, U, t, &out));
-      if (pending_instant) {
-        pending_instant = 0;
-        continue;
-      }
-      if (g->adaptive) dt = fmin(fmax(h * fmin(p.min_pnewdt, g->growth), g->dt_min), g->dt_max);
+      int was_instant = pending_instant;
+      if (pending_instant) pending_instant = 0;
+      else if (g->adaptive) dt = fmin(fmax(h * fmin(p.min_pnewdt, g->growth), g->dt_min), g->dt_max);
       else dt *= g->ratio;
-      if (g->evp_rate_below > 0 && stats.evp_rate < g->evp_rate_below) break;
+      int done = !was_instant && g->evp_rate_below > 0 && stats.evp_rate < g->evp_rate_below;
+      if (checkpoint_every > 0 && step % checkpoint_every == 0) {
+        pr.step = step, pr.stage = done ? s + 1 : s, pr.in_stage = !done, pr.t = t, pr.t_stage = t_stage, pr.dt = dt;
+        pr.pending_instant = pending_instant, pr.total_cutbacks = total_cutbacks;
+        pr.nout = out.nout;
+        pr.out_times = out.times;
+        if (!rank) fflush(hist);
+        long off = rank ? 0 : ftell(hist);
+        if (write_checkpoint(&sc, &p, U, &pr, off, err, errlen)) {
+          rc = 1;
+          break;
+        }
+      }
+      if (max_steps >= 0 && step >= max_steps) {
+        PetscCall(PetscPrintf(comm, "stopped after %d steps (-max_steps)\n", step));
+        stopped = 1;
+        break;
+      }
+      if (done) break;
     }
-    if (!rc && (out.nout == 0 || out.times[out.nout - 1] != t)) PetscCall(fe_output_write(&p, U, t, &out)); /* stage end */
+    if (!rc && !stopped && (out.nout == 0 || out.times[out.nout - 1] != t)) PetscCall(fe_output_write(&p, U, t, &out)); /* stage end */
   }
-  if (out.nout == 0 || out.times[out.nout - 1] != t) PetscCall(fe_output_write(&p, U, t, &out));
+  if (!stopped && (out.nout == 0 || out.times[out.nout - 1] != t)) PetscCall(fe_output_write(&p, U, t, &out));
   PetscCall(fe_output_close(&p, &out));
   if (!rank) {
     fclose(hist);
