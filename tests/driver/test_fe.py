@@ -215,3 +215,22 @@ def test_restart_matches_uninterrupted_run(tmp_path):
         assert err <= 1e-10
     assert (tmp_path / "part" / "fields.xmf").read_text().count("<Time") == \
         (tmp_path / "full" / "fields.xmf").read_text().count("<Time")
+
+
+def test_direct_and_gamg_agree(tmp_path):
+    """The default direct solver and GAMG-preconditioned GMRES (rigid-body near null space) give the
+    same solution to the solver tolerance (P2, anisotropic, viscoplastic step)."""
+    text = BOX.format(order=2, material="{props: woodford, bedding_angle: 90}",
+                      initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
+                      stages="  - {name: load, duration: 100, pressure: {x1: 35, y1: 35, z1: 50}, steps: {count: 2}}")
+    scene = tmp_path / "s.yaml"
+    scene.write_text(text)
+    res = {}
+    for name, opts in (("lu", []), ("gamg", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-12"])):
+        proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / name), *opts],
+                              capture_output=True, text=True, cwd=ROOT)
+        assert proc.returncode == 0, proc.stdout
+        res[name] = np.genfromtxt(tmp_path / name / "history.csv", delimiter=",", names=True)
+    err = np.max(np.abs(res["lu"]["eps_33"] - res["gamg"]["eps_33"])) / np.max(np.abs(res["lu"]["eps_33"]))
+    print(f"direct vs GAMG: {err:.1e}")
+    assert err < 1e-8

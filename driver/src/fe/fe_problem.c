@@ -280,6 +280,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
   PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, Uloc, p->time, NULL, NULL, NULL));
   PetscCall(VecZeroEntries(Floc));
+  p->have_failed_call = 0;
   PetscCall(VecGetArray(Uloc, &ua));
   PetscCall(VecGetArray(Floc, &fa));
   const PetscInt ntens = p->mat.ntens;
@@ -306,8 +307,12 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
       call.npt                    = (int)q + 1;
       call.kstep = call.kinc = 1;
       call.sse = call.spd = call.scd = 0;
+      UmatCall in = call;
       umat_invoke(&mat, &call);
       p->umat_calls++;
+      if (call.pnewdt < 1 && !p->have_failed_call) {
+        p->have_failed_call = 1, p->failed_in = in, p->failed_out = call, p->failed_mat = mat;
+      }
       min_pnewdt       = PetscMin(min_pnewdt, call.pnewdt);
       PetscReal *tr    = &p->trial[SV(p, c, q) * p->nsv];
       PetscCall(PetscArraycpy(tr + ST_STRESS, call.stress, 6));

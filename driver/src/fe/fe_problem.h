@@ -47,8 +47,11 @@ typedef struct FeProblem {
   Vec             unit_force[FE_MAX_GROUPS];
   PetscReal       pressure[FE_MAX_GROUPS];
   Vec             fext;
-  /* replay of a failing call */
+  /* the first UMAT call of the last residual that asked for a smaller step (for a replay file) */
   char            outdir[512];
+  int             have_failed_call;
+  UmatCall        failed_in, failed_out;
+  UmatMaterial    failed_mat;
 } FeProblem;
 
 /* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */

@@ -447,6 +447,12 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   PetscCall(VecDuplicate(U, &R));
   PetscCall(VecDuplicate(U, &U0));
   PetscCall(VecZeroEntries(U));
+  { /* rigid-body modes as the near null space, for -pc_type gamg (the default stays a direct solver) */
+    MatNullSpace rbm;
+    PetscCall(DMPlexCreateRigidBody(dm, 0, &rbm));
+    PetscCall(MatSetNearNullSpace(J, rbm));
+    PetscCall(MatNullSpaceDestroy(&rbm));
+  }
   PetscCall(SNESSetFunction(snes, R, fe_residual, &p));
   PetscCall(SNESSetJacobian(snes, J, J, fe_jacobian, &p));
   {
@@ -564,6 +570,15 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
         if (h == 0 || ++cut > 30 || (g->adaptive && h * factor < g->dt_min)) {
           snprintf(err, errlen, "stage '%s': step failed for good at t = %.6g s (dt = %.3g s): %s", g->name, t, h,
                    reason <= 0 ? SNESConvergedReasons[reason] : "the UMAT asked for a smaller step");
+          if (p.have_failed_call) { /* replay the failing call at one point: driver -input failed_call.yaml */
+            char rp[700];
+            snprintf(rp, sizeof rp, "%s/failed_call.rank%d.yaml", sc.outdir, rank);
+            if (!umat_write_replay(rp, &p.failed_mat, &p.failed_in, &p.failed_out, err)) {
+              size_t len = strlen(err);
+              snprintf(err + len, errlen - len, "; the failing UMAT call (element %d, point %d) is replayed by: driver -input %s",
+                       p.failed_in.noel, p.failed_in.npt, rp);
+            }
+          }
           rc = 1;
           break;
         }
