@@ -5,7 +5,7 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 # Debian packages: compilers, CMake, PETSc (with MPI, HDF5, MUMPS, YAML), gmsh.
-debs=(gfortran gcc g++ make cmake pkg-config petsc-dev gmsh libgmsh-dev libyaml-dev libhdf5-dev
+debs=(gfortran gcc g++ make cmake pkg-config dpkg-dev petsc-dev gmsh libgmsh-dev libyaml-dev libhdf5-dev
       openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${debs[@]}"; do
