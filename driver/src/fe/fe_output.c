@@ -157,17 +157,18 @@ PetscErrorCode fe_output_close(FeProblem *p, FeOutput *o) {
                 "<Xdmf Version=\"2.0\">\n  <Domain>\n    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
     for (PetscInt k = 0; k < o->nout; k++) {
       fprintf(fp, "      <Grid Name=\"step %d\" GridType=\"Uniform\">\n        <Time Value=\"%.17g\"/>\n", (int)k, o->times[k]);
-      fprintf(fp, "        <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"%d\">\n"
-                  "          <DataItem Dimensions=\"%d 4\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">fields.h5:/viz/topology/cells</DataItem>\n"
-                  "        </Topology>\n        <Geometry GeometryType=\"XYZ\">\n"
-                  "          <DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
+      const int dim = (int)p->dim;
+      fprintf(fp, "        <Topology TopologyType=\"%s\" NumberOfElements=\"%d\">\n"
+                  "          <DataItem Dimensions=\"%d %d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">fields.h5:/viz/topology/cells</DataItem>\n"
+                  "        </Topology>\n        <Geometry GeometryType=\"%s\">\n"
+                  "          <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
                   "        </Geometry>\n",
-              (int)ncells, (int)ncells, (int)nverts);
+              dim == 3 ? "Tetrahedron" : "Triangle", (int)ncells, (int)ncells, dim + 1, dim == 3 ? "XYZ" : "XY", (int)nverts, dim);
       const char *xyz[3] = {"x", "y", "z"};
-      for (PetscInt d = 0; d < 3; d++) {
+      for (PetscInt d = 0; d < dim; d++) {
         char name[32];
         PetscCall(PetscSNPrintf(name, sizeof name, "displacement_%s", xyz[d]));
-        hyperslab(fp, name, "Node", k, o->nout, nverts, 3, d, vds);
+        hyperslab(fp, name, "Node", k, o->nout, nverts, dim, d, vds);
       }
       for (PetscInt f = 0; f < NCELLFIELDS; f++) {
         const CellField *cf = &cell_fields[f];

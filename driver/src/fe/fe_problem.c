@@ -14,9 +14,12 @@ enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
 /* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
 static const PetscInt vi[6] = {0, 1, 2, 0, 0, 1}, vj[6] = {0, 1, 2, 1, 2, 2};
 
-PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, DM *dm) {
-  DM dist = NULL;
+PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm) {
+  DM   dist = NULL;
+  char sdim[8];
   PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(sdim, sizeof sdim, "%d", (int)dim)); /* gmsh writes 3 coordinates even in 2D */
+  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_spacedim", sdim));
   /* Physical groups become labels named after them, points included. */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "true"));
@@ -36,8 +39,8 @@ static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[],
 }
 
 /* Consistent nodal forces of a unit pressure on the boundary faces of a group: t = -p n (n outward).
- * Faces of simplices are flat: P1 triangles give A/3 to each vertex, P2 triangles A/3 to each edge
- * node and nothing to the corners; in 2D (edges) P1 gives L/2 per vertex, P2 L/6, L/6, 2L/3. */
+ * Faces of simplices are flat: in 3D closed forms on triangles; in 2D Gauss quadrature on the edges
+ * (the axisymmetric weight 2 pi r varies along an edge). */
 static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *f) {
   DM           dm = p->dm;
   DMLabel      label;
@@ -82,6 +85,37 @@ static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *
       for (PetscInt d = 0; d < p->dim; d++) out += (fc[d] - cc[d]) * n[d];
       if (out < 0)
         for (PetscInt d = 0; d < p->dim; d++) n[d] = -n[d];
+      if (p->dim == 2) {
+        /* An edge: nodal forces of t = -p n by 3-point Gauss on s in [0, 1] (exact here), with the
+         * weight of the kinematics: the thickness (plane strain) or 2 pi r (axisymmetric). */
+        Vec          coords;
+        PetscSection cs;
+        PetscScalar *xe = NULL;
+        PetscInt     nx, offa, offb, offm = -1, ndof;
+        const PetscInt *cone;
+        PetscCall(DMGetCoordinatesLocal(dm, &coords));
+        PetscCall(DMGetCoordinateSection(dm, &cs));
+        PetscCall(DMPlexVecGetClosure(dm, cs, coords, face, &nx, &xe));
+        PetscCall(DMPlexGetCone(dm, face, &cone));
+        PetscCall(PetscSectionGetOffset(s, cone[0], &offa));
+        PetscCall(PetscSectionGetOffset(s, cone[1], &offb));
+        PetscCall(PetscSectionGetDof(s, face, &ndof));
+        if (ndof) PetscCall(PetscSectionGetOffset(s, face, &offm));
+        static const PetscReal gs[3] = {0.1127016653792583, 0.5, 0.8872983346207417}, gw[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
+        for (int g = 0; g < 3; g++) {
+          PetscReal sg = gs[g], r = (1 - sg) * PetscRealPart(xe[0]) + sg * PetscRealPart(xe[2]);
+          PetscReal w = gw[g] * area * (p->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : p->thickness);
+          PetscReal Na = p->order == 1 ? 1 - sg : (1 - sg) * (1 - 2 * sg), Nb = p->order == 1 ? sg : sg * (2 * sg - 1);
+          PetscReal Nm = p->order == 1 ? 0 : 4 * sg * (1 - sg);
+          for (PetscInt d = 0; d < 2; d++) {
+            a[offa + d] -= w * Na * n[d];
+            a[offb + d] -= w * Nb * n[d];
+            if (offm >= 0) a[offm + d] -= w * Nm * n[d];
+          }
+        }
+        PetscCall(DMPlexVecRestoreClosure(dm, cs, coords, face, &nx, &xe));
+        continue;
+      }
       PetscInt *closure = NULL, nclosure;
       PetscCall(DMPlexGetTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
       for (PetscInt j = 0; j < nclosure; j++) {
@@ -89,9 +123,8 @@ static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *
         PetscCall(DMPlexGetPointDepth(dm, pt, &depth));
         PetscCall(PetscSectionGetDof(s, pt, &ndof));
         if (!ndof) continue;
-        PetscReal share;
-        if (p->dim == 3) share = p->order == 1 ? (depth == 0 ? area / 3 : 0) : (depth == 1 ? area / 3 : 0);
-        else share = p->order == 1 ? (depth == 0 ? area / 2 : 0) : (depth == 0 ? area / 6 : 2 * area / 3);
+        /* flat triangles: P1 gives A/3 to each vertex, P2 A/3 to each edge node and 0 to the corners */
+        PetscReal share = p->order == 1 ? (depth == 0 ? area / 3 : 0) : (depth == 1 ? area / 3 : 0);
         PetscCall(PetscSectionGetOffset(s, pt, &off));
         for (PetscInt d = 0; d < p->dim; d++) a[off + d] -= share * n[d];
       }
@@ -110,15 +143,19 @@ static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatMaterial *mat, const FeFixed *fixed,
+PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
+                                const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure) {
   PetscFunctionBeginUser;
-  p->dm    = dm;
-  p->order = order;
-  p->mat   = *mat;
+  p->dm        = dm;
+  p->order     = order;
+  p->mat       = *mat;
+  p->kin       = kin;
+  p->thickness = thickness;
   PetscCall(DMGetDimension(dm, &p->dim));
-  PetscCheck(p->dim == 3, PetscObjectComm((PetscObject)dm), PETSC_ERR_SUP,
-             "this FE driver handles 3D meshes so far (plane strain and axisymmetry: issue #4)");
+  PetscCheck(p->dim == (kin == KIN_3D ? 3 : 2), PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
+             "the mesh is %dD but the kinematics need a %dD mesh", (int)p->dim, kin == KIN_3D ? 3 : 2);
+  PetscCheck(mat->ntens == (kin == KIN_3D ? 6 : 4), PetscObjectComm((PetscObject)dm), PETSC_ERR_PLIB, "NTENS");
   PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), p->dim, p->dim, PETSC_TRUE, order,
                                   2 * (order - 1), &p->fe));
   PetscCall(PetscObjectSetName((PetscObject)p->fe, "displacement"));
@@ -155,7 +192,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatM
   p->nsv    = ST_STATEV + mat->nstatv;
   PetscCall(PetscCalloc3(p->npoint * p->nsv, &p->state, p->npoint * p->nsv, &p->trial, p->npoint * 36, &p->ddsdde));
   PetscCall(PetscMalloc1(p->cEnd - p->cStart, &p->phi));
-  PetscCall(PetscMalloc2(p->npoint * 9, &p->invJ, p->npoint, &p->wdetJ));
+  PetscCall(PetscMalloc3(p->npoint * 9, &p->invJ, p->npoint, &p->wdetJ, p->npoint, &p->radius));
   { /* closure dofs of each cell in the local vector, once: the residual gathers and scatters with them */
     PetscSection ls, gs;
     PetscCall(DMGetLocalSection(dm, &ls));
@@ -179,8 +216,13 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatM
       PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
       for (PetscInt q = 0; q < p->nq; q++) {
         PetscCheck(detJ[q] > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "cell %d is inverted (det J = %g)", (int)c, (double)detJ[q]);
-        PetscCall(PetscArraycpy(&p->invJ[SV(p, c, q) * 9], &invJ[q * 9], 9));
-        p->wdetJ[SV(p, c, q)] = p->qweights[q] * detJ[q];
+        PetscCall(PetscArraycpy(&p->invJ[SV(p, c, q) * 9], &invJ[q * p->dim * p->dim], p->dim * p->dim));
+        /* volume weight: plane strain per its thickness; axisymmetric 2 pi r (x1 = r) */
+        PetscReal r = v0[q * p->dim], scale = kin == KIN_PLANE_STRAIN ? thickness : kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : 1;
+        PetscCheck(kin != KIN_AXISYMMETRIC || r > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+                   "axisymmetric: a quadrature point of cell %d has r = %g <= 0 (the mesh must lie in x1 >= 0)", (int)c, (double)r);
+        p->radius[SV(p, c, q)] = r;
+        p->wdetJ[SV(p, c, q)]  = p->qweights[q] * detJ[q] * scale;
       }
     }
   }
@@ -203,7 +245,7 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(VecDestroy(&p->ddsdde_u));
   PetscCall(PetscFree3(p->state, p->trial, p->ddsdde));
   PetscCall(PetscFree(p->phi));
-  PetscCall(PetscFree2(p->invJ, p->wdetJ));
+  PetscCall(PetscFree3(p->invJ, p->wdetJ, p->radius));
   PetscCall(PetscFree2(p->cell_dofs, p->cell_rows));
   PetscCall(PetscFEDestroy(&p->fe));
   PetscFunctionReturn(0);
@@ -247,18 +289,27 @@ PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, P
   PetscFunctionReturn(0);
 }
 
-/* B (Voigt, engineering shear; 6 x nb) at quadrature point q of a cell from the reference derivatives
- * and the inverse Jacobian: eps_I = sum_b B[vI][b] u_b. */
-static void strain_operator(const FeProblem *p, PetscInt q, const PetscReal *invJ, PetscReal *B) {
+/* B (Voigt, engineering shear; ntens x nb) at quadrature point q of a cell from the reference
+ * derivatives and the inverse Jacobian: eps_I = sum_b B[I][b] u_b. In 2D the rows are 11 22 33 12:
+ * eps_33 = 0 in plane strain and u_r / r (the basis values over the radius) in axisymmetry. */
+static void strain_operator(const FeProblem *p, PetscInt c, PetscInt q, PetscReal *B) {
   const PetscInt   nb = p->nb, nc = p->dim, dim = p->dim;
-  const PetscReal *D  = &p->tab->T[1][q * nb * nc * dim];
+  const PetscReal *D = &p->tab->T[1][q * nb * nc * dim], *V = &p->tab->T[0][q * nb * nc];
+  const PetscReal *invJ = &p->invJ[SV(p, c, q) * 9];
   for (PetscInt b = 0; b < nb; b++) {
     PetscReal g[3][3] = {{0}}; /* g[c][d] = d phi_{b,c} / d x_d */
-    for (PetscInt c = 0; c < nc; c++)
+    for (PetscInt cc = 0; cc < nc; cc++)
       for (PetscInt d = 0; d < dim; d++)
-        for (PetscInt e = 0; e < dim; e++) g[c][d] += D[(b * nc + c) * dim + e] * invJ[e * dim + d];
-    for (PetscInt vI = 0; vI < 6; vI++)
-      B[vI * nb + b] = vI < 3 ? g[vi[vI]][vj[vI]] : g[vi[vI]][vj[vI]] + g[vj[vI]][vi[vI]];
+        for (PetscInt e = 0; e < dim; e++) g[cc][d] += D[(b * nc + cc) * dim + e] * invJ[e * dim + d];
+    if (dim == 3) {
+      for (PetscInt vI = 0; vI < 6; vI++)
+        B[vI * nb + b] = vI < 3 ? g[vi[vI]][vj[vI]] : g[vi[vI]][vj[vI]] + g[vj[vI]][vi[vI]];
+    } else {
+      B[0 * nb + b] = g[0][0];
+      B[1 * nb + b] = g[1][1];
+      B[2 * nb + b] = p->kin == KIN_AXISYMMETRIC ? V[b * nc + 0] / p->radius[SV(p, c, q)] : 0;
+      B[3 * nb + b] = g[0][1] + g[1][0];
+    }
   }
 }
 
@@ -291,16 +342,16 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
     UmatMaterial mat = p->mat;
     if (mat.phi_slot >= 0) mat.props[mat.phi_slot] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
-      strain_operator(p, q, &p->invJ[SV(p, c, q) * 9], B);
+      strain_operator(p, c, q, B);
       PetscReal eps[6] = {0};
-      for (PetscInt vI = 0; vI < 6; vI++)
+      for (PetscInt vI = 0; vI < ntens; vI++)
         for (PetscInt b = 0; b < p->nb; b++) eps[vI] += B[vI * p->nb + b] * PetscRealPart(ue[b]);
       const PetscReal *st = &p->state[SV(p, c, q) * p->nsv];
       UmatCall         call;
       PetscCall(PetscArraycpy(call.stress, st + ST_STRESS, 6));
       PetscCall(PetscArraycpy(call.statev, st + ST_STATEV, p->mat.nstatv));
       PetscCall(PetscArraycpy(call.stran, st + ST_STRAN, 6));
-      for (PetscInt vI = 0; vI < 6; vI++) call.dstran[vI] = eps[vI] - st[ST_STRAN + vI];
+      for (PetscInt vI = 0; vI < ntens; vI++) call.dstran[vI] = eps[vI] - st[ST_STRAN + vI];
       call.time[0] = call.time[1] = p->time - p->dt;
       call.dtime                  = p->dt;
       call.noel                   = (int)c + 1;
@@ -364,7 +415,7 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     PetscCall(PetscArrayzero(Ke, nb * nb));
     for (PetscInt q = 0; q < p->nq; q++) {
-      strain_operator(p, q, &p->invJ[SV(p, c, q) * 9], B);
+      strain_operator(p, c, q, B);
       const PetscReal *D = &p->ddsdde[SV(p, c, q) * 36]; /* column-major n x n */
       const PetscReal  w = p->wdetJ[SV(p, c, q)];
       for (PetscInt b = 0; b < nb; b++)

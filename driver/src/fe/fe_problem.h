@@ -18,8 +18,14 @@ typedef struct {
   PetscInt ncomp, comp[3]; /* fixed components */
 } FeFixed;
 
+/* 3D (NTENS 6), plane strain (NTENS 4: 11 22 33 12, eps_33 = 0, per unit... thickness) or
+ * axisymmetric (NTENS 4: rr zz thetatheta rz with x1 = r, x2 = z, as Abaqus; eps_33 = u_r / r). */
+typedef enum { KIN_3D, KIN_PLANE_STRAIN, KIN_AXISYMMETRIC } Kinematics;
+
 typedef struct FeProblem {
   DM              dm;
+  Kinematics      kin;
+  PetscReal       thickness;         /* plane strain: forces and volumes per this thickness */
   PetscFE         fe;
   PetscQuadrature quad;
   PetscTabulation tab;
@@ -33,7 +39,7 @@ typedef struct FeProblem {
   PetscReal      *state, *trial, *ddsdde;
   PetscInt       *cell_dofs;       /* per cell: the local-vector index of each closure dof (nb) */
   PetscInt       *cell_rows;       /* per cell: global matrix index of each closure dof, < 0 if constrained */
-  PetscReal      *invJ, *wdetJ;   /* per cell and quadrature point: inverse Jacobian (9), weight x detJ
+  PetscReal      *invJ, *wdetJ, *radius;   /* per cell and quadrature point: inverse Jacobian (9), weight x detJ
                                      (fixed: small strain, and the geometry is computed once) */
   PetscInt        ddsdde_valid;         /* the tangent cache belongs to the last residual's U ... */
   Vec             ddsdde_u;             /* ... which is this one */
@@ -55,9 +61,10 @@ typedef struct FeProblem {
 } FeProblem;
 
 /* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */
-PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, DM *dm);
+PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm);
 /* Field, boundary conditions, quadrature, state. fixed: essential conditions (zero values). */
-PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, PetscInt order, const UmatMaterial *mat, const FeFixed *fixed,
+PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
+                                const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure);
 PetscErrorCode fe_problem_destroy(FeProblem *p);
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */

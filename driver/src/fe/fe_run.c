@@ -29,6 +29,8 @@ typedef struct {
   char         name[128], outdir[512], msh[1024];
   char         geometry[1024], gmsh_params[1024]; /* a gmsh .geo meshed at run time, with -setnumber */
   int          order;
+  Kinematics   kin;
+  double       thickness;
   UmatMaterial mat;
   double       phi_mean, phi_std, phi_lo, phi_hi;
   int          phi_seed;
@@ -124,9 +126,23 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       }
     }
   }
-  if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order", err, errlen)) return 1;
+  sc->kin       = KIN_3D;
+  sc->thickness = 1;
+  if ((v = yd_get(mesh, "kinematics"))) {
+    if (yd_string(doc, v, "mesh.kinematics", &s, err, errlen)) return 1;
+    if (!strcmp(s, "3d")) sc->kin = KIN_3D;
+    else if (!strcmp(s, "plane_strain")) sc->kin = KIN_PLANE_STRAIN;
+    else if (!strcmp(s, "axisymmetric")) sc->kin = KIN_AXISYMMETRIC;
+    else FAIL("%s:%d: key 'mesh.kinematics': expected 3d, plane_strain or axisymmetric, got '%s'", doc->file, v->line, s);
+  }
+  if ((v = yd_get(mesh, "thickness"))) {
+    if (yd_double(doc, v, "mesh.thickness", &sc->thickness, err, errlen)) return 1;
+    if (!(sc->thickness > 0) || sc->kin != KIN_PLANE_STRAIN)
+      FAIL("%s:%d: key 'mesh.thickness': expected > 0, and only with kinematics: plane_strain", doc->file, v->line);
+  }
+  if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen)) return 1;
 
-  if (material_read(doc, yd_get(root, "material"), 6, &sc->mat, err, errlen)) return 1;
+  if (material_read(doc, yd_get(root, "material"), sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen)) return 1;
   sc->phi_mean = sc->mat.phi_slot >= 0 ? sc->mat.props[sc->mat.phi_slot] : 0;
   sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
   if ((x = yd_get(root, "phi"))) {
@@ -160,7 +176,9 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, path, err, errlen)) return 1;
       for (size_t j = 0; j < comps->n && j < 3; j++) {
         int c = comps->items[j]->kind == YD_SCALAR ? component_of(comps->items[j]->text) : -1;
-        if (c < 0) FAIL("%s:%d: key '%s.components': expected x, y or z", doc->file, comps->items[j]->line, path);
+        if (c < 0 || (sc->kin != KIN_3D && c > 1))
+          FAIL("%s:%d: key '%s.components': expected x, y%s", doc->file, comps->items[j]->line, path,
+               sc->kin == KIN_3D ? " or z" : " (a 2D mesh; axisymmetric: x = r, y = z)");
         sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
       }
       if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
@@ -234,7 +252,7 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
     if (yd_check_unused(doc, st, path, "name, duration, load, pressure, steps, until, creep", err, errlen)) return 1;
   }
-  sc->axis = 2;
+  sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
   return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, stages, output, solver",
                          err, errlen);
 }
@@ -386,7 +404,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   DM        dm;
   FeProblem p;
   memset(&p, 0, sizeof p);
-  PetscErrorCode ierr = fe_mesh_create(comm, sc.msh, &dm);
+  PetscErrorCode ierr = fe_mesh_create(comm, sc.msh, sc.kin == KIN_3D ? 3 : 2, &dm);
   if (ierr) {
     snprintf(err, errlen, "cannot read the mesh '%s'", sc.msh);
     return 1;
@@ -419,7 +437,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       return 2;
     }
   }
-  ierr = fe_problem_setup(&p, dm, sc.order, &sc.mat, sc.fixed, sc.nfixed, (const char(*)[64])sc.pressure_group, sc.npressure);
+  ierr = fe_problem_setup(&p, dm, sc.kin, sc.thickness, sc.order, &sc.mat, sc.fixed, sc.nfixed, (const char(*)[64])sc.pressure_group, sc.npressure);
   if (ierr) {
     snprintf(err, errlen, "setting up the problem failed (see the PETSc message above: a missing physical group?)");
     return 1;
