@@ -13,6 +13,15 @@
 
 static const char help[] =
   "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project.\n"
+  "Finite-element scenes (scene: fe; mpiexec -n N driver ...):\n"
+  "  mesh: {geometry: X.geo | file: X.msh, parameters: {NAME: value}, order: 1 | 2,\n"
+  "         kinematics: 3d | plane_strain | axisymmetric, thickness}\n"
+  "  material: (as below)   phi: {mean, std, min, max, seed}\n"
+  "  initial: {stress: [6 values, both frames], pressure: {GROUP: p}}\n"
+  "  boundary: {fixed: [{group: G, components: [x, y, z]}], pressure: [G, ...]}\n"
+  "  stages: - {name, duration, load: linear | instant, pressure: {G: p}, steps: {...}, until: {evp_rate_below}, creep}\n"
+  "  output: {directory, fields_every: N}\n"
+  "  options: -checkpoint_every N, -restart, -max_steps N, any PETSc SNES/KSP/PC option\n"
   "Scene keys (material point, scene: point):\n"
   "  scene: point | replay       name: text      ntens: 6 | 4     units: {stress: MPa, time: s}\n"
   "  material: {umat: camclay9, name, props: woodford | [list], set: {phi: .., eta_soft: .., tol: ..},\n"
