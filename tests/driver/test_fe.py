@@ -234,3 +234,21 @@ def test_direct_and_gamg_agree(tmp_path):
     err = np.max(np.abs(res["lu"]["eps_33"] - res["gamg"]["eps_33"])) / np.max(np.abs(res["lu"]["eps_33"]))
     print(f"direct vs GAMG: {err:.1e}")
     assert err < 1e-8
+
+
+def test_pressure_time_functions(tmp_path):
+    """Stage pressures as functions of the stage time: P0 exp(k t), a table (linear interpolation) and a
+    linear unload; the volume-mean stress follows them exactly (linear-elastic UMAT)."""
+    table = tmp_path / "p.csv"
+    table.write_text("# seconds, MPa\nt,p\n0,2\n5,6\n10,4\n")
+    h, _ = run(DRIVER_ELASTIC, BOX.format(
+        order=1, material="{umat: elastic, props: [1000.0, 0.25], nstatv: 0}", initial="{stress: [0, 0, 0, 0, 0, 0]}",
+        stages=f"  - {{name: exp, duration: 10, pressure: {{z1: {{exp: {{P0: 1.5, k: 0.1}}}}}}, steps: {{count: 4}}}}\n"
+               f"  - {{name: table, duration: 10, pressure: {{z1: {{table: {{file: {table}, time: t, value: p}}}}}}, steps: {{count: 4}}}}\n"
+               f"  - {{name: unload, duration: 10, pressure: {{z1: 0}}, steps: {{count: 4}}}}"),
+        tmp_path, "functions")
+    t = h["time"]
+    expected = np.where(t <= 10, 1.5 * np.exp(0.1 * t), np.where(t <= 20, np.interp(t - 10, [0, 5, 10], [2, 6, 4]),
+                                                                  4 * (30 - t) / 10))
+    print("sigma_33:", -h["sig_33"], "expected", expected)
+    assert np.max(np.abs(-h["sig_33"] - expected)) <= 1e-10 * np.max(expected)

@@ -16,12 +16,19 @@
 
 #define MAXSTAGES 16
 
+enum { FN_RAMP, FN_EXP, FN_TABLE };
+
 typedef struct {
   char      name[64];
   double    duration;
   int       instant, adaptive, count, creep;
   double    ratio, dt_first, dt_min, dt_max, growth;
   double    pressure[FE_MAX_GROUPS]; /* at the end of the stage; NAN: keep */
+  /* or a time function of the stage time: P0 exp(k t), or a table */
+  int       fn[FE_MAX_GROUPS];       /* FN_RAMP (the target above), FN_EXP, FN_TABLE */
+  double    P0[FE_MAX_GROUPS], k[FE_MAX_GROUPS];
+  int       nrow[FE_MAX_GROUPS];
+  double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
   double    evp_rate_below;          /* 0: no end condition */
 } Stage;
 
@@ -71,6 +78,83 @@ static int read_steps(YdDoc *doc, YdNode *x, const char *path, Stage *st, char *
   if (st->count < 1) FAIL("%s:%d: key '%s.count': expected >= 1", doc->file, x->line, path);
   if ((v = yd_get(x, "ratio")) && yd_double(doc, v, path, &st->ratio, err, errlen)) return 1;
   return yd_check_unused(doc, x, path, "count, ratio (fixed) or adaptive, first, min, max, growth", err, errlen);
+}
+
+/* A pressure of a stage: a number (reached at the stage's end), {exp: {P0, k}} (P0 exp(k t) in the
+ * stage time t), or {table: {file, time, value, time_factor, factor}} (linear interpolation). */
+static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int gi, char *err, size_t errlen) {
+  YdNode *x;
+  g->fn[gi] = FN_RAMP;
+  if (nd->kind == YD_SCALAR) return yd_double(doc, nd, path, &g->pressure[gi], err, errlen);
+  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  char sub[200];
+  if ((x = yd_get(nd, "exp"))) {
+    g->fn[gi] = FN_EXP;
+    snprintf(sub, sizeof sub, "%s.exp", path);
+    if (yd_double(doc, yd_get(x, "P0"), sub, &g->P0[gi], err, errlen) || yd_double(doc, yd_get(x, "k"), sub, &g->k[gi], err, errlen)) return 1;
+    if (yd_check_unused(doc, x, sub, "P0, k", err, errlen)) return 1;
+  } else if ((x = yd_get(nd, "table"))) {
+    const char *file, *tc, *vc;
+    double      tf = 1, vf = 1;
+    YdNode     *y;
+    g->fn[gi] = FN_TABLE;
+    snprintf(sub, sizeof sub, "%s.table", path);
+    if (yd_string(doc, yd_get(x, "file"), sub, &file, err, errlen) || yd_string(doc, yd_get(x, "time"), sub, &tc, err, errlen) ||
+        yd_string(doc, yd_get(x, "value"), sub, &vc, err, errlen))
+      return 1;
+    if ((y = yd_get(x, "time_factor")) && yd_double(doc, y, sub, &tf, err, errlen)) return 1;
+    if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
+    if (yd_check_unused(doc, x, sub, "file, time, value, time_factor, factor", err, errlen)) return 1;
+    FILE *fp = fopen(file, "r");
+    if (!fp) FAIL("%s:%d: key '%s.file': cannot open '%s': %s", doc->file, x->line, sub, file, strerror(errno));
+    char line[4096], *names[64];
+    int  ti = -1, vi = -1, n = 0;
+    do {
+      if (!fgets(line, sizeof line, fp)) {
+        fclose(fp);
+        FAIL("%s: no header line", file);
+      }
+    } while (line[0] == '#');
+    for (char *tok = strtok(line, ",\r\n"); tok && n < 64; tok = strtok(NULL, ",\r\n")) names[n++] = tok;
+    for (int j = 0; j < n; j++) ti = !strcmp(names[j], tc) ? j : ti, vi = !strcmp(names[j], vc) ? j : vi;
+    if (ti < 0 || vi < 0) {
+      fclose(fp);
+      FAIL("%s:%d: key '%s': the table %s has no column '%s'", doc->file, x->line, sub, file, ti < 0 ? tc : vc);
+    }
+    int cap = 64, rows = 0;
+    g->tab_t[gi] = malloc(sizeof(double) * cap), g->tab_v[gi] = malloc(sizeof(double) * cap);
+    while (fgets(line, sizeof line, fp)) {
+      if (line[0] == '#' || line[0] == '\n') continue;
+      double vals[64];
+      int    m = 0;
+      for (char *tok = strtok(line, ",\r\n"); tok && m < 64; tok = strtok(NULL, ",\r\n")) vals[m++] = strtod(tok, NULL);
+      if (m <= (ti > vi ? ti : vi)) continue;
+      if (rows == cap) cap *= 2, g->tab_t[gi] = realloc(g->tab_t[gi], sizeof(double) * cap), g->tab_v[gi] = realloc(g->tab_v[gi], sizeof(double) * cap);
+      g->tab_t[gi][rows] = vals[ti] * tf, g->tab_v[gi][rows] = vals[vi] * vf, rows++;
+    }
+    fclose(fp);
+    if (rows < 2) FAIL("%s: the table needs two rows at least", file);
+    g->nrow[gi] = rows;
+  } else {
+    FAIL("%s:%d: key '%s': expected a number, {exp: {P0, k}} or {table: {...}}", doc->file, nd->line, path);
+  }
+  return yd_check_unused(doc, nd, path, "exp, table", err, errlen);
+}
+
+/* The pressure of group k at stage time ts (lambda: the ramp's fraction then). */
+static double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts) {
+  switch (g->fn[k]) {
+  case FN_EXP: return g->P0[k] * exp(g->k[k] * ts);
+  case FN_TABLE: {
+    const double *t = g->tab_t[k], *v = g->tab_v[k];
+    int           n = g->nrow[k], j = 0;
+    if (ts <= t[0]) return v[0];
+    if (ts >= t[n - 1]) return v[n - 1];
+    while (t[j + 1] < ts) j++;
+    return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[j]);
+  }
+  default: return start + lambda * (target - start);
+  }
 }
 
 static int component_of(const char *s) {
@@ -240,7 +324,9 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
           if (!strcmp(sc->pressure_group[j], v->keys[k])) gi = j;
         if (gi < 0) FAIL("%s:%d: key '%s.%s': not a group listed in boundary.pressure", doc->file, v->key_lines[k], sub, v->keys[k]);
         v->used[k] = 1;
-        if (yd_double(doc, v->items[k], sub, &g->pressure[gi], err, errlen)) return 1;
+        char sub2[160];
+        snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
+        if (read_pressure(doc, v->items[k], sub2, g, gi, err, errlen)) return 1;
       }
     }
     snprintf(sub, sizeof sub, "%s.steps", path);
@@ -571,7 +657,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       double h = pending_instant ? 0 : fmin(dt, g->duration - t_stage);
       if (!pending_instant && (t_stage >= g->duration * (1 - 1e-12))) break;
       double lambda = g->instant || g->duration == 0 ? 1 : (t_stage + h) / g->duration;
-      for (int k = 0; k < sc.npressure; k++) p.pressure[k] = start[k] + lambda * (target[k] - start[k]);
+      for (int k = 0; k < sc.npressure; k++) p.pressure[k] = stage_pressure(g, k, start[k], target[k], lambda, t_stage + h);
       PetscCall(fe_problem_update_loads(&p));
       p.time = t + h, p.dt = h;
       PetscCall(VecCopy(U, U0));
