@@ -252,3 +252,39 @@ def test_pressure_time_functions(tmp_path):
                                                                   4 * (30 - t) / 10))
     print("sigma_33:", -h["sig_33"], "expected", expected)
     assert np.max(np.abs(-h["sig_33"] - expected)) <= 1e-10 * np.max(expected)
+
+
+def test_phi_field_rank_independent_and_correlated(tmp_path):
+    """phi per cell: the same values on 1 and 2 ranks (a function of centroids and the seed), within
+    [min, max]; with a correlation length, neighbouring cells are strongly correlated, without it not."""
+    import h5py
+    base = (ROOT / "input" / "triaxial.yaml").read_text().replace("size: 6.0", "size: 4.0")
+    base = base[:base.index("stages:")] + "stages:\n  - {name: hold, duration: 1, pressure: {top: 35, side: 35}, steps: {count: 1}}\n" + \
+        base[base.index("output:"):]
+
+    def phi(text, ranks, name):
+        scene = tmp_path / f"{name}.yaml"
+        scene.write_text(text)
+        out = tmp_path / name
+        proc = subprocess.run(["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), DRIVER, "-input",
+                               str(scene), "-output_dir", str(out)], capture_output=True, text=True, cwd=ROOT)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        with h5py.File(out / "fields.h5") as f:
+            x = f["/geometry/vertices"][:][f["/viz/topology/cells"][:]].mean(axis=1)
+            return x, f["/cell_fields/phi_P0"][-1]
+
+    def neighbour_correlation(x, v, radius):
+        d = np.linalg.norm(x[:, None, :] - x[None, :, :], axis=2)
+        i, j = np.where((d > 0) & (d < radius))
+        return np.corrcoef(v[i], v[j])[0, 1]
+
+    corr = base.replace("seed: 2021}", "seed: 2021, correlation_length: 8.0}")
+    for name, text in (("white", base), ("correlated", corr)):
+        x1, p1 = phi(text, 1, name + "1")
+        x2, p2 = phi(text, 2, name + "2")
+        k1, k2 = np.lexsort(x1.T), np.lexsort(x2.T)
+        assert np.max(np.abs(p1[k1] - p2[k2])) < 1e-12, name
+        assert p1.min() >= 0.4 and p1.max() <= 0.6
+        c = neighbour_correlation(x1, p1, 4.0)
+        print(f"{name}: phi mean {p1.mean():.3f}, std {p1.std():.3f}, neighbour correlation {c:.2f}")
+        assert (c > 0.7) if name == "correlated" else (abs(c) < 0.2)

@@ -270,22 +270,68 @@ static uint64_t mix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
+static int cmp_sample(const void *a, const void *b) { /* order samples by their coordinates */
+  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
+  for (int d = 0; d < 4; d++)
+    if (x[d] != y[d]) return x[d] < y[d] ? -1 : 1;
+  return 0;
+}
+
 PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, PetscReal lo, PetscReal hi,
-                                  PetscInt seed) {
+                                  PetscInt seed, PetscReal correlation) {
+  MPI_Comm   comm = PetscObjectComm((PetscObject)p->dm);
+  PetscInt   nloc = p->cEnd - p->cStart;
+  PetscReal *z, *xc;
   PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(nloc, &z, 3 * nloc, &xc));
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     PetscReal vol, x[3] = {0, 0, 0}, v = mean;
     PetscCall(DMPlexComputeCellGeometryFVM(p->dm, c, &vol, x, NULL));
+    for (PetscInt d = 0; d < 3; d++) xc[3 * (c - p->cStart) + d] = x[d];
     uint64_t key = mix64((uint64_t)seed);
     for (PetscInt d = 0; d < p->dim; d++) key = mix64(key ^ (uint64_t)(int64_t)llround(x[d] * 1e6));
-    for (int draw = 0; std > 0 && draw < 1000; draw++) { /* Box-Muller, redrawn until within [lo, hi] */
+    for (int draw = 0; draw < 1000; draw++) { /* Box-Muller; uncorrelated: redrawn until within [lo, hi] */
       uint64_t  a = mix64(key + 2 * (uint64_t)draw), b = mix64(key + 2 * (uint64_t)draw + 1);
       PetscReal u1 = ((a >> 11) + 0.5) / 9007199254740992.0, u2 = ((b >> 11) + 0.5) / 9007199254740992.0;
-      v = mean + std * sqrt(-2 * log(u1)) * cos(2 * M_PI * u2);
-      if (v >= lo && v <= hi) break;
+      z[c - p->cStart] = sqrt(-2 * log(u1)) * cos(2 * M_PI * u2);
+      v                = mean + std * z[c - p->cStart];
+      if (correlation > 0 || std == 0 || (v >= lo && v <= hi)) break;
     }
     p->phi[c - p->cStart] = PetscMin(PetscMax(v, lo), hi);
   }
+  if (correlation > 0 && std > 0) {
+    /* A correlated field: white noise smoothed by a Gaussian kernel of length l and scaled back to
+     * unit variance, g_i = sum_j w_ij z_j / sqrt(sum_j w_ij^2), w_ij = exp(-|x_i - x_j|^2 / (2 l^2)),
+     * over the cells of all ranks in a fixed (coordinate) order, so the field does not depend on the
+     * partition; phi = mean + std g, clipped to [lo, hi]. */
+    PetscMPIInt size, n4 = (PetscMPIInt)(4 * nloc), *counts, *displs, total = 0;
+    PetscReal  *mine, *all;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCall(PetscMalloc3(size, &counts, size, &displs, 4 * nloc + 1, &mine));
+    for (PetscInt i = 0; i < nloc; i++) {
+      for (int d = 0; d < 3; d++) mine[4 * i + d] = xc[3 * i + d];
+      mine[4 * i + 3] = z[i];
+    }
+    PetscCallMPI(MPI_Allgather(&n4, 1, MPI_INT, counts, 1, MPI_INT, comm));
+    for (PetscMPIInt r = 0; r < size; r++) displs[r] = total, total += counts[r];
+    PetscCall(PetscMalloc1(total + 1, &all));
+    PetscCallMPI(MPI_Allgatherv(mine, n4, MPIU_REAL, all, counts, displs, MPIU_REAL, comm));
+    qsort(all, (size_t)(total / 4), 4 * sizeof(PetscReal), cmp_sample);
+    for (PetscInt i = 0; i < nloc; i++) {
+      PetscReal num = 0, den = 0;
+      for (PetscMPIInt j = 0; j < total / 4; j++) {
+        PetscReal d2 = 0;
+        for (int d = 0; d < 3; d++) d2 += PetscSqr(xc[3 * i + d] - all[4 * j + d]);
+        PetscReal w = exp(-d2 / (2 * correlation * correlation));
+        num += w * all[4 * j + 3];
+        den += w * w;
+      }
+      p->phi[i] = PetscMin(PetscMax(mean + std * num / PetscSqrtReal(den), lo), hi);
+    }
+    PetscCall(PetscFree(all));
+    PetscCall(PetscFree3(counts, displs, mine));
+  }
+  PetscCall(PetscFree2(z, xc));
   PetscFunctionReturn(0);
 }
 

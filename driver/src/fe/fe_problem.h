@@ -69,10 +69,11 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
 PetscErrorCode fe_problem_destroy(FeProblem *p);
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */
 PetscErrorCode fe_problem_set_initial_stress(FeProblem *p, const PetscReal stress0[6]);
-/* phi per cell: seeded normal (mean, std) kept within [lo, hi], a function of the cell centroid and the
- * seed only, so the same on any number of ranks. std = 0: uniform mean. */
+/* phi per cell: seeded normal (mean, std) kept within [lo, hi], a function of the cell centroids and the
+ * seed only, so the same on any number of ranks; correlation > 0: spatially correlated over that length.
+ * std = 0: uniform mean. */
 PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, PetscReal lo, PetscReal hi,
-                                  PetscInt seed);
+                                  PetscInt seed, PetscReal correlation);
 /* SNES callbacks. */
 PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);

@@ -39,7 +39,7 @@ typedef struct {
   Kinematics   kin;
   double       thickness;
   UmatMaterial mat;
-  double       phi_mean, phi_std, phi_lo, phi_hi;
+  double       phi_mean, phi_std, phi_lo, phi_hi, phi_corr;
   int          phi_seed;
   double       stress0[6], pressure0[FE_MAX_GROUPS];
   int          nfixed;
@@ -236,9 +236,12 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if ((v = yd_get(x, "min")) && yd_double(doc, v, "phi.min", &sc->phi_lo, err, errlen)) return 1;
     if ((v = yd_get(x, "max")) && yd_double(doc, v, "phi.max", &sc->phi_hi, err, errlen)) return 1;
     if ((v = yd_get(x, "seed")) && yd_int(doc, v, "phi.seed", &sc->phi_seed, err, errlen)) return 1;
+    if ((v = yd_get(x, "correlation_length")) &&
+        (yd_double(doc, v, "phi.correlation_length", &sc->phi_corr, err, errlen) || sc->phi_corr < 0))
+      FAIL("%s:%d: key 'phi.correlation_length': expected a length >= 0", doc->file, v->line);
     if (!(0 <= sc->phi_lo && sc->phi_lo <= sc->phi_mean && sc->phi_mean <= sc->phi_hi && sc->phi_hi <= 1 && sc->phi_std >= 0))
       FAIL("%s:%d: key 'phi': expected 0 <= min <= mean <= max <= 1 and std >= 0", doc->file, x->line);
-    if (yd_check_unused(doc, x, "phi", "mean, std, min, max, seed", err, errlen)) return 1;
+    if (yd_check_unused(doc, x, "phi", "mean, std, min, max, seed, correlation_length", err, errlen)) return 1;
   }
   YdNode *initial_pressure = NULL;
   if ((x = yd_get(root, "initial"))) {
@@ -540,7 +543,7 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
                           sc.name, (int)nall, sc.order, (int)p.nq, (int)ndof, (int)p.nsv));
   }
   PetscCall(fe_problem_set_initial_stress(&p, sc.stress0));
-  PetscCall(fe_problem_set_phi(&p, sc.phi_mean, sc.phi_std, sc.phi_lo, sc.phi_hi, sc.phi_seed));
+  PetscCall(fe_problem_set_phi(&p, sc.phi_mean, sc.phi_std, sc.phi_lo, sc.phi_hi, sc.phi_seed, sc.phi_corr));
 
   SNES snes;
   Mat  J;
