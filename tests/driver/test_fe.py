@@ -288,3 +288,18 @@ def test_phi_field_rank_independent_and_correlated(tmp_path):
         c = neighbour_correlation(x1, p1, 4.0)
         print(f"{name}: phi mean {p1.mean():.3f}, std {p1.std():.3f}, neighbour correlation {c:.2f}")
         assert (c > 0.7) if name == "correlated" else (abs(c) < 0.2)
+
+
+def test_traction_equals_pressure(tmp_path):
+    """A uniform traction (0, 0, -p) on a face loads it as a pressure p does (Cam-Clay IX, P2,
+    viscoplastic): the same history."""
+    stages = "  - {name: load, duration: 100, %s, steps: {count: 2}}"
+    common = dict(order=2, material="{props: woodford, bedding_angle: 90}",
+                  initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}")
+    hp, _ = run(DRIVER, BOX.format(stages=stages % "pressure: {x1: 35, y1: 35, z1: 50}", **common), tmp_path, "p")
+    text = BOX.format(stages=stages % "pressure: {x1: 35, y1: 35, z1: 35}, traction: {z1: [0, 0, -15]}", **common)
+    text = text.replace("  pressure: [x1, y1, z1]", "  pressure: [x1, y1, z1]\n  traction: [z1]")
+    ht, _ = run(DRIVER, text, tmp_path, "t")
+    err = np.max(np.abs(hp["eps_33"] - ht["eps_33"])) / np.max(np.abs(hp["eps_33"]))
+    print(f"traction vs pressure: {err:.1e}")
+    assert err < 1e-12

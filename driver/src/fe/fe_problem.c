@@ -41,9 +41,19 @@ static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[],
 /* Consistent nodal forces of a unit pressure on the boundary faces of a group: t = -p n (n outward).
  * Faces of simplices are flat: in 3D closed forms on triangles; in 2D Gauss quadrature on the edges
  * (the axisymmetric weight 2 pi r varies along an edge). */
-static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *f) {
+static PetscErrorCode unit_pressure_force(FeProblem *p, const char *load, Vec *f) {
   DM           dm = p->dm;
   DMLabel      label;
+  char         group[64];
+  PetscInt     axis = -1; /* a pressure (t = -p n); or 'GROUP.x', '.y', '.z': a traction along that axis */
+  PetscCall(PetscStrncpy(group, load, sizeof group));
+  {
+    size_t len = strlen(group);
+    if (len > 2 && group[len - 2] == '.' && strchr("xyz", group[len - 1])) {
+      axis             = group[len - 1] - 'x';
+      group[len - 2]   = '\0';
+    }
+  }
   PetscSection s;
   Vec          floc;
   PetscScalar *a;
@@ -85,6 +95,8 @@ static PetscErrorCode unit_pressure_force(FeProblem *p, const char *group, Vec *
       for (PetscInt d = 0; d < p->dim; d++) out += (fc[d] - cc[d]) * n[d];
       if (out < 0)
         for (PetscInt d = 0; d < p->dim; d++) n[d] = -n[d];
+      if (axis >= 0) /* a unit traction along the axis: the force is +t, written here as -(-e_axis) */
+        for (PetscInt d = 0; d < p->dim; d++) n[d] = d == axis ? -1.0 : 0.0;
       if (p->dim == 2) {
         /* An edge: nodal forces of t = -p n by 3-point Gauss on s in [0, 1] (exact here), with the
          * weight of the kinematics: the thickness (plane strain) or 2 pi r (axisymmetric). */

@@ -11,7 +11,7 @@
 
 #include "../material/umat_call.h"
 
-#define FE_MAX_GROUPS 8
+#define FE_MAX_GROUPS 24 /* loads: pressures on groups, and traction components 'GROUP.x' etc. */
 
 typedef struct {
   char     group[64];      /* a physical group of the mesh (a DMPlex label) */

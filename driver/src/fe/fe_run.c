@@ -279,7 +279,16 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       snprintf(sc->pressure_group[sc->npressure++], 64, "%s", s);
     }
   }
-  if (yd_check_unused(doc, bc, "boundary", "fixed, pressure", err, errlen)) return 1;
+  if ((x = yd_get(bc, "traction"))) { /* uniform tractions: loads GROUP.x, GROUP.y (, GROUP.z) */
+    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.traction", err, errlen)) return 1;
+    int dim = sc->kin == KIN_3D ? 3 : 2;
+    for (size_t k = 0; k < x->n; k++) {
+      if (yd_string(doc, x->items[k], "boundary.traction", &s, err, errlen)) return 1;
+      if (sc->npressure + dim > FE_MAX_GROUPS) FAIL("%s:%d: key 'boundary': too many loaded groups", doc->file, x->line);
+      for (int d = 0; d < dim; d++) snprintf(sc->pressure_group[sc->npressure++], 64, "%s.%c", s, 'x' + d);
+    }
+  }
+  if (yd_check_unused(doc, bc, "boundary", "fixed, pressure, traction", err, errlen)) return 1;
   for (int k = 0; k < FE_MAX_GROUPS; k++) sc->pressure0[k] = 0;
   if (initial_pressure) {
     if (yd_expect(doc, initial_pressure, YD_MAPPING, "initial.pressure", err, errlen)) return 1;
@@ -332,6 +341,27 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
         if (read_pressure(doc, v->items[k], sub2, g, gi, err, errlen)) return 1;
       }
     }
+    if ((v = yd_get(st, "traction"))) {
+      snprintf(sub, sizeof sub, "%s.traction", path);
+      if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+      int dim = sc->kin == KIN_3D ? 3 : 2;
+      for (size_t k = 0; k < v->n; k++) {
+        double t[3];
+        char   sub2[200];
+        snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
+        v->used[k] = 1;
+        if (yd_doubles(doc, v->items[k], sub2, t, dim, NULL, err, errlen)) return 1;
+        for (int d = 0; d < dim; d++) {
+          char name[72];
+          int  gi = -1;
+          snprintf(name, sizeof name, "%s.%c", v->keys[k], 'x' + d);
+          for (int j = 0; j < sc->npressure; j++)
+            if (!strcmp(sc->pressure_group[j], name)) gi = j;
+          if (gi < 0) FAIL("%s:%d: key '%s': not a group listed in boundary.traction", doc->file, v->key_lines[k], sub2);
+          g->pressure[gi] = t[d], g->fn[gi] = FN_RAMP;
+        }
+      }
+    }
     snprintf(sub, sizeof sub, "%s.steps", path);
     if (read_steps(doc, yd_get(st, "steps"), sub, g, err, errlen)) return 1;
     if ((v = yd_get(st, "until"))) {
@@ -339,7 +369,7 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       if (yd_check_unused(doc, v, "until", "evp_rate_below", err, errlen)) return 1;
     }
     if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
-    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, steps, until, creep", err, errlen)) return 1;
+    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep", err, errlen)) return 1;
   }
   sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
   return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, stages, output, solver",
@@ -505,9 +535,13 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       PetscCall(DMHasLabel(dm, sc.fixed[k].group, &has));
       if (!has) missing = sc.fixed[k].group;
     }
+    static char base[64];
     for (int k = 0; k < sc.npressure && !missing; k++) {
-      PetscCall(DMHasLabel(dm, sc.pressure_group[k], &has));
-      if (!has) missing = sc.pressure_group[k];
+      snprintf(base, sizeof base, "%s", sc.pressure_group[k]);
+      size_t len = strlen(base);
+      if (len > 2 && base[len - 2] == '.' && strchr("xyz", base[len - 1])) base[len - 2] = '\0';
+      PetscCall(DMHasLabel(dm, base, &has));
+      if (!has) missing = base;
     }
     if (missing) {
       char     groups[512] = "";
@@ -618,7 +652,8 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   } else if (!rank) {
     hist = fopen(path, "w");
     fprintf(hist, "time,stage,step,dt,newton_its,cutbacks");
-    for (int g = 0; g < sc.npressure; g++) fprintf(hist, ",pressure_%s", sc.pressure_group[g]);
+    for (int g = 0; g < sc.npressure; g++)
+      fprintf(hist, ",%s_%s", strchr(sc.pressure_group[g], '.') ? "traction" : "pressure", sc.pressure_group[g]);
     fprintf(hist, ",eps_11,eps_22,eps_33,eps_12,eps_13,eps_23,sig_11,sig_22,sig_33,sig_12,sig_13,sig_23,eps_spread,evp_rate");
     const char *fr[2] = {"hard", "soft"}, *st[6] = {"mean", "min", "q1", "median", "q3", "max"};
     for (int f = 0; f < 2; f++)
