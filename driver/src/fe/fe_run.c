@@ -49,7 +49,8 @@ typedef struct {
   int          nstage;
   Stage        stage[MAXSTAGES];
   int          axis;
-  int          fields_every;  /* field output every N steps, besides the start and each stage's end */
+  int          fields_every;
+  char         solver_options[1024]; /* PETSc options from the scene; the command line wins */  /* field output every N steps, besides the start and each stage's end */
 } FeScene;
 
 #define FAIL(...)                       \
@@ -371,6 +372,14 @@ static int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
     if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep", err, errlen)) return 1;
   }
+  if ((x = yd_get(root, "solver"))) {
+    if ((v = yd_get(x, "options"))) {
+      if (yd_string(doc, v, "solver.options", &s, err, errlen)) return 1;
+      if (s[0] != '-') FAIL("%s:%d: key 'solver.options': expected PETSc options such as '-snes_monitor', got '%s'", doc->file, v->line, s);
+      snprintf(sc->solver_options, sizeof sc->solver_options, "%s", s);
+    }
+    if (yd_check_unused(doc, x, "solver", "options (PETSc options; the command line overrides them)", err, errlen)) return 1;
+  }
   sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
   return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, stages, output, solver",
                          err, errlen);
@@ -623,6 +632,21 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
     }
     PetscCall(SNESSetTolerances(snes, 1e-10 * pmax * PetscMax(fref, 1e-12), 1e-12, 1e-14, 25, 1000));
+    if (sc.solver_options[0]) { /* the scene's options, each unless the command line already gives it */
+      char  buf[1024], *tok, *save = NULL;
+      snprintf(buf, sizeof buf, "%s", sc.solver_options);
+      char *keys[64], *vals[64];
+      int   n = 0;
+      for (tok = strtok_r(buf, " \t", &save); tok && n < 64; tok = strtok_r(NULL, " \t", &save)) {
+        if (tok[0] == '-' && !(tok[1] >= '0' && tok[1] <= '9') && tok[1] != '.') keys[n] = tok, vals[n++] = NULL;
+        else if (n > 0 && !vals[n - 1]) vals[n - 1] = tok;
+      }
+      for (int k = 0; k < n; k++) {
+        PetscBool set;
+        PetscCall(PetscOptionsHasName(NULL, NULL, keys[k], &set));
+        if (!set) PetscCall(PetscOptionsSetValue(NULL, keys[k], vals[k]));
+      }
+    }
     PetscCall(SNESSetFromOptions(snes));
   }
 
@@ -688,6 +712,12 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       pr.t_stage = 0, pr.dt = dt_plan, pr.pending_instant = g->instant;
     }
     resume_in_stage = 0;
+    double stage_wall0;
+    {
+      struct timespec ws;
+      clock_gettime(CLOCK_MONOTONIC, &ws);
+      stage_wall0 = (double)(ws.tv_sec - w0.tv_sec) + 1e-9 * (double)(ws.tv_nsec - w0.tv_nsec);
+    }
     double *start = pr.start, t_stage = pr.t_stage, dt = pr.dt;
     int     pending_instant = pr.pending_instant, cut = 0;
     for (int k = 0; k < sc.npressure; k++) target[k] = isnan(g->pressure[k]) ? start[k] : g->pressure[k];
@@ -745,9 +775,12 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
           for (int k = 0; k < 6; k++) fprintf(hist, ",%.12g", stats.frame_evp[f][k]);
         fprintf(hist, ",%d,%.4f\n", (int)p.umat_calls, wall);
         fflush(hist);
-        printf("step %5d  %-8s t = %-11.5g dt = %-10.4g newton %2d  |R| %.2e  cutbacks %d  wall %7.2f s  stage %3.0f%%\n",
-               step, g->name, t, h, (int)its, (double)rnorm, total_cutbacks, wall,
-               g->duration > 0 ? 100 * t_stage / g->duration : 100.0);
+        /* time left in this stage, from the wall time spent in it so far and the stage time done */
+        double frac = g->duration > 0 ? t_stage / g->duration : 1, left = frac > 0 ? (wall - stage_wall0) * (1 - frac) / frac : 0;
+        printf("step %5d  %-8s t = %-11.5g dt = %-10.4g newton %2d  |R| %.2e  cutbacks %d  wall %7.2f s  stage %3.0f%%, "
+               "about %.0f s left%s\n",
+               step, g->name, t, h, (int)its, (double)rnorm, total_cutbacks, wall, 100 * frac, left,
+               g->evp_rate_below > 0 ? " (or less: it ends at steady state)" : "");
         fflush(stdout);
       }
       cut = 0;
