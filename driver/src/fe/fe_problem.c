@@ -24,6 +24,13 @@ PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "true"));
   PetscCall(DMPlexCreateFromFile(comm, msh, "mesh", PETSC_TRUE, dm));
+  { /* a deterministic partition by default, so that a restart finds the same cells on each rank
+       (graph partitioners may differ from run to run); -petscpartitioner_type chooses another */
+    PetscPartitioner part;
+    PetscCall(DMPlexGetPartitioner(*dm, &part));
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
+    PetscCall(PetscPartitionerSetFromOptions(part));
+  }
   PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
   if (dist) {
     PetscCall(DMDestroy(dm));
