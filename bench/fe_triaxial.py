@@ -16,6 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 DRIVER = ROOT / "build" / "bin" / "driver"
 TITLE = "## FE: triaxial cylinder"
@@ -72,15 +75,7 @@ def main(argv=None):
                "meshes they include a different draw of the phi field (phi is drawn per element), so they do not fall\n"
                "monotonically with the element size; between tolerances on one mesh they are the time-stepping error.\n\n"
                + "\n".join(lines) + "\n")
-    perf = ROOT / "docs" / "performance.md"
-    text = perf.read_text()
-    if TITLE in text:
-        head, _, rest = text.partition(TITLE)
-        tail = rest[rest.find("\n## "):] if "\n## " in rest else ""
-        text = head + section + tail
-    else:
-        text = text.rstrip() + "\n\n" + section
-    perf.write_text(text)
+    replace_section(TITLE, section)
     print("written: docs/performance.md")
 
 

@@ -18,6 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "reference"))
 import camclay9_reference as ref  # noqa: E402
@@ -94,16 +97,7 @@ def main(argv=None):
                "the run (no process start-up). Error: relative error of the creep strain against an independent\n"
                "Radau integration (rtol 1e-10) with the same hold. The shipped default is tol = 2e-7.\n\n"
                + "\n".join(table) + "\n\n![accuracy against cost](point_creep_accuracy.png)\n")
-    perf = ROOT / "docs" / "performance.md"
-    text = perf.read_text()
-    title = "## Material point: triaxial creep, accuracy against cost"
-    if title in text:
-        head, _, rest = text.partition(title)
-        tail = rest[rest.find("\n## "):] if "\n## " in rest else ""
-        text = head + section + tail
-    else:
-        text = text.rstrip() + "\n\n" + section
-    perf.write_text(text)
+    replace_section("## Material point: triaxial creep, accuracy against cost", section)
     print("written: docs/performance.md, docs/point_creep_accuracy.png")
     return 0
 

@@ -41,15 +41,5 @@ $instructions
 Goals of issue #2: <= 1 us per viscoplastic call and <= 0.1 us per elastic call.
 MD
 )
-python3 - "$out" "$section" <<'PY'
-import re, sys
-path, section = sys.argv[1], sys.argv[2]
-try:
-    text = open(path).read()
-except FileNotFoundError:
-    text = "# Performance\n\nBenchmarks print numbers and write them here; none is a timed test.\n"
-pattern = re.compile(r"## UMAT: time per call\n.*?(?=\n## |\Z)", re.S)
-text = pattern.sub(lambda m: section + "\n", text) if pattern.search(text) else text.rstrip() + "\n\n" + section + "\n"
-open(path, "w").write(text)
-PY
+echo "$section" | python3 bench/performance_doc.py "## UMAT: time per call"
 echo "written: $out"
