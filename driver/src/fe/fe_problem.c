@@ -404,8 +404,8 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
     const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
     for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]];
     PetscCall(PetscArrayzero(re, p->nb));
-    UmatMaterial mat = p->mat;
-    if (mat.phi_slot >= 0) mat.props[mat.phi_slot] = p->phi[c - p->cStart];
+    UmatMaterial *mat = &p->mat; /* PROPS of this cell: its phi in place (no copy in the hot loop) */
+    if (mat->phi_slot >= 0) mat->props[mat->phi_slot] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
       strain_operator(p, c, q, B);
       PetscReal eps[6] = {0};
@@ -423,11 +423,12 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
       call.npt                    = (int)q + 1;
       call.kstep = call.kinc = 1;
       call.sse = call.spd = call.scd = 0;
-      UmatCall in = call;
-      umat_invoke(&mat, &call);
+      umat_invoke(mat, &call);
       p->umat_calls++;
-      if (call.pnewdt < 1 && !p->have_failed_call) {
-        p->have_failed_call = 1, p->failed_in = in, p->failed_out = call, p->failed_mat = mat;
+      if (call.pnewdt < 1 && !p->have_failed_call) { /* rare: rebuild the call's input from the state */
+        p->have_failed_call = 1, p->failed_out = call, p->failed_mat = *mat, p->failed_in = call;
+        PetscCall(PetscArraycpy(p->failed_in.stress, st + ST_STRESS, 6));
+        PetscCall(PetscArraycpy(p->failed_in.statev, st + ST_STATEV, p->mat.nstatv));
       }
       min_pnewdt       = PetscMin(min_pnewdt, call.pnewdt);
       PetscReal *tr    = &p->trial[SV(p, c, q) * p->nsv];
