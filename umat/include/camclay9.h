@@ -23,12 +23,26 @@ void umat_(double *stress, double *statev, double *ddsdde, double *sse, double *
 void camclay9_check_props(const double *props, int nprops, int nstatv, int ntens, int ndi, int *code,
                           char *message, int message_capacity);
 
-/* STATEV layout (1-based slots, as in docs/umat.md). */
+/* Sizes (docs/umat.md). */
 enum {
   CAMCLAY9_NSTATV_MIN = 32,
   CAMCLAY9_NSTATV_DIAGNOSTICS = 36,
   CAMCLAY9_NPROPS_MIN = 19,
   CAMCLAY9_NPROPS_WITH_NORMAL = 23
+};
+
+/* STATEV layout as 0-based C offsets (docs/umat.md numbers the slots from 1): the first of six
+ * components for the tensors (Voigt 11 22 33 12 13 23, engineering shear for strains). */
+enum {
+  CAMCLAY9_SV_SIG_HARD = 0,
+  CAMCLAY9_SV_EVP_HARD = 6,
+  CAMCLAY9_SV_PC_HARD = 12,
+  CAMCLAY9_SV_SIG_SOFT = 13,
+  CAMCLAY9_SV_EVP_SOFT = 19,
+  CAMCLAY9_SV_PC_SOFT = 25,
+  CAMCLAY9_SV_EVP = 26,
+  CAMCLAY9_SV_ITERATIONS = 32,
+  CAMCLAY9_SV_FLAGS = 33
 };
 
 #ifdef __cplusplus

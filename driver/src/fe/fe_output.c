@@ -1,17 +1,25 @@
 #include "fe_output.h"
 
 #include <petscviewerhdf5.h>
+
+#include "camclay9.h"
 #include <stdio.h>
 
 /* Cell fields: name, number of components, and where they come from in a point's state
- * (offsets as in fe_problem.c: stress 0, strain 6, STATEV from 12; Cam-Clay IX slots, docs/umat.md). */
+ * (fe_problem.h: stress, strain, then STATEV with the Cam-Clay IX slots of camclay9.h). */
 typedef struct {
   const char *name;
   PetscInt    nc, offset;
 } CellField;
 static const CellField cell_fields[] = {
-  {"stress", 6, 0},           {"strain", 6, 6},           {"evp_hard", 6, 12 + 6}, {"evp_soft", 6, 12 + 19},
-  {"evp", 6, 12 + 26},        {"pc_hard", 1, 12 + 12},    {"pc_soft", 1, 12 + 25}, {"phi", 1, -1},
+  {"stress", 6, ST_STRESS},
+  {"strain", 6, ST_STRAN},
+  {"evp_hard", 6, ST_STATEV + CAMCLAY9_SV_EVP_HARD},
+  {"evp_soft", 6, ST_STATEV + CAMCLAY9_SV_EVP_SOFT},
+  {"evp", 6, ST_STATEV + CAMCLAY9_SV_EVP},
+  {"pc_hard", 1, ST_STATEV + CAMCLAY9_SV_PC_HARD},
+  {"pc_soft", 1, ST_STATEV + CAMCLAY9_SV_PC_SOFT},
+  {"phi", 1, -1},
 };
 enum { NCELLFIELDS = sizeof cell_fields / sizeof cell_fields[0] };
 static const char *voigt[6] = {"11", "22", "33", "12", "13", "23"};
@@ -67,7 +75,7 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   PetscCall(DMRestoreLocalVector(p->dm, &Uloc));
   for (PetscInt f = 0; f < NCELLFIELDS; f++) {
     const CellField *cf = &cell_fields[f];
-    if (cf->offset >= 12 && cf->offset + cf->nc > 12 + p->mat.nstatv) continue; /* UMAT without these slots */
+    if (cf->offset >= ST_STATEV && cf->offset + cf->nc > ST_STATEV + p->mat.nstatv) continue; /* UMAT without these slots */
     DM           cdm = cf->nc == 6 ? o->dm6 : o->dm1;
     Vec          loc, glob;
     PetscSection s;
@@ -172,7 +180,7 @@ PetscErrorCode fe_output_close(FeProblem *p, FeOutput *o) {
       }
       for (PetscInt f = 0; f < NCELLFIELDS; f++) {
         const CellField *cf = &cell_fields[f];
-        if (cf->offset >= 12 && cf->offset + cf->nc > 12 + p->mat.nstatv) continue;
+        if (cf->offset >= ST_STATEV && cf->offset + cf->nc > ST_STATEV + p->mat.nstatv) continue;
         char ds[64];
         PetscCall(PetscSNPrintf(ds, sizeof ds, "/cell_fields/%s_P0", cf->name));
         for (PetscInt j = 0; j < cf->nc; j++) {

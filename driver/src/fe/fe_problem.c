@@ -1,5 +1,7 @@
 #include "fe_problem.h"
 
+#include "camclay9.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -9,7 +11,6 @@
 /* Index of the state of point (local cell c, quadrature point q). */
 #define SV(p, c, q) (((c) - (p)->cStart) * (p)->nq + (q))
 
-enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
 
 /* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
 static const PetscInt vi[6] = {0, 1, 2, 0, 0, 1}, vj[6] = {0, 1, 2, 1, 2, 2};
@@ -547,12 +548,13 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
       PetscReal        w  = p->wdetJ[SV(p, c, q)];
       loc[0] += w;
       for (PetscInt vI = 0; vI < 6; vI++) loc[1 + vI] += w * st[ST_STRAN + vI], loc[7 + vI] += w * st[ST_STRESS + vI];
-      if (p->mat.nstatv >= 32) {
+      if (p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
         PetscReal d2 = 0;
-        for (PetscInt vI = 0; vI < 6; vI++) d2 += PetscSqr(st[ST_STATEV + 26 + vI] - old[ST_STATEV + 26 + vI]);
+        for (PetscInt vI = 0; vI < 6; vI++)
+          d2 += PetscSqr(st[ST_STATEV + CAMCLAY9_SV_EVP + vI] - old[ST_STATEV + CAMCLAY9_SV_EVP + vI]);
         loc[13] += w * PetscSqrtReal(d2);
-        vals[SV(p, c, q)]             = st[ST_STATEV + 6 + axis];  /* hard frame axial vp strain */
-        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + 19 + axis]; /* soft frame */
+        vals[SV(p, c, q)]             = st[ST_STATEV + CAMCLAY9_SV_EVP_HARD + axis]; /* axial vp strain */
+        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + CAMCLAY9_SV_EVP_SOFT + axis];
       }
     }
   }
@@ -564,7 +566,7 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
   for (PetscInt k = 0; k < p->npoint; k++)
     for (PetscInt vI = 0; vI < 6; vI++) spread = PetscMax(spread, PetscAbsReal(src[k * p->nsv + ST_STRAN + vI] - s->strain_mean[vI]));
   PetscCall(MPIU_Allreduce(&spread, &s->strain_spread, 1, MPIU_REAL, MPIU_MAX, comm));
-  if (p->mat.nstatv >= 32) {
+  if (p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
     /* Gather both frames' values on rank 0 for the quantiles. */
     PetscMPIInt n = (PetscMPIInt)p->npoint, *counts = NULL, *displs = NULL, total = 0;
     if (!rank) PetscCall(PetscMalloc2(size, &counts, size, &displs));

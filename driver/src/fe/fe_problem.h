@@ -11,6 +11,9 @@
 
 #include "../material/umat_call.h"
 
+/* The state of a quadrature point: stress (6), total strain (6), then the UMAT's STATEV. */
+enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
+
 #define FE_MAX_GROUPS 24 /* loads: pressures on groups, and traction components 'GROUP.x' etc. */
 
 typedef struct {

@@ -44,8 +44,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   }
   if (props->kind == YD_SCALAR && !strcmp(props->text, "woodford")) {
     memcpy(mat->props, woodford, sizeof woodford);
-    mat->nprops = camclay ? 23 : 19;
-    mat->props[22] = 1.0; /* normal e3 unless set below */
+    mat->nprops = 19; /* no normal: the UMAT's material 3-axis, unless given below */
   } else if (yd_doubles(doc, props, "material.props", mat->props, -UMAT_MAX_PROPS, &mat->nprops, err, errlen)) {
     return 1;
   }
@@ -65,7 +64,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
       }
       nd->used[i] = 1;
       if (yd_double(doc, nd->items[i], path, &mat->props[slot], err, errlen)) return 1;
-      if (slot + 1 > mat->nprops) mat->nprops = slot + 1 < 20 ? 20 : 23;
+      if (slot + 1 > mat->nprops) mat->nprops = slot + 1 <= 20 ? slot + 1 : 23; /* 21, 22: a partial normal */
     }
   }
   /* Bedding: an angle theta to the loading axis (theory.md §4.1), or the normal itself. */
@@ -86,8 +85,10 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   } else if (normal) {
     if (yd_doubles(doc, normal, "material.normal", &mat->props[20], 3, NULL, err, errlen)) return 1;
     mat->nprops = 23;
-  } else if (camclay && ntens == 4 && !strcmp(props->kind == YD_SCALAR ? props->text : "", "woodford")) {
-    mat->props[20] = 0, mat->props[21] = 1, mat->props[22] = 0; /* plane strain: load along x2 */
+  } else if (camclay && ntens == 4 && mat->nprops < 23) {
+    /* 2D without a normal: theta = 0 with the load along x2, n = e2 (the UMAT needs it in-plane) */
+    mat->props[20] = 0, mat->props[21] = 1, mat->props[22] = 0;
+    mat->nprops    = 23;
   }
   if ((nd = yd_get(node, "nstatv")) && yd_int(doc, nd, "material.nstatv", &mat->nstatv, err, errlen)) return 1;
   if (mat->nstatv < 0 || mat->nstatv > UMAT_MAX_STATEV) {

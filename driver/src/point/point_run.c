@@ -1,5 +1,7 @@
 #include "point_run.h"
 
+#include "camclay9.h"
+
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -12,9 +14,6 @@
 #define MAX_NEWTON 30
 #define MAX_CUTBACKS 40
 
-/* Cam-Clay IX STATEV slots (0-based) used for output and end conditions (docs/umat.md). */
-enum { SV_SIG_HARD = 0, SV_EVP_HARD = 6, SV_PC_HARD = 12, SV_SIG_SOFT = 13, SV_EVP_SOFT = 19, SV_PC_SOFT = 25,
-       SV_EVP = 26, SV_ITERATIONS = 32, SV_FLAGS = 33 };
 
 static double seconds_since(const struct timespec *t0) {
   struct timespec t;
@@ -209,15 +208,15 @@ static void write_header(FILE *fp) {
 static void write_row(FILE *fp, const UmatMaterial *mat, const UmatCall *c, double t, int step, int seg, double dt,
                       int newton, int cutbacks) {
   int n = mat->ntens;
-  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, (int)statev_or_zero(mat, c, SV_ITERATIONS),
+  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, (int)statev_or_zero(mat, c, CAMCLAY9_SV_ITERATIONS),
           cutbacks);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stran[i] : 0.0);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stress[i] : 0.0);
-  const int base[5] = {SV_SIG_HARD, SV_SIG_SOFT, SV_EVP_HARD, SV_EVP_SOFT, SV_EVP};
+  const int base[5] = {CAMCLAY9_SV_SIG_HARD, CAMCLAY9_SV_SIG_SOFT, CAMCLAY9_SV_EVP_HARD, CAMCLAY9_SV_EVP_SOFT, CAMCLAY9_SV_EVP};
   for (int g = 0; g < 5; g++)
     for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", statev_or_zero(mat, c, base[g] + i));
-  fprintf(fp, ",%.12g,%.12g,%d\n", statev_or_zero(mat, c, SV_PC_HARD), statev_or_zero(mat, c, SV_PC_SOFT),
-          (int)statev_or_zero(mat, c, SV_FLAGS));
+  fprintf(fp, ",%.12g,%.12g,%d\n", statev_or_zero(mat, c, CAMCLAY9_SV_PC_HARD), statev_or_zero(mat, c, CAMCLAY9_SV_PC_SOFT),
+          (int)statev_or_zero(mat, c, CAMCLAY9_SV_FLAGS));
 }
 
 static void write_json(const PointScene *sc, const double *t_start, const double *t_end) {
@@ -299,11 +298,9 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
     }
     t_start[s]      = t;
     double t_seg    = 0, dt;
-    int    k_planned = 0, planned = sg->adaptive ? -1 : sg->count;
-    double dt_plan = sg->adaptive ? sg->dt_first
-                     : sg->ratio == 1 ? sg->duration / sg->count
-                                      : sg->duration * (sg->ratio - 1) / (pow(sg->ratio, sg->count) - 1);
-    dt = dt_plan;
+    const StepControl *stc = &sg->steps;
+    int    k_planned = 0, planned = stc->adaptive ? -1 : stc->count;
+    dt = step_control_planned(stc, sg->duration, 0);
     int instant_pending = sg->instant;
     int cut_in_step = 0;
     while (!rc) {
@@ -324,7 +321,7 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
         /* Cut back: the UMAT's PNEWDT, or half the step when the control Newton did not converge. */
         sum->cutbacks++;
         double factor = res.umat_failed ? fmax(fmin(res.pnewdt, 0.5), 0.1) : 0.5;
-        if (dt_step == 0 || ++cut_in_step > MAX_CUTBACKS || dt_step * factor < (sg->adaptive ? sg->dt_min : 0)) {
+        if (dt_step == 0 || ++cut_in_step > MAX_CUTBACKS || dt_step * factor < (stc->adaptive ? stc->min : 0)) {
           sum->failed = 1;
           snprintf(err, errlen,
                    "segment '%s': step failed for good at time %.6g s (segment time %.6g s, dt %.3g s): %s, "
@@ -358,7 +355,7 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
       }
       /* Commit. */
       double evp_old[6];
-      for (int i = 0; i < 6; i++) evp_old[i] = statev_or_zero(mat, &cur, SV_EVP + i);
+      for (int i = 0; i < 6; i++) evp_old[i] = statev_or_zero(mat, &cur, CAMCLAY9_SV_EVP + i);
       memcpy(last_deps, next.dstran, sizeof last_deps);
       last_dt = dt_step;
       for (int i = 0; i < n; i++) next.stran[i] = cur.stran[i] + next.dstran[i];
@@ -370,34 +367,34 @@ int point_run(const PointScene *sc, PointSummary *sum, char *err, size_t errlen)
       write_row(csv, mat, &cur, t, sum->steps, s, dt_step, res.newton, cut_in_step);
       if (sc->progress_every > 0 && sum->steps % sc->progress_every == 0)
         printf("step %6d  segment %-12s t = %-11.5g dt = %-10.4g newton %d  local %d  cutbacks %d  wall %.2f s\n",
-               sum->steps, sg->name, t, dt_step, res.newton, (int)statev_or_zero(mat, &cur, SV_ITERATIONS),
+               sum->steps, sg->name, t, dt_step, res.newton, (int)statev_or_zero(mat, &cur, CAMCLAY9_SV_ITERATIONS),
                sum->cutbacks, seconds_since(&wall0));
       if (instant_pending) {
         instant_pending = 0;
         continue;
       }
       /* Next step size. */
-      if (sg->adaptive) dt = fmin(fmax(dt_step * fmin(res.pnewdt, sg->growth), sg->dt_min), sg->dt_max);
+      if (stc->adaptive) dt = step_control_next(stc, dt_step, res.pnewdt);
       else if (cut_in_step) {
         /* finish the planned step with the reduced size, then resume the plan */
         double planned_end = 0;
-        for (int k = 0; k <= k_planned; k++) planned_end += dt_plan * pow(sg->ratio, k);
+        for (int k = 0; k <= k_planned; k++) planned_end += step_control_planned(stc, sg->duration, k);
         if (t_seg >= planned_end * (1 - 1e-12)) {
           k_planned++;
           cut_in_step = 0;
-          dt          = dt_plan * pow(sg->ratio, k_planned);
+          dt          = step_control_planned(stc, sg->duration, k_planned);
         } else dt = fmin(2 * dt_step, planned_end - t_seg);
       } else {
         k_planned++;
-        dt = dt_plan * pow(sg->ratio, k_planned);
+        dt = step_control_planned(stc, sg->duration, k_planned);
       }
-      if (sg->adaptive) cut_in_step = 0;
+      if (stc->adaptive) cut_in_step = 0;
       /* End conditions. */
       if (sg->until != UNTIL_NONE) {
         double p, q, rate = 0;
         invariants(cur.stress, n, &p, &q);
         for (int i = 0; i < 6; i++) {
-          double d = statev_or_zero(mat, &cur, SV_EVP + i) - evp_old[i];
+          double d = statev_or_zero(mat, &cur, CAMCLAY9_SV_EVP + i) - evp_old[i];
           rate += d * d;
         }
         rate = dt_step > 0 ? sqrt(rate) / dt_step : INFINITY;

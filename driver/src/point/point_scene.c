@@ -1,13 +1,12 @@
 /* Reading a material-point scene from YAML; every error names the file, the line and the key. */
 #include "point_scene.h"
 
-#include <errno.h>
-#include <libgen.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "../io/csv_table.h"
 #include "../material/material_input.h"
 
 static const char *component_names[6] = {"11", "22", "33", "12", "13", "23"};
@@ -23,64 +22,6 @@ int point_component(const char *key) {
     snprintf(err, errlen, __VA_ARGS__);      \
     return 1;                                \
   } while (0)
-
-/* A CSV file with a header: the columns named in 'want' (ncol of them), as numbers. */
-static int read_table(const char *path, const char *scene_file, int line, char **want, int ncol, double **data,
-                      int *rows, char *err, size_t errlen) {
-  FILE *fp = fopen(path, "r");
-  if (!fp) FAIL("%s:%d: table file '%s': cannot open: %s", scene_file, line, path, strerror(errno));
-  char buf[8192];
-  int  idx[16];
-  do { /* the header is the first line that is not a comment */
-    if (!fgets(buf, sizeof buf, fp)) {
-      fclose(fp);
-      FAIL("%s:%d: table file '%s' has no header line", scene_file, line, path);
-    }
-  } while (buf[0] == '#');
-  char *names[64];
-  int   nnames = 0;
-  for (char *tok = strtok(buf, ",\r\n"); tok && nnames < 64; tok = strtok(NULL, ",\r\n")) names[nnames++] = tok;
-  for (int c = 0; c < ncol; c++) {
-    idx[c] = -1;
-    for (int k = 0; k < nnames; k++)
-      if (!strcmp(names[k], want[c])) idx[c] = k;
-    if (idx[c] < 0) {
-      fclose(fp);
-      FAIL("%s:%d: table file '%s' has no column '%s'", scene_file, line, path, want[c]);
-    }
-  }
-  int cap = 64;
-  *data   = malloc(sizeof(double) * cap * ncol);
-  *rows   = 0;
-  int fileline = 1;
-  while (fgets(buf, sizeof buf, fp)) {
-    fileline++;
-    if (buf[0] == '\n' || buf[0] == '#') continue;
-    double vals[64];
-    int    nv = 0;
-    for (char *tok = strtok(buf, ",\r\n"); tok && nv < 64; tok = strtok(NULL, ",\r\n")) {
-      char *end;
-      vals[nv] = strtod(tok, &end);
-      if (end == tok) {
-        fclose(fp);
-        FAIL("%s:%d: not a number: '%s'", path, fileline, tok);
-      }
-      nv++;
-    }
-    if (*rows == cap) *data = realloc(*data, sizeof(double) * (cap *= 2) * ncol);
-    for (int c = 0; c < ncol; c++) {
-      if (idx[c] >= nv) {
-        fclose(fp);
-        FAIL("%s:%d: row has %d values, column '%s' is number %d", path, fileline, nv, want[c], idx[c] + 1);
-      }
-      (*data)[*rows * ncol + c] = vals[idx[c]];
-    }
-    (*rows)++;
-  }
-  fclose(fp);
-  if (*rows < 2) FAIL("%s:%d: table file '%s' needs at least two rows", scene_file, line, path);
-  return 0;
-}
 
 /* {stress: x} or {strain: x} (or {strain: {column: name, factor: f}} in a table segment). */
 static int read_equation(YdDoc *doc, YdNode *nd, const char *path, Equation *eq, char **table_cols, int *ntable,
@@ -199,42 +140,8 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
     }
   }
 
-  /* Steps. */
-  sg->count = 1;
-  sg->ratio = 1;
-  sg->growth = 1.5;
-  if ((x = yd_get(nd, "steps"))) {
-    snprintf(sub, sizeof sub, "%s.steps", path);
-    if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen)) return 1;
-    YdNode *a = yd_get(x, "adaptive");
-    if (a && yd_bool(doc, a, sub, &sg->adaptive, err, errlen)) return 1;
-    if (sg->adaptive) {
-      sg->dt_first = sg->duration / 100, sg->dt_min = 1e-12 * fmax(sg->duration, 1), sg->dt_max = sg->duration;
-      YdNode *v;
-      if ((v = yd_get(x, "first")) && yd_double(doc, v, sub, &sg->dt_first, err, errlen)) return 1;
-      if ((v = yd_get(x, "min")) && yd_double(doc, v, sub, &sg->dt_min, err, errlen)) return 1;
-      if ((v = yd_get(x, "max")) && yd_double(doc, v, sub, &sg->dt_max, err, errlen)) return 1;
-      if ((v = yd_get(x, "growth")) && yd_double(doc, v, sub, &sg->growth, err, errlen)) return 1;
-      if (!(sg->dt_first > 0 && sg->dt_min > 0 && sg->dt_max >= sg->dt_min && sg->growth >= 1))
-        FAIL("%s:%d: key '%s': expected first > 0, min > 0, max >= min, growth >= 1", doc->file, x->line, sub);
-      if (yd_check_unused(doc, x, sub, "adaptive, first, min, max, growth", err, errlen)) return 1;
-    } else {
-      YdNode *v;
-      if ((v = yd_get(x, "count")) && yd_int(doc, v, sub, &sg->count, err, errlen)) return 1;
-      if (sg->count < 1) FAIL("%s:%d: key '%s.count': expected >= 1, got %d", doc->file, x->line, sub, sg->count);
-      if ((v = yd_get(x, "spacing"))) {
-        if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
-        if (!strcmp(s, "geometric")) {
-          sg->ratio = 1.05;
-          YdNode *r = yd_get(x, "ratio");
-          if (r && yd_double(doc, r, sub, &sg->ratio, err, errlen)) return 1;
-          if (!(sg->ratio > 0)) FAIL("%s:%d: key '%s.ratio': expected > 0", doc->file, x->line, sub);
-        } else if (strcmp(s, "linear"))
-          FAIL("%s:%d: key '%s.spacing': expected 'linear' or 'geometric', got '%s'", doc->file, v->line, sub, s);
-      }
-      if (yd_check_unused(doc, x, sub, "count, spacing, ratio (fixed steps) or adaptive, first, min, max, growth", err, errlen)) return 1;
-    }
-  }
+  snprintf(sub, sizeof sub, "%s.steps", path);
+  if (step_control_read(doc, yd_get(nd, "steps"), sub, sg->duration, &sg->steps, err, errlen)) return 1;
 
   /* End condition. */
   if ((x = yd_get(nd, "until"))) {
@@ -274,16 +181,15 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
     YdNode *f = yd_get(tab, "time_factor");
     if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
     if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
-    char  resolved[1024], dirbuf[1024];
-    snprintf(dirbuf, sizeof dirbuf, "%s", doc->file);
-    if (file[0] == '/') snprintf(resolved, sizeof resolved, "%s", file);
-    else snprintf(resolved, sizeof resolved, "%s/%s", dirname(dirbuf), file);
-    char   *want[9];
-    want[0] = (char *)tcol;
+    char resolved[1024], where[1200];
+    csv_resolve_path(doc->file, file, resolved, sizeof resolved);
+    snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, tab->line, sub);
+    const char *want[9];
+    want[0] = tcol;
     for (int c = 0; c < ntable; c++) want[c + 1] = table_cols[c];
     double *data;
     int     rows;
-    if (read_table(resolved, doc->file, tab->line, want, ntable + 1, &data, &rows, err, errlen)) return 1;
+    if (csv_read_columns(resolved, where, want, ntable + 1, 0, &data, &rows, err, errlen)) return 1;
     sg->table_rows = rows;
     sg->table_cols = ntable;
     sg->table_time = malloc(sizeof(double) * rows);
@@ -291,10 +197,6 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
     for (int r = 0; r < rows; r++) {
       sg->table_time[r] = data[r * (ntable + 1)] * tfac;
       for (int c = 0; c < ntable; c++) sg->table[r * ntable + c] = data[r * (ntable + 1) + c + 1];
-      if (r && !(sg->table_time[r] > sg->table_time[r - 1])) {
-        free(data);
-        FAIL("%s: table time must increase (row %d)", resolved, r + 2);
-      }
     }
     free(data);
   }

@@ -5,6 +5,7 @@
 
 #include "../io/yaml_doc.h"
 #include "../material/umat_call.h"
+#include "../stepping/step_control.h"
 
 typedef enum { EQ_STRESS, EQ_STRAIN, EQ_LINEAR } EquationKind;
 
@@ -25,10 +26,7 @@ typedef struct {
   double    duration;
   int       instant;         /* targets jump in a first zero-time (elastic) step, then are held */
   Equation  eq[6];
-  /* steps: fixed count with linear or geometric spacing, or adaptive (PNEWDT-driven) */
-  int       adaptive, count;
-  double    ratio;           /* geometric spacing: dt_{k+1} = ratio dt_k */
-  double    dt_first, dt_min, dt_max, growth;
+  StepControl steps;
   UntilKind until;
   double    until_value;
   int       creep, axis;     /* for the plots: a creep segment and its loading axis (0, 1, 2) */

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "../material/material_input.h"
+#include "camclay9.h"
 #include "point_run.h"
 
 #define MAXV 16
@@ -40,8 +41,8 @@ static void start_state(int which, PointScene *sc) {
   memset(sc->statev0, 0, sizeof sc->statev0);
   for (int i = 0; i < 6; i++) sc->stress0[i] = i < 3 ? s : 0;
   if (which == START_CONFINED) return;
-  for (int i = 0; i < 3; i++) sc->statev0[i] = sc->statev0[13 + i] = s;
-  sc->statev0[12] = sc->statev0[25] = pc;
+  for (int i = 0; i < 3; i++) sc->statev0[CAMCLAY9_SV_SIG_HARD + i] = sc->statev0[CAMCLAY9_SV_SIG_SOFT + i] = s;
+  sc->statev0[CAMCLAY9_SV_PC_HARD] = sc->statev0[CAMCLAY9_SV_PC_SOFT] = pc;
 }
 
 int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
@@ -113,8 +114,8 @@ int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen)
                 }
                 snprintf(sg.name, sizeof sg.name, "step");
                 sg.duration = dt.v[t];
-                sg.count    = 1;
-                sg.ratio    = 1;
+                sg.steps.count = 1;
+                sg.steps.ratio = 1;
                 sg.instant  = dt.v[t] == 0;
                 sc.seg      = &sg;
                 sc.nseg     = 1;
@@ -125,8 +126,7 @@ int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen)
                 int status = rc ? 2 : one.cutbacks ? 1 : 0; /* converged / cut back / failed */
                 double error = NAN;
                 if (!rc && dt.v[t] > 0) {
-                  sg.count = ref_steps;
-                  sg.ratio = 1;
+                  sg.steps.count = ref_steps;
                   if (!point_run(&sc, &fine, e1, sizeof e1)) {
                     double num = 0, den = 0;
                     for (int k = 0; k < 6; k++) {

@@ -1,0 +1,301 @@
+#include "fe_scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../io/csv_table.h"
+#include "../material/material_input.h"
+
+#define FAIL(...)                       \
+  do {                                  \
+    snprintf(err, errlen, __VA_ARGS__); \
+    return 1;                           \
+  } while (0)
+
+/* A pressure of a stage: a number (reached at the stage's end), {exp: {P0, k}} (P0 exp(k t) in the
+ * stage time t), or {table: {file, time, value, time_factor, factor}} (linear interpolation). */
+static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int gi, char *err, size_t errlen) {
+  YdNode *x;
+  g->fn[gi] = FN_RAMP;
+  if (nd->kind == YD_SCALAR) return yd_double(doc, nd, path, &g->pressure[gi], err, errlen);
+  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  char sub[200];
+  if ((x = yd_get(nd, "exp"))) {
+    g->fn[gi] = FN_EXP;
+    snprintf(sub, sizeof sub, "%s.exp", path);
+    if (yd_double(doc, yd_get(x, "P0"), sub, &g->P0[gi], err, errlen) || yd_double(doc, yd_get(x, "k"), sub, &g->k[gi], err, errlen)) return 1;
+    if (yd_check_unused(doc, x, sub, "P0, k", err, errlen)) return 1;
+  } else if ((x = yd_get(nd, "table"))) {
+    const char *file, *tc, *vc;
+    double      tf = 1, vf = 1;
+    YdNode     *y;
+    g->fn[gi] = FN_TABLE;
+    snprintf(sub, sizeof sub, "%s.table", path);
+    if (yd_string(doc, yd_get(x, "file"), sub, &file, err, errlen) || yd_string(doc, yd_get(x, "time"), sub, &tc, err, errlen) ||
+        yd_string(doc, yd_get(x, "value"), sub, &vc, err, errlen))
+      return 1;
+    if ((y = yd_get(x, "time_factor")) && yd_double(doc, y, sub, &tf, err, errlen)) return 1;
+    if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
+    if (yd_check_unused(doc, x, sub, "file, time, value, time_factor, factor", err, errlen)) return 1;
+    char resolved[1024], where[1200];
+    csv_resolve_path(doc->file, file, resolved, sizeof resolved);
+    snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, x->line, sub);
+    const char *want[2] = {tc, vc};
+    double     *data;
+    int         rows;
+    if (csv_read_columns(resolved, where, want, 2, 0, &data, &rows, err, errlen)) return 1;
+    g->tab_t[gi] = malloc(sizeof(double) * rows), g->tab_v[gi] = malloc(sizeof(double) * rows);
+    for (int r = 0; r < rows; r++) g->tab_t[gi][r] = data[2 * r] * tf, g->tab_v[gi][r] = data[2 * r + 1] * vf;
+    free(data);
+    g->nrow[gi] = rows;
+  } else {
+    FAIL("%s:%d: key '%s': expected a number, {exp: {P0, k}} or {table: {...}}", doc->file, nd->line, path);
+  }
+  return yd_check_unused(doc, nd, path, "exp, table", err, errlen);
+}
+
+/* The pressure of group k at stage time ts (lambda: the ramp's fraction then). */
+double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts) {
+  switch (g->fn[k]) {
+  case FN_EXP: return g->P0[k] * exp(g->k[k] * ts);
+  case FN_TABLE: {
+    const double *t = g->tab_t[k], *v = g->tab_v[k];
+    int           n = g->nrow[k], j = 0;
+    if (ts <= t[0]) return v[0];
+    if (ts >= t[n - 1]) return v[n - 1];
+    while (t[j + 1] < ts) j++;
+    return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[j]);
+  }
+  default: return start + lambda * (target - start);
+  }
+}
+
+static int component_of(const char *s) {
+  return !strcmp(s, "x") || !strcmp(s, "0") ? 0 : !strcmp(s, "y") || !strcmp(s, "1") ? 1 : !strcmp(s, "z") || !strcmp(s, "2") ? 2 : -1;
+}
+
+int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
+  YdNode     *root = doc->root, *x, *v;
+  const char *s;
+  memset(sc, 0, sizeof *sc);
+  snprintf(sc->name, sizeof sc->name, "fe");
+  yd_get(root, "scene");
+  if ((x = yd_get(root, "name"))) {
+    if (yd_string(doc, x, "name", &s, err, errlen)) return 1;
+    snprintf(sc->name, sizeof sc->name, "%s", s);
+  }
+  if ((x = yd_get(root, "units")))
+    for (size_t i = 0; i < x->n; i++) x->used[i] = 1;
+  snprintf(sc->outdir, sizeof sc->outdir, "out/%s", sc->name);
+  if ((x = yd_get(root, "output"))) {
+    if ((v = yd_get(x, "directory"))) {
+      if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
+      snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
+    }
+    if ((v = yd_get(x, "fields_every")) && yd_int(doc, v, "output.fields_every", &sc->fields_every, err, errlen)) return 1;
+    if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
+  }
+  /* Mesh: a gmsh geometry (meshed now, with parameters), a .msh file, or a box (tests). */
+  YdNode *mesh = yd_get(root, "mesh");
+  if (yd_expect(doc, mesh, YD_MAPPING, "mesh", err, errlen)) return 1;
+  sc->order = 1;
+  if ((v = yd_get(mesh, "order")) && yd_int(doc, v, "mesh.order", &sc->order, err, errlen)) return 1;
+  if (sc->order != 1 && sc->order != 2) FAIL("%s:%d: key 'mesh.order': expected 1 or 2, got %d", doc->file, v->line, sc->order);
+  YdNode *geo = yd_get(mesh, "geometry"), *file = yd_get(mesh, "file");
+  if (!!geo + !!file != 1)
+    FAIL("%s:%d: key 'mesh': give exactly one of geometry (a gmsh .geo, meshed now) or file (a .msh)", doc->file, mesh->line);
+  {
+    const char *path;
+    if (yd_string(doc, geo ? geo : file, geo ? "mesh.geometry" : "mesh.file", &path, err, errlen)) return 1;
+    FILE *fp = fopen(path, "r");
+    if (!fp) FAIL("%s:%d: key 'mesh.%s': cannot open '%s': %s", doc->file, (geo ? geo : file)->line,
+                  geo ? "geometry" : "file", path, strerror(errno));
+    fclose(fp);
+    snprintf(file ? sc->msh : sc->geometry, sizeof sc->msh, "%s", path);
+    if ((v = yd_get(mesh, "parameters"))) {
+      if (yd_expect(doc, v, YD_MAPPING, "mesh.parameters", err, errlen)) return 1;
+      for (size_t i = 0; i < v->n; i++) {
+        double val;
+        v->used[i] = 1;
+        if (yd_double(doc, v->items[i], "mesh.parameters", &val, err, errlen)) return 1;
+        size_t len = strlen(sc->gmsh_params);
+        snprintf(sc->gmsh_params + len, sizeof sc->gmsh_params - len, " -setnumber %s %.17g", v->keys[i], val);
+      }
+    }
+  }
+  sc->kin       = KIN_3D;
+  sc->thickness = 1;
+  if ((v = yd_get(mesh, "kinematics"))) {
+    if (yd_string(doc, v, "mesh.kinematics", &s, err, errlen)) return 1;
+    if (!strcmp(s, "3d")) sc->kin = KIN_3D;
+    else if (!strcmp(s, "plane_strain")) sc->kin = KIN_PLANE_STRAIN;
+    else if (!strcmp(s, "axisymmetric")) sc->kin = KIN_AXISYMMETRIC;
+    else FAIL("%s:%d: key 'mesh.kinematics': expected 3d, plane_strain or axisymmetric, got '%s'", doc->file, v->line, s);
+  }
+  if ((v = yd_get(mesh, "thickness"))) {
+    if (yd_double(doc, v, "mesh.thickness", &sc->thickness, err, errlen)) return 1;
+    if (!(sc->thickness > 0) || sc->kin != KIN_PLANE_STRAIN)
+      FAIL("%s:%d: key 'mesh.thickness': expected > 0, and only with kinematics: plane_strain", doc->file, v->line);
+  }
+  if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen)) return 1;
+
+  if (material_read(doc, yd_get(root, "material"), sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen)) return 1;
+  sc->phi_mean = sc->mat.phi_slot >= 0 ? sc->mat.props[sc->mat.phi_slot] : 0;
+  sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
+  if ((x = yd_get(root, "phi"))) {
+    if (sc->mat.phi_slot < 0) FAIL("%s:%d: key 'phi': this UMAT has no hard-frame fraction", doc->file, x->line);
+    if (yd_double(doc, yd_get(x, "mean"), "phi.mean", &sc->phi_mean, err, errlen)) return 1;
+    if ((v = yd_get(x, "std")) && yd_double(doc, v, "phi.std", &sc->phi_std, err, errlen)) return 1;
+    if ((v = yd_get(x, "min")) && yd_double(doc, v, "phi.min", &sc->phi_lo, err, errlen)) return 1;
+    if ((v = yd_get(x, "max")) && yd_double(doc, v, "phi.max", &sc->phi_hi, err, errlen)) return 1;
+    if ((v = yd_get(x, "seed")) && yd_int(doc, v, "phi.seed", &sc->phi_seed, err, errlen)) return 1;
+    if ((v = yd_get(x, "correlation_length")) &&
+        (yd_double(doc, v, "phi.correlation_length", &sc->phi_corr, err, errlen) || sc->phi_corr < 0))
+      FAIL("%s:%d: key 'phi.correlation_length': expected a length >= 0", doc->file, v->line);
+    if (!(0 <= sc->phi_lo && sc->phi_lo <= sc->phi_mean && sc->phi_mean <= sc->phi_hi && sc->phi_hi <= 1 && sc->phi_std >= 0))
+      FAIL("%s:%d: key 'phi': expected 0 <= min <= mean <= max <= 1 and std >= 0", doc->file, x->line);
+    if (yd_check_unused(doc, x, "phi", "mean, std, min, max, seed, correlation_length", err, errlen)) return 1;
+  }
+  YdNode *initial_pressure = NULL;
+  if ((x = yd_get(root, "initial"))) {
+    if ((v = yd_get(x, "stress")) && yd_doubles(doc, v, "initial.stress", sc->stress0, 6, NULL, err, errlen)) return 1;
+    initial_pressure = yd_get(x, "pressure");
+    if (yd_check_unused(doc, x, "initial", "stress (both frames), pressure (in equilibrium with it)", err, errlen)) return 1;
+  }
+  YdNode *bc = yd_get(root, "boundary");
+  if (yd_expect(doc, bc, YD_MAPPING, "boundary", err, errlen)) return 1;
+  if ((x = yd_get(bc, "fixed"))) {
+    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
+    for (size_t k = 0; k < x->n && k < 8; k++) {
+      YdNode *f = x->items[k], *comps;
+      char    path[64];
+      snprintf(path, sizeof path, "boundary.fixed[%zu]", k);
+      if (yd_expect(doc, f, YD_MAPPING, path, err, errlen)) return 1;
+      if (yd_string(doc, yd_get(f, "group"), path, &s, err, errlen)) return 1;
+      snprintf(sc->fixed[k].group, sizeof sc->fixed[k].group, "%s", s);
+      if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, path, err, errlen)) return 1;
+      for (size_t j = 0; j < comps->n && j < 3; j++) {
+        int c = comps->items[j]->kind == YD_SCALAR ? component_of(comps->items[j]->text) : -1;
+        if (c < 0 || (sc->kin != KIN_3D && c > 1))
+          FAIL("%s:%d: key '%s.components': expected x, y%s", doc->file, comps->items[j]->line, path,
+               sc->kin == KIN_3D ? " or z" : " (a 2D mesh; axisymmetric: x = r, y = z)");
+        sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
+      }
+      if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
+      sc->nfixed++;
+    }
+  }
+  if ((x = yd_get(bc, "pressure"))) {
+    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.pressure", err, errlen)) return 1;
+    for (size_t k = 0; k < x->n && k < FE_MAX_GROUPS; k++) {
+      if (yd_string(doc, x->items[k], "boundary.pressure", &s, err, errlen)) return 1;
+      snprintf(sc->pressure_group[sc->npressure++], 64, "%s", s);
+    }
+  }
+  if ((x = yd_get(bc, "traction"))) { /* uniform tractions: loads GROUP.x, GROUP.y (, GROUP.z) */
+    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.traction", err, errlen)) return 1;
+    int dim = sc->kin == KIN_3D ? 3 : 2;
+    for (size_t k = 0; k < x->n; k++) {
+      if (yd_string(doc, x->items[k], "boundary.traction", &s, err, errlen)) return 1;
+      if (sc->npressure + dim > FE_MAX_GROUPS) FAIL("%s:%d: key 'boundary': too many loaded groups", doc->file, x->line);
+      for (int d = 0; d < dim; d++) snprintf(sc->pressure_group[sc->npressure++], 64, "%s.%c", s, 'x' + d);
+    }
+  }
+  if (yd_check_unused(doc, bc, "boundary", "fixed, pressure, traction", err, errlen)) return 1;
+  for (int k = 0; k < FE_MAX_GROUPS; k++) sc->pressure0[k] = 0;
+  if (initial_pressure) {
+    if (yd_expect(doc, initial_pressure, YD_MAPPING, "initial.pressure", err, errlen)) return 1;
+    for (size_t k = 0; k < initial_pressure->n; k++) {
+      int gi = -1;
+      for (int j = 0; j < sc->npressure; j++)
+        if (!strcmp(sc->pressure_group[j], initial_pressure->keys[k])) gi = j;
+      if (gi < 0) FAIL("%s:%d: key 'initial.pressure.%s': not a group listed in boundary.pressure", doc->file,
+                       initial_pressure->key_lines[k], initial_pressure->keys[k]);
+      initial_pressure->used[k] = 1;
+      if (yd_double(doc, initial_pressure->items[k], "initial.pressure", &sc->pressure0[gi], err, errlen)) return 1;
+    }
+  }
+
+  YdNode *stages = yd_get(root, "stages");
+  if (yd_expect(doc, stages, YD_SEQUENCE, "stages", err, errlen)) return 1;
+  if (stages->n == 0 || stages->n > MAXSTAGES) FAIL("%s:%d: key 'stages': expected 1 to %d stages", doc->file, stages->line, MAXSTAGES);
+  sc->nstage = (int)stages->n;
+  for (int i = 0; i < sc->nstage; i++) {
+    YdNode *st = stages->items[i];
+    Stage  *g  = &sc->stage[i];
+    char    path[64], sub[96];
+    snprintf(path, sizeof path, "stages[%d]", i);
+    if (yd_expect(doc, st, YD_MAPPING, path, err, errlen)) return 1;
+    snprintf(g->name, sizeof g->name, "stage%d", i);
+    if ((v = yd_get(st, "name"))) {
+      if (yd_string(doc, v, path, &s, err, errlen)) return 1;
+      snprintf(g->name, sizeof g->name, "%s", s);
+    }
+    snprintf(sub, sizeof sub, "%s.duration", path);
+    if (yd_double(doc, yd_get(st, "duration"), sub, &g->duration, err, errlen)) return 1;
+    if (g->duration < 0) FAIL("%s:%d: key '%s': expected >= 0", doc->file, st->line, sub);
+    if ((v = yd_get(st, "load"))) {
+      if (yd_string(doc, v, path, &s, err, errlen)) return 1;
+      if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s.load': expected instant or linear", doc->file, v->line, path);
+      g->instant = !strcmp(s, "instant");
+    }
+    for (int k = 0; k < FE_MAX_GROUPS; k++) g->pressure[k] = NAN;
+    if ((v = yd_get(st, "pressure"))) {
+      snprintf(sub, sizeof sub, "%s.pressure", path);
+      if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+      for (size_t k = 0; k < v->n; k++) {
+        int gi = -1;
+        for (int j = 0; j < sc->npressure; j++)
+          if (!strcmp(sc->pressure_group[j], v->keys[k])) gi = j;
+        if (gi < 0) FAIL("%s:%d: key '%s.%s': not a group listed in boundary.pressure", doc->file, v->key_lines[k], sub, v->keys[k]);
+        v->used[k] = 1;
+        char sub2[160];
+        snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
+        if (read_pressure(doc, v->items[k], sub2, g, gi, err, errlen)) return 1;
+      }
+    }
+    if ((v = yd_get(st, "traction"))) {
+      snprintf(sub, sizeof sub, "%s.traction", path);
+      if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+      int dim = sc->kin == KIN_3D ? 3 : 2;
+      for (size_t k = 0; k < v->n; k++) {
+        double t[3];
+        char   sub2[200];
+        snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
+        v->used[k] = 1;
+        if (yd_doubles(doc, v->items[k], sub2, t, dim, NULL, err, errlen)) return 1;
+        for (int d = 0; d < dim; d++) {
+          char name[72];
+          int  gi = -1;
+          snprintf(name, sizeof name, "%s.%c", v->keys[k], 'x' + d);
+          for (int j = 0; j < sc->npressure; j++)
+            if (!strcmp(sc->pressure_group[j], name)) gi = j;
+          if (gi < 0) FAIL("%s:%d: key '%s': not a group listed in boundary.traction", doc->file, v->key_lines[k], sub2);
+          g->pressure[gi] = t[d], g->fn[gi] = FN_RAMP;
+        }
+      }
+    }
+    snprintf(sub, sizeof sub, "%s.steps", path);
+    if (step_control_read(doc, yd_get(st, "steps"), sub, g->duration, &g->steps, err, errlen)) return 1;
+    if ((v = yd_get(st, "until"))) {
+      if (yd_double(doc, yd_get(v, "evp_rate_below"), "until.evp_rate_below", &g->evp_rate_below, err, errlen)) return 1;
+      if (yd_check_unused(doc, v, "until", "evp_rate_below", err, errlen)) return 1;
+    }
+    if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
+    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep", err, errlen)) return 1;
+  }
+  if ((x = yd_get(root, "solver"))) {
+    if ((v = yd_get(x, "options"))) {
+      if (yd_string(doc, v, "solver.options", &s, err, errlen)) return 1;
+      if (s[0] != '-') FAIL("%s:%d: key 'solver.options': expected PETSc options such as '-snes_monitor', got '%s'", doc->file, v->line, s);
+      snprintf(sc->solver_options, sizeof sc->solver_options, "%s", s);
+    }
+    if (yd_check_unused(doc, x, "solver", "options (PETSc options; the command line overrides them)", err, errlen)) return 1;
+  }
+  sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
+  return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, stages, output, solver",
+                         err, errlen);
+}

@@ -1,0 +1,55 @@
+/* A finite-element scene as read from YAML: mesh, kinematics, material, phi field, initial state,
+ * boundary conditions, load stages and output. Every error names the file, the line and the key. */
+#ifndef FE_SCENE_H
+#define FE_SCENE_H
+
+#include "../io/yaml_doc.h"
+#include "../stepping/step_control.h"
+#include "fe_problem.h"
+
+#define MAXSTAGES 16
+
+enum { FN_RAMP, FN_EXP, FN_TABLE };
+
+typedef struct {
+  char      name[64];
+  double    duration;
+  int       instant, creep;
+  StepControl steps;
+  double    pressure[FE_MAX_GROUPS]; /* at the end of the stage; NAN: keep */
+  /* or a time function of the stage time: P0 exp(k t), or a table */
+  int       fn[FE_MAX_GROUPS];       /* FN_RAMP (the target above), FN_EXP, FN_TABLE */
+  double    P0[FE_MAX_GROUPS], k[FE_MAX_GROUPS];
+  int       nrow[FE_MAX_GROUPS];
+  double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
+  double    evp_rate_below;          /* 0: no end condition */
+} Stage;
+
+typedef struct {
+  char         name[128], outdir[512], msh[1024];
+  char         geometry[1024], gmsh_params[1024]; /* a gmsh .geo meshed at run time, with -setnumber */
+  int          order;
+  Kinematics   kin;
+  double       thickness;
+  UmatMaterial mat;
+  double       phi_mean, phi_std, phi_lo, phi_hi, phi_corr;
+  int          phi_seed;
+  double       stress0[6], pressure0[FE_MAX_GROUPS];
+  int          nfixed;
+  FeFixed      fixed[8];
+  int          npressure;
+  char         pressure_group[FE_MAX_GROUPS][64];
+  int          nstage;
+  Stage        stage[MAXSTAGES];
+  int          axis;
+  int          fields_every;
+  char         solver_options[1024]; /* PETSc options from the scene; the command line wins */  /* field output every N steps, besides the start and each stage's end */
+} FeScene;
+
+
+/* Read the scene; 0, or 1 with err filled. */
+int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen);
+/* The load of group k at stage time ts (lambda: the fraction of a ramp done then). */
+double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts);
+
+#endif
