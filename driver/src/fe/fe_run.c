@@ -8,6 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "../contact/indent_run.h"
 #include "../material/umat_call.h"
 #include "../point/point_run.h"
 #include "fe_checkpoint.h"
@@ -15,12 +16,32 @@
 #include "fe_problem.h"
 #include "fe_scene.h"
 
+/* The scene's PETSc options, each unless the command line already gives it. */
+static PetscErrorCode apply_scene_options(const char *options) {
+  char  buf[1024], *tok, *save = NULL, *keys[64], *vals[64];
+  int   n = 0;
+  PetscFunctionBeginUser;
+  snprintf(buf, sizeof buf, "%s", options);
+  for (tok = strtok_r(buf, " \t", &save); tok && n < 64; tok = strtok_r(NULL, " \t", &save)) {
+    if (tok[0] == '-' && !(tok[1] >= '0' && tok[1] <= '9') && tok[1] != '.') keys[n] = tok, vals[n++] = NULL;
+    else if (n > 0 && !vals[n - 1]) vals[n - 1] = tok;
+  }
+  for (int k = 0; k < n; k++) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, keys[k], &set));
+    if (!set) PetscCall(PetscOptionsSetValue(NULL, keys[k], vals[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
 int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   FeScene     sc;
   MPI_Comm    comm = PETSC_COMM_WORLD;
   PetscMPIInt rank;
   MPI_Comm_rank(comm, &rank);
+  IndentScene isc;
   if (fe_scene_read(doc, &sc, err, errlen)) return 2;
+  if (sc.indenter && indent_scene_read(doc, &sc, &isc, err, errlen)) return 2;
   if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
   if (!rank && make_directories(sc.outdir)) {
     snprintf(err, errlen, "output directory '%s': cannot create: %s", sc.outdir, strerror(errno));
@@ -111,6 +132,13 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   }
   PetscCall(fe_problem_set_initial_stress(&p, sc.stress0));
   PetscCall(fe_problem_set_phi(&p, sc.phi_mean, sc.phi_std, sc.phi_lo, sc.phi_hi, sc.phi_seed, sc.phi_corr));
+  PetscCall(apply_scene_options(sc.solver_options));
+  if (sc.indenter) { /* a rigid indenter: the contact stepper (Newton with an active set) */
+    int irc = indent_run(&sc, &isc, &p, err, errlen);
+    PetscCall(fe_problem_destroy(&p));
+    PetscCall(DMDestroy(&dm));
+    return irc;
+  }
 
   SNES snes;
   Mat  J;
@@ -156,21 +184,6 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
     }
     PetscCall(SNESSetTolerances(snes, 1e-10 * pmax * PetscMax(fref, 1e-12), 1e-12, 1e-14, 25, 1000));
-    if (sc.solver_options[0]) { /* the scene's options, each unless the command line already gives it */
-      char  buf[1024], *tok, *save = NULL;
-      snprintf(buf, sizeof buf, "%s", sc.solver_options);
-      char *keys[64], *vals[64];
-      int   n = 0;
-      for (tok = strtok_r(buf, " \t", &save); tok && n < 64; tok = strtok_r(NULL, " \t", &save)) {
-        if (tok[0] == '-' && !(tok[1] >= '0' && tok[1] <= '9') && tok[1] != '.') keys[n] = tok, vals[n++] = NULL;
-        else if (n > 0 && !vals[n - 1]) vals[n - 1] = tok;
-      }
-      for (int k = 0; k < n; k++) {
-        PetscBool set;
-        PetscCall(PetscOptionsHasName(NULL, NULL, keys[k], &set));
-        if (!set) PetscCall(PetscOptionsSetValue(NULL, keys[k], vals[k]));
-      }
-    }
     PetscCall(SNESSetFromOptions(snes));
   }
 

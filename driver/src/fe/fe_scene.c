@@ -285,7 +285,8 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       if (yd_check_unused(doc, v, "until", "evp_rate_below", err, errlen)) return 1;
     }
     if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
-    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep", err, errlen)) return 1;
+    g->indenter = yd_get(st, "indenter"); /* read by the contact module */
+    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter", err, errlen)) return 1;
   }
   if ((x = yd_get(root, "solver"))) {
     if ((v = yd_get(x, "options"))) {
@@ -296,6 +297,10 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if (yd_check_unused(doc, x, "solver", "options (PETSc options; the command line overrides them)", err, errlen)) return 1;
   }
   sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
-  return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, stages, output, solver",
+  sc->indenter = yd_get(root, "indenter");
+  for (int i = 0; i < sc->nstage; i++)
+    if (sc->stage[i].indenter && !sc->indenter)
+      FAIL("%s:%d: key 'stages[%d].indenter': the scene has no top-level 'indenter' block", doc->file, sc->stage[i].indenter->line, i);
+  return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, indenter, stages, output, solver",
                          err, errlen);
 }

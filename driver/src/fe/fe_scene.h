@@ -23,6 +23,7 @@ typedef struct {
   int       nrow[FE_MAX_GROUPS];
   double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
   double    evp_rate_below;          /* 0: no end condition */
+  YdNode   *indenter;                /* the stage's indenter settings (read by the contact module), or NULL */
 } Stage;
 
 typedef struct {
@@ -42,8 +43,9 @@ typedef struct {
   int          nstage;
   Stage        stage[MAXSTAGES];
   int          axis;
-  int          fields_every;
-  char         solver_options[1024]; /* PETSc options from the scene; the command line wins */  /* field output every N steps, besides the start and each stage's end */
+  int          fields_every;         /* field output every N steps, besides the start and each stage's end */
+  char         solver_options[1024]; /* PETSc options from the scene; the command line wins */
+  YdNode      *indenter;             /* a rigid indenter (contact/indent_scene.h), or NULL */
 } FeScene;
 
 

@@ -1,0 +1,64 @@
+/* Frictionless node-to-rigid-surface contact with one rigid indenter (Yin, Liu & Borja 2021, §2.2–2.3):
+ * a Lagrange multiplier per potential contact node (the normal pressure there), diagonal
+ * multiplier-displacement coupling from nodal quadrature (eq. 18), one indenter unknown u_r whose row
+ * sums the contact forces (eq. 19), the active set from the complementarity function of eqs. 13–14,
+ * and the blocks of the linearised system of eq. 15 for a MatNest over (u, u_r, lambda).
+ *
+ * Sign conventions: g >= 0 is the gap (eq. 5 with the opposite sign: positive when open), lambda >= 0
+ * the contact pressure; the contact force on node i is lambda_i w_i n_i (n: dg/dx, away from the
+ * indenter), and on the indenter -sum lambda_i w_i n_i, balanced along the indentation direction d by
+ * the applied load P. Eqs. 13-14 read with this g: C(lambda, g) = lambda - max(0, lambda - c g), active where
+ * lambda - c g > 0. Residuals (zero at a solution):
+ *   R_u      = f_int - f_ext - sum_i lambda_i w_i n_i
+ *   R_r      = sum_i lambda_i w_i (n_i . d) - P           (force control; u_r - h(t) under depth control)
+ *   R_lam,i  = -w_i g_i on the active set,  lambda_i elsewhere. */
+#ifndef CONTACT_H
+#define CONTACT_H
+
+#include <petscdmplex.h>
+#include <petscmat.h>
+
+#include "../fe/fe_problem.h"
+#include "indenter_shape.h"
+
+typedef struct {
+  IndenterShape shape;
+  PetscInt      dim, n, N, rstart; /* nodes here, on all ranks, first global multiplier index here */
+  PetscReal    *X, *w;             /* reference coordinates (dim per node), weights int N_i dGamma (eq. 18) */
+  PetscInt     *row;               /* dim per node: global displacement row of each component, < 0 if fixed */
+  PetscReal    *g, *nrm;           /* gap and normal (dim) of each node at the last evaluation */
+  PetscBool    *active;
+  PetscReal     c;                 /* complementarity constant of eq. 13 (stress per length) */
+  PetscReal     weight_sum;        /* all ranks: area (3D), area per thickness x thickness, 2 pi r area */
+  /* blocks of eq. 15, fixed nonzero pattern */
+  Mat           Kr, Bt, Ct, B, C, D; /* (u_r,u_r), (u,lam), (u_r,lam), (lam,u), (lam,u_r), (lam,lam) */
+  PetscReal     kr;                /* the value in Kr */
+  PetscBool     depth_control;     /* of the last contact_jacobian */
+} Contact;
+
+/* The potential contact nodes: the vertices of the faces (3D) or edges (2D) of the group, owned by this
+ * rank, with their nodal-quadrature weights (plane strain: per the thickness; axisymmetric: 2 pi r). */
+PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct);
+PetscErrorCode contact_destroy(Contact *ct);
+/* Gaps and normals at displacement U (global vector of the problem's DM) and indenter position ur. */
+PetscErrorCode contact_update_gaps(Contact *ct, Vec U, PetscReal ur);
+/* Active set of eq. 14 from lambda and the gaps; returns the number of changes and the active count
+ * (both over all ranks). */
+PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscInt *changes, PetscInt *nactive);
+/* Add the contact forces to R_u (at the last gaps' normals), and write R_r (force control: target is the
+ * load P; depth control: the depth), and the 2-norm of w_i (lambda_i - max(0, lambda_i - c g_i)), the
+ * complementarity residual of eq. 13 in force units (all ranks). */
+PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool depth_control, PetscReal target,
+                                Vec Ru, PetscReal *Rr, PetscReal *ncp_norm);
+/* R_lam for the current active set: -w_i g_i on it (eq. 12), lambda_i off it. */
+PetscErrorCode contact_constraint_residual(Contact *ct, Vec lam, Vec Rlam);
+/* The contact blocks for the current active set and normals. kshift: the indenter row's diagonal under
+ * force control (0 unless the active set is empty). */
+PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal kshift);
+/* sum lambda_i w_i (n_i . d) over all ranks (the contact force on the indenter along d), the largest
+ * penetration (-min g), and the smallest multiplier on the active set. */
+PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal *penetration, PetscReal *min_lambda);
+/* The largest diagonal entry of the stiffness on the contact nodes (a one-node stiffness). */
+PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k);
+
+#endif

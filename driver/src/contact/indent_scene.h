@@ -1,0 +1,34 @@
+/* The indenter of a finite-element scene: its shape and place (top-level key 'indenter') and what it
+ * does in each stage (key 'indenter' of a stage): a load (a number reached linearly at the stage's end,
+ * {exp: {P0, k}} = P0 exp(k t) in the stage time, or 'hold'), or a depth (depth control, linear), and
+ * an optional end event {until: {depth: h}} or {until: {load: P}} on which the stage's last step lands. */
+#ifndef INDENT_SCENE_H
+#define INDENT_SCENE_H
+
+#include "../fe/fe_scene.h"
+#include "indenter_shape.h"
+
+typedef enum { IND_LOAD_RAMP, IND_LOAD_EXP, IND_LOAD_HOLD, IND_DEPTH_RAMP } IndentLoadKind;
+
+typedef struct {
+  IndentLoadKind kind;
+  double         target;        /* ramp: the load (or depth) at the stage's end */
+  double         P0, k;         /* exp */
+  double         until_depth;   /* > 0: the stage ends when the depth reaches it */
+  double         until_load;    /* > 0: ... when the load reaches it (exp: at a time known in advance) */
+} IndentStage;
+
+typedef struct {
+  IndenterShape shape;
+  char          contact_group[64];
+  double        c;              /* complementarity constant (eq. 13); 0: E / (contact-node spacing) */
+  IndentStage   stage[MAXSTAGES];
+} IndentScene;
+
+/* Read sc->indenter and every stage's indenter key. Returns 0, or 1 with err naming file, line, key. */
+int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err, size_t errlen);
+/* The indenter's load (force control) or depth (depth control) at stage time ts; start: its value at the
+ * stage's start; lambda: the fraction of the stage done. */
+double indent_stage_value(const IndentStage *st, double start, double lambda, double ts);
+
+#endif

@@ -1,0 +1,191 @@
+#include "indent_solver.h"
+
+#include <string.h>
+#include <time.h>
+
+static double wall(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* An option's default, unless the command line or the scene already gives it. */
+static PetscErrorCode default_option(const char *name, const char *value) {
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
+  if (!set) PetscCall(PetscOptionsSetValue(NULL, name, value));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
+  MPI_Comm  comm = PetscObjectComm((PetscObject)K);
+  PetscInt  m, M, nr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(s, sizeof *s));
+  s->K = K;
+  /* eq. 15: [K 0 Bt; 0 Kr Ct; B C D] (Bt carries every multiplier: the exact derivative of R_u) */
+  Mat blocks[9] = {K, NULL, ct->Bt, NULL, ct->Kr, ct->Ct, ct->B, ct->C, ct->D};
+  PetscCall(MatCreateNest(comm, 3, NULL, 3, NULL, blocks, &s->A));
+  {
+    IS rows[3];
+    PetscCall(MatNestGetISs(s->A, rows, NULL));
+    for (int k = 0; k < 3; k++) {
+      PetscCall(PetscObjectReference((PetscObject)rows[k]));
+      s->is[k] = rows[k];
+    }
+    PetscCall(ISConcatenate(comm, 2, &s->is[1], &s->isrl));
+  }
+  PetscCall(MatGetLocalSize(s->A, &m, NULL));
+  PetscCall(MatGetSize(s->A, &M, NULL));
+  PetscCall(VecCreateMPI(comm, m, M, &s->X));
+  PetscCall(VecDuplicate(s->X, &s->F));
+  {
+    const char *types[2] = {"direct", "fieldsplit"};
+    PetscInt    which    = 0;
+    PetscCall(PetscOptionsGetEList(NULL, NULL, "-indent_solver", types, 2, &which, NULL));
+    s->fieldsplit = which == 1;
+  }
+  PetscCall(KSPCreate(comm, &s->ksp));
+  PC pc;
+  PetscCall(KSPGetPC(s->ksp, &pc));
+  if (!s->fieldsplit) {
+    PetscCall(KSPSetType(s->ksp, KSPPREONLY));
+    PetscCall(PCSetType(pc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  } else {
+    PetscCall(ISGetLocalSize(s->is[1], &nr));
+    PetscCall(KSPSetType(s->ksp, KSPFGMRES));
+    PetscCall(KSPSetTolerances(s->ksp, 1e-12, 1e-300, PETSC_DEFAULT, 200));
+    PetscCall(PCSetType(pc, PCFIELDSPLIT));
+    PetscCall(PCFieldSplitSetIS(pc, "u", s->is[0]));
+    PetscCall(PCFieldSplitSetIS(pc, "contact", s->isrl));
+    PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
+    PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_FULL));
+    /* the Schur complement's preconditioner: A11 - A10 diag(K)^-1 A01, an arrow matrix (the indenter
+       row and column, a diagonal), assembled in indent_solver_solve */
+    PetscInt *dnz, *onz, nl = nr + ct->n;
+    PetscCall(PetscCalloc2(PetscMax(nl, 1), &dnz, PetscMax(nl, 1), &onz));
+    for (PetscInt i = 0; i < nl; i++) dnz[i] = 2, onz[i] = 1;
+    if (nr) dnz[0] = 1 + ct->n, onz[0] = ct->N - ct->n;
+    PetscCall(MatCreateAIJ(comm, nl, nl, ct->N + 1, ct->N + 1, 0, dnz, 0, onz, &s->Sp));
+    PetscCall(PetscFree2(dnz, onz));
+    PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, s->Sp));
+    PetscCall(default_option("-fieldsplit_u_ksp_type", "gmres"));
+    PetscCall(default_option("-fieldsplit_u_ksp_rtol", "1e-12"));
+    PetscCall(default_option("-fieldsplit_u_pc_type", "gamg"));
+    PetscCall(default_option("-fieldsplit_contact_ksp_type", "gmres"));
+    PetscCall(default_option("-fieldsplit_contact_ksp_rtol", "1e-12"));
+    PetscCall(default_option("-fieldsplit_contact_pc_type", "lu"));
+    PetscCall(default_option("-fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
+  }
+  PetscCall(KSPSetFromOptions(s->ksp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode indent_solver_destroy(IndentSolver *s) {
+  PetscFunctionBeginUser;
+  PetscCall(KSPDestroy(&s->ksp));
+  PetscCall(MatDestroy(&s->A));
+  PetscCall(MatDestroy(&s->Aaij));
+  PetscCall(MatDestroy(&s->Sp));
+  for (int k = 0; k < 3; k++) PetscCall(ISDestroy(&s->is[k]));
+  PetscCall(ISDestroy(&s->isrl));
+  PetscCall(VecDestroy(&s->X));
+  PetscCall(VecDestroy(&s->F));
+  PetscFunctionReturn(0);
+}
+
+/* The Schur preconditioning matrix in the numbering of the (u_r, lambda) split: u_r first (global 0),
+ * then the multipliers (global 1 + their index). */
+static PetscErrorCode assemble_schur_pre(IndentSolver *s, Contact *ct) {
+  Vec                diag;
+  const PetscScalar *da;
+  PetscInt           rstart;
+  PetscMPIInt        rank;
+  const PetscInt     dim = ct->dim;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)s->Sp), &rank));
+  PetscCall(MatCreateVecs(s->K, NULL, &diag));
+  PetscCall(MatGetDiagonal(s->K, diag));
+  PetscCall(VecGetOwnershipRange(diag, &rstart, NULL));
+  PetscCall(VecGetArrayRead(diag, &da));
+  if (!rank) PetscCall(MatSetValue(s->Sp, 0, 0, ct->kr, INSERT_VALUES));
+  for (PetscInt i = 0; i < ct->n; i++) {
+    PetscInt  gi = 1 + ct->rstart + i, zero = 0;
+    PetscReal c = -ct->w[i] * ct->nrm[i * dim + dim - 1], sii = 1; /* w (n . d) */
+    if (ct->active[i]) {
+      sii = 0;
+      for (PetscInt d = 0; d < dim; d++) {
+        PetscInt r = ct->row[i * dim + d];
+        if (r >= 0) sii -= PetscSqr(ct->w[i] * ct->nrm[i * dim + d]) / PetscRealPart(da[r - rstart]);
+      }
+    }
+    PetscCall(MatSetValue(s->Sp, zero, gi, ct->depth_control ? 0.0 : c, INSERT_VALUES));
+    PetscCall(MatSetValue(s->Sp, gi, zero, ct->active[i] ? c : 0.0, INSERT_VALUES));
+    PetscCall(MatSetValue(s->Sp, gi, gi, sii, INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(diag, &da));
+  PetscCall(VecDestroy(&diag));
+  PetscCall(MatAssemblyBegin(s->Sp, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(s->Sp, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* Copy between a part of the flat vector and its own vector (to_flat: part -> flat). */
+static PetscErrorCode part(Vec flat, IS is, Vec v, PetscBool to_flat) {
+  Vec sub;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSubVector(flat, is, &sub));
+  if (to_flat) PetscCall(VecCopy(v, sub));
+  else PetscCall(VecCopy(sub, v));
+  PetscCall(VecRestoreSubVector(flat, is, &sub));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, Vec du, PetscReal *dur,
+                                   Vec dlam, PetscBool *ok) {
+  double             t0 = wall();
+  KSPConvergedReason reason;
+  Vec                sub;
+  PetscScalar       *a;
+  PetscInt           n, its;
+  PetscFunctionBeginUser;
+  PetscCall(part(s->F, s->is[0], Ru, PETSC_TRUE));
+  PetscCall(part(s->F, s->is[2], Rlam, PETSC_TRUE));
+  PetscCall(VecGetSubVector(s->F, s->is[1], &sub));
+  PetscCall(VecGetLocalSize(sub, &n));
+  PetscCall(VecGetArray(sub, &a));
+  if (n) a[0] = Rr;
+  PetscCall(VecRestoreArray(sub, &a));
+  PetscCall(VecRestoreSubVector(s->F, s->is[1], &sub));
+  PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
+  PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
+  if (!s->fieldsplit) {
+    PetscCall(MatDestroy(&s->Aaij)); /* a fresh copy: the nest's blocks changed in place */
+    PetscCall(MatConvert(s->A, MATAIJ, MAT_INITIAL_MATRIX, &s->Aaij));
+    PetscCall(KSPSetOperators(s->ksp, s->Aaij, s->Aaij));
+  } else {
+    PetscCall(assemble_schur_pre(s, ct));
+    PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
+  }
+  PetscCall(KSPSolve(s->ksp, s->F, s->X));
+  PetscCall(KSPGetConvergedReason(s->ksp, &reason));
+  PetscCall(KSPGetIterationNumber(s->ksp, &its));
+  s->linear_its += its;
+  *ok = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(VecScale(s->X, -1.0));
+  PetscCall(part(s->X, s->is[0], du, PETSC_FALSE));
+  PetscCall(part(s->X, s->is[2], dlam, PETSC_FALSE));
+  PetscCall(VecGetSubVector(s->X, s->is[1], &sub));
+  PetscCall(VecGetLocalSize(sub, &n));
+  PetscReal v = 0;
+  PetscCall(VecGetArray(sub, &a));
+  if (n) v = PetscRealPart(a[0]);
+  PetscCall(VecRestoreArray(sub, &a));
+  PetscCall(VecRestoreSubVector(s->X, s->is[1], &sub));
+  PetscCallMPI(MPI_Bcast(&v, 1, MPIU_REAL, 0, PetscObjectComm((PetscObject)s->X)));
+  *dur = v;
+  s->seconds += wall() - t0;
+  PetscFunctionReturn(0);
+}

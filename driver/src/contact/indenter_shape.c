@@ -1,0 +1,121 @@
+#include "indenter_shape.h"
+
+#include <math.h>
+
+void indenter_direction(const IndenterShape *s, double d[]) {
+  d[0] = d[1] = d[2] = 0;
+  d[s->dim - 1] = -1;
+}
+
+/* Gap and gradient in the frame of the tip: lateral vector l (dim - 1 components), height z above the
+ * tip. grad_l and grad_z are the lateral and upward components of n. */
+static double cone_gap(double psi, const double l[], int nl, double z, double gl[], double *gz) {
+  double rho = 0;
+  for (int k = 0; k < nl; k++) rho += l[k] * l[k];
+  rho = sqrt(rho);
+  if (rho * sin(psi) + z * cos(psi) < 0) { /* below the apex: the tip is the closest point */
+    double r = sqrt(rho * rho + z * z);
+    if (r == 0) {
+      for (int k = 0; k < nl; k++) gl[k] = 0;
+      *gz = -1;
+      return 0;
+    }
+    for (int k = 0; k < nl; k++) gl[k] = l[k] / r;
+    *gz = z / r;
+    return r;
+  }
+  /* on the face: distance to the generating line z = rho cot(psi) (on the axis, rho = 0, only the
+     axial part of the gradient is defined; the lateral part is left zero: symmetric) */
+  for (int k = 0; k < nl; k++) gl[k] = rho > 0 ? cos(psi) * l[k] / rho : 0;
+  *gz = -sin(psi);
+  return rho * cos(psi) - z * sin(psi);
+}
+
+/* The height of the indenter surface above its tip at lateral offset l (the vertical gap's profile). */
+static double profile(const IndenterShape *s, const double l[], int nl) {
+  double rho = 0;
+  for (int k = 0; k < nl; k++) rho += l[k] * l[k];
+  rho = sqrt(rho);
+  switch (s->kind) {
+  case SHAPE_CONE:
+  case SHAPE_WEDGE: return rho / tan(s->half_angle);
+  case SHAPE_BERKOVICH: {
+    double m = -INFINITY;
+    for (int f = 0; f < 3; f++) {
+      double a = s->rotation + M_PI / 2 + f * 2 * M_PI / 3;
+      m        = fmax(m, l[0] * cos(a) + l[1] * sin(a));
+    }
+    return m / tan(s->half_angle);
+  }
+  case SHAPE_SPHERE: return rho < s->radius ? s->radius - sqrt(s->radius * s->radius - rho * rho) : 1e300;
+  case SHAPE_FLAT_PUNCH: return rho <= s->radius ? 0 : 1e300; /* beyond the rim: never in contact */
+  }
+  return 0;
+}
+
+double indenter_gap(const IndenterShape *s, const double X[], const double x[], double ur, double n[]) {
+  const int nl = s->dim - 1;
+  double    l[2], z, gl[2] = {0, 0}, gz = 0, g = 0;
+  z = x[nl] - (s->tip[nl] - ur); /* height above the displaced tip */
+  if (s->vertical) {             /* g = f(X_lateral) - z: n = d */
+    for (int k = 0; k < nl; k++) l[k] = X[k] - s->tip[k], n[k] = 0;
+    n[nl] = -1;
+    return profile(s, l, nl) - z;
+  }
+  for (int k = 0; k < nl; k++) l[k] = x[k] - s->tip[k];
+  switch (s->kind) {
+  case SHAPE_CONE:
+  case SHAPE_WEDGE: g = cone_gap(s->half_angle, l, nl, z, gl, &gz); break;
+  case SHAPE_BERKOVICH: { /* three planes; the gap to the pyramid is the largest plane distance, exact
+                             wherever the closest point lies on a face (the contact zone) */
+    g = -INFINITY;
+    for (int f = 0; f < 3; f++) {
+      double a = s->rotation + M_PI / 2 + f * 2 * M_PI / 3, e[2] = {cos(a), sin(a)};
+      double gf = cos(s->half_angle) * (l[0] * e[0] + l[1] * e[1]) - sin(s->half_angle) * z;
+      if (gf > g) g = gf, gl[0] = cos(s->half_angle) * e[0], gl[1] = cos(s->half_angle) * e[1], gz = -sin(s->half_angle);
+    }
+    break;
+  }
+  case SHAPE_SPHERE: { /* centre one radius above the tip */
+    double q[3] = {0, 0, 0}, r = 0;
+    for (int k = 0; k < nl; k++) q[k] = l[k];
+    q[nl] = z - s->radius;
+    for (int k = 0; k <= nl; k++) r += q[k] * q[k];
+    r = sqrt(r);
+    for (int k = 0; k < nl; k++) gl[k] = r > 0 ? q[k] / r : 0;
+    gz = r > 0 ? q[nl] / r : -1;
+    g  = r - s->radius;
+    break;
+  }
+  case SHAPE_FLAT_PUNCH: { /* a cylinder of the given radius, face at the tip height */
+    double rho = 0;
+    for (int k = 0; k < nl; k++) rho += l[k] * l[k];
+    rho = sqrt(rho);
+    if (rho <= s->radius) {
+      g = -z, gz = -1;
+    } else if (z >= 0) {
+      g = rho - s->radius;
+      for (int k = 0; k < nl; k++) gl[k] = l[k] / rho;
+    } else { /* below and outside: the rim is the closest point */
+      g = hypot(rho - s->radius, z);
+      for (int k = 0; k < nl; k++) gl[k] = (rho - s->radius) / g * l[k] / rho;
+      gz = z / g;
+    }
+    break;
+  }
+  }
+  for (int k = 0; k < nl; k++) n[k] = gl[k];
+  n[nl] = gz;
+  return g;
+}
+
+double indenter_projected_area(const IndenterShape *s, double h) {
+  switch (s->kind) {
+  case SHAPE_BERKOVICH: return 3 * sqrt(3.0) * pow(h * tan(s->half_angle), 2); /* 24.5 h^2 at 65.27 deg */
+  case SHAPE_CONE: return M_PI * pow(h * tan(s->half_angle), 2);
+  case SHAPE_WEDGE: return 2 * h * tan(s->half_angle); /* per unit thickness */
+  case SHAPE_SPHERE: return M_PI * (2 * s->radius * h - h * h);
+  case SHAPE_FLAT_PUNCH: return M_PI * s->radius * s->radius;
+  }
+  return 0;
+}
