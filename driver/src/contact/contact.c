@@ -162,13 +162,14 @@ PetscErrorCode contact_update_gaps(Contact *ct, Vec U, PetscReal ur) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscInt *changes, PetscInt *nactive) {
+PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscReal lambda_ref, PetscInt *changes, PetscInt *nactive) {
   const PetscScalar *la;
+  const PetscReal    eps = 1e-12 * lambda_ref; /* a node touching with no pressure (roundoff) is released */
   PetscInt           loc[2] = {0, 0}, all[2];
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) { /* eq. 14 with g >= 0 open: active where lambda - c g > 0 */
-    PetscBool a = PetscRealPart(la[i]) - ct->c * ct->g[i] > 0 ? PETSC_TRUE : PETSC_FALSE;
+    PetscBool a = PetscRealPart(la[i]) - ct->c * ct->g[i] > eps ? PETSC_TRUE : PETSC_FALSE;
     loc[0] += a != ct->active[i];
     loc[1] += a;
     ct->active[i] = a;

@@ -42,9 +42,9 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
 PetscErrorCode contact_destroy(Contact *ct);
 /* Gaps and normals at displacement U (global vector of the problem's DM) and indenter position ur. */
 PetscErrorCode contact_update_gaps(Contact *ct, Vec U, PetscReal ur);
-/* Active set of eq. 14 from lambda and the gaps; returns the number of changes and the active count
- * (both over all ranks). */
-PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscInt *changes, PetscInt *nactive);
+/* Active set of eq. 14 from lambda and the gaps (lambda_ref: a pressure scale; a node whose lambda - c g
+ * is below 1e-12 of it is inactive); returns the number of changes and the active count (all ranks). */
+PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscReal lambda_ref, PetscInt *changes, PetscInt *nactive);
 /* Add the contact forces to R_u (at the last gaps' normals), and write R_r (force control: target is the
  * load P; depth control: the depth), and the 2-norm of w_i (lambda_i - max(0, lambda_i - c g_i)), the
  * complementarity residual of eq. 13 in force units (all ranks). */

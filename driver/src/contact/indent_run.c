@@ -21,7 +21,7 @@ typedef struct {
   Vec          Uk, lamk;                         /* the iterate before a line search */
   Vec          U0, lam0, rateU, ratelam;         /* committed; last converged increment */
   PetscReal    ur, ur0, rateur, dt_prev;
-  PetscBool    have_rate, predictor, monitor;
+  PetscBool    have_rate, predictor, monitor, line_search, fd_check;
   PetscReal    rtol, kshift, fref;
   PetscInt     max_it;
   /* the step being solved */
@@ -46,6 +46,16 @@ static PetscErrorCode evaluate(Indent *in, PetscReal *merit) {
   PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
   PetscCall(contact_residual(&in->ct, in->lam, in->ur, in->depth_control, in->target, in->Ru, &in->Rr, &in->ncp));
   PetscCall(VecNorm(in->Ru, NORM_2, &in->ru));
+  if (!in->depth_control && in->target == 0) { /* released: the indenter rests on the surface (set after
+                                                   the step), so only lambda = 0 is asked for */
+    const PetscScalar *la;
+    PetscReal          s = 0, all;
+    PetscCall(VecGetArrayRead(in->lam, &la));
+    for (PetscInt i = 0; i < in->ct.n; i++) s += PetscSqr(in->ct.w[i] * PetscRealPart(la[i]));
+    PetscCall(VecRestoreArrayRead(in->lam, &la));
+    PetscCall(MPIU_Allreduce(&s, &all, 1, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
+    in->ncp = PetscSqrtReal(all);
+  }
   PetscReal rr = in->depth_control ? in->Rr * in->kshift : in->Rr; /* depth rows in force units */
   *merit       = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + rr * rr) / in->fref;
   PetscFunctionReturn(0);
@@ -94,7 +104,12 @@ static PetscErrorCode newton_step(Indent *in, PetscReal h, int *status, PetscInt
   }
   PetscCall(evaluate(in, &merit));
   for (k = 0; k <= in->max_it; k++) {
-    PetscCall(contact_update_active(&in->ct, in->lam, &changes, &in->nactive));
+    if (!in->depth_control && in->target == 0) { /* released: no load, no contact pressure anywhere */
+      PetscInt loc = 0;
+      for (PetscInt i = 0; i < in->ct.n; i++) loc += in->ct.active[i], in->ct.active[i] = PETSC_FALSE;
+      PetscCall(MPIU_Allreduce(&loc, &changes, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
+      in->nactive = 0;
+    } else PetscCall(contact_update_active(&in->ct, in->lam, in->fref / in->ct.weight_sum, &changes, &in->nactive));
     in->changes += changes;
     PetscCall(active_signature(in, &sig[k % 64]));
     PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
@@ -126,6 +141,31 @@ static PetscErrorCode newton_step(Indent *in, PetscReal h, int *status, PetscInt
     PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
     PetscCall(contact_jacobian(&in->ct, in->depth_control, shift ? in->kshift : 0.0));
     PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
+    if (in->fd_check) { /* the displacement block against a finite difference of the element loop */
+      Vec       r0, r1, kd;
+      PetscReal eps = 1e-7, nd, nk;
+      PetscCall(VecDuplicate(in->U, &r0));
+      PetscCall(VecDuplicate(in->U, &r1));
+      PetscCall(VecDuplicate(in->U, &kd));
+      PetscCall(VecSetRandom(in->du, NULL));
+      PetscCall(VecCopy(in->U, in->Uk));
+      PetscCall(fe_residual(NULL, in->Uk, r0, in->p));
+      PetscCall(VecAXPY(in->Uk, eps, in->du));
+      PetscCall(fe_residual(NULL, in->Uk, r1, in->p));
+      PetscCall(VecAXPY(r1, -1.0, r0));
+      PetscCall(VecScale(r1, 1 / eps));
+      PetscCall(fe_residual(NULL, in->U, r0, in->p));
+      PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
+      PetscCall(MatMult(in->K, in->du, kd));
+      PetscCall(VecNorm(kd, NORM_2, &nk));
+      PetscCall(VecAXPY(kd, -1.0, r1));
+      PetscCall(VecNorm(kd, NORM_2, &nd));
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    tangent check: |K du - FD| / |K du| = %.3e\n", (double)(nd / nk)));
+      PetscCall(VecDestroy(&r0));
+      PetscCall(VecDestroy(&r1));
+      PetscCall(VecDestroy(&kd));
+      PetscCall(evaluate(in, &merit));
+    }
     PetscReal dur;
     PetscBool ok;
     PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, in->du, &dur, in->dlam, &ok));
@@ -133,17 +173,19 @@ static PetscErrorCode newton_step(Indent *in, PetscReal h, int *status, PetscInt
       *status = STEP_LINEAR;
       break;
     }
-    /* line search: halve the step while the merit does not fall (Armijo, at most 5 halvings); a
-       damped step (alpha <= 1/2) after a cycle */
+    /* line search: while the active set settles the full semismooth step is taken (it identifies the
+       set in finitely many steps); with the set unchanged, the step is halved while the merit does not
+       fall (Armijo, at most 5 halvings); a damped step (alpha = 1/2) after a cycle */
     PetscCall(VecCopy(in->U, in->Uk));
     PetscCall(VecCopy(in->lam, in->lamk));
     PetscReal urk = in->ur, alpha = damp ? 0.5 : 1.0, trial;
+    PetscBool search = in->line_search && changes == 0 && !shift;
     for (int ls = 0;; ls++) {
       PetscCall(VecWAXPY(in->U, alpha, in->du, in->Uk));
       PetscCall(VecWAXPY(in->lam, alpha, in->dlam, in->lamk));
       in->ur = urk + alpha * dur;
       PetscCall(evaluate(in, &trial));
-      if (trial <= (1 - 1e-4 * alpha) * merit || ls == 5 || trial < in->rtol) break;
+      if (!search || trial <= (1 - 1e-4 * alpha) * merit || ls == 5 || trial < in->rtol) break;
       alpha *= 0.5;
     }
     merit = trial;
@@ -162,7 +204,7 @@ static PetscErrorCode rest_on_surface(Indent *in) {
     if (nd > 1e-3) dmin = PetscMin(dmin, in->ct.g[i] / nd);
   }
   PetscCall(MPIU_Allreduce(&dmin, &all, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)in->U)));
-  if (all > 0 && all < PETSC_MAX_REAL) {
+  if (all < PETSC_MAX_REAL) { /* down onto the surface, or up out of it */
     in->ur += all;
     PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
   }
@@ -215,11 +257,13 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
   Vec *all[] = {&in.U, &in.Ru, &in.du, &in.Uk, &in.U0, &in.rateU, &in.lam, &in.Rlam, &in.dlam, &in.lamk, &in.lam0, &in.ratelam};
   for (size_t k = 0; k < sizeof all / sizeof all[0]; k++) PetscCall(VecZeroEntries(*all[k]));
   PetscCall(indent_solver_create(&in.ct, in.K, &in.sol));
-  in.rtol = 1e-10, in.max_it = 30, in.predictor = PETSC_TRUE;
+  in.rtol = 1e-10, in.max_it = 30, in.predictor = PETSC_TRUE, in.line_search = PETSC_TRUE;
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-indent_rtol", &in.rtol, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-indent_max_it", &in.max_it, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-indent_predictor", &in.predictor, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-indent_monitor", &in.monitor, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-indent_line_search", &in.line_search, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-indent_check_tangent", &in.fd_check, NULL));
   in.max_it = PetscMin(in.max_it, 63);
 
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets
@@ -299,8 +343,14 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
       p->time = t + h, p->dt = h;
       int      status;
       PetscInt its = 0;
+      p->defer_step_control = PETSC_TRUE; /* the UMAT's error control judges the converged state only */
       PetscCall(newton_step(&in, h, &status, &its));
+      p->defer_step_control = PETSC_FALSE;
       in.its_total += its;
+      if (status == STEP_OK && p->mat.tol_slot >= 0 && p->mat.props[p->mat.tol_slot] > 0) {
+        PetscReal m;
+        PetscCall(evaluate(&in, &m)); /* the same state, now with the UMAT's PNEWDT */
+      }
       if (status == STEP_OK && p->min_pnewdt < 1) status = -1;
       if (status != STEP_OK) { /* cut back */
         total_cutbacks++;
@@ -315,12 +365,14 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
         dt = h * factor, landing = 0;
         continue;
       }
-      if (st->until_depth > 0 && in.ur > st->until_depth * (1 + 1e-6)) { /* overshot the event: land on it */
-        double d0 = in.ur0, frac = (st->until_depth - d0) / (in.ur - d0);
-        landing = h * PetscMin(PetscMax(frac, 0.01), 0.99);
+      const double event_tol = 1e-5; /* relative: the depth at which a stage ends */
+      double       ur_before = in.ur0;
+      if (st->until_depth > 0 && in.ur > st->until_depth * (1 + event_tol)) { /* overshot the event: land on it */
+        double frac = (st->until_depth - ur_before) / (in.ur - ur_before);
+        landing     = h * PetscMin(PetscMax(frac, 0.01), 0.999);
         continue;
       }
-      if (st->until_depth > 0 && in.ur >= st->until_depth * (1 - 1e-6)) landed = 1;
+      if (st->until_depth > 0 && in.ur >= st->until_depth * (1 - event_tol)) landed = 1;
       landing = 0;
       if (!in.depth_control && in.target == 0 && in.nactive == 0) PetscCall(rest_on_surface(&in));
       PetscReal force, pen, lmin;
@@ -345,6 +397,10 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
       if (sc->fields_every > 0 && step % sc->fields_every == 0) PetscCall(fe_output_write(p, in.U, t, &out));
       if (g->steps.adaptive) dt = step_control_next(&g->steps, h, p->min_pnewdt);
       else dt *= g->steps.ratio;
+      if (st->until_depth > 0 && !landed && in.ur > ur_before) { /* aim the next step at the event (secant) */
+        double h_event = h * (st->until_depth - in.ur) / (in.ur - ur_before);
+        if (h_event < dt) landing = h_event * (1 + 0.5 * event_tol);
+      }
     }
     if (!rc && st->until_depth > 0 && !landed) {
       snprintf(err, errlen, "stage '%s': the depth %g (until.depth) was not reached by the stage's end (t = %g s, depth %.6g, load %.6g): "

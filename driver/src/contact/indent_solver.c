@@ -53,6 +53,7 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
     PetscCall(KSPSetType(s->ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(default_option("-mat_mumps_icntl_14", "100")); /* room for the delayed pivots (zero diagonal) */
   } else {
     PetscCall(ISGetLocalSize(s->is[1], &nr));
     PetscCall(KSPSetType(s->ksp, KSPFGMRES));
@@ -78,6 +79,8 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
     PetscCall(default_option("-fieldsplit_contact_ksp_rtol", "1e-12"));
     PetscCall(default_option("-fieldsplit_contact_pc_type", "lu"));
     PetscCall(default_option("-fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
+    /* MUMPS' workspace estimate does not foresee the delayed pivots of the zero diagonal: relax it */
+    PetscCall(default_option("-fieldsplit_contact_mat_mumps_icntl_14", "200"));
   }
   PetscCall(KSPSetFromOptions(s->ksp));
   PetscFunctionReturn(0);

@@ -401,6 +401,8 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(VecGetArray(Uloc, &ua));
   PetscCall(VecGetArray(Floc, &fa));
   const PetscInt ntens = p->mat.ntens;
+  const PetscReal tol  = p->mat.tol_slot >= 0 ? p->mat.props[p->mat.tol_slot] : 0;
+  if (p->defer_step_control && p->mat.tol_slot >= 0) p->mat.props[p->mat.tol_slot] = 0;
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
     for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]];
@@ -446,6 +448,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
     }
     for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
   }
+  if (p->mat.tol_slot >= 0) p->mat.props[p->mat.tol_slot] = tol;
   PetscCall(VecRestoreArray(Uloc, &ua));
   PetscCall(VecRestoreArray(Floc, &fa));
   PetscCall(VecZeroEntries(F));

@@ -48,6 +48,10 @@ typedef struct FeProblem {
   Vec             ddsdde_u;             /* ... which is this one */
   PetscReal       time, dt;             /* end of the step being solved, its length */
   PetscReal       min_pnewdt;           /* smallest PNEWDT of the last residual evaluation (all ranks) */
+  PetscBool       defer_step_control;   /* evaluate without the UMAT's error control (PROPS tol = 0): while
+                                           Newton iterates, a point whose step the UMAT would reject keeps
+                                           its old stress with a new tangent, which no iteration can
+                                           converge; the host checks the error at the converged state */
   PetscInt        umat_calls, tangent_recomputes;
   double          assembly_seconds;
   /* pressure loads: unit-pressure force vectors per group, and the pressures at the step's end */

@@ -268,10 +268,12 @@ int fe_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
       PetscCall(VecCopy(U, U0));
       SNESConvergedReason reason;
       PetscInt            its;
+      p.defer_step_control = PETSC_TRUE; /* the UMAT's error control judges the converged state only */
       PetscCall(SNESSolve(snes, NULL, U));
+      p.defer_step_control = PETSC_FALSE;
       PetscCall(SNESGetConvergedReason(snes, &reason));
       PetscCall(SNESGetIterationNumber(snes, &its));
-      if (reason > 0) PetscCall(fe_residual(snes, U, R, &p)); /* trial state at the solution */
+      if (reason > 0) PetscCall(fe_residual(snes, U, R, &p)); /* trial state at the solution, error control on */
       if (reason <= 0 || p.min_pnewdt < 1) {
         PetscCall(VecCopy(U0, U));
         total_cutbacks++;

@@ -34,6 +34,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   mat->ntens  = ntens;
   mat->nstatv = camclay ? CAMCLAY9_NSTATV_DIAGNOSTICS : 0;
   mat->phi_slot = camclay ? 0 : -1;
+  mat->tol_slot = camclay ? 19 : -1;
   umat_material_set_name(mat, name);
 
   YdNode *props = yd_get(node, "props");

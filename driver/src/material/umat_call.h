@@ -15,6 +15,7 @@ typedef struct {
   double props[UMAT_MAX_PROPS];
   char   cmname[80];             /* blank padded, as Fortran passes it */
   int    phi_slot;               /* PROPS index of the hard-frame fraction (Cam-Clay IX: 0), -1 if none */
+  int    tol_slot;               /* PROPS index of the step-control tolerance (Cam-Clay IX: 19), -1 if none */
 } UmatMaterial;
 
 /* What the host passes in and gets back for one integration point and one increment. */
