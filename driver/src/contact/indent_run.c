@@ -236,7 +236,7 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
     PetscBool has;
     PetscCall(DMHasLabel(p->dm, is->contact_group, &has));
     if (!has) {
-      snprintf(err, errlen, "key 'indenter.contact': '%s' is not a physical group of the mesh %s", is->contact_group, sc->msh);
+      snprintf(err, errlen, "%s: key 'indenter.contact': '%s' is not a physical group of the mesh %s", is->file, is->contact_group, sc->msh);
       return 2;
     }
   }

@@ -63,6 +63,7 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   const char *s;
   const int   dim = sc->kin == KIN_3D ? 3 : 2;
   memset(is, 0, sizeof *is);
+  snprintf(is->file, sizeof is->file, "%s", doc->file);
   if (yd_expect(doc, nd, YD_MAPPING, "indenter", err, errlen)) return 1;
   IndenterShape *sh = &is->shape;
   sh->dim = dim;

@@ -21,6 +21,7 @@ typedef struct {
 typedef struct {
   IndenterShape shape;
   char          contact_group[64];
+  char          file[512];      /* the scene file, for messages */
   double        c;              /* complementarity constant (eq. 13); 0: E / (contact-node spacing) */
   IndentStage   stage[MAXSTAGES];
 } IndentScene;
