@@ -118,7 +118,8 @@ def check_invariants(hist, tol=1e-10):
 
 def test_load_hold_unload_elastic(tmp_path):
     """Force control: P0 exp(k t) until h = 0.1 (the step lands on it), hold, unload to zero: the invariants at
-    every step; the elastic block returns to zero depth with an empty active set; 2 ranks give the same."""
+    every step; the elastic block returns to zero depth with an empty active set; 2 ranks give the same, and
+    so does a run stopped after a checkpoint and restarted."""
     scene = axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", LHU, W=20, H=10, h_tip=0.02, h_far=1)
     hist = run(scene, tmp_path / "lhu")
     check_invariants(hist)
@@ -133,6 +134,10 @@ def test_load_hold_unload_elastic(tmp_path):
     par = run(scene, tmp_path / "lhu2", np_=2)
     assert len(par) == len(hist)
     assert np.max(np.abs(par["depth"] - hist["depth"])) < 1e-10
+    # stopped after 7 steps with a checkpoint every 3, then restarted: the same history
+    run(scene, tmp_path / "restart", args=["-checkpoint_every", "3", "-max_steps", "7"])
+    again = run(scene, tmp_path / "restart", args=["-restart"])
+    assert len(again) == len(hist) and np.max(np.abs(again["depth"] - hist["depth"])) < 1e-12
 
 
 def test_direct_and_fieldsplit_agree(tmp_path):
@@ -148,11 +153,16 @@ def test_direct_and_fieldsplit_agree(tmp_path):
 
 def test_berkovich_vs_equivalent_cone(tmp_path):
     """Elastic, the same depth: the 3D Berkovich (half model, mirror plane x = 0) against the axisymmetric
-    cone of the same projected area (70.3 deg); the difference is stated (a few per cent expected)."""
-    cube = f"""scene: fe
+    cone of the same projected area (70.3 deg). The difference is stated; it shrinks as the 3D mesh is
+    refined (P1 tetrahedra are stiff where the contact radius spans few elements)."""
+    c = run(axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", PUSH % 0.1, W=2, H=2, h_tip=0.02, h_far=0.2,
+                      r_fine=0.4, r_contact=0.8), tmp_path / "cone")
+    diff = {}
+    for h_tip in (0.04, 0.03):
+        cube = f"""scene: fe
 mesh:
   geometry: meshes/indent_cube.geo
-  parameters: {{L: 2, half: 1, h_tip: 0.04, h_far: 0.4, r_fine: 0.4, r_contact: 0.6}}
+  parameters: {{L: 2, half: 1, h_tip: {h_tip}, h_far: 0.4, r_fine: 0.4, r_contact: 0.6}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}},
@@ -161,12 +171,11 @@ indenter: {{shape: berkovich, half_angle: 65.27, contact: contact}}
 stages:
 {PUSH % 0.1}
 """
-    b = run(cube, tmp_path / "berkovich")
-    c = run(axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", PUSH % 0.1, W=2, H=2, h_tip=0.02, h_far=0.2,
-                      r_fine=0.4, r_contact=0.8), tmp_path / "cone")
-    Pb, Pc = 2 * b["load"][-1], c["load"][-1]   # the half model carries half the load
-    print(f"h = 0.1: Berkovich P = {Pb:.4g}, equivalent cone P = {Pc:.4g}, difference {Pb / Pc - 1:+.1%}")
-    assert abs(Pb / Pc - 1) < 0.15
+        b = run(cube, tmp_path / f"berkovich{h_tip}")
+        Pb, Pc = 2 * b["load"][-1], c["load"][-1]   # the half model carries half the load
+        diff[h_tip] = Pb / Pc - 1
+        print(f"h = 0.1: Berkovich (3D h_tip {h_tip}) P = {Pb:.4g}, equivalent cone P = {Pc:.4g}, difference {diff[h_tip]:+.1%}")
+    assert diff[0.03] < diff[0.04] and abs(diff[0.03]) < 0.15
 
 
 def test_camclay_creeps_in_hold(tmp_path):

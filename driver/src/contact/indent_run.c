@@ -5,7 +5,9 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
+#include "../fe/fe_checkpoint.h"
 #include "../fe/fe_output.h"
 #include "contact.h"
 #include "indent_solver.h"
@@ -211,6 +213,43 @@ static PetscErrorCode rest_on_surface(Indent *in) {
   PetscFunctionReturn(0);
 }
 
+/* The indenter's part of a checkpoint (beside fe_checkpoint's displacement, point states and progress):
+ * one file per rank, written atomically, tagged with the step so that the two parts must match. */
+typedef struct {
+  int    magic, step;
+  double ur, load, load_max, stage_start, landing;
+} IndentSaved;
+#define INDENT_MAGIC 0x43433949 /* "CC9I" */
+
+static int contact_checkpoint(const FeScene *sc, Indent *in, IndentSaved *sv, PetscBool write, char *err, size_t errlen) {
+  PetscMPIInt rank;
+  char        path[700], tmp[710];
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  snprintf(path, sizeof path, "%s/checkpoint_indenter.rank%d.bin", sc->outdir, rank);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  PetscInt     n = in->ct.n, m = -1;
+  PetscScalar *la;
+  FILE        *fp = fopen(write ? tmp : path, write ? "wb" : "rb");
+  if (!fp) {
+    snprintf(err, errlen, "%s: cannot %s the checkpoint", write ? tmp : path, write ? "write" : "read");
+    return 1;
+  }
+  VecGetArray(in->lam0, &la);
+  int ok = 1;
+  if (write) {
+    sv->magic = INDENT_MAGIC;
+    ok &= fwrite(sv, sizeof *sv, 1, fp) == 1 && fwrite(&n, sizeof n, 1, fp) == 1 && fwrite(la, sizeof *la, (size_t)n, fp) == (size_t)n;
+  } else {
+    ok &= fread(sv, sizeof *sv, 1, fp) == 1 && sv->magic == INDENT_MAGIC && fread(&m, sizeof m, 1, fp) == 1 && m == n;
+    ok &= ok && fread(la, sizeof *la, (size_t)n, fp) == (size_t)n;
+  }
+  VecRestoreArray(in->lam0, &la);
+  ok &= fclose(fp) == 0;
+  if (ok && write) ok = rename(tmp, path) == 0;
+  if (!ok) snprintf(err, errlen, "%s: %s", path, write ? "cannot write the checkpoint" : "not a complete indenter checkpoint of this scene");
+  return !ok;
+}
+
 static PetscErrorCode commit(Indent *in, PetscReal h, PetscBool same_stage) {
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(in->rateU, -1.0, in->U0, in->U));
@@ -291,10 +330,40 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
                         is->contact_group, (double)in.ct.weight_sum, in.sol.fieldsplit ? "fieldsplit" : "direct", (double)in.ct.c,
                         (double)in.kshift));
 
+  /* -checkpoint_every N writes a checkpoint every N steps; -restart continues from the last one (the
+     predictor then restarts from the checkpointed state); -max_steps N stops after N steps. */
+  PetscInt    checkpoint_every = 0, max_steps = -1;
+  PetscBool   restart = PETSC_FALSE;
+  Progress    pr;
+  IndentSaved sv;
+  long        history_offset = 0;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-checkpoint_every", &checkpoint_every, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-max_steps", &max_steps, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-restart", &restart, NULL));
+  PetscCall(PetscMemzero(&pr, sizeof pr));
+  PetscCall(PetscMemzero(&sv, sizeof sv));
+  if (restart) {
+    if (read_checkpoint(sc, p, in.U, &pr, &history_offset, err, errlen) || contact_checkpoint(sc, &in, &sv, PETSC_FALSE, err, errlen)) return 2;
+    if (sv.step != pr.step) {
+      snprintf(err, errlen, "-restart: the checkpoint files of %s are from different steps (%d, %d)", sc->outdir, pr.step, sv.step);
+      return 2;
+    }
+    PetscCall(VecCopy(in.U, in.U0));
+    PetscCall(VecCopy(in.lam0, in.lam));
+    in.ur = in.ur0 = sv.ur;
+    PetscCall(contact_update_gaps(&in.ct, in.U, in.ur));
+    PetscCall(PetscPrintf(comm, "restart at step %d, t = %g s (stage %d)\n", pr.step, pr.t, pr.stage));
+  }
+
   char path[800];
   snprintf(path, sizeof path, "%s/history.csv", sc->outdir);
   FILE *hist = NULL;
-  if (!rank) {
+  if (!rank && restart) { /* continue the history: drop the rows written after the checkpoint */
+    if (truncate(path, history_offset) || !(hist = fopen(path, "a"))) {
+      snprintf(err, errlen, "%s: cannot continue the history at the checkpoint", path);
+      return 1;
+    }
+  } else if (!rank) {
     hist = fopen(path, "w");
     if (!hist) {
       snprintf(err, errlen, "%s: cannot write", path);
@@ -305,17 +374,19 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
     fprintf(hist, "0,0,%s,0,0,0,0,0,0,0,0,0,0,0,%d,0\n", sc->stage[0].name, (int)p->umat_calls);
   }
   FeOutput out;
-  PetscCall(fe_output_open(p, sc->outdir, PETSC_FALSE, &out));
-  PetscCall(fe_output_write(p, in.U, 0.0, &out));
+  PetscCall(fe_output_open(p, sc->outdir, restart, &out));
+  if (restart) PetscCall(fe_output_resume(&out, pr.nout, pr.out_times));
+  else PetscCall(fe_output_write(p, in.U, 0.0, &out));
   struct timespec w0;
   clock_gettime(CLOCK_MONOTONIC, &w0);
-  double  t = 0, load = 0, load_max = 0;
-  int     step = 0, total_cutbacks = 0, rc = 0;
-  for (int s = 0; s < sc->nstage && !rc; s++) {
+  double t = pr.t, load = sv.load, load_max = sv.load_max;
+  int    step = pr.step, total_cutbacks = pr.total_cutbacks, rc = 0, stopped = 0;
+  int    resume_in_stage = restart && pr.in_stage; /* only the first stage of a restart resumes midway */
+  for (int s = pr.stage; s < sc->nstage && !rc && !stopped; s++) {
     Stage       *g  = &sc->stage[s];
     IndentStage *st = &is->stage[s];
     in.depth_control = st->kind == IND_DEPTH_RAMP;
-    double start = in.depth_control ? in.ur : load, duration = g->duration;
+    double start = resume_in_stage ? sv.stage_start : in.depth_control ? in.ur : load, duration = g->duration;
     if (st->until_load > 0) { /* the time the load reaches the event, known in advance */
       double te = st->kind == IND_LOAD_EXP ? log(st->until_load / st->P0) / st->k
                                            : (st->target != start ? duration * (st->until_load - start) / (st->target - start) : -1);
@@ -328,6 +399,8 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
       duration = te;
     }
     double t_stage = 0, dt = step_control_planned(&g->steps, duration, 0), landing = 0;
+    if (resume_in_stage) t_stage = pr.t_stage, dt = pr.dt, landing = sv.landing;
+    resume_in_stage = 0;
     int    cut = 0, landed = 0;
     double stage_wall0 = wall_since(&w0);
     while (!rc && !landed && t_stage < duration * (1 - 1e-12)) {
@@ -401,14 +474,31 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
         double h_event = h * (st->until_depth - in.ur) / (in.ur - ur_before);
         if (h_event < dt) landing = h_event * (1 + 0.5 * event_tol);
       }
+      if (checkpoint_every > 0 && step % checkpoint_every == 0) {
+        int stage_done = landed || t_stage >= duration * (1 - 1e-12);
+        pr.step = step, pr.stage = stage_done ? s + 1 : s, pr.in_stage = !stage_done, pr.t = t, pr.t_stage = t_stage, pr.dt = dt;
+        pr.total_cutbacks = total_cutbacks, pr.nout = out.nout, pr.out_times = out.times;
+        sv.step = step, sv.ur = in.ur0, sv.load = load, sv.load_max = load_max, sv.stage_start = start, sv.landing = landing;
+        if (!rank) fflush(hist);
+        long off = rank ? 0 : ftell(hist);
+        if (write_checkpoint(sc, p, in.U0, &pr, off, err, errlen) || contact_checkpoint(sc, &in, &sv, PETSC_TRUE, err, errlen)) {
+          rc = 1;
+          break;
+        }
+      }
+      if (max_steps >= 0 && step >= max_steps) {
+        PetscCall(PetscPrintf(comm, "stopped after %d steps (-max_steps)\n", step));
+        stopped = 1;
+        break;
+      }
     }
-    if (!rc && st->until_depth > 0 && !landed) {
+    if (!rc && !stopped && st->until_depth > 0 && !landed) {
       snprintf(err, errlen, "stage '%s': the depth %g (until.depth) was not reached by the stage's end (t = %g s, depth %.6g, load %.6g): "
                             "lengthen its duration", g->name, st->until_depth, t, (double)in.ur, load);
       rc = 1;
     }
     in.have_rate = PETSC_FALSE; /* no extrapolation across a change of loading */
-    if (!rc && (out.nout == 0 || out.times[out.nout - 1] != t)) PetscCall(fe_output_write(p, in.U, t, &out));
+    if (!rc && !stopped && (out.nout == 0 || out.times[out.nout - 1] != t)) PetscCall(fe_output_write(p, in.U, t, &out));
   }
   PetscCall(fe_output_close(p, &out));
   if (!rank) {
