@@ -229,3 +229,14 @@ def test_bad_stage_input(tmp_path):
                tmp_path / "bad", check=False)
     msg = proc.stdout + proc.stderr
     assert proc.returncode != 0 and "stages[0].indenter.until" in msg and "rising load" in msg, msg
+
+
+def test_contact_outgrows_its_surface(tmp_path):
+    """A potential contact surface too small for the indent: the run stops with an error naming the scene,
+    the surface and the depth, and the history written so far stays."""
+    scene = axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", LHU, W=20, H=10, h_tip=0.02, h_far=1,
+                      r_contact=0.12)
+    proc = run(scene, tmp_path / "small", check=False)
+    msg = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and "edge of the potential contact surface 'contact'" in msg and "small.yaml" in msg, msg
+    assert (tmp_path / "small" / "history.csv").read_text().count("\n") >= 2

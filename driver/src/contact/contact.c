@@ -41,7 +41,9 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  PetscReal *nfacet; /* 2D: contact edges at each vertex; 3D: contact faces at each edge */
   PetscCall(PetscCalloc1(pEnd - pStart, &wpt));
+  PetscCall(PetscCalloc1(pEnd - pStart, &nfacet));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &coords));
   PetscCall(VecGetArrayRead(coords, &ca));
@@ -62,12 +64,24 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
     PetscCheck(nv == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "contact facet with %d vertices", (int)nv);
     facet_weights(p, nv, xv, wv);
     for (PetscInt v = 0; v < nv; v++) wpt[verts[v] - pStart] += wv[v];
+    if (p->dim == 2) for (PetscInt v = 0; v < nv; v++) nfacet[verts[v] - pStart] += 1;
+    else {
+      const PetscInt *cone;
+      PetscInt        nc;
+      PetscCall(DMPlexGetConeSize(dm, f, &nc));
+      PetscCall(DMPlexGetCone(dm, f, &cone));
+      for (PetscInt k = 0; k < nc; k++) nfacet[cone[k] - pStart] += 1;
+    }
   }
   { /* shared vertices: sum the weights on the owning rank */
     PetscSF sf;
     PetscCall(DMGetPointSF(dm, &sf));
     PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, wpt, wpt, MPI_SUM));
     PetscCall(PetscSFReduceEnd(sf, MPIU_REAL, wpt, wpt, MPI_SUM));
+    PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM)); /* and every rank its points' totals */
+    PetscCall(PetscSFReduceEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
+    PetscCall(PetscSFBcastBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
   }
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetGlobalSection(dm, &gs));
@@ -79,7 +93,7 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   }
   ct->n = n;
   PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
-  PetscCall(PetscCalloc1(n, &ct->active));
+  PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
   n = 0;
   PetscReal wsum = 0;
   for (PetscInt v = vStart; v < vEnd; v++) {
@@ -95,10 +109,24 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
     PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
     ct->w[n] = wpt[v - pStart];
     wsum += ct->w[n];
+    /* on the rim: an end of the contact edges (2D), on an edge with one contact face (3D); a node with a
+       fixed component (a mirror plane, the axis) is a rim of the model, not of the surface */
+    PetscBool fixed = PETSC_FALSE;
+    for (PetscInt d = 0; d < p->dim; d++) fixed = fixed || ct->row[n * p->dim + d] < 0;
+    if (p->dim == 2) ct->rim[n] = nfacet[v - pStart] == 1;
+    else {
+      const PetscInt *supp;
+      PetscInt        ns;
+      PetscCall(DMPlexGetSupportSize(dm, v, &ns));
+      PetscCall(DMPlexGetSupport(dm, v, &supp));
+      for (PetscInt k = 0; k < ns; k++) ct->rim[n] = ct->rim[n] || nfacet[supp[k] - pStart] == 1;
+    }
+    ct->rim[n] = ct->rim[n] && !fixed;
     n++;
   }
   PetscCall(VecRestoreArrayRead(coords, &ca));
   PetscCall(PetscFree(wpt));
+  PetscCall(PetscFree(nfacet));
   PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
   PetscCallMPI(MPI_Scan(&ct->n, &ct->rstart, 1, MPIU_INT, MPI_SUM, comm));
@@ -135,7 +163,7 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
 PetscErrorCode contact_destroy(Contact *ct) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree5(ct->X, ct->w, ct->row, ct->g, ct->nrm));
-  PetscCall(PetscFree(ct->active));
+  PetscCall(PetscFree2(ct->active, ct->rim));
   Mat *all[6] = {&ct->Bt, &ct->B, &ct->Ct, &ct->C, &ct->D, &ct->Kr};
   for (int k = 0; k < 6; k++) PetscCall(MatDestroy(all[k]));
   PetscFunctionReturn(0);
@@ -280,5 +308,13 @@ PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k) {
   PetscCall(VecDestroy(&diag));
   PetscCall(MPIU_Allreduce(&kmax, &all, 1, MPIU_REAL, MPI_MAX, PetscObjectComm((PetscObject)K)));
   *k = all;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count) {
+  PetscInt loc = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < ct->n; i++) loc += ct->active[i] && ct->rim[i];
+  PetscCall(MPIU_Allreduce(&loc, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->D)));
   PetscFunctionReturn(0);
 }

@@ -28,6 +28,7 @@ typedef struct {
   PetscInt     *row;               /* dim per node: global displacement row of each component, < 0 if fixed */
   PetscReal    *g, *nrm;           /* gap and normal (dim) of each node at the last evaluation */
   PetscBool    *active;
+  PetscBool    *rim;               /* on the edge of the potential contact surface (not on a mirror plane) */
   PetscReal     c;                 /* complementarity constant of eq. 13 (stress per length) */
   PetscReal     weight_sum;        /* all ranks: area (3D), area per thickness x thickness, 2 pi r area */
   /* blocks of eq. 15, fixed nonzero pattern */
@@ -58,6 +59,8 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
 /* sum lambda_i w_i (n_i . d) over all ranks (the contact force on the indenter along d), the largest
  * penetration (-min g), and the smallest multiplier on the active set. */
 PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal *penetration, PetscReal *min_lambda);
+/* Active nodes on the rim of the potential contact surface (all ranks): the contact has outgrown it. */
+PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count);
 /* The largest diagonal entry of the stiffness on the contact nodes (a one-node stiffness). */
 PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k);
 

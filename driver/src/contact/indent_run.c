@@ -448,6 +448,15 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
       if (st->until_depth > 0 && in.ur >= st->until_depth * (1 - event_tol)) landed = 1;
       landing = 0;
       if (!in.depth_control && in.target == 0 && in.nactive == 0) PetscCall(rest_on_surface(&in));
+      PetscInt on_rim;
+      PetscCall(contact_on_rim(&in.ct, &on_rim));
+      if (on_rim) { /* beyond the surface the nodes are not checked: the results would be wrong from here */
+        snprintf(err, errlen, "%s: at t = %.6g s (depth %.6g) the contact reached the edge of the potential contact surface '%s' "
+                              "(%d active nodes on its rim): enlarge it (the mesh's contact region), then rerun; the history "
+                              "up to the last step is in %s", is->file, t + h, (double)in.ur, is->contact_group, (int)on_rim, path);
+        rc = 1;
+        break;
+      }
       PetscReal force, pen, lmin;
       PetscCall(contact_summary(&in.ct, in.lam, &force, &pen, &lmin));
       PetscCall(commit(&in, h, PETSC_TRUE));
