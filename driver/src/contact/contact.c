@@ -143,13 +143,13 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCall(VecGetLocalSize(tmp, &nu));
   PetscCall(VecGetOwnershipRange(tmp, &ustart, NULL));
   PetscCall(DMRestoreGlobalVector(dm, &tmp));
-  PetscInt *dnz, *onz;
-  PetscCall(PetscCalloc2(PetscMax(nu, 1), &dnz, PetscMax(nu, 1), &onz));
+  PetscInt *dnz;
+  PetscCall(PetscCalloc1(PetscMax(nu, 1), &dnz));
   for (PetscInt i = 0; i < ct->n; i++)
     for (PetscInt d = 0; d < p->dim; d++)
       if (ct->row[i * p->dim + d] >= 0) dnz[ct->row[i * p->dim + d] - ustart] = 1;
   PetscCall(MatCreateAIJ(comm, nu, ct->n, PETSC_DETERMINE, PETSC_DETERMINE, 0, dnz, 0, NULL, &ct->Bt));
-  PetscCall(PetscFree2(dnz, onz));
+  PetscCall(PetscFree(dnz));
   PetscCall(MatCreateAIJ(comm, ct->n, nu, PETSC_DETERMINE, PETSC_DETERMINE, p->dim, NULL, 0, NULL, &ct->B));
   PetscCall(MatCreateAIJ(comm, nr, ct->n, 1, ct->N, ct->n, NULL, ct->N - ct->n, NULL, &ct->Ct));
   PetscCall(MatCreateAIJ(comm, ct->n, nr, ct->N, 1, 1, NULL, 1, NULL, &ct->C));

@@ -12,7 +12,7 @@
 
 static const double DEG = M_PI / 180;
 
-static int read_stage(YdDoc *doc, YdNode *nd, int i, int dim, IndentStage *st, char *err, size_t errlen) {
+static int read_stage(YdDoc *doc, YdNode *nd, int i, IndentStage *st, char *err, size_t errlen) {
   char    path[96], sub[128];
   YdNode *v, *x;
   snprintf(path, sizeof path, "stages[%d].indenter", i);
@@ -54,7 +54,6 @@ static int read_stage(YdDoc *doc, YdNode *nd, int i, int dim, IndentStage *st, c
       FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp or exp)", doc->file, x->line, sub);
     if (yd_check_unused(doc, x, sub, "depth, load", err, errlen)) return 1;
   }
-  (void)dim;
   return yd_check_unused(doc, nd, path, "load, depth, until", err, errlen);
 }
 
@@ -116,7 +115,7 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))
     FAIL("%s:%d: key 'indenter.tip': axisymmetric: the tip must be on the axis (x = 0)", doc->file, yd_key_line(nd, "tip"));
   for (int i = 0; i < sc->nstage; i++)
-    if (read_stage(doc, sc->stage[i].indenter, i, dim, &is->stage[i], err, errlen)) return 1;
+    if (read_stage(doc, sc->stage[i].indenter, i, &is->stage[i], err, errlen)) return 1;
   return 0;
 }
 

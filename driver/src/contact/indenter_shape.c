@@ -2,11 +2,6 @@
 
 #include <math.h>
 
-void indenter_direction(const IndenterShape *s, double d[]) {
-  d[0] = d[1] = d[2] = 0;
-  d[s->dim - 1] = -1;
-}
-
 /* Gap and gradient in the frame of the tip: lateral vector l (dim - 1 components), height z above the
  * tip. grad_l and grad_z are the lateral and upward components of n. */
 static double cone_gap(double psi, const double l[], int nl, double z, double gl[], double *gz) {
@@ -107,15 +102,4 @@ double indenter_gap(const IndenterShape *s, const double X[], const double x[], 
   for (int k = 0; k < nl; k++) n[k] = gl[k];
   n[nl] = gz;
   return g;
-}
-
-double indenter_projected_area(const IndenterShape *s, double h) {
-  switch (s->kind) {
-  case SHAPE_BERKOVICH: return 3 * sqrt(3.0) * pow(h * tan(s->half_angle), 2); /* 24.5 h^2 at 65.27 deg */
-  case SHAPE_CONE: return M_PI * pow(h * tan(s->half_angle), 2);
-  case SHAPE_WEDGE: return 2 * h * tan(s->half_angle); /* per unit thickness */
-  case SHAPE_SPHERE: return M_PI * (2 * s->radius * h - h * h);
-  case SHAPE_FLAT_PUNCH: return M_PI * s->radius * s->radius;
-  }
-  return 0;
 }

@@ -23,9 +23,5 @@ typedef struct {
 /* Gap of a point x (current coordinates; X: its reference coordinates) to the indenter displaced by u_r
  * along d, and n = dg/dx. The derivative of g with respect to u_r is -n.d. */
 double indenter_gap(const IndenterShape *s, const double X[], const double x[], double ur, double n[]);
-/* The indentation direction d (unit). */
-void indenter_direction(const IndenterShape *s, double d[]);
-/* Projected contact area of the shape at depth h below its tip (for the equivalent-cone rule, docs). */
-double indenter_projected_area(const IndenterShape *s, double h);
 
 #endif
