@@ -3,34 +3,15 @@
 #include <math.h>
 #include <petscsf.h>
 
-/* Add the weights int N_i dGamma of the vertices of one boundary facet (P1: exact, and equal to the
- * nodal quadrature of eq. 18 for 3D and plane strain; axisymmetric: int N_i 2 pi r ds, exact on the
- * straight edge, so that a node on the axis keeps a positive weight). */
-static void facet_weights(const FeProblem *p, PetscInt nv, const PetscReal *xv, PetscReal *wv) {
-  if (p->dim == 3) { /* triangle: area / 3 each */
-    PetscReal a[3], b[3], c[3];
-    for (int k = 0; k < 3; k++) a[k] = xv[3 + k] - xv[k], b[k] = xv[6 + k] - xv[k];
-    c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2], c[2] = a[0] * b[1] - a[1] * b[0];
-    PetscReal area = 0.5 * PetscSqrtReal(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    for (int v = 0; v < nv; v++) wv[v] = area / 3;
-    return;
-  }
-  PetscReal L = PetscSqrtReal(PetscSqr(xv[2] - xv[0]) + PetscSqr(xv[3] - xv[1]));
-  if (p->kin == KIN_AXISYMMETRIC) {
-    PetscReal ra = xv[0], rb = xv[2];
-    wv[0] = 2 * PETSC_PI * L * (2 * ra + rb) / 6, wv[1] = 2 * PETSC_PI * L * (ra + 2 * rb) / 6;
-  } else wv[0] = wv[1] = 0.5 * L * p->thickness;
-}
-
 PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct) {
   DM           dm = p->dm;
   DMLabel      label;
-  PetscInt     pStart, pEnd, vStart, vEnd, fStart, fEnd;
-  PetscReal   *wpt;
+  PetscInt     pStart, pEnd, vStart, vEnd, fStart, fEnd, ustart;
   MPI_Comm     comm = PetscObjectComm((PetscObject)dm);
   PetscSection cs, ls, gs;
-  Vec          coords;
-  const PetscScalar *ca;
+  Vec          coords, wvec;
+  const PetscScalar *ca, *wa;
+  PetscReal   *nfacet; /* 2D: contact edges at each vertex; 3D: contact faces at each edge */
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(ct, sizeof *ct));
   ct->shape = *shape;
@@ -38,94 +19,85 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCheck(p->order == 1, comm, PETSC_ERR_SUP, "contact: only P1 elements (mesh.order: 1); nodal quadrature of P2 faces puts no weight on the vertices");
   PetscCall(DMGetLabel(dm, group, &label));
   PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
+  { /* eq. 18's weights w_i = int N_i dGamma (the same as nodal quadrature of N_i^2 for P1 in 3D and plane
+       strain; axisymmetric: int N_i 2 pi r ds, exact, so that a node on the axis keeps a weight): the
+       nodal forces of a unit traction along the indentation axis on the group */
+    char load[80];
+    PetscCall(PetscSNPrintf(load, sizeof load, "%s.%c", group, 'x' + (int)p->dim - 1));
+    PetscCall(fe_problem_unit_load(p, load, &wvec));
+    PetscCall(VecGetOwnershipRange(wvec, &ustart, NULL));
+  }
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
-  PetscReal *nfacet; /* 2D: contact edges at each vertex; 3D: contact faces at each edge */
-  PetscCall(PetscCalloc1(pEnd - pStart, &wpt));
   PetscCall(PetscCalloc1(pEnd - pStart, &nfacet));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &coords));
-  PetscCall(VecGetArrayRead(coords, &ca));
-  for (PetscInt f = fStart; f < fEnd; f++) { /* the group's facets on this rank: each lives on one rank */
-    PetscInt val, ncl, *cl = NULL, nv = 0, verts[3];
-    PetscReal xv[9], wv[3];
+  for (PetscInt f = fStart; f < fEnd; f++) { /* the group's facets on this rank, for the rim */
+    PetscInt val, nc;
+    const PetscInt *cone;
     PetscCall(DMLabelGetValue(label, f, &val));
     if (val < 0) continue;
-    PetscCall(DMPlexGetTransitiveClosure(dm, f, PETSC_TRUE, &ncl, &cl));
-    for (PetscInt k = 0; k < ncl; k++) {
-      PetscInt q = cl[2 * k], off;
-      if (q < vStart || q >= vEnd || nv == 3) continue;
-      PetscCall(PetscSectionGetOffset(cs, q, &off));
-      for (PetscInt d = 0; d < p->dim; d++) xv[nv * p->dim + d] = PetscRealPart(ca[off + d]);
-      verts[nv++] = q;
-    }
-    PetscCall(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &ncl, &cl));
-    PetscCheck(nv == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "contact facet with %d vertices", (int)nv);
-    facet_weights(p, nv, xv, wv);
-    for (PetscInt v = 0; v < nv; v++) wpt[verts[v] - pStart] += wv[v];
-    if (p->dim == 2) for (PetscInt v = 0; v < nv; v++) nfacet[verts[v] - pStart] += 1;
-    else {
-      const PetscInt *cone;
-      PetscInt        nc;
-      PetscCall(DMPlexGetConeSize(dm, f, &nc));
-      PetscCall(DMPlexGetCone(dm, f, &cone));
-      for (PetscInt k = 0; k < nc; k++) nfacet[cone[k] - pStart] += 1;
-    }
+    PetscCall(DMPlexGetConeSize(dm, f, &nc));
+    PetscCall(DMPlexGetCone(dm, f, &cone)); /* 2D: the edge's vertices; 3D: the face's edges */
+    for (PetscInt k = 0; k < nc; k++) nfacet[cone[k] - pStart] += 1;
   }
-  { /* shared vertices: sum the weights on the owning rank */
+  { /* the totals over the ranks, on every rank */
     PetscSF sf;
     PetscCall(DMGetPointSF(dm, &sf));
-    PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, wpt, wpt, MPI_SUM));
-    PetscCall(PetscSFReduceEnd(sf, MPIU_REAL, wpt, wpt, MPI_SUM));
-    PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM)); /* and every rank its points' totals */
+    PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
     PetscCall(PetscSFReduceEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
     PetscCall(PetscSFBcastBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
     PetscCall(PetscSFBcastEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
   }
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &ca));
+  PetscCall(VecGetArrayRead(wvec, &wa));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetGlobalSection(dm, &gs));
-  PetscInt n = 0;
-  for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt goff;
-    PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (wpt[v - pStart] > 0 && goff >= 0) n++;
-  }
-  ct->n = n;
-  PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
-  PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
-  n = 0;
+  /* The contact nodes: owned vertices with a weight; two passes, count then fill. */
   PetscReal wsum = 0;
-  for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt goff, off, nidx, *idx = NULL;
-    PetscCall(PetscSectionGetOffset(gs, v, &goff));
-    if (!(wpt[v - pStart] > 0 && goff >= 0)) continue;
-    PetscCall(PetscSectionGetOffset(cs, v, &off));
-    for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]);
-    /* global rows of the vertex's components; constrained ones come back negative */
-    PetscCall(DMPlexGetClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-    PetscCheck(nidx == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex with %d dofs", (int)nidx);
-    for (PetscInt d = 0; d < p->dim; d++) ct->row[n * p->dim + d] = idx[d];
-    PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-    ct->w[n] = wpt[v - pStart];
-    wsum += ct->w[n];
-    /* on the rim: an end of the contact edges (2D), on an edge with one contact face (3D); a node with a
-       fixed component (a mirror plane, the axis) is a rim of the model, not of the surface */
-    PetscBool fixed = PETSC_FALSE;
-    for (PetscInt d = 0; d < p->dim; d++) fixed = fixed || ct->row[n * p->dim + d] < 0;
-    if (p->dim == 2) ct->rim[n] = nfacet[v - pStart] == 1;
-    else {
-      const PetscInt *supp;
-      PetscInt        ns;
-      PetscCall(DMPlexGetSupportSize(dm, v, &ns));
-      PetscCall(DMPlexGetSupport(dm, v, &supp));
-      for (PetscInt k = 0; k < ns; k++) ct->rim[n] = ct->rim[n] || nfacet[supp[k] - pStart] == 1;
+  for (int pass = 0; pass < 2; pass++) {
+    PetscInt n = 0;
+    for (PetscInt v = vStart; v < vEnd; v++) {
+      PetscInt goff, off, nidx, *idx = NULL, row[3];
+      PetscCall(PetscSectionGetOffset(gs, v, &goff));
+      if (goff < 0) continue; /* owned by another rank */
+      /* global rows of the vertex's components; constrained ones come back negative */
+      PetscCall(DMPlexGetClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
+      PetscCheck(nidx == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex with %d dofs", (int)nidx);
+      for (PetscInt d = 0; d < p->dim; d++) row[d] = idx[d];
+      PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
+      const PetscInt ra = row[p->dim - 1]; /* the axial row carries the weight (free on a contact node) */
+      if (ra < 0 || !(PetscRealPart(wa[ra - ustart]) > 0)) continue;
+      if (pass == 1) {
+        PetscCall(PetscSectionGetOffset(cs, v, &off));
+        for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * p->dim + d] = row[d];
+        ct->w[n] = PetscRealPart(wa[ra - ustart]);
+        wsum += ct->w[n];
+        /* on the rim: an end of the contact edges (2D), on an edge with one contact face (3D); a node with
+           a fixed component (a mirror plane, the axis) is a rim of the model, not of the surface */
+        PetscBool fixed = PETSC_FALSE;
+        for (PetscInt d = 0; d < p->dim; d++) fixed = fixed || row[d] < 0;
+        if (p->dim == 2) ct->rim[n] = nfacet[v - pStart] == 1;
+        else {
+          const PetscInt *supp;
+          PetscInt        ns;
+          PetscCall(DMPlexGetSupportSize(dm, v, &ns));
+          PetscCall(DMPlexGetSupport(dm, v, &supp));
+          for (PetscInt k = 0; k < ns; k++) ct->rim[n] = ct->rim[n] || nfacet[supp[k] - pStart] == 1;
+        }
+        ct->rim[n] = ct->rim[n] && !fixed;
+      }
+      n++;
     }
-    ct->rim[n] = ct->rim[n] && !fixed;
-    n++;
+    if (pass == 0) {
+      ct->n = n;
+      PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
+      PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
+    }
   }
   PetscCall(VecRestoreArrayRead(coords, &ca));
-  PetscCall(PetscFree(wpt));
+  PetscCall(VecRestoreArrayRead(wvec, &wa));
   PetscCall(PetscFree(nfacet));
   PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
@@ -135,14 +107,11 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
 
   /* The blocks of eq. 15 with their nonzero pattern fixed once (preallocated exactly). */
   PetscMPIInt rank;
-  PetscInt    nu, ustart, nr;
-  Vec         tmp;
+  PetscInt    nu, nr;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   nr = rank == 0 ? 1 : 0;
-  PetscCall(DMGetGlobalVector(dm, &tmp));
-  PetscCall(VecGetLocalSize(tmp, &nu));
-  PetscCall(VecGetOwnershipRange(tmp, &ustart, NULL));
-  PetscCall(DMRestoreGlobalVector(dm, &tmp));
+  PetscCall(VecGetLocalSize(wvec, &nu)); /* the displacement layout */
+  PetscCall(VecDestroy(&wvec));
   PetscInt *dnz;
   PetscCall(PetscCalloc1(PetscMax(nu, 1), &dnz));
   for (PetscInt i = 0; i < ct->n; i++)
@@ -208,26 +177,27 @@ PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscReal lambda_ref,
   PetscFunctionReturn(0);
 }
 
-/* n_i . d: d = -e_dim */
-#define NDOTD(ct, i) (-(ct)->nrm[(i) * (ct)->dim + (ct)->dim - 1])
 
 PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool depth_control, PetscReal target,
                                 Vec Ru, PetscReal *Rr, PetscReal *ncp_norm) {
   const PetscScalar *la;
+  PetscScalar       *ra;
   PetscReal          loc[2] = {0, 0}, all[2];
-  const PetscInt     dim    = ct->dim;
+  PetscInt           rstart;
+  const PetscInt     dim = ct->dim;
   PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(Ru, &rstart, NULL));
+  PetscCall(VecGetArray(Ru, &ra)); /* a contact node's rows are owned where the node is */
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscReal l = PetscRealPart(la[i]);
     for (PetscInt d = 0; d < dim; d++) /* R_u -= lambda w n (eq. 10's last term, nodal quadrature) */
-      if (ct->row[i * dim + d] >= 0) PetscCall(VecSetValue(Ru, ct->row[i * dim + d], -l * ct->w[i] * ct->nrm[i * dim + d], ADD_VALUES));
-    loc[0] += l * ct->w[i] * NDOTD(ct, i);                           /* eq. 19: P = 1^T M lambda */
+      if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * ct->nrm[i * dim + d];
+    loc[0] += l * ct->w[i] * contact_ndotd(ct, i);                           /* eq. 19: P = 1^T M lambda */
     loc[1] += PetscSqr(ct->w[i] * (l - PetscMax(0, l - ct->c * ct->g[i]))); /* eq. 13, g >= 0 open */
   }
   PetscCall(VecRestoreArrayRead(lam, &la));
-  PetscCall(VecAssemblyBegin(Ru));
-  PetscCall(VecAssemblyEnd(Ru));
+  PetscCall(VecRestoreArray(Ru, &ra));
   PetscCall(MPIU_Allreduce(loc, all, 2, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)lam)));
   *Rr       = depth_control ? ur - target : all[0] - target;
   *ncp_norm = PetscSqrtReal(all[1]);
@@ -253,7 +223,7 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
   PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)ct->D), &rank));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  li = ct->rstart + i, zero = 0;
-    PetscReal wn[3], c = ct->w[i] * NDOTD(ct, i), one = 1.0, z = 0.0;
+    PetscReal wn[3], c = ct->w[i] * contact_ndotd(ct, i), one = 1.0, z = 0.0;
     for (PetscInt d = 0; d < dim; d++) wn[d] = -ct->w[i] * ct->nrm[i * dim + d];
     for (PetscInt d = 0; d < dim; d++) { /* dR_u/dlambda = -w n, all nodes (exact) */
       PetscInt r = ct->row[i * dim + d];
@@ -280,7 +250,7 @@ PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) {
-    loc[0] += PetscRealPart(la[i]) * ct->w[i] * NDOTD(ct, i);
+    loc[0] += PetscRealPart(la[i]) * ct->w[i] * contact_ndotd(ct, i);
     loc[1] = PetscMax(loc[1], -ct->g[i]);
     if (ct->active[i]) loc[2] = PetscMin(loc[2], PetscRealPart(la[i]));
   }

@@ -37,8 +37,13 @@ typedef struct {
   PetscBool     depth_control;     /* of the last contact_jacobian */
 } Contact;
 
+/* n_i . d of node i at the last gaps (d = -e_z in 3D, -e_y in 2D): the part of its pressure that bears
+ * on the indenter's axis (eq. 19). */
+static inline PetscReal contact_ndotd(const Contact *ct, PetscInt i) { return -ct->nrm[i * ct->dim + ct->dim - 1]; }
+
 /* The potential contact nodes: the vertices of the faces (3D) or edges (2D) of the group, owned by this
- * rank, with their nodal-quadrature weights (plane strain: per the thickness; axisymmetric: 2 pi r). */
+ * rank, with their weights int N_i dGamma (eq. 18; plane strain: times the thickness; axisymmetric: with
+ * 2 pi r), taken from fe_problem_unit_load, the integral the FE loads use. */
 PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct);
 PetscErrorCode contact_destroy(Contact *ct);
 /* Gaps and normals at displacement U (global vector of the problem's DM) and indenter position ur. */

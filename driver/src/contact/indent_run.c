@@ -34,6 +34,10 @@ typedef struct {
   PetscInt     its_total, steps_total, cycles, kshift_uses;
 } Indent;
 
+/* Force control at zero load: no contact pressure anywhere, and the indenter rests on the surface (its
+ * position is not an unknown then). */
+static PetscBool released(const Indent *in) { return !in->depth_control && in->target == 0 ? PETSC_TRUE : PETSC_FALSE; }
+
 static double wall_since(const struct timespec *w0) {
   struct timespec w;
   clock_gettime(CLOCK_MONOTONIC, &w);
@@ -48,7 +52,7 @@ static PetscErrorCode evaluate(Indent *in, PetscReal *merit) {
   PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
   PetscCall(contact_residual(&in->ct, in->lam, in->ur, in->depth_control, in->target, in->Ru, &in->Rr, &in->ncp));
   PetscCall(VecNorm(in->Ru, NORM_2, &in->ru));
-  if (!in->depth_control && in->target == 0) { /* released: the indenter rests on the surface (set after
+  if (released(in)) { /* released: the indenter rests on the surface (set after
                                                    the step), so only lambda = 0 is asked for */
     const PetscScalar *la;
     PetscReal          s = 0, all;
@@ -106,7 +110,7 @@ static PetscErrorCode newton_step(Indent *in, PetscReal h, int *status, PetscInt
   }
   PetscCall(evaluate(in, &merit));
   for (k = 0; k <= in->max_it; k++) {
-    if (!in->depth_control && in->target == 0) { /* released: no load, no contact pressure anywhere */
+    if (released(in)) { /* released: no load, no contact pressure anywhere */
       PetscInt loc = 0;
       for (PetscInt i = 0; i < in->ct.n; i++) loc += in->ct.active[i], in->ct.active[i] = PETSC_FALSE;
       PetscCall(MPIU_Allreduce(&loc, &changes, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
@@ -202,7 +206,7 @@ static PetscErrorCode rest_on_surface(Indent *in) {
   PetscReal dmin = PETSC_MAX_REAL, all;
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < in->ct.n; i++) {
-    PetscReal nd = -in->ct.nrm[i * in->ct.dim + in->ct.dim - 1];
+    PetscReal nd = contact_ndotd(&in->ct, i);
     if (nd > 1e-3) dmin = PetscMin(dmin, in->ct.g[i] / nd);
   }
   PetscCall(MPIU_Allreduce(&dmin, &all, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)in->U)));
@@ -447,7 +451,7 @@ int indent_run(FeScene *sc, IndentScene *is, FeProblem *p, char *err, size_t err
       }
       if (st->until_depth > 0 && in.ur >= st->until_depth * (1 - event_tol)) landed = 1;
       landing = 0;
-      if (!in.depth_control && in.target == 0 && in.nactive == 0) PetscCall(rest_on_surface(&in));
+      if (released(&in) && in.nactive == 0) PetscCall(rest_on_surface(&in));
       PetscInt on_rim;
       PetscCall(contact_on_rim(&in.ct, &on_rim));
       if (on_rim) { /* beyond the surface the nodes are not checked: the results would be wrong from here */

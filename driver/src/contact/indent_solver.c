@@ -116,7 +116,7 @@ static PetscErrorCode assemble_schur_pre(IndentSolver *s, Contact *ct) {
   if (!rank) PetscCall(MatSetValue(s->Sp, 0, 0, ct->kr, INSERT_VALUES));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  gi = 1 + ct->rstart + i, zero = 0;
-    PetscReal c = -ct->w[i] * ct->nrm[i * dim + dim - 1], sii = 1; /* w (n . d) */
+    PetscReal c = ct->w[i] * contact_ndotd(ct, i), sii = 1;
     if (ct->active[i]) {
       sii = 0;
       for (PetscInt d = 0; d < dim; d++) {
@@ -165,8 +165,8 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
   if (!s->fieldsplit) {
-    PetscCall(MatDestroy(&s->Aaij)); /* a fresh copy: the nest's blocks changed in place */
-    PetscCall(MatConvert(s->A, MATAIJ, MAT_INITIAL_MATRIX, &s->Aaij));
+    /* the nest's values into the same AIJ matrix: the pattern is fixed, so MUMPS keeps its analysis */
+    PetscCall(MatConvert(s->A, MATAIJ, s->Aaij ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &s->Aaij));
     PetscCall(KSPSetOperators(s->ksp, s->Aaij, s->Aaij));
   } else {
     PetscCall(assemble_schur_pre(s, ct));

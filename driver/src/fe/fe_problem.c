@@ -49,7 +49,7 @@ static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[],
 /* Consistent nodal forces of a unit pressure on the boundary faces of a group: t = -p n (n outward).
  * Faces of simplices are flat: in 3D closed forms on triangles; in 2D Gauss quadrature on the edges
  * (the axisymmetric weight 2 pi r varies along an edge). */
-static PetscErrorCode unit_pressure_force(FeProblem *p, const char *load, Vec *f) {
+PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
   DM           dm = p->dm;
   DMLabel      label;
   char         group[64];
@@ -250,7 +250,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
   p->npressure = npressure;
   for (PetscInt g = 0; g < npressure; g++) {
     PetscCall(PetscStrncpy(p->pressure_group[g], pressure_groups[g], 64));
-    PetscCall(unit_pressure_force(p, pressure_groups[g], &p->unit_force[g]));
+    PetscCall(fe_problem_unit_load(p, pressure_groups[g], &p->unit_force[g]));
     p->pressure[g] = 0;
   }
   PetscCall(DMCreateGlobalVector(dm, &p->fext));

@@ -84,6 +84,10 @@ PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, P
 /* SNES callbacks. */
 PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
+/* Consistent nodal forces (a global vector) of a unit pressure on the boundary faces of a group, or of a
+ * unit traction along an axis for load 'GROUP.x' ('.y', '.z'), with the kinematics' weight (thickness,
+ * 2 pi r): the traction along an axis gives each node int N_i dGamma. */
+PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f);
 /* Update the external force for the current pressures. */
 PetscErrorCode fe_problem_update_loads(FeProblem *p);
 /* Commit the trial state (call after a converged step, with the residual evaluated at the solution). */
