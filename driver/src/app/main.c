@@ -21,7 +21,9 @@ static const char help[] =
   "  boundary: {fixed: [{group: G, components: [x, y, z]}], pressure: [G, ...]}\n"
   "  stages: - {name, duration, load: linear | instant, pressure: {G: p}, steps: {...}, until: {evp_rate_below}, creep}\n"
   "  output: {directory, fields_every: N}\n"
-  "  options: -checkpoint_every N, -restart, -max_steps N, any PETSc SNES/KSP/PC option\n"
+  "  solver: {options: '-snes_... -ksp_...'}  (the command line wins)\n"
+  "  Input paths (mesh.geometry, mesh.file, tables) are relative to the scene file's folder; outputs to the\n"
+  "  working directory, or -output_dir (docs/driver.md, Paths).\n"
   "Scene keys (material point, scene: point):\n"
   "  scene: point | replay       name: text      ntens: 6 | 4     units: {stress: MPa, time: s}\n"
   "  material: {umat: camclay9, name, props: woodford | [list], set: {phi: .., eta_soft: .., tol: ..},\n"
@@ -39,10 +41,95 @@ static const char help[] =
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
   "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
 
+/* The options read by the run modules (fe_run.c, indent_run.c, indent_solver.c), listed for -help only:
+ * those modules read them themselves, with these defaults. */
+static PetscErrorCode help_run_options(void) {
+  PetscInt  i = 0;
+  PetscReal r = 1e-10;
+  PetscBool b = PETSC_FALSE, t = PETSC_TRUE;
+  const char *solvers[2] = {"direct", "fieldsplit"};
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Finite-element scenes", NULL);
+  PetscCall(PetscOptionsInt("-checkpoint_every", "write a checkpoint every N steps (0: none)", NULL, i, &i, NULL));
+  PetscCall(PetscOptionsBool("-restart", "continue from the last checkpoint in the output directory", NULL, b, &b, NULL));
+  PetscCall(PetscOptionsInt("-max_steps", "stop after N steps in all (-1: no limit)", NULL, -1, &i, NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Rigid-indenter contact scenes", NULL);
+  PetscCall(PetscOptionsReal("-indent_rtol", "relative tolerance of the contact Newton", NULL, r, &r, NULL));
+  PetscCall(PetscOptionsInt("-indent_max_it", "contact Newton iterations per step (at most 63)", NULL, 30, &i, NULL));
+  PetscCall(PetscOptionsBool("-indent_predictor", "extrapolate the last step's rates as the first iterate", NULL, t, &t, NULL));
+  PetscCall(PetscOptionsBool("-indent_monitor", "print the contact Newton iterations", NULL, b, &b, NULL));
+  PetscCall(PetscOptionsBool("-indent_line_search", "backtrack along the Newton direction", NULL, t, &t, NULL));
+  PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the contact tangent with finite differences", NULL, b, &b, NULL));
+  PetscCall(PetscOptionsEList("-indent_solver", "linear solver of the contact system", NULL, solvers, 2, solvers[0], &i, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/* Options given but never read (a misspelling, or one the scene's kind ignores): a warning each, as
+ * PETSc's -options_left does. */
+static PetscErrorCode warn_unused_options(void) {
+  PetscInt  n;
+  char    **names, **values;
+  PetscBool left = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-options_left", &left)); /* PETSc reports them itself then */
+  if (left) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt k = 0; k < n; k++)
+    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR,
+                           "driver: warning: option -%s%s%s was given but never used (misspelt? driver -help lists them)\n",
+                           names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+/* The message of a failed run: the module's own, else PETSc's (the innermost error, without a traceback). */
+static void print_failure(int rc, const char *err) {
+  const char *text = NULL;
+  char       *specific = NULL;
+  if (err[0]) {
+    PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s\n", err);
+    return;
+  }
+  PetscErrorMessage(rc, &text, &specific);
+  PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s%s%s (-error_traceback shows where)\n",
+               specific && specific[0] && strcmp(specific, " ") ? specific : "", specific && specific[0] && text ? ": " : "",
+               text ? text : "a PETSc error");
+}
+
+static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt replay_step, char *err, size_t errlen) {
+  const char *kind = NULL;
+  int         rc   = 0;
+  if (yd_string(doc, yd_get(doc->root, "scene"), "scene", &kind, err, errlen)) return 2;
+  if (!strcmp(kind, "point")) {
+    PointScene   sc;
+    PointSummary sum;
+    if (point_scene_read(doc, &sc, err, errlen)) return 2;
+    if (check) sc.check_tangent = 1;
+    if (outdir[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir);
+    sc.replay_step = (int)replay_step;
+    rc = point_run(&sc, &sum, err, errlen);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative), %.4f s%s -> %s/history.csv\n",
+                sc.name, sum.steps, sum.cutbacks, sum.worst_control_error, sum.wall, rc ? ", FAILED" : "", sc.outdir);
+    if (sc.check_tangent)
+      PetscPrintf(PETSC_COMM_WORLD, "tangent check: worst |DDSDDE - central differences| / |DDSDDE| = %.3e\n",
+                  sum.worst_tangent_error);
+    point_scene_free(&sc);
+    return rc;
+  }
+  if (!strcmp(kind, "fe")) return fe_run(doc, outdir, err, errlen);
+  if (!strcmp(kind, "sweep")) return sweep_run(doc, outdir, err, errlen);
+  if (!strcmp(kind, "replay")) return replay_run(doc, err, errlen);
+  snprintf(err, errlen, "%s:%d: key 'scene': expected fe, point, replay or sweep, got '%s'", doc->file,
+           yd_key_line(doc->root, "scene"), kind);
+  return 2;
+}
+
 int main(int argc, char **argv) {
-  char      input[PETSC_MAX_PATH_LEN] = "";
-  PetscBool given = PETSC_FALSE, check = PETSC_FALSE, help_asked = PETSC_FALSE;
-  char      err[2048], outdir[PETSC_MAX_PATH_LEN] = "";
+  char      input[PETSC_MAX_PATH_LEN] = "", err[2048] = "", outdir[PETSC_MAX_PATH_LEN] = "";
+  PetscBool given = PETSC_FALSE, check = PETSC_FALSE, help_asked = PETSC_FALSE, traceback = PETSC_FALSE;
   PetscInt  replay_step = 0;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -55,53 +142,27 @@ int main(int argc, char **argv) {
                                outdir, outdir, sizeof outdir, NULL));
   PetscCall(PetscOptionsInt("-write_replay_at_step", "write a replay scene of the UMAT call of this step", NULL,
                             replay_step, &replay_step, NULL));
+  PetscCall(PetscOptionsBool("-error_traceback", "print PETSc's traceback of an error (else only its message)", NULL,
+                             traceback, &traceback, NULL));
   PetscOptionsEnd();
+  if (help_asked) PetscCall(help_run_options());
   if (!given) {
-    if (!help_asked) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n"));
+    if (!help_asked) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n"));
     PetscCall(PetscFinalize());
     return help_asked ? 0 : 2;
   }
+  /* Errors come back to here and are reported once, by their message (no traceback of 40 lines). */
+  if (!traceback) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   YdDoc doc;
-  int   rc = 0;
-  if (yd_load(input, &doc, err, sizeof err)) {
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "driver: %s\n", err));
-    PetscCall(PetscFinalize());
-    return 2;
+  int   rc;
+  if (yd_load(input, &doc, err, sizeof err)) rc = 2;
+  else {
+    rc = run_scene(&doc, outdir, check, replay_step, err, sizeof err);
+    yd_free(&doc);
   }
-  const char *kind = NULL;
-  if (yd_string(&doc, yd_get(doc.root, "scene"), "scene", &kind, err, sizeof err)) {
-    rc = 2;
-  } else if (!strcmp(kind, "point")) {
-    PointScene   sc;
-    PointSummary sum;
-    if (point_scene_read(&doc, &sc, err, sizeof err)) rc = 2;
-    else {
-      if (check) sc.check_tangent = 1;
-      if (outdir[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir);
-      sc.replay_step = (int)replay_step;
-      rc = point_run(&sc, &sum, err, sizeof err);
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                            "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative), %.4f s%s -> %s/history.csv\n",
-                            sc.name, sum.steps, sum.cutbacks, sum.worst_control_error, sum.wall, rc ? ", FAILED" : "",
-                            sc.outdir));
-      if (sc.check_tangent)
-        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "tangent check: worst |DDSDDE - central differences| / |DDSDDE| = %.3e\n",
-                              sum.worst_tangent_error));
-      point_scene_free(&sc);
-    }
-  } else if (!strcmp(kind, "fe")) {
-    rc = fe_run(&doc, outdir, err, sizeof err);
-  } else if (!strcmp(kind, "sweep")) {
-    rc = sweep_run(&doc, outdir, err, sizeof err);
-  } else if (!strcmp(kind, "replay")) {
-    rc = replay_run(&doc, err, sizeof err);
-  } else {
-    snprintf(err, sizeof err, "%s:%d: key 'scene': expected fe, point, replay or sweep, got '%s'",
-             doc.file, yd_key_line(doc.root, "scene"), kind);
-    rc = 2;
-  }
-  if (rc) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "driver: %s\n", err));
-  yd_free(&doc);
+  if (rc) print_failure(rc, err);
+  if (rc != 2) PetscCall(warn_unused_options()); /* not after a scene error: nothing was run */
+  if (!traceback) PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());
   return rc;
 }

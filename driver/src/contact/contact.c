@@ -103,7 +103,7 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
   PetscCallMPI(MPI_Scan(&ct->n, &ct->rstart, 1, MPIU_INT, MPI_SUM, comm));
   ct->rstart -= ct->n;
-  PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "contact: the group '%s' has no boundary faces", group);
+  PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, p->dim == 3 ? "faces" : "edges", p->dim == 3 ? "faces" : "edges");
 
   /* The blocks of eq. 15 with their nonzero pattern fixed once (preallocated exactly). */
   PetscMPIInt rank;

@@ -15,31 +15,6 @@
 /* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
 static const PetscInt vi[6] = {0, 1, 2, 0, 0, 1}, vj[6] = {0, 1, 2, 1, 2, 2};
 
-PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm) {
-  DM   dist = NULL;
-  char sdim[8];
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(sdim, sizeof sdim, "%d", (int)dim)); /* gmsh writes 3 coordinates even in 2D */
-  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_spacedim", sdim));
-  /* Physical groups become labels named after them, points included. */
-  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "true"));
-  PetscCall(DMPlexCreateFromFile(comm, msh, "mesh", PETSC_TRUE, dm));
-  { /* a deterministic partition by default, so that a restart finds the same cells on each rank
-       (graph partitioners may differ from run to run); -petscpartitioner_type chooses another */
-    PetscPartitioner part;
-    PetscCall(DMPlexGetPartitioner(*dm, &part));
-    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
-    PetscCall(PetscPartitionerSetFromOptions(part));
-  }
-  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
-  if (dist) {
-    PetscCall(DMDestroy(dm));
-    *dm = dist;
-  }
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u,
                               void *ctx) {
   for (PetscInt c = 0; c < Nc; c++) u[c] = 0;
@@ -166,6 +141,7 @@ PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
 PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure) {
+  PetscReal rmin = PETSC_MAX_REAL; /* the smallest radius of a quadrature point (axisymmetric) */
   PetscFunctionBeginUser;
   p->dm        = dm;
   p->order     = order;
@@ -174,7 +150,8 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
   p->thickness = thickness;
   PetscCall(DMGetDimension(dm, &p->dim));
   PetscCheck(p->dim == (kin == KIN_3D ? 3 : 2), PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
-             "the mesh is %dD but the kinematics need a %dD mesh", (int)p->dim, kin == KIN_3D ? 3 : 2);
+             "the mesh is %dD but the kinematics (%s) need a %dD mesh", (int)p->dim,
+             kin == KIN_3D ? "3d" : kin == KIN_PLANE_STRAIN ? "plane_strain" : "axisymmetric", kin == KIN_3D ? 3 : 2);
   PetscCheck(mat->ntens == (kin == KIN_3D ? 6 : 4), PetscObjectComm((PetscObject)dm), PETSC_ERR_PLIB, "NTENS");
   PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), p->dim, p->dim, PETSC_TRUE, order,
                                   2 * (order - 1), &p->fe));
@@ -239,12 +216,16 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
         PetscCall(PetscArraycpy(&p->invJ[SV(p, c, q) * 9], &invJ[q * p->dim * p->dim], p->dim * p->dim));
         /* volume weight: plane strain per its thickness; axisymmetric 2 pi r (x1 = r) */
         PetscReal r = v0[q * p->dim], scale = kin == KIN_PLANE_STRAIN ? thickness : kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : 1;
-        PetscCheck(kin != KIN_AXISYMMETRIC || r > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
-                   "axisymmetric: a quadrature point of cell %d has r = %g <= 0 (the mesh must lie in x1 >= 0)", (int)c, (double)r);
+        rmin = PetscMin(rmin, r);
         p->radius[SV(p, c, q)] = r;
         p->wdetJ[SV(p, c, q)]  = p->qweights[q] * detJ[q] * scale;
       }
     }
+  }
+  if (kin == KIN_AXISYMMETRIC) { /* on every rank, so that all stop together */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmin, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+    PetscCheck(rmin > 0, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
+               "axisymmetric: a quadrature point has r = x = %g <= 0: the mesh must lie in x >= 0 (x is the radius)", (double)rmin);
   }
   for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->phi_slot >= 0 ? mat->props[mat->phi_slot] : 0;
   p->npressure = npressure;

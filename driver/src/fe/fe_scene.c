@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "../io/csv_table.h"
+#include "../io/gmsh_mesh.h"
+#include "../io/paths.h"
 #include "../material/material_input.h"
 
 #define FAIL(...)                       \
@@ -26,7 +28,9 @@ static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int
   if ((x = yd_get(nd, "exp"))) {
     g->fn[gi] = FN_EXP;
     snprintf(sub, sizeof sub, "%s.exp", path);
-    if (yd_double(doc, yd_get(x, "P0"), sub, &g->P0[gi], err, errlen) || yd_double(doc, yd_get(x, "k"), sub, &g->k[gi], err, errlen)) return 1;
+    char p0[220], pk[220];
+    snprintf(p0, sizeof p0, "%s.P0", sub), snprintf(pk, sizeof pk, "%s.k", sub);
+    if (yd_double(doc, yd_get(x, "P0"), p0, &g->P0[gi], err, errlen) || yd_double(doc, yd_get(x, "k"), pk, &g->k[gi], err, errlen)) return 1;
     if (yd_check_unused(doc, x, sub, "P0, k", err, errlen)) return 1;
   } else if ((x = yd_get(nd, "table"))) {
     const char *file, *tc, *vc;
@@ -41,7 +45,8 @@ static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int
     if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
     if (yd_check_unused(doc, x, sub, "file, time, value, time_factor, factor", err, errlen)) return 1;
     char resolved[1024], where[1200];
-    csv_resolve_path(doc->file, file, resolved, sizeof resolved);
+    snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(x, "file"), sub);
+    if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
     snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, x->line, sub);
     const char *want[2] = {tc, vc};
     double     *data;
@@ -71,6 +76,58 @@ double stage_pressure(const Stage *g, int k, double start, double target, double
   }
   default: return start + lambda * (target - start);
   }
+}
+
+
+/* mesh.parameters: each a parameter the .geo defines (it tests Exists(NAME) or DefineConstant[NAME]). */
+static int read_gmsh_parameters(YdDoc *doc, YdNode *v, FeScene *sc, char *err, size_t errlen) {
+  char known[GMSH_MAX_PARAMS][64], list[GMSH_MAX_PARAMS * 66] = "";
+  int  nknown;
+  if (yd_expect(doc, v, YD_MAPPING, "mesh.parameters", err, errlen)) return 1;
+  if (v->n > GMSH_MAX_PARAMS) FAIL("%s:%d: key 'mesh.parameters': at most %d, got %zu", doc->file, v->line, GMSH_MAX_PARAMS, v->n);
+  if (gmsh_geo_parameters(sc->geometry, known, GMSH_MAX_PARAMS, &nknown, err, errlen)) return 1;
+  for (int k = 0; k < nknown; k++) {
+    size_t len = strlen(list);
+    snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", known[k]);
+  }
+  for (size_t i = 0; i < v->n; i++) {
+    char path[128];
+    int  found = 0;
+    snprintf(path, sizeof path, "mesh.parameters.%s", v->keys[i]);
+    if (!gmsh_valid_name(v->keys[i]))
+      FAIL("%s:%d: key '%s': not a gmsh parameter name (expected letters, digits and _, not starting with a digit)",
+           doc->file, v->key_lines[i], path);
+    for (int k = 0; k < nknown; k++) found |= !strcmp(known[k], v->keys[i]);
+    if (!found)
+      FAIL("%s:%d: unknown key '%s': %s defines no parameter '%s' (its parameters: %s)", doc->file, v->key_lines[i], path,
+           sc->geometry, v->keys[i], nknown ? list : "none");
+    v->used[i] = 1;
+    if (yd_double(doc, v->items[i], path, &sc->gmsh_value[sc->ngmsh], err, errlen)) return 1;
+    snprintf(sc->gmsh_name[sc->ngmsh++], 64, "%s", v->keys[i]);
+    size_t len = strlen(sc->gmsh_params); /* the same, as gmsh arguments (validated names, numbers only) */
+    snprintf(sc->gmsh_params + len, sizeof sc->gmsh_params - len, " -setnumber %s %.17g", v->keys[i], sc->gmsh_value[sc->ngmsh - 1]);
+  }
+  return 0;
+}
+
+/* mesh.geometry (a .geo, meshed at run time) or mesh.file (a .msh, checked now), relative to the scene. */
+static int read_mesh_source(YdDoc *doc, YdNode *mesh, YdNode *geo, YdNode *file, FeScene *sc, char *err, size_t errlen) {
+  const char *key = geo ? "mesh.geometry" : "mesh.file", *path;
+  char        where[1200];
+  YdNode     *v;
+  if (yd_string(doc, geo ? geo : file, key, &path, err, errlen)) return 1;
+  snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, (geo ? geo : file)->line, key);
+  if (path_input(doc->file, where, path, file ? sc->msh : sc->geometry, sizeof sc->msh, err, errlen)) return 1;
+  if ((v = yd_get(mesh, "parameters"))) {
+    if (file) FAIL("%s:%d: key 'mesh.parameters': only with mesh.geometry (a .msh is already meshed)", doc->file, v->line);
+    if (read_gmsh_parameters(doc, v, sc, err, errlen)) return 1;
+  }
+  if (file) {
+    char msg[1024];
+    if (msh_check(sc->msh, sc->kin == KIN_3D ? 3 : 2, sc->kin == KIN_AXISYMMETRIC, msg, sizeof msg))
+      FAIL("%s: %s", where, msg);
+  }
+  return 0;
 }
 
 static int component_of(const char *s) {
@@ -107,25 +164,6 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   YdNode *geo = yd_get(mesh, "geometry"), *file = yd_get(mesh, "file");
   if (!!geo + !!file != 1)
     FAIL("%s:%d: key 'mesh': give exactly one of geometry (a gmsh .geo, meshed now) or file (a .msh)", doc->file, mesh->line);
-  {
-    const char *path;
-    if (yd_string(doc, geo ? geo : file, geo ? "mesh.geometry" : "mesh.file", &path, err, errlen)) return 1;
-    FILE *fp = fopen(path, "r");
-    if (!fp) FAIL("%s:%d: key 'mesh.%s': cannot open '%s': %s", doc->file, (geo ? geo : file)->line,
-                  geo ? "geometry" : "file", path, strerror(errno));
-    fclose(fp);
-    snprintf(file ? sc->msh : sc->geometry, sizeof sc->msh, "%s", path);
-    if ((v = yd_get(mesh, "parameters"))) {
-      if (yd_expect(doc, v, YD_MAPPING, "mesh.parameters", err, errlen)) return 1;
-      for (size_t i = 0; i < v->n; i++) {
-        double val;
-        v->used[i] = 1;
-        if (yd_double(doc, v->items[i], "mesh.parameters", &val, err, errlen)) return 1;
-        size_t len = strlen(sc->gmsh_params);
-        snprintf(sc->gmsh_params + len, sizeof sc->gmsh_params - len, " -setnumber %s %.17g", v->keys[i], val);
-      }
-    }
-  }
   sc->kin       = KIN_3D;
   sc->thickness = 1;
   if ((v = yd_get(mesh, "kinematics"))) {
@@ -140,6 +178,7 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if (!(sc->thickness > 0) || sc->kin != KIN_PLANE_STRAIN)
       FAIL("%s:%d: key 'mesh.thickness': expected > 0, and only with kinematics: plane_strain", doc->file, v->line);
   }
+  if (read_mesh_source(doc, mesh, geo, file, sc, err, errlen)) return 1;
   if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen)) return 1;
 
   if (material_read(doc, yd_get(root, "material"), sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen)) return 1;
@@ -169,19 +208,24 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   if (yd_expect(doc, bc, YD_MAPPING, "boundary", err, errlen)) return 1;
   if ((x = yd_get(bc, "fixed"))) {
     if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
-    for (size_t k = 0; k < x->n && k < 8; k++) {
+    if (x->n > 8) FAIL("%s:%d: key 'boundary.fixed': at most 8 entries, got %zu", doc->file, x->line, x->n);
+    for (size_t k = 0; k < x->n; k++) {
       YdNode *f = x->items[k], *comps;
-      char    path[64];
+      char    path[64], sub[96];
       snprintf(path, sizeof path, "boundary.fixed[%zu]", k);
       if (yd_expect(doc, f, YD_MAPPING, path, err, errlen)) return 1;
-      if (yd_string(doc, yd_get(f, "group"), path, &s, err, errlen)) return 1;
+      snprintf(sub, sizeof sub, "%s.group", path);
+      if (yd_string(doc, yd_get(f, "group"), sub, &s, err, errlen)) return 1;
       snprintf(sc->fixed[k].group, sizeof sc->fixed[k].group, "%s", s);
-      if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, path, err, errlen)) return 1;
-      for (size_t j = 0; j < comps->n && j < 3; j++) {
+      snprintf(sub, sizeof sub, "%s.components", path);
+      if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, sub, err, errlen)) return 1;
+      if (comps->n < 1 || comps->n > 3) FAIL("%s:%d: key '%s': expected 1 to 3 components, got %zu", doc->file, comps->line, sub, comps->n);
+      for (size_t j = 0; j < comps->n; j++) {
         int c = comps->items[j]->kind == YD_SCALAR ? component_of(comps->items[j]->text) : -1;
         if (c < 0 || (sc->kin != KIN_3D && c > 1))
-          FAIL("%s:%d: key '%s.components': expected x, y%s", doc->file, comps->items[j]->line, path,
-               sc->kin == KIN_3D ? " or z" : " (a 2D mesh; axisymmetric: x = r, y = z)");
+          FAIL("%s:%d: key '%s[%zu]': expected x, y%s, got '%s'", doc->file, comps->items[j]->line, sub, j,
+               sc->kin == KIN_3D ? " or z" : " (a 2D mesh; axisymmetric: x = r, y = z)",
+               comps->items[j]->kind == YD_SCALAR ? comps->items[j]->text : "a list or mapping");
         sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
       }
       if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
@@ -190,8 +234,11 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   }
   if ((x = yd_get(bc, "pressure"))) {
     if (yd_expect(doc, x, YD_SEQUENCE, "boundary.pressure", err, errlen)) return 1;
-    for (size_t k = 0; k < x->n && k < FE_MAX_GROUPS; k++) {
-      if (yd_string(doc, x->items[k], "boundary.pressure", &s, err, errlen)) return 1;
+    if (x->n > FE_MAX_GROUPS) FAIL("%s:%d: key 'boundary.pressure': at most %d groups, got %zu", doc->file, x->line, FE_MAX_GROUPS, x->n);
+    for (size_t k = 0; k < x->n; k++) {
+      char item[64];
+      snprintf(item, sizeof item, "boundary.pressure[%zu]", k);
+      if (yd_string(doc, x->items[k], item, &s, err, errlen)) return 1;
       snprintf(sc->pressure_group[sc->npressure++], 64, "%s", s);
     }
   }
@@ -199,7 +246,9 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if (yd_expect(doc, x, YD_SEQUENCE, "boundary.traction", err, errlen)) return 1;
     int dim = sc->kin == KIN_3D ? 3 : 2;
     for (size_t k = 0; k < x->n; k++) {
-      if (yd_string(doc, x->items[k], "boundary.traction", &s, err, errlen)) return 1;
+      char item[64];
+      snprintf(item, sizeof item, "boundary.traction[%zu]", k);
+      if (yd_string(doc, x->items[k], item, &s, err, errlen)) return 1;
       if (sc->npressure + dim > FE_MAX_GROUPS) FAIL("%s:%d: key 'boundary': too many loaded groups", doc->file, x->line);
       for (int d = 0; d < dim; d++) snprintf(sc->pressure_group[sc->npressure++], 64, "%s.%c", s, 'x' + d);
     }
@@ -215,7 +264,9 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       if (gi < 0) FAIL("%s:%d: key 'initial.pressure.%s': not a group listed in boundary.pressure", doc->file,
                        initial_pressure->key_lines[k], initial_pressure->keys[k]);
       initial_pressure->used[k] = 1;
-      if (yd_double(doc, initial_pressure->items[k], "initial.pressure", &sc->pressure0[gi], err, errlen)) return 1;
+      char item[128];
+      snprintf(item, sizeof item, "initial.pressure.%s", initial_pressure->keys[k]);
+      if (yd_double(doc, initial_pressure->items[k], item, &sc->pressure0[gi], err, errlen)) return 1;
     }
   }
 
@@ -231,17 +282,21 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if (yd_expect(doc, st, YD_MAPPING, path, err, errlen)) return 1;
     snprintf(g->name, sizeof g->name, "stage%d", i);
     if ((v = yd_get(st, "name"))) {
-      if (yd_string(doc, v, path, &s, err, errlen)) return 1;
+      snprintf(sub, sizeof sub, "%s.name", path);
+      if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
       snprintf(g->name, sizeof g->name, "%s", s);
     }
     snprintf(sub, sizeof sub, "%s.duration", path);
     if (yd_double(doc, yd_get(st, "duration"), sub, &g->duration, err, errlen)) return 1;
-    if (g->duration < 0) FAIL("%s:%d: key '%s': expected >= 0", doc->file, st->line, sub);
     if ((v = yd_get(st, "load"))) {
-      if (yd_string(doc, v, path, &s, err, errlen)) return 1;
-      if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s.load': expected instant or linear", doc->file, v->line, path);
+      snprintf(sub, sizeof sub, "%s.load", path);
+      if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+      if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s': expected instant or linear, got '%s'", doc->file, v->line, sub, s);
       g->instant = !strcmp(s, "instant");
     }
+    if (g->duration < 0 || (g->duration == 0 && !g->instant))
+      FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear stage of zero duration "
+           "would never apply its target), got %g", doc->file, yd_key_line(st, "duration"), path, g->duration);
     for (int k = 0; k < FE_MAX_GROUPS; k++) g->pressure[k] = NAN;
     if ((v = yd_get(st, "pressure"))) {
       snprintf(sub, sizeof sub, "%s.pressure", path);
@@ -281,10 +336,13 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     snprintf(sub, sizeof sub, "%s.steps", path);
     if (step_control_read(doc, yd_get(st, "steps"), sub, g->duration, &g->steps, err, errlen)) return 1;
     if ((v = yd_get(st, "until"))) {
-      if (yd_double(doc, yd_get(v, "evp_rate_below"), "until.evp_rate_below", &g->evp_rate_below, err, errlen)) return 1;
-      if (yd_check_unused(doc, v, "until", "evp_rate_below", err, errlen)) return 1;
+      snprintf(sub, sizeof sub, "%s.until.evp_rate_below", path);
+      if (yd_double(doc, yd_get(v, "evp_rate_below"), sub, &g->evp_rate_below, err, errlen)) return 1;
+      snprintf(sub, sizeof sub, "%s.until", path);
+      if (yd_check_unused(doc, v, sub, "evp_rate_below", err, errlen)) return 1;
     }
-    if ((v = yd_get(st, "creep")) && yd_bool(doc, v, path, &g->creep, err, errlen)) return 1;
+    snprintf(sub, sizeof sub, "%s.creep", path);
+    if ((v = yd_get(st, "creep")) && yd_bool(doc, v, sub, &g->creep, err, errlen)) return 1;
     g->indenter = yd_get(st, "indenter"); /* read by the contact module */
     if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter", err, errlen)) return 1;
   }

@@ -3,6 +3,7 @@
 #ifndef FE_SCENE_H
 #define FE_SCENE_H
 
+#include "../io/gmsh_mesh.h"
 #include "../io/yaml_doc.h"
 #include "../stepping/step_control.h"
 #include "fe_problem.h"
@@ -27,8 +28,13 @@ typedef struct {
 } Stage;
 
 typedef struct {
-  char         name[128], outdir[512], msh[1024];
-  char         geometry[1024], gmsh_params[1024]; /* a gmsh .geo meshed at run time, with -setnumber */
+  char         name[128], outdir[512], msh[1024]; /* input paths resolved against the scene's folder */
+  char         geometry[1024];               /* a gmsh .geo meshed at run time (io/gmsh_mesh.h), or "" */
+  int          ngmsh;                        /* its parameters, each one the .geo defines */
+  char         gmsh_name[GMSH_MAX_PARAMS][64];
+  double       gmsh_value[GMSH_MAX_PARAMS];
+  char         gmsh_params[1024];            /* the same as " -setnumber NAME VALUE"...: for the shell-free
+                                                gmsh_mesh() to replace; goes when fe_run.c calls it */
   int          order;
   Kinematics   kin;
   double       thickness;
