@@ -156,8 +156,8 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
   }
   /* Mesh: a gmsh geometry (meshed now, with parameters), a .msh file, or a box (tests). */
-  YdNode *mesh = yd_get(root, "mesh");
-  if (yd_expect(doc, mesh, YD_MAPPING, "mesh", err, errlen)) return 1;
+  YdNode *mesh = yd_require(doc, root, "mesh", YD_MAPPING, "mesh", err, errlen);
+  if (!mesh) return 1;
   sc->order = 1;
   if ((v = yd_get(mesh, "order")) && yd_int(doc, v, "mesh.order", &sc->order, err, errlen)) return 1;
   if (sc->order != 1 && sc->order != 2) FAIL("%s:%d: key 'mesh.order': expected 1 or 2, got %d", doc->file, v->line, sc->order);
@@ -181,7 +181,9 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   if (read_mesh_source(doc, mesh, geo, file, sc, err, errlen)) return 1;
   if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen)) return 1;
 
-  if (material_read(doc, yd_get(root, "material"), sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen)) return 1;
+  if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
+      material_read(doc, x, sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen))
+    return 1;
   sc->phi_mean = sc->mat.phi_slot >= 0 ? sc->mat.props[sc->mat.phi_slot] : 0;
   sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
   if ((x = yd_get(root, "phi"))) {
@@ -204,8 +206,8 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     initial_pressure = yd_get(x, "pressure");
     if (yd_check_unused(doc, x, "initial", "stress (both frames), pressure (in equilibrium with it)", err, errlen)) return 1;
   }
-  YdNode *bc = yd_get(root, "boundary");
-  if (yd_expect(doc, bc, YD_MAPPING, "boundary", err, errlen)) return 1;
+  YdNode *bc = yd_require(doc, root, "boundary", YD_MAPPING, "boundary", err, errlen);
+  if (!bc) return 1;
   if ((x = yd_get(bc, "fixed"))) {
     if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
     if (x->n > 8) FAIL("%s:%d: key 'boundary.fixed': at most 8 entries, got %zu", doc->file, x->line, x->n);
@@ -270,8 +272,8 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     }
   }
 
-  YdNode *stages = yd_get(root, "stages");
-  if (yd_expect(doc, stages, YD_SEQUENCE, "stages", err, errlen)) return 1;
+  YdNode *stages = yd_require(doc, root, "stages", YD_SEQUENCE, "stages", err, errlen);
+  if (!stages) return 1;
   if (stages->n == 0 || stages->n > MAXSTAGES) FAIL("%s:%d: key 'stages': expected 1 to %d stages", doc->file, stages->line, MAXSTAGES);
   sc->nstage = (int)stages->n;
   for (int i = 0; i < sc->nstage; i++) {

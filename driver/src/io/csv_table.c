@@ -1,7 +1,7 @@
 #include "csv_table.h"
 
 #include <errno.h>
-#include <libgen.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,14 +15,29 @@
     return 1;                           \
   } while (0)
 
-void csv_resolve_path(const char *scene_file, const char *path, char *out, size_t n) {
-  char dir[1024];
-  if (path[0] == '/') {
-    snprintf(out, n, "%s", path);
-    return;
+/* Split a line at commas in place: every field counts, an empty one too ("15,,25" has three). */
+static int split_fields(char *line, char **fields, int max) {
+  int n = 0;
+  line[strcspn(line, "\r\n")] = '\0';
+  for (char *p = line;; p++) {
+    char *comma = strchr(p, ',');
+    if (n < max) fields[n] = p;
+    n++;
+    if (!comma) break;
+    *comma = '\0';
+    p      = comma;
   }
-  snprintf(dir, sizeof dir, "%s", scene_file);
-  snprintf(out, n, "%s/%s", dirname(dir), path);
+  return n;
+}
+
+/* A field as a finite number (surrounding blanks allowed). */
+static int parse_number(const char *field, double *v) {
+  char *end;
+  errno = 0;
+  *v    = strtod(field, &end);
+  if (end == field) return 1;
+  while (*end == ' ' || *end == '\t') end++;
+  return *end != '\0' || errno == ERANGE || !isfinite(*v);
 }
 
 int csv_read_columns(const char *path, const char *where, const char *const *names, int ncol, int increasing,
@@ -38,7 +53,8 @@ int csv_read_columns(const char *path, const char *where, const char *const *nam
     fileline++;
     if (!fgets(buf, sizeof buf, fp)) FAIL("%s: table file '%s' has no header line", where, path);
   } while (buf[0] == '#');
-  for (char *tok = strtok(buf, ",\r\n"); tok && ncols < 64; tok = strtok(NULL, ",\r\n")) cols[ncols++] = tok;
+  ncols = split_fields(buf, cols, 64);
+  if (ncols > 64) FAIL("%s: table file '%s': more than 64 columns", where, path);
   for (int c = 0; c < ncol; c++) {
     idx[c] = -1;
     for (int k = 0; k < ncols; k++)
@@ -49,18 +65,15 @@ int csv_read_columns(const char *path, const char *where, const char *const *nam
   while (fgets(buf, sizeof buf, fp)) {
     fileline++;
     if (buf[0] == '\n' || buf[0] == '\r' || buf[0] == '#') continue;
-    double vals[64];
-    int    nv = 0;
-    for (char *tok = strtok(buf, ",\r\n"); tok && nv < 64; tok = strtok(NULL, ",\r\n")) {
-      char *end;
-      vals[nv] = strtod(tok, &end);
-      if (end == tok) FAIL("%s:%d: not a number: '%s'", path, fileline, tok);
-      nv++;
-    }
+    char *fields[64];
+    int   nv = split_fields(buf, fields, 64);
     if (*rows == cap) *data = realloc(*data, sizeof(double) * (size_t)((cap *= 2) * ncol));
+    if (nv != ncols) FAIL("%s:%d: the row has %d fields, the header %d", path, fileline, nv, ncols);
     for (int c = 0; c < ncol; c++) {
-      if (idx[c] >= nv) FAIL("%s:%d: the row has %d values, column '%s' is number %d", path, fileline, nv, names[c], idx[c] + 1);
-      (*data)[*rows * ncol + c] = vals[idx[c]];
+      const char *f = fields[idx[c]];
+      if (!f[strspn(f, " \t")]) FAIL("%s:%d: column '%s' (field %d) is empty", path, fileline, names[c], idx[c] + 1);
+      if (parse_number(f, &(*data)[*rows * ncol + c]))
+        FAIL("%s:%d: column '%s' (field %d): expected a finite number, got '%s'", path, fileline, names[c], idx[c] + 1, f);
     }
     if (increasing >= 0 && *rows > 0 && !((*data)[*rows * ncol + increasing] > (*data)[(*rows - 1) * ncol + increasing]))
       FAIL("%s:%d: column '%s' must increase", path, fileline, names[increasing]);

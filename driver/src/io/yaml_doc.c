@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <yaml.h>
 
 static void say(char *err, size_t errlen, const char *fmt, ...) {
@@ -126,13 +127,35 @@ static int parse_node(yaml_parser_t *p, yaml_event_t *ev, YdNode **out, const ch
   return 1;
 }
 
+/* A NUL byte (a binary or damaged file) stops libyaml with an unhelpful message: find its line. */
+static int nul_line(FILE *fp) {
+  int c, line = 1;
+  while ((c = getc(fp)) != EOF) {
+    if (c == '\0') return line;
+    if (c == '\n') line++;
+  }
+  return 0;
+}
+
 int yd_load(const char *file, YdDoc *doc, char *err, size_t errlen) {
+  struct stat st;
   memset(doc, 0, sizeof *doc);
+  if (!stat(file, &st) && S_ISDIR(st.st_mode)) {
+    say(err, errlen, "%s: -input is a directory: expected a scene file (YAML)", file);
+    return 1;
+  }
   FILE *fp = fopen(file, "rb");
   if (!fp) {
     say(err, errlen, "%s: cannot open the scene file: %s", file, strerror(errno));
     return 1;
   }
+  int nul = nul_line(fp);
+  if (nul) {
+    say(err, errlen, "%s:%d: a NUL byte: a scene file is text (is it binary or damaged?)", file, nul);
+    fclose(fp);
+    return 1;
+  }
+  rewind(fp);
   yaml_parser_t p;
   yaml_event_t  ev;
   yaml_parser_initialize(&p);
@@ -195,6 +218,39 @@ int yd_key_line(const YdNode *map, const char *key) {
 
 static const char *kind_name(YdKind k) {
   return k == YD_SCALAR ? "a value" : k == YD_SEQUENCE ? "a list" : "a mapping";
+}
+
+/* Levenshtein distance, capped at 9 (short keys only). */
+static int distance(const char *a, const char *b) {
+  size_t la = strlen(a), lb = strlen(b);
+  int    d[33][33];
+  if (la > 32 || lb > 32) return 9;
+  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
+  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
+  for (size_t i = 1; i <= la; i++)
+    for (size_t j = 1; j <= lb; j++) {
+      int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+      if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
+      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best) best = d[i - 2][j - 2] + 1;
+      d[i][j] = best;
+    }
+  return d[la][lb] < 9 ? d[la][lb] : 9;
+}
+
+YdNode *yd_require(const YdDoc *doc, YdNode *map, const char *key, YdKind kind, const char *path, char *err,
+                   size_t errlen) {
+  YdNode *nd = yd_get(map, key);
+  if (nd) return yd_expect(doc, nd, kind, path, err, errlen) ? NULL : nd;
+  if (map && map->kind == YD_MAPPING)
+    for (size_t i = 0; i < map->n; i++)
+      if (!map->used[i] && distance(map->keys[i], key) <= 2) {
+        say(err, errlen, "%s:%d: unknown key '%s' (misspelt '%s'?): key '%s' is missing: expected %s", doc->file,
+            map->key_lines[i], map->keys[i], key, path, kind_name(kind));
+        return NULL;
+      }
+  say(err, errlen, "%s:%d: key '%s' is missing: expected %s", doc->file, map ? map->line : 0, path, kind_name(kind));
+  return NULL;
 }
 
 int yd_expect(const YdDoc *doc, const YdNode *node, YdKind kind, const char *path, char *err, size_t errlen) {

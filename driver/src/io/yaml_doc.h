@@ -42,6 +42,10 @@ int yd_string(const YdDoc *doc, const YdNode *node, const char *path, const char
 /* A sequence of exactly n numbers (n < 0: any length up to -n; count returned in *got). */
 int yd_doubles(const YdDoc *doc, const YdNode *node, const char *path, double *values, int n, int *got, char *err,
                size_t errlen);
+/* The value of a required key of a kind; NULL with err filled when it is missing (naming a misspelt
+ * key of the mapping, e.g. 'segmnets' for 'segments') or of another kind. */
+YdNode *yd_require(const YdDoc *doc, YdNode *map, const char *key, YdKind kind, const char *path, char *err,
+                   size_t errlen);
 /* Expect a node of a kind. */
 int yd_expect(const YdDoc *doc, const YdNode *node, YdKind kind, const char *path, char *err, size_t errlen);
 /* After reading a mapping: any key never asked for is an error naming it and the allowed keys. */

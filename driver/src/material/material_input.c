@@ -43,9 +43,14 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
              doc->file, node->line);
     return 1;
   }
+  int normal_in_props = 0; /* n1..n3 given in props or set: bedding_angle would override them */
   if (props->kind == YD_SCALAR && !strcmp(props->text, "woodford")) {
     memcpy(mat->props, woodford, sizeof woodford);
     mat->nprops = 19; /* no normal: the UMAT's material 3-axis, unless given below */
+  } else if (props->kind == YD_SCALAR) {
+    snprintf(err, errlen, "%s:%d: key 'material.props': unknown preset '%s': expected woodford or a list of numbers",
+             doc->file, props->line, props->text);
+    return 1;
   } else if (yd_doubles(doc, props, "material.props", mat->props, -UMAT_MAX_PROPS, &mat->nprops, err, errlen)) {
     return 1;
   }
@@ -65,6 +70,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
       }
       nd->used[i] = 1;
       if (yd_double(doc, nd->items[i], path, &mat->props[slot], err, errlen)) return 1;
+      if (slot >= 20) normal_in_props = 1;
       if (slot + 1 > mat->nprops) mat->nprops = slot + 1 <= 20 ? slot + 1 : 23; /* 21, 22: a partial normal */
     }
   }
@@ -73,6 +79,17 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   if (bed && normal) {
     snprintf(err, errlen, "%s:%d: give either 'material.bedding_angle' or 'material.normal', not both", doc->file,
              yd_key_line(node, "normal"));
+    return 1;
+  }
+  if (mat->nprops > 20) normal_in_props = 1;
+  if (bed && normal_in_props) {
+    snprintf(err, errlen, "%s:%d: key 'material.bedding_angle': the normal (n1, n2, n3: PROPS(21-23)) is already given "
+             "in material.props or material.set: give one of them", doc->file, yd_key_line(node, "bedding_angle"));
+    return 1;
+  }
+  if (normal && normal_in_props) {
+    snprintf(err, errlen, "%s:%d: key 'material.normal': the normal (n1, n2, n3: PROPS(21-23)) is already given in "
+             "material.props or material.set: give one of them", doc->file, yd_key_line(node, "normal"));
     return 1;
   }
   if (bed) {
@@ -99,6 +116,11 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   }
   if (yd_check_unused(doc, node, "material", "umat, name, props, set, bedding_angle, normal, nstatv", err, errlen))
     return 1;
+  if (camclay && mat->nprops < 19) {
+    snprintf(err, errlen, "%s:%d: key 'material.props': %d PROPS given, at least 19 needed by camclay9 (20: with tol; "
+             "23: with the normal n1, n2, n3)", doc->file, props->line, mat->nprops);
+    return 1;
+  }
   if (camclay) {
     char msg[256];
     int  code;

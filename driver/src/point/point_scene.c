@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "../io/csv_table.h"
+#include "../io/paths.h"
 #include "../material/material_input.h"
 
 static const char *component_names[6] = {"11", "22", "33", "12", "13", "23"};
@@ -49,6 +50,40 @@ static int read_equation(YdDoc *doc, YdNode *nd, const char *path, Equation *eq,
   return yd_check_unused(doc, nd, path, "stress, strain", err, errlen);
 }
 
+
+/* The equations of a segment, rows [a | b] of a.eps + b.sigma: linearly dependent rows make the step's
+ * system singular whatever the material's tangent (two constraints alike, or one repeating a control). */
+static int check_equations(YdDoc *doc, YdNode *nd, const char *path, const Segment *sg, int ntens, char *err,
+                           size_t errlen) {
+  double m[6][12] = {{0}};
+  int    pivot_of_row[6];
+  for (int c = 0; c < ntens; c++) {
+    const Equation *eq = &sg->eq[c];
+    if (eq->kind == EQ_STRAIN) m[c][c] = 1;
+    else if (eq->kind == EQ_STRESS) m[c][6 + c] = 1;
+    else
+      for (int k = 0; k < ntens; k++) m[c][k] = eq->a[k], m[c][6 + k] = eq->b[k];
+  }
+  for (int r = 0; r < ntens; r++) { /* Gram-Schmidt-like elimination against the earlier rows */
+    double scale = 0;
+    for (int k = 0; k < 12; k++) scale = fmax(scale, fabs(m[r][k]));
+    for (int q = 0; q < r; q++) {
+      int pc = pivot_of_row[q];
+      double f = m[r][pc] / m[q][pc];
+      for (int k = 0; k < 12; k++) m[r][k] -= f * m[q][k];
+    }
+    int best = 0;
+    for (int k = 1; k < 12; k++)
+      if (fabs(m[r][k]) > fabs(m[r][best])) best = k;
+    if (!(fabs(m[r][best]) > 1e-12 * scale))
+      FAIL("%s:%d: key '%s': the control is singular: the equation of component %s%s depends on the others "
+           "(whatever the material), so no strain increment satisfies them", doc->file, nd->line, path,
+           component_names[r], sg->eq[r].kind == EQ_LINEAR ? " (a constraint replaces it)" : "");
+    pivot_of_row[r] = best;
+  }
+  return 0;
+}
+
 static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *sg, char *err, size_t errlen) {
   char path[64], sub[160];
   snprintf(path, sizeof path, "segments[%d]", index);
@@ -58,18 +93,22 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
   YdNode     *x;
   snprintf(sg->name, sizeof sg->name, "segment%d", index);
   if ((x = yd_get(nd, "name"))) {
-    if (yd_string(doc, x, "name", &s, err, errlen)) return 1;
+    snprintf(sub, sizeof sub, "%s.name", path);
+    if (yd_string(doc, x, sub, &s, err, errlen)) return 1;
     snprintf(sg->name, sizeof sg->name, "%s", s);
   }
   snprintf(sub, sizeof sub, "%s.duration", path);
   if (yd_double(doc, yd_get(nd, "duration"), sub, &sg->duration, err, errlen)) return 1;
-  if (sg->duration < 0) FAIL("%s:%d: key '%s': expected a duration >= 0, got %g", doc->file, yd_key_line(nd, "duration"), sub, sg->duration);
   if ((x = yd_get(nd, "load"))) {
-    if (yd_string(doc, x, "load", &s, err, errlen)) return 1;
+    snprintf(sub, sizeof sub, "%s.load", path);
+    if (yd_string(doc, x, sub, &s, err, errlen)) return 1;
     if (!strcmp(s, "instant")) sg->instant = 1;
     else if (strcmp(s, "linear"))
       FAIL("%s:%d: key '%s.load': expected 'instant' or 'linear', got '%s'", doc->file, x->line, path, s);
   }
+  if (sg->duration < 0 || (sg->duration == 0 && !sg->instant))
+    FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear segment of zero duration "
+         "would never apply its targets), got %g", doc->file, yd_key_line(nd, "duration"), path, sg->duration);
 
   /* Control of each component. */
   char   *table_cols[8];
@@ -131,15 +170,24 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
           int cc = point_component(coef->keys[j]);
           if (cc < 0 || cc >= ntens) FAIL("%s:%d: unknown key '%s.%s': expected a component", doc->file, coef->key_lines[j], p3, coef->keys[j]);
           coef->used[j] = 1;
-          if (yd_double(doc, coef->items[j], p3, part ? &eq->b[cc] : &eq->a[cc], err, errlen)) return 1;
+          char p4[300];
+          snprintf(p4, sizeof p4, "%s.%s", p3, coef->keys[j]);
+          if (yd_double(doc, coef->items[j], p4, part ? &eq->b[cc] : &eq->a[cc], err, errlen)) return 1;
         }
       }
+      int nonzero = 0;
+      for (int k = 0; k < ntens; k++) nonzero |= eq->a[k] != 0 || eq->b[k] != 0;
+      if (!nonzero)
+        FAIL("%s:%d: key '%s': an empty constraint (no non-zero strain or stress coefficient): expected e.g. "
+             "strain: {11: 1, 22: 1, 33: 1}", doc->file, cn->line, p2);
       YdNode *val = yd_get(cn, "value");
-      if (val && yd_double(doc, val, p2, &eq->value, err, errlen)) return 1;
+      snprintf(p3, sizeof p3, "%s.value", p2);
+      if (val && yd_double(doc, val, p3, &eq->value, err, errlen)) return 1;
       if (yd_check_unused(doc, cn, p2, "replaces, strain, stress, value (omitted: keep the value at the segment start)", err, errlen)) return 1;
     }
   }
 
+  if (check_equations(doc, nd, path, sg, ntens, err, errlen)) return 1;
   snprintf(sub, sizeof sub, "%s.steps", path);
   if (step_control_read(doc, yd_get(nd, "steps"), sub, sg->duration, &sg->steps, err, errlen)) return 1;
 
@@ -182,7 +230,8 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
     if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
     if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
     char resolved[1024], where[1200];
-    csv_resolve_path(doc->file, file, resolved, sizeof resolved);
+    snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(tab, "file"), sub);
+    if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
     snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, tab->line, sub);
     const char *want[9];
     want[0] = tcol;
@@ -221,7 +270,9 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
   int ntens = 6;
   if ((x = yd_get(root, "ntens")) && yd_int(doc, x, "ntens", &ntens, err, errlen)) return 1;
   if (ntens != 6 && ntens != 4) FAIL("%s:%d: key 'ntens': expected 6 (3D) or 4 (plane strain), got %d", doc->file, x->line, ntens);
-  if (material_read(doc, yd_get(root, "material"), ntens, &sc->mat, err, errlen)) return 1;
+  if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
+      material_read(doc, x, ntens, &sc->mat, err, errlen))
+    return 1;
 
   if ((x = yd_get(root, "initial"))) {
     if (yd_expect(doc, x, YD_MAPPING, "initial", err, errlen)) return 1;
@@ -247,8 +298,8 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
   }
   if ((x = yd_get(root, "check_tangent")) && yd_bool(doc, x, "check_tangent", &sc->check_tangent, err, errlen)) return 1;
 
-  YdNode *segs = yd_get(root, "segments");
-  if (yd_expect(doc, segs, YD_SEQUENCE, "segments", err, errlen)) return 1;
+  YdNode *segs = yd_require(doc, root, "segments", YD_SEQUENCE, "segments", err, errlen);
+  if (!segs) return 1;
   if (segs->n == 0) FAIL("%s:%d: key 'segments': expected at least one segment", doc->file, segs->line);
   sc->nseg = (int)segs->n;
   sc->seg  = calloc(segs->n, sizeof *sc->seg);

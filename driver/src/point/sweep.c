@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "../io/fsutil.h"
 #include "../material/material_input.h"
 #include "camclay9.h"
 #include "point_run.h"
@@ -27,7 +28,13 @@ static int read_list(YdDoc *doc, YdNode *m, const char *key, List *l, const doub
     memcpy(l->v, dflt, sizeof(double) * ndflt);
     return 0;
   }
-  return yd_doubles(doc, nd, path, l->v, -MAXV, &l->n, err, errlen);
+  if (yd_doubles(doc, nd, path, l->v, -MAXV, &l->n, err, errlen)) return 1;
+  if (l->n == 0) {
+    snprintf(err, errlen, "%s:%d: key '%s': an empty list makes an empty sweep: expected 1 to %d values (omit the key "
+             "for the default list)", doc->file, nd->line, path, MAXV);
+    return 1;
+  }
+  return 0;
 }
 
 enum { START_CONFINED, START_TENSION, START_TINY_PC, NSTARTS };
@@ -52,8 +59,15 @@ int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen)
   if ((x = yd_get(root, "name")) && yd_string(doc, x, "name", &name, err, errlen)) return 1;
   PointScene base;
   memset(&base, 0, sizeof base);
-  if (material_read(doc, yd_get(root, "material"), 6, &base.mat, err, errlen)) return 1;
-  if (yd_expect(doc, m = yd_get(root, "matrix"), YD_MAPPING, "matrix", err, errlen)) return 1;
+  if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
+      material_read(doc, x, 6, &base.mat, err, errlen))
+    return 1;
+  if (base.mat.nprops > 20) {
+    snprintf(err, errlen, "%s:%d: key 'material': the sweep sets the normal from matrix.bedding_angle: give no "
+             "bedding_angle, normal or n1-n3 in the material", doc->file, x->line);
+    return 1;
+  }
+  if (!(m = yd_require(doc, root, "matrix", YD_MAPPING, "matrix", err, errlen))) return 1;
   static const double d_dt[] = {0, 1e-12, 1e-8, 1e-4, 1, 1e4, 1e8, 1e12}, d_eta[] = {0, 1e10, 1e13, 1e20, 1e30},
                       d_inc[] = {1e-4, 1e-2, 0.1}, d_ang[] = {0, 45, 90}, d_phi[] = {0, 0.5, 1};
   List dt, eta, inc, ang, phi;
@@ -78,7 +92,7 @@ int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen)
   /* Two directions of the strain increment: compression with shear, and extension with shear. */
   static const double dirs[2][6] = {{-0.5, 0.2, -1.0, 0.4, -0.3, 0.2}, {0.6, 0.3, 0.8, -0.4, 0.2, 0.3}};
   char path[600];
-  make_directories(outdir);
+  if (fs_prepare_output_dir(outdir, err, errlen)) return 2;
   snprintf(path, sizeof path, "%s/sweep.csv", outdir);
   FILE *fp = fopen(path, "w");
   if (!fp) {
