@@ -82,6 +82,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
     return 1;
   }
   if (mat->nprops > 20) normal_in_props = 1;
+  int nprops_given = mat->nprops; /* before a normal from bedding_angle fills PROPS(21-23) */
   if (bed && normal_in_props) {
     snprintf(err, errlen, "%s:%d: key 'material.bedding_angle': the normal (n1, n2, n3: PROPS(21-23)) is already given "
              "in material.props or material.set: give one of them", doc->file, yd_key_line(node, "bedding_angle"));
@@ -116,9 +117,9 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   }
   if (yd_check_unused(doc, node, "material", "umat, name, props, set, bedding_angle, normal, nstatv", err, errlen))
     return 1;
-  if (camclay && mat->nprops < 19) {
+  if (camclay && nprops_given < 19) {
     snprintf(err, errlen, "%s:%d: key 'material.props': %d PROPS given, at least 19 needed by camclay9 (20: with tol; "
-             "23: with the normal n1, n2, n3)", doc->file, props->line, mat->nprops);
+             "23: with the normal n1, n2, n3)", doc->file, props->line, nprops_given);
     return 1;
   }
   if (camclay) {
