@@ -34,12 +34,16 @@ Input, written by the driver into RUN:
                contact_force,max_penetration,min_lambda,umat_calls,wall
                (stage: 0-based index; stage_name e.g. load/hold/unload; load P in uN, per unit thickness
                in plane strain; depth h in um; time in s). Only the columns a subcommand uses are required.
-  fields.h5    PETSc HDF5 "VIZ" layout (driver/src/fe/fe_output.c): /geometry/vertices (nverts x dim),
-               /viz/topology/cells (ncells x dim+1), /vertex_fields/displacement_displacement
-               (ntimes x nverts x dim), /cell_fields/<name>_P0 (ntimes x ncells x 6, or ntimes x ncells)
-               for stress, strain, evp_hard, evp_soft, evp, pc_hard, pc_soft, phi; components
-               11 22 33 12 13 23, strains with engineering shear.
-  fields.xmf   the output times (<Time Value="..."/>, one per output, in order).
+  fields.h5    written by driver/src/fe/fe_output.c (docs/driver.md, "Output"): /time (ntimes, 1),
+               /mesh/coordinates (nverts x dim), /mesh/cells (ncells x dim+1), per output k (six digits)
+               /fields/displacement/<k> (nverts x 3; P2: the vertex values) and /fields/<name>/<k>
+               (ncells x 6, or ncells: averages over a cell's quadrature points) for stress, strain,
+               evp_hard, evp_soft, evp, pc_hard, pc_soft, phi; components 11 22 33 12 13 23, strains
+               with engineering shear.
+
+Colour scales of the maps (fields) are robust: they span the --clip .. 100 - --clip percentiles of the
+cells in view (default 1-99 %), so the few singular cells at the tip do not wash the map out; the colour
+bar says so, and its arrows mark the clipped ends. --clip 0 gives the full min..max.
 
 Conventions: tension positive; 2D meshes are (x, y) with y up, the top surface at y = 0 and the tip at
 the origin pushing along -y. Tensor norms are Frobenius norms with tensor shear (engineering shear / 2
@@ -55,6 +59,9 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure   # no pyplot: figures are saved with Agg, no global state
 from matplotlib.tri import Triangulation
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fields_h5 import Fields, dev_norm, tensor_norm, trace  # noqa: E402
 
 HISTORY_COLUMNS = ("time", "stage", "stage_name", "step", "dt", "newton_its", "cutbacks", "load", "depth",
                    "active_nodes", "active_changes", "contact_force", "max_penetration", "min_lambda",
@@ -150,116 +157,6 @@ def creep_summary(h, hold="hold"):
             "hold_start_time": t0, "hold_end_time": t1}
 
 
-# ------------------------------------------------------------------ fields.h5 / fields.xmf
-def xmf_times(path):
-    """The output times of fields.xmf, in file order."""
-    if not path.is_file():
-        raise SystemExit(f"{path}: no such file (the XDMF index of fields.h5 with the output times)")
-    text = path.read_text(encoding="utf-8", errors="replace")
-    vals = re.findall(r"<Time\b[^>]*\bValue\s*=\s*\"([^\"]*)\"", text)
-    if not vals:
-        raise SystemExit(f"{path}: no <Time Value=\"...\"/> elements (the output times)")
-    try:
-        return np.array([float(v) for v in vals])
-    except ValueError as err:
-        raise SystemExit(f"{path}: a <Time Value> is not a number: {err}") from None
-
-
-class Fields:
-    """fields.h5 of a run, read lazily one output (or one cell) at a time."""
-
-    def __init__(self, run):
-        import h5py
-        run = Path(run)
-        self.h5path, self.xmfpath = run / "fields.h5", run / "fields.xmf"
-        if not self.h5path.is_file():
-            raise SystemExit(f"{self.h5path}: no such file (the driver's field output)")
-        self.times = xmf_times(self.xmfpath)
-        try:
-            self.f = h5py.File(self.h5path, "r")
-        except OSError as err:
-            raise SystemExit(f"{self.h5path}: cannot read as HDF5: {err}") from None
-        self.x = self.dataset("/geometry/vertices")[()]
-        self.cells = self.dataset("/viz/topology/cells")[()].astype(np.int64)
-        self.u = self.dataset("/vertex_fields/displacement_displacement")
-        nv, self.dim = self.x.shape
-        if self.cells.ndim != 2 or self.cells.shape[1] != self.dim + 1 or self.cells.min() < 0 or self.cells.max() >= nv:
-            raise SystemExit(f"{self.h5path}: /viz/topology/cells has shape {self.cells.shape} and vertex numbers "
-                             f"{self.cells.min()}..{self.cells.max()}: expected simplices (n x {self.dim + 1}) "
-                             f"of the {nv} vertices")
-        if self.u.shape[1:] != (nv, self.dim):
-            raise SystemExit(f"{self.h5path}: /vertex_fields/displacement_displacement has shape {self.u.shape}, "
-                             f"expected (ntimes, {nv}, {self.dim})")
-        if self.u.shape[0] != self.times.size:
-            raise SystemExit(f"{self.xmfpath}: {self.times.size} output times, but {self.h5path} has "
-                             f"{self.u.shape[0]} outputs of the displacement")
-        self.centroids = self.x[self.cells].mean(axis=1)
-        self.extent = float(np.max(np.ptp(self.x, axis=0)))
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.f.close()
-
-    def dataset(self, name):
-        if name not in self.f:
-            raise SystemExit(f"{self.h5path}: dataset '{name}' is missing")
-        return self.f[name]
-
-    def cell_dataset(self, name):
-        if f"/cell_fields/{name}_P0" not in self.f and name.startswith("evp"):
-            have = sorted(self.f["/cell_fields"].keys()) if "/cell_fields" in self.f else []
-            raise SystemExit(f"{self.h5path}: dataset '/cell_fields/{name}_P0' is missing (cell fields here: "
-                             f"{', '.join(have) or 'none'}; a UMAT without viscoplastic strain, e.g. the elastic "
-                             f"one, writes none)")
-        ds = self.dataset(f"/cell_fields/{name}_P0")
-        nt, nc = self.times.size, self.cells.shape[0]
-        if ds.shape[:2] != (nt, nc):
-            raise SystemExit(f"{self.h5path}: /cell_fields/{name}_P0 has shape {ds.shape}, expected ({nt}, {nc}, ...)")
-        return ds
-
-    def cell(self, name, k):
-        """Cell values of field `name` at output k: (ncells, 6) or (ncells,)."""
-        return self.cell_dataset(name)[k]
-
-    def cell_history(self, name, c):
-        """Field `name` of cell c at every output: (ntimes, 6) or (ntimes,)."""
-        return self.cell_dataset(name)[:, c]
-
-    def nearest(self, t, lo=-np.inf, hi=np.inf):
-        """Index of the output nearest to time t among the outputs in [lo, hi] (a tolerance included)."""
-        tol = 1e-9 * max(1.0, float(np.max(np.abs(self.times))))
-        idx = np.flatnonzero((self.times >= lo - tol) & (self.times <= hi + tol))
-        if idx.size == 0:
-            raise SystemExit(f"{self.xmfpath}: no output time in [{lo:g}, {hi:g}] s "
-                             f"(outputs from {self.times[0]:g} to {self.times[-1]:g} s)")
-        return int(idx[np.argmin(np.abs(self.times[idx] - t))])
-
-    def require_2d(self, what):
-        if self.dim != 2:
-            raise SystemExit(f"{self.h5path}: {what} needs a 2D run (plane strain or axisymmetric); this mesh is {self.dim}D")
-
-
-# ------------------------------------------------------------------ tensor measures (Voigt 11 22 33 12 13 23)
-def tensor_norm(v, engineering):
-    """Frobenius norm of (..., 6) Voigt tensors; `engineering`: the shear entries are engineering (2 x tensor)."""
-    v = np.asarray(v, float)
-    shear = v[..., 3:] * (0.5 if engineering else 1.0)
-    return np.sqrt(np.sum(v[..., :3] ** 2, axis=-1) + 2.0 * np.sum(shear ** 2, axis=-1))
-
-
-def trace(v):
-    return np.sum(np.asarray(v, float)[..., :3], axis=-1)
-
-
-def dev_norm(v, engineering):
-    """Frobenius norm of the deviatoric part."""
-    d = np.array(v, float)
-    d[..., :3] -= trace(v)[..., None] / 3.0
-    return tensor_norm(d, engineering)
-
-
 # ------------------------------------------------------------------ plotting helpers
 def out_dir(a, run):
     out = Path(a.out) if a.out else Path(run)
@@ -286,22 +183,28 @@ def in_window(xy, lim):
     return (xy[:, 0] >= lim[0]) & (xy[:, 0] <= lim[1]) & (xy[:, 1] >= lim[2]) & (xy[:, 1] <= lim[3])
 
 
-def color_limits(values, mask, diverging):
+def color_limits(values, mask, diverging, clip=1.0):
+    """(vmin, vmax, cmap) from the values in the mask: the clip .. 100 - clip percentiles (robust to a few
+    singular cells; clip = 0: min..max); symmetric about 0 for signed data."""
     v = values[mask] if np.any(mask) else values
-    lo, hi = float(np.min(v)), float(np.max(v))
+    lo, hi = (float(x) for x in np.percentile(v, [clip, 100.0 - clip]))
     if diverging or (lo < 0 < hi):
-        m = max(abs(lo), abs(hi)) or 1.0
+        m = float(np.percentile(np.abs(v), 100.0 - clip)) or 1.0
         return -m, m, "RdBu_r"
     if lo == hi:
         lo, hi = lo - (abs(lo) or 1.0) * 1e-3, hi + (abs(hi) or 1.0) * 1e-3
     return lo, hi, "viridis"
 
 
+def clip_label(clip):
+    return "full range" if clip == 0 else f"colours: {clip:g}–{100 - clip:g} % percentiles of the cells in view"
+
+
 def tri_map(fig, ax, F, k, values, title, lim, a, diverging=False, clim=None):
     """A map of per-cell values on the triangles (deformed at output k if --deformed)."""
     xy = F.x + (a.scale * F.u[k] if a.deformed else 0.0)
     tri = Triangulation(xy[:, 0], xy[:, 1], F.cells)
-    vmin, vmax, cmap = clim if clim else color_limits(values, in_window(F.centroids, lim), diverging)
+    vmin, vmax, cmap = clim if clim else color_limits(values, in_window(F.centroids, lim), diverging, a.clip)
     pc = ax.tripcolor(tri, facecolors=values, cmap=cmap, vmin=vmin, vmax=vmax, shading="flat")
     ax.set_xlim(lim[0], lim[1])
     ax.set_ylim(lim[2], lim[3])
@@ -309,16 +212,16 @@ def tri_map(fig, ax, F, k, values, title, lim, a, diverging=False, clim=None):
     ax.set_title(title + (f" (deformed, ×{a.scale:g})" if a.deformed else ""), fontsize=9)
     ax.set_xlabel("x [µm]")
     ax.set_ylabel("y [µm]")
-    fig.colorbar(pc, ax=ax, shrink=0.85)
+    fig.colorbar(pc, ax=ax, shrink=0.85, extend="neither" if a.clip == 0 else "both").set_label(clip_label(a.clip), fontsize=7)
 
 
-def shared_clim(arrays, F, lim, diverging=False):
+def shared_clim(arrays, F, lim, diverging=False, clip=1.0):
     """One colour scale for several maps, from the cells in the window."""
     mask = in_window(F.centroids, lim)
     if not np.any(mask):
         mask = np.ones_like(mask)
     v = np.concatenate([x[mask] for x in arrays])
-    return color_limits(v, np.ones(v.size, bool), diverging)
+    return color_limits(v, np.ones(v.size, bool), diverging, clip)
 
 
 def stats(v, mask):
@@ -464,7 +367,7 @@ def cmd_fields(a):
         fig = Figure(figsize=(11, 7), layout="constrained")
         axs = fig.subplots(2, 2)
         trs, devs = [trace(e0), trace(e1)], [dev_norm(e0, eng), dev_norm(e1, eng)]
-        ctr, cdev = shared_clim(trs, F, lim), shared_clim(devs, F, lim)
+        ctr, cdev = shared_clim(trs, F, lim, clip=a.clip), shared_clim(devs, F, lim, clip=a.clip)
         for row, k in enumerate((k0, k1)):
             tag = f"{when[k]}, t = {T[k]:.4g} s"
             tri_map(fig, axs[row, 0], F, k, trs[row], f"tr ε$^{{vp}}$ ({a.evp}), {tag}", lim, a, clim=ctr)
@@ -477,7 +380,7 @@ def cmd_fields(a):
         fig = Figure(figsize=(11, 3.8), layout="constrained")
         axs = fig.subplots(1, 2)
         ns = [tensor_norm(e0, eng), tensor_norm(e1, eng)]
-        cn = shared_clim(ns, F, lim)
+        cn = shared_clim(ns, F, lim, clip=a.clip)
         for ax, k, n in zip(axs, (k0, k1), ns):
             tag = f"{when[k]}, t = {T[k]:.4g} s"
             tri_map(fig, ax, F, k, n, f"‖ε$^{{vp}}$‖ ({a.evp}), {tag}", lim, a, clim=cn)
@@ -498,7 +401,7 @@ def cmd_fields(a):
                  [tensor_norm(F.cell("stress", k), False) - sn0 for k in ks])):
             fig = Figure(figsize=(5.5 * len(ks), 3.8), layout="constrained")
             axs = np.atleast_1d(fig.subplots(1, len(ks)))
-            c = shared_clim(series, F, lim, diverging=True)
+            c = shared_clim(series, F, lim, diverging=True, clip=a.clip)
             for ax, k, th, v in zip(axs, ks, a.hold_times, series):
                 tag = f"hold time {T[k] - T[k0]:.4g} s (asked {th:g} s)"
                 tri_map(fig, ax, F, k, v, tag, lim, a, clim=c)
@@ -654,6 +557,8 @@ def parser():
                    help="times since the start of the hold for figs 11, 12 (default 100 500 2000 s)")
     p.add_argument("--evp", choices=("evp", "evp_soft", "evp_hard"), default="evp",
                    help="viscoplastic strain field (default evp, the mixture's)")
+    p.add_argument("--clip", type=float, default=1.0,
+                   help="colour scales span the CLIP .. 100-CLIP percentiles of the cells in view (default 1; 0: min..max)")
     p.add_argument("--probe", type=float, nargs=2, metavar=("X", "Y"),
                    help="fig13: the cell whose centroid is nearest to (X, Y) (default: just beneath the tip)")
     p = sub.add_parser("vectors", help="2D displacement increments during the hold (vectors.png)")

@@ -163,8 +163,9 @@ def test_newton_converges_quadratically(tmp_path):
 
 
 def test_fields_for_paraview(tmp_path):
-    """fields.h5 + fields.xmf: every dataset the XDMF names exists with the dimensions it states, the
-    components are named 11 22 33 12 13 23, and the last stress field is the applied pressures."""
+    """fields.h5 + fields.xmf (XDMF3): every DataItem states its Format, every dataset the XDMF names
+    exists with the dimensions it states, the displacement is a Vector and the tensors Tensor6, and the
+    last stress field is the applied pressures (components 11 22 33 in the UMAT's Voigt order)."""
     import xml.etree.ElementTree as ET
     import h5py
     h, _ = run(DRIVER, BOX.format(
@@ -174,19 +175,22 @@ def test_fields_for_paraview(tmp_path):
         tmp_path, "fields")
     out = tmp_path / "fields"
     tree = ET.parse(out / "fields.xmf")
-    names = set()
+    assert tree.getroot().get("Version") == "3.0"
+    types = {}
     with h5py.File(out / "fields.h5") as f:
         for item in tree.iter("DataItem"):
-            if item.get("Format") == "HDF":
-                path = item.text.split(":", 1)[1]
-                dims = tuple(int(x) for x in item.get("Dimensions").split())
-                assert path in f and f[path].shape == dims, (path, dims)
+            assert item.get("Format") == "HDF", item.attrib
+            path = item.text.split(":", 1)[1]
+            dims = tuple(int(x) for x in item.get("Dimensions").split())
+            assert path in f and f[path].shape == dims, (path, dims)
         for att in tree.iter("Attribute"):
-            names.add(att.get("Name"))
-        stress = f["/cell_fields/stress_P0"][-1]
-    assert {"stress_11", "stress_23", "evp_soft_13", "pc_hard", "phi", "displacement_z"} <= names
+            types[att.get("Name")] = att.get("AttributeType")
+        stress = f["/fields/stress"][sorted(f["/fields/stress"])[-1]][()]
+        times = f["/time"][:, 0]
+    assert types == {"displacement": "Vector", "stress": "Tensor6", "strain": "Tensor6", "evp_hard": "Tensor6",
+                     "evp_soft": "Tensor6", "evp": "Tensor6", "pc_hard": "Scalar", "pc_soft": "Scalar", "phi": "Scalar"}
     assert np.allclose(stress[:, :3].mean(axis=0), [-38, -41, -50], rtol=1e-10)
-    assert len(list(tree.iter("Time"))) == 2      # the start and the end of the stage
+    assert [float(t.get("Value")) for t in tree.iter("Time")] == [0.0, 1.0] == list(times)  # start and end of the stage
 
 
 def test_restart_matches_uninterrupted_run(tmp_path):
@@ -270,8 +274,8 @@ def test_phi_field_rank_independent_and_correlated(tmp_path):
                                str(scene), "-output_dir", str(out)], capture_output=True, text=True, cwd=ROOT)
         assert proc.returncode == 0, proc.stdout + proc.stderr
         with h5py.File(out / "fields.h5") as f:
-            x = f["/geometry/vertices"][:][f["/viz/topology/cells"][:]].mean(axis=1)
-            return x, f["/cell_fields/phi_P0"][-1]
+            x = f["/mesh/coordinates"][:][f["/mesh/cells"][:]].mean(axis=1)
+            return x, f["/fields/phi"][sorted(f["/fields/phi"])[-1]][()]
 
     def neighbour_correlation(x, v, radius):
         d = np.linalg.norm(x[:, None, :] - x[None, :, :], axis=2)

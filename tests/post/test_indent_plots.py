@@ -1,11 +1,11 @@
 """Tests of post/indent_plots.py on a synthetic indentation run built here (no driver needed).
 
 The run: stages load (0-10 s), hold (10-2010 s), unload (2010-2030 s); history.csv with known loads and
-depths (creep depth 0.375 - 0.25 = 0.125 um exactly); fields.h5 in the driver's PETSc VIZ layout on a
+depths (creep depth 0.375 - 0.25 = 0.125 um exactly); fields.h5 in the driver's layout on a
 16-triangle mesh of [-1, 1] x [-1, 0] (top at y = 0, tip at the origin) with analytic fields:
   u = d(t) g(x) (0.1 x, -1),  g = exp(-|x|^2),  d(t) = the depth at the output times (u_y(0, 0) = -d);
   evp = a(t) g(centroid) E0 (engineering shear), stress = s(t) g(centroid) S0;
-and fields.xmf with the output times 0, 10, 110, 510, 2010, 2030 s. Checks: every subcommand runs and
+and /time with the output times 0, 10, 110, 510, 2010, 2030 s. Checks: every subcommand runs and
 writes its figures; creep.json holds the known numbers; the printed numbers of figs 11-13, vectors and
 profile are the analytic ones; the tensor measures; missing files, columns and datasets are named.
 """
@@ -71,21 +71,18 @@ def write_fields(run, x, cells, skip=()):
     u[:, :, 0] = 0.1 * D_OUT[:, None] * (g * x[:, 0])[None]
     u[:, :, dim - 1] = -D_OUT[:, None] * g[None]
     gc = np.exp(-np.sum(x[cells].mean(axis=1) ** 2, axis=1))
-    with h5py.File(run / "fields.h5", "w") as f:
-        f["/geometry/vertices"] = x
-        f["/viz/topology/cells"] = cells.astype(np.int32)
-        f["/vertex_fields/displacement_displacement"] = u
-        for name, amp, v in (("evp", A_OUT, E0), ("evp_soft", A_OUT, E0), ("evp_hard", 0 * A_OUT, E0),
-                             ("strain", A_OUT, E0), ("stress", S_OUT, S0)):
-            if name not in skip:
-                f[f"/cell_fields/{name}_P0"] = amp[:, None, None] * gc[None, :, None] * v[None, None, :]
-        for name in ("pc_hard", "pc_soft", "phi"):
-            f[f"/cell_fields/{name}_P0"] = np.ones((nt, len(cells)))
-    grids = "".join(f'      <Grid Name="step {k}" GridType="Uniform">\n        <Time Value="{float(t)!r}"/>\n      </Grid>\n'
-                    for k, t in enumerate(T_OUT))
-    (run / "fields.xmf").write_text('<?xml version="1.0" ?>\n<Xdmf Version="2.0">\n  <Domain>\n'
-                                    '    <Grid Name="fields" GridType="Collection" CollectionType="Temporal">\n'
-                                    f"{grids}    </Grid>\n  </Domain>\n</Xdmf>\n")
+    with h5py.File(run / "fields.h5", "w") as f:          # the driver's layout (post/fields_h5.py)
+        f["/time"] = T_OUT[:, None]
+        f["/mesh/coordinates"] = x
+        f["/mesh/cells"] = cells.astype(np.int32)
+        for k in range(nt):
+            f[f"/fields/displacement/{k:06d}"] = np.pad(u[k], ((0, 0), (0, 3 - dim)))
+            for name, amp, v in (("evp", A_OUT, E0), ("evp_soft", A_OUT, E0), ("evp_hard", 0 * A_OUT, E0),
+                                 ("strain", A_OUT, E0), ("stress", S_OUT, S0)):
+                if name not in skip:
+                    f[f"/fields/{name}/{k:06d}"] = amp[k] * gc[:, None] * v[None, :]
+            for name in ("pc_hard", "pc_soft", "phi"):
+                f[f"/fields/{name}/{k:06d}"] = np.ones(len(cells))
     return gc
 
 
@@ -211,15 +208,27 @@ def test_missing_inputs_are_named(tmp_path):
         ip.main(["fields", str(tmp_path)])
     x, cells = grid_2d()
     write_fields(tmp_path, x, cells, skip=("evp",))
-    with pytest.raises(SystemExit, match=r"fields\.h5: dataset '/cell_fields/evp_P0' is missing"):
+    with pytest.raises(SystemExit, match=r"fields\.h5: dataset '/fields/evp' is missing"):
         ip.main(["fields", str(tmp_path)])
-    (tmp_path / "fields.xmf").unlink()
-    with pytest.raises(SystemExit, match=r"fields\.xmf: no such file"):
-        ip.main(["profile", str(tmp_path)])
-    (tmp_path / "fields.xmf").write_text("<Xdmf/>")
-    with pytest.raises(SystemExit, match=r"fields\.xmf: no <Time"):
+    with h5py.File(tmp_path / "fields.h5", "a") as f:
+        del f["/time"]
+    with pytest.raises(SystemExit, match=r"fields\.h5: dataset '/time' is missing"):
         ip.main(["profile", str(tmp_path)])
     write_history(tmp_path, rows=[r[:2] + ("load",) + r[3:] for r in ROWS])
     write_fields(tmp_path, x, cells)
     with pytest.raises(SystemExit, match=r"history\.csv: no stage named 'hold' \(stage names: load\)"):
         ip.main(["vectors", str(tmp_path)])
+
+
+def test_colour_limits_are_robust():
+    """One singular cell (1e6) among values spread over [0, 1]: the default limits are the 1-99 %
+    percentiles of the cells, [0.01, 0.99] to 1e-12 for this evenly spaced set; --clip 0 is min..max."""
+    v = np.append(np.linspace(0.0, 1.0, 1001), 1e6)
+    mask = np.ones(v.size, bool)
+    lo, hi, cmap = ip.color_limits(v, mask, False)
+    assert cmap == "viridis" and np.allclose([lo, hi], np.percentile(v, [1, 99]), rtol=1e-12)
+    assert 0.009 < lo < 0.011 and 0.98 < hi < 1.0
+    assert ip.color_limits(v, mask, False, clip=0)[:2] == (0.0, 1e6)
+    m = ip.color_limits(np.append(np.linspace(-1.0, 1.0, 1001), -1e6), mask, True)[1]   # signed: symmetric
+    assert 0.97 < m < 1.0
+    assert "1–99 % percentiles" in ip.clip_label(1.0)
