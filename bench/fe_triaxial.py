@@ -45,7 +45,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=3)
     a = ap.parse_args(argv)
-    base = (ROOT / "input" / "triaxial.yaml").read_text()
+    base = (ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
     cases = [(6.0, 1e-6, 1), (6.0, 1e-6, 2), (4.0, 1e-6, 2), (3.0, 1e-6, 2), (4.0, 1e-7, 2), (3.0, 1e-7, 2)]
     results = []
     with tempfile.TemporaryDirectory() as tmp:

@@ -67,12 +67,12 @@ def errors(c, ref):
 
 
 def axi(h_tip, tol):
-    text = (ROOT / "input" / "nanoindent_kerogen_axi.yaml").read_text()
+    text = (ROOT / "input" / "nanoindent_kerogen_axi.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
     return text.replace("h_tip: 0.02", f"h_tip: {h_tip}").replace("tol: 1.0e-5", f"tol: {tol:g}").replace("fields_every: 10", "fields_every: 0")
 
 
 def cube(h_tip, tol):
-    text = (ROOT / "input" / "nanoindent_kerogen.yaml").read_text()
+    text = (ROOT / "input" / "nanoindent_kerogen.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
     return text.replace("h_tip: 0.05", f"h_tip: {h_tip}").replace("tol: 1.0e-5", f"tol: {tol:g}").replace("fields_every: 10", "fields_every: 0")
 
 
@@ -117,7 +117,7 @@ def main(argv=None):
         # Part 2: direct vs field split on the 3D microindentation mesh, the first steps of the loading
         solver_rows = []
         if not a.quick:
-            micro = (ROOT / "input" / "microindent_BN.yaml").read_text()
+            micro = (ROOT / "input" / "microindent_BN.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
             for solver in ("direct", "fieldsplit"):
                 r = run(micro, tmp / f"micro_{solver}", ("-indent_solver", solver, "-max_steps", "5"))
                 solver_rows.append((solver, r))

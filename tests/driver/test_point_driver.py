@@ -149,7 +149,7 @@ def test_replay_is_bit_for_bit(tmp_path):
     text = re.sub(r"(expected:\n  pnewdt: )([0-9.eE+-]+)", lambda m: m.group(1) + "0.5", text)
     (tmp_path / "tampered.yaml").write_text(text)
     proc = run(tmp_path / "tampered.yaml", tmp_path / "t", check=False)
-    assert proc.returncode != 0 and "differs from the recorded call" in proc.stdout
+    assert proc.returncode != 0 and "differs from the recorded call" in proc.stderr
 
 
 def test_tangent_check_along_a_path(tmp_path):
@@ -173,7 +173,7 @@ def test_bad_input_names_file_line_and_key(tmp_path, snippet, expected):
     scene.write_text("scene: point\nmaterial: {props: woodford}\n" + snippet)
     proc = run(scene, tmp_path / "o", check=False)
     assert proc.returncode == 2
-    assert str(scene) in proc.stdout and re.search(expected, proc.stdout), proc.stdout
+    assert str(scene) in proc.stderr and re.search(expected, proc.stderr), proc.stderr
 
 
 def test_bad_props_name_the_slot(tmp_path):
@@ -181,4 +181,4 @@ def test_bad_props_name_the_slot(tmp_path):
     scene.write_text("scene: point\nmaterial: {props: woodford, set: {lambda_p_soft: -1}}\n"
                      "segments:\n  - {duration: 1, control: {others: {stress: 0}}}\n")
     proc = run(scene, tmp_path / "o", check=False)
-    assert proc.returncode == 2 and "PROPS(17)" in proc.stdout and "badprops.yaml:2" in proc.stdout
+    assert proc.returncode == 2 and "PROPS(17)" in proc.stderr and "badprops.yaml:2" in proc.stderr

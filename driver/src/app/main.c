@@ -6,10 +6,10 @@
 #include <string.h>
 
 #include "../io/yaml_doc.h"
-#include "../point/point_run.h"
+#include "../stepping/point_stepper.h"
+#include "fe_app.h"
 #include "../point/replay.h"
-#include "../point/sweep.h"
-#include "../fe/fe_run.h"
+#include "sweep.h"
 
 static const char help[] =
   "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project.\n"
@@ -41,18 +41,18 @@ static const char help[] =
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
   "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
 
-/* The options read by the run modules (fe_run.c, indent_run.c, indent_solver.c), listed for -help only:
- * those modules read them themselves, with these defaults. */
+/* The options read by the run modules (app/fe_app.c, contact/semismooth.c, contact/indent_solver.c,
+ * stepping/fe_stepper.c), listed for -help: those modules read them themselves, with these defaults. */
 static PetscErrorCode help_run_options(void) {
-  PetscInt  i = 0;
-  PetscReal r = 1e-10;
-  PetscBool b = PETSC_FALSE, t = PETSC_TRUE;
+  PetscInt    i = 0;
+  PetscReal   r = 1e-10;
+  PetscBool   b = PETSC_FALSE, t = PETSC_TRUE;
   const char *solvers[2] = {"direct", "fieldsplit"};
+  RunnerOptions o;
   PetscFunctionBeginUser;
+  PetscCall(app_runner_options(&o));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Finite-element scenes", NULL);
-  PetscCall(PetscOptionsInt("-checkpoint_every", "write a checkpoint every N steps (0: none)", NULL, i, &i, NULL));
-  PetscCall(PetscOptionsBool("-restart", "continue from the last checkpoint in the output directory", NULL, b, &b, NULL));
-  PetscCall(PetscOptionsInt("-max_steps", "stop after N steps in all (-1: no limit)", NULL, -1, &i, NULL));
+  PetscCall(PetscOptionsBool("-fe_predictor", "start each step's Newton from the extrapolated last increment", NULL, t, &t, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Rigid-indenter contact scenes", NULL);
   PetscCall(PetscOptionsReal("-indent_rtol", "relative tolerance of the contact Newton", NULL, r, &r, NULL));
@@ -109,7 +109,10 @@ static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
     if (check) sc.check_tangent = 1;
     if (outdir[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir);
     sc.replay_step = (int)replay_step;
-    rc = point_run(&sc, &sum, err, errlen);
+    RunnerOptions opt;
+    if (app_runner_options(&opt)) return 1;
+    opt.scene_file = doc->file;
+    rc = point_run(&sc, &opt, &sum, err, errlen);
     PetscPrintf(PETSC_COMM_WORLD,
                 "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative), %.4f s%s -> %s/history.csv\n",
                 sc.name, sum.steps, sum.cutbacks, sum.worst_control_error, sum.wall, rc ? ", FAILED" : "", sc.outdir);
@@ -119,7 +122,7 @@ static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
     point_scene_free(&sc);
     return rc;
   }
-  if (!strcmp(kind, "fe")) return fe_run(doc, outdir, err, errlen);
+  if (!strcmp(kind, "fe")) return fe_app_run(doc, outdir, err, errlen);
   if (!strcmp(kind, "sweep")) return sweep_run(doc, outdir, err, errlen);
   if (!strcmp(kind, "replay")) return replay_run(doc, err, errlen);
   snprintf(err, errlen, "%s:%d: key 'scene': expected fe, point, replay or sweep, got '%s'", doc->file,

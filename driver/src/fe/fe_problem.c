@@ -138,6 +138,19 @@ PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
   PetscFunctionReturn(0);
 }
 
+/* The local indices of the fixed components (their values are zero): set directly on every residual
+   instead of DMPlexInsertBoundaryValues. */
+static PetscErrorCode fixed_local_dofs(FeProblem *p) {
+  PetscInt nall = (p->cEnd - p->cStart) * p->nb, n = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(nall + 1, &p->bc_local));
+  for (PetscInt k = 0; k < nall; k++)
+    if (p->cell_rows[k] < 0) p->bc_local[n++] = p->cell_dofs[k];
+  PetscCall(PetscSortRemoveDupsInt(&n, p->bc_local));
+  p->nbc_local = n;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure) {
@@ -205,6 +218,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
       for (PetscInt b = 0; b < n; b++) p->cell_rows[(c - p->cStart) * p->nb + b] = idx[b];
       PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
     }
+    PetscCall(fixed_local_dofs(p));
   }
   {
     PetscReal v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64];
@@ -248,6 +262,9 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(PetscFree(p->phi));
   PetscCall(PetscFree3(p->invJ, p->wdetJ, p->radius));
   PetscCall(PetscFree2(p->cell_dofs, p->cell_rows));
+  PetscCall(PetscFree(p->bc_local));
+  PetscCall(PetscFree(p->devp_prev));
+  PetscCall(VecDestroy(&p->ddsdde_u));
   PetscCall(PetscFEDestroy(&p->fe));
   PetscFunctionReturn(0);
 }
@@ -376,19 +393,21 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMGetLocalVector(dm, &Uloc));
   PetscCall(DMGetLocalVector(dm, &Floc));
   PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
-  PetscCall(DMPlexInsertBoundaryValues(dm, PETSC_TRUE, Uloc, p->time, NULL, NULL, NULL));
   PetscCall(VecZeroEntries(Floc));
   p->have_failed_call = 0;
   PetscCall(VecGetArray(Uloc, &ua));
   PetscCall(VecGetArray(Floc, &fa));
+  for (PetscInt k = 0; k < p->nbc_local; k++) ua[p->bc_local[k]] = 0; /* the fixed components (zero values) */
   const PetscInt ntens = p->mat.ntens;
-  const PetscReal tol  = p->mat.tol_slot >= 0 ? p->mat.props[p->mat.tol_slot] : 0;
-  if (p->defer_step_control && p->mat.tol_slot >= 0) p->mat.props[p->mat.tol_slot] = 0;
+  /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
+     p->umat_tol) and, per cell, its phi; p->mat itself is never written. */
+  UmatMaterial  local = p->mat, *mat = &local;
+  if (mat->tol_slot >= 0 && mat->tol_slot < mat->nprops && p->umat_tol >= 0) mat->props[mat->tol_slot] = p->umat_tol;
+  PetscReal reaction[3] = {0, 0, 0};
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
     for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]];
     PetscCall(PetscArrayzero(re, p->nb));
-    UmatMaterial *mat = &p->mat; /* PROPS of this cell: its phi in place (no copy in the hot loop) */
     if (mat->phi_slot >= 0) mat->props[mat->phi_slot] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
       strain_operator(p, c, q, B);
@@ -427,9 +446,12 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
         re[b] += w * sum;
       }
     }
-    for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
+    const PetscInt *rows = &p->cell_rows[(c - p->cStart) * p->nb];
+    for (PetscInt b = 0; b < p->nb; b++) {
+      fa[dofs[b]] += re[b];
+      if (rows[b] < 0) reaction[b % p->dim] += re[b]; /* internal force on a fixed component */
+    }
   }
-  if (p->mat.tol_slot >= 0) p->mat.props[p->mat.tol_slot] = tol;
   PetscCall(VecRestoreArray(Uloc, &ua));
   PetscCall(VecRestoreArray(Floc, &fa));
   PetscCall(VecZeroEntries(F));
@@ -438,6 +460,9 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMRestoreLocalVector(dm, &Uloc));
   PetscCall(DMRestoreLocalVector(dm, &Floc));
   PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  /* the supports' reaction: minus the internal force on the fixed components, summed over all cells */
+  PetscCall(MPIU_Allreduce(reaction, p->reaction, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt d = 0; d < 3; d++) p->reaction[d] = -p->reaction[d];
   p->ddsdde_valid = 1;
   if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
   PetscCall(VecCopy(U, p->ddsdde_u));

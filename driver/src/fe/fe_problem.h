@@ -48,10 +48,15 @@ typedef struct FeProblem {
   Vec             ddsdde_u;             /* ... which is this one */
   PetscReal       time, dt;             /* end of the step being solved, its length */
   PetscReal       min_pnewdt;           /* smallest PNEWDT of the last residual evaluation (all ranks) */
-  PetscBool       defer_step_control;   /* evaluate without the UMAT's error control (PROPS tol = 0): while
-                                           Newton iterates, a point whose step the UMAT would reject keeps
-                                           its old stress with a new tangent, which no iteration can
-                                           converge; the host checks the error at the converged state */
+  PetscReal       umat_tol;             /* the UMAT's own step control for this evaluation (PROPS tol):
+                                           < 0 as the material gives it, >= 0 this value (0: off). While
+                                           Newton iterates it is off: a point whose step the UMAT would
+                                           reject keeps its old stress with a new tangent, which no
+                                           iteration can converge; the stepper judges the converged state */
+  PetscInt       *bc_local, nbc_local;  /* local indices of the fixed components */
+  PetscReal       reaction[3];          /* the supports' reaction force at the last residual (all ranks) */
+  PetscReal      *devp_prev;            /* per point: the viscoplastic strain increment of the last step */
+  PetscBool       have_devp;
   PetscInt        umat_calls, tangent_recomputes;
   double          assembly_seconds;
   /* pressure loads: unit-pressure force vectors per group, and the pressures at the step's end */

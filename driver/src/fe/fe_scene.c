@@ -104,8 +104,6 @@ static int read_gmsh_parameters(YdDoc *doc, YdNode *v, FeScene *sc, char *err, s
     v->used[i] = 1;
     if (yd_double(doc, v->items[i], path, &sc->gmsh_value[sc->ngmsh], err, errlen)) return 1;
     snprintf(sc->gmsh_name[sc->ngmsh++], 64, "%s", v->keys[i]);
-    size_t len = strlen(sc->gmsh_params); /* the same, as gmsh arguments (validated names, numbers only) */
-    snprintf(sc->gmsh_params + len, sizeof sc->gmsh_params - len, " -setnumber %s %.17g", v->keys[i], sc->gmsh_value[sc->ngmsh - 1]);
   }
   return 0;
 }
@@ -153,7 +151,13 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
     if ((v = yd_get(x, "fields_every")) && yd_int(doc, v, "output.fields_every", &sc->fields_every, err, errlen)) return 1;
-    if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
+    if ((v = yd_get(x, "times"))) { /* fields at exactly these times (the steps land on them) */
+      if (yd_doubles(doc, v, "output.times", sc->out_times, -FE_MAX_OUT_TIMES, &sc->nout_times, err, errlen)) return 1;
+      for (int k = 0; k < sc->nout_times; k++)
+        if (!(sc->out_times[k] > (k ? sc->out_times[k - 1] : 0)))
+          FAIL("%s:%d: key 'output.times[%d]': expected increasing times > 0, got %g", doc->file, v->line, k, sc->out_times[k]);
+    }
+    if (yd_check_unused(doc, x, "output", "directory, fields_every, times", err, errlen)) return 1;
   }
   /* Mesh: a gmsh geometry (meshed now, with parameters), a .msh file, or a box (tests). */
   YdNode *mesh = yd_require(doc, root, "mesh", YD_MAPPING, "mesh", err, errlen);
@@ -337,12 +341,8 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     }
     snprintf(sub, sizeof sub, "%s.steps", path);
     if (step_control_read(doc, yd_get(st, "steps"), sub, g->duration, &g->steps, err, errlen)) return 1;
-    if ((v = yd_get(st, "until"))) {
-      snprintf(sub, sizeof sub, "%s.until.evp_rate_below", path);
-      if (yd_double(doc, yd_get(v, "evp_rate_below"), sub, &g->evp_rate_below, err, errlen)) return 1;
-      snprintf(sub, sizeof sub, "%s.until", path);
-      if (yd_check_unused(doc, v, sub, "evp_rate_below", err, errlen)) return 1;
-    }
+    snprintf(sub, sizeof sub, "%s.until", path);
+    if (stage_event_read(doc, yd_get(st, "until"), sub, "evp_rate_below, q_above, q_below, p_above", &g->until, err, errlen)) return 1;
     snprintf(sub, sizeof sub, "%s.creep", path);
     if ((v = yd_get(st, "creep")) && yd_bool(doc, v, sub, &g->creep, err, errlen)) return 1;
     g->indenter = yd_get(st, "indenter"); /* read by the contact module */

@@ -9,6 +9,7 @@
 #include "fe_problem.h"
 
 #define MAXSTAGES 16
+#define FE_MAX_OUT_TIMES 64
 
 enum { FN_RAMP, FN_EXP, FN_TABLE };
 
@@ -23,7 +24,7 @@ typedef struct {
   double    P0[FE_MAX_GROUPS], k[FE_MAX_GROUPS];
   int       nrow[FE_MAX_GROUPS];
   double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
-  double    evp_rate_below;          /* 0: no end condition */
+  StageEvent until;                  /* an end event (volume-mean p, q, viscoplastic rate); kind NONE: none */
   YdNode   *indenter;                /* the stage's indenter settings (read by the contact module), or NULL */
 } Stage;
 
@@ -33,8 +34,6 @@ typedef struct {
   int          ngmsh;                        /* its parameters, each one the .geo defines */
   char         gmsh_name[GMSH_MAX_PARAMS][64];
   double       gmsh_value[GMSH_MAX_PARAMS];
-  char         gmsh_params[1024];            /* the same as " -setnumber NAME VALUE"...: for the shell-free
-                                                gmsh_mesh() to replace; goes when fe_run.c calls it */
   int          order;
   Kinematics   kin;
   double       thickness;
@@ -50,6 +49,8 @@ typedef struct {
   Stage        stage[MAXSTAGES];
   int          axis;
   int          fields_every;         /* field output every N steps, besides the start and each stage's end */
+  int          nout_times;           /* and at exactly these times */
+  double       out_times[FE_MAX_OUT_TIMES];
   char         solver_options[1024]; /* PETSc options from the scene; the command line wins */
   YdNode      *indenter;             /* a rigid indenter (contact/indent_scene.h), or NULL */
 } FeScene;

@@ -9,7 +9,7 @@
 #include "../io/fsutil.h"
 #include "../material/material_input.h"
 #include "camclay9.h"
-#include "point_run.h"
+#include "../stepping/point_stepper.h"
 
 #define MAXV 16
 
@@ -136,12 +136,12 @@ int sweep_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen)
                 sc.outdir[0] = '\0';
                 PointSummary one, fine;
                 char         e1[1024];
-                int          rc = point_run(&sc, &one, e1, sizeof e1);
+                int          rc = point_run(&sc, NULL, &one, e1, sizeof e1);
                 int status = rc ? 2 : one.cutbacks ? 1 : 0; /* converged / cut back / failed */
                 double error = NAN;
                 if (!rc && dt.v[t] > 0) {
                   sg.steps.count = ref_steps;
-                  if (!point_run(&sc, &fine, e1, sizeof e1)) {
+                  if (!point_run(&sc, NULL, &fine, e1, sizeof e1)) {
                     double num = 0, den = 0;
                     for (int k = 0; k < 6; k++) {
                       num += pow(one.final_stress[k] - fine.final_stress[k], 2);

@@ -1,0 +1,283 @@
+#include "semismooth.h"
+
+#include "../fe/fe_state.h"
+
+#include <math.h>
+#include <petscksp.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Everything the Newton loop works on: the problem, the contact, the unknowns (u, u_r, lambda) with
+ * their committed values and last converged increments (the predictor), residual parts and settings. */
+
+/* Force control at zero load: no contact pressure anywhere, and the indenter rests on the surface (its
+ * position is not an unknown then). */
+PetscBool semismooth_released(const Semismooth *in) { return !in->depth_control && in->target == 0 ? PETSC_TRUE : PETSC_FALSE; }
+
+/* Residual at the iterate (U, ur, lam): the element loop with the UMAT, the gaps, the contact forces;
+ * returns the merit: the residual norm relative to the force scale (the active set does not enter). */
+PetscErrorCode semismooth_evaluate(Semismooth *in, PetscReal *merit) {
+  PetscFunctionBeginUser;
+  PetscCall(fe_residual(NULL, in->U, in->Ru, in->p));
+  PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
+  PetscCall(contact_residual(&in->ct, in->lam, in->ur, in->depth_control, in->target, in->Ru, &in->Rr, &in->ncp));
+  PetscCall(VecNorm(in->Ru, NORM_2, &in->ru));
+  if (semismooth_released(in)) { /* released: the indenter rests on the surface (set after
+                                                   the step), so only lambda = 0 is asked for */
+    const PetscScalar *la;
+    PetscReal          s = 0, all;
+    PetscCall(VecGetArrayRead(in->lam, &la));
+    for (PetscInt i = 0; i < in->ct.n; i++) s += PetscSqr(in->ct.w[i] * PetscRealPart(la[i]));
+    PetscCall(VecRestoreArrayRead(in->lam, &la));
+    PetscCall(MPIU_Allreduce(&s, &all, 1, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
+    in->ncp = PetscSqrtReal(all);
+  }
+  PetscReal rr = in->depth_control ? in->Rr * in->kshift : in->Rr; /* depth rows in force units */
+  *merit       = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + rr * rr) / in->fref;
+  PetscFunctionReturn(0);
+}
+
+/* A signature of the active set (all ranks), to notice a set met again: cycling. */
+static PetscErrorCode active_signature(Semismooth *in, unsigned long long *sig) {
+  unsigned long long loc = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < in->ct.n; i++)
+    if (in->ct.active[i]) {
+      unsigned long long z = (unsigned long long)(in->ct.rstart + i + 1) * 0x9E3779B97F4A7C15ULL;
+      z ^= z >> 31, z *= 0xBF58476D1CE4E5B9ULL, z ^= z >> 27;
+      loc += z;
+    }
+  PetscCallMPI(MPI_Allreduce(&loc, sig, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
+  PetscFunctionReturn(0);
+}
+
+const char *semismooth_failure[] = {"", "Newton did not converge", "the active set cycles", "the linear solver failed"};
+
+/* -indent_check_tangent: the displacement block against a finite difference of the element loop. */
+static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
+  PetscFunctionBeginUser;
+  { /* the displacement block against a finite difference of the element loop */
+      Vec       r0, r1, kd;
+      PetscReal eps = 1e-7, nd, nk;
+      PetscCall(VecDuplicate(in->U, &r0));
+      PetscCall(VecDuplicate(in->U, &r1));
+      PetscCall(VecDuplicate(in->U, &kd));
+      PetscCall(VecSetRandom(in->du, NULL));
+      PetscCall(VecCopy(in->U, in->Uk));
+      PetscCall(fe_residual(NULL, in->Uk, r0, in->p));
+      PetscCall(VecAXPY(in->Uk, eps, in->du));
+      PetscCall(fe_residual(NULL, in->Uk, r1, in->p));
+      PetscCall(VecAXPY(r1, -1.0, r0));
+      PetscCall(VecScale(r1, 1 / eps));
+      PetscCall(fe_residual(NULL, in->U, r0, in->p));
+      PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
+      PetscCall(MatMult(in->K, in->du, kd));
+      PetscCall(VecNorm(kd, NORM_2, &nk));
+      PetscCall(VecAXPY(kd, -1.0, r1));
+      PetscCall(VecNorm(kd, NORM_2, &nd));
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    tangent check: |K du - FD| / |K du| = %.3e\n", (double)(nd / nk)));
+      PetscCall(VecDestroy(&r0));
+      PetscCall(VecDestroy(&r1));
+      PetscCall(VecDestroy(&kd));
+      PetscCall(semismooth_evaluate(in, merit));
+    }
+  PetscFunctionReturn(0);
+}
+
+/* One step by the semismooth Newton method of Box 1: the active set from eq. 14 at every iterate, the
+ * system of eq. 15 solved for the set, a backtracking line search on the merit, converged when the
+ * residual is small and the set did not change. */
+PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out) {
+  unsigned long long sig[64];
+  PetscReal          merit;
+  PetscInt           k, changes, damp = 0;
+  PetscFunctionBeginUser;
+  *status     = STEP_DIVERGED;
+  in->changes = 0;
+  /* the start: the last converged state, or its extrapolation along the last converged rates */
+  PetscCall(VecCopy(in->U0, in->U));
+  PetscCall(VecCopy(in->lam0, in->lam));
+  in->ur = in->ur0;
+  if (in->predictor && in->have_rate && in->dt_prev > 0) {
+    PetscReal r = h / in->dt_prev;
+    PetscCall(VecAXPY(in->U, r, in->rateU));
+    PetscCall(VecAXPY(in->lam, r, in->ratelam));
+    in->ur += r * in->rateur;
+    PetscScalar *la;
+    PetscCall(VecGetArray(in->lam, &la));
+    for (PetscInt i = 0; i < in->ct.n; i++) la[i] = PetscMax(0, PetscRealPart(la[i]));
+    PetscCall(VecRestoreArray(in->lam, &la));
+  }
+  PetscCall(semismooth_evaluate(in, &merit));
+  for (k = 0; k <= in->max_it; k++) {
+    if (semismooth_released(in)) { /* released: no load, no contact pressure anywhere */
+      PetscInt loc = 0;
+      for (PetscInt i = 0; i < in->ct.n; i++) loc += in->ct.active[i], in->ct.active[i] = PETSC_FALSE;
+      PetscCall(MPIU_Allreduce(&loc, &changes, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
+      in->nactive = 0;
+    } else PetscCall(contact_update_active(&in->ct, in->lam, in->fref / in->ct.weight_sum, &changes, &in->nactive));
+    in->changes += changes;
+    PetscCall(active_signature(in, &sig[k % 64]));
+    PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
+                      PetscAbsReal(in->depth_control ? in->Rr * in->kshift : in->Rr) <= in->rtol * in->fref;
+    if (in->monitor)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n",
+                            (int)k, (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes,
+                            (double)in->ur));
+    if (small && changes == 0) {
+      *status = STEP_OK;
+      break;
+    }
+    if (k == in->max_it) break;
+    if (changes > 0) /* cycling: a set met two or more iterations ago comes back */
+      for (PetscInt j = PetscMax(0, k - 63); j < k - 1; j++)
+        if (sig[j % 64] == sig[k % 64]) {
+          in->cycles++;
+          if (++damp > 2) { /* damped twice and still cycling: let the stepper cut the step back */
+            *status = STEP_CYCLING;
+            *its_out = k;
+            PetscFunctionReturn(0);
+          }
+          break;
+        }
+    /* eq. 15 for the current set; a stiffness shift on the indenter row when no node is in contact
+       (force control: the row would be empty) */
+    PetscBool shift = !in->depth_control && in->nactive == 0;
+    in->kshift_uses += shift;
+    PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
+    PetscCall(contact_jacobian(&in->ct, in->depth_control, shift ? in->kshift : 0.0));
+    PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
+    if (in->fd_check) PetscCall(check_tangent(in, &merit));
+    PetscReal dur;
+    PetscBool ok;
+    PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, in->du, &dur, in->dlam, &ok));
+    if (!ok) {
+      *status = STEP_LINEAR;
+      break;
+    }
+    /* line search: while the active set settles the full semismooth step is taken (it identifies the
+       set in finitely many steps); with the set unchanged, the step is halved while the merit does not
+       fall (Armijo, at most 5 halvings); a damped step (alpha = 1/2) after a cycle */
+    PetscCall(VecCopy(in->U, in->Uk));
+    PetscCall(VecCopy(in->lam, in->lamk));
+    PetscReal urk = in->ur, alpha = damp ? 0.5 : 1.0, trial;
+    PetscBool search = in->line_search && changes == 0 && !shift;
+    for (int ls = 0;; ls++) {
+      PetscCall(VecWAXPY(in->U, alpha, in->du, in->Uk));
+      PetscCall(VecWAXPY(in->lam, alpha, in->dlam, in->lamk));
+      in->ur = urk + alpha * dur;
+      PetscCall(semismooth_evaluate(in, &trial));
+      if (!search || trial <= (1 - 1e-4 * alpha) * merit || ls == 5 || trial < in->rtol) break;
+      alpha *= 0.5;
+    }
+    merit = trial;
+  }
+  *its_out = k;
+  PetscFunctionReturn(0);
+}
+
+/* After a converged step at zero load with nothing in contact, the indenter rests on the surface: move
+ * it down to the first touch (the depth then read is the residual depth). */
+PetscErrorCode semismooth_rest_on_surface(Semismooth *in) {
+  PetscReal dmin = PETSC_MAX_REAL, all;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < in->ct.n; i++) {
+    PetscReal nd = contact_ndotd(&in->ct, i);
+    if (nd > 1e-3) dmin = PetscMin(dmin, in->ct.g[i] / nd);
+  }
+  PetscCall(MPIU_Allreduce(&dmin, &all, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)in->U)));
+  if (all < PETSC_MAX_REAL) { /* down onto the surface, or up out of it */
+    in->ur += all;
+    PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode semismooth_commit(Semismooth *in, PetscReal h, PetscBool same_stage) {
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(in->rateU, -1.0, in->U0, in->U));
+  PetscCall(VecWAXPY(in->ratelam, -1.0, in->lam0, in->lam));
+  in->rateur    = in->ur - in->ur0;
+  in->dt_prev   = h;
+  in->have_rate = same_stage;
+  PetscCall(VecCopy(in->U, in->U0));
+  PetscCall(VecCopy(in->lam, in->lam0));
+  in->ur0 = in->ur;
+  PetscCall(fe_state_commit(in->p, h));
+  PetscFunctionReturn(0);
+}
+
+
+PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)p->dm);
+  PetscFunctionBeginUser;
+  *bad = 0;
+  PetscCall(PetscMemzero(in, sizeof *in));
+  in->p = p;
+  {
+    PetscBool has;
+    PetscCall(DMHasLabel(p->dm, is->contact_group, &has));
+    if (!has) {
+      snprintf(err, errlen, "%s: key 'indenter.contact': '%s' is not a physical group of the mesh %s", is->file, is->contact_group, msh);
+      *bad = 2;
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(contact_create(p, is->contact_group, &is->shape, &in->ct));
+  PetscCall(DMCreateMatrix(p->dm, &in->K));
+  { /* rigid-body modes for GAMG on the displacement block */
+    MatNullSpace rbm;
+    PetscCall(DMPlexCreateRigidBody(p->dm, 0, &rbm));
+    PetscCall(MatSetNearNullSpace(in->K, rbm));
+    PetscCall(MatNullSpaceDestroy(&rbm));
+  }
+  PetscCall(DMCreateGlobalVector(p->dm, &in->U));
+  Vec *uv[] = {&in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, NULL};
+  for (int k = 0; uv[k]; k++) PetscCall(VecDuplicate(in->U, uv[k]));
+  PetscCall(VecCreateMPI(comm, in->ct.n, in->ct.N, &in->lam));
+  Vec *lv[] = {&in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
+  for (int k = 0; lv[k]; k++) PetscCall(VecDuplicate(in->lam, lv[k]));
+  Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
+  for (int k = 0; all[k]; k++) PetscCall(VecZeroEntries(*all[k]));
+  PetscCall(indent_solver_create(&in->ct, in->K, &in->sol));
+  in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE;
+  PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1)", NULL);
+  PetscCall(PetscOptionsReal("-indent_rtol", "residual tolerance relative to the load", NULL, in->rtol, &in->rtol, NULL));
+  PetscCall(PetscOptionsInt("-indent_max_it", "Newton iterations per step", NULL, in->max_it, &in->max_it, NULL));
+  PetscCall(PetscOptionsBool("-indent_predictor", "start each step from the extrapolated last increment", NULL, in->predictor, &in->predictor, NULL));
+  PetscCall(PetscOptionsBool("-indent_monitor", "print every Newton iteration", NULL, in->monitor, &in->monitor, NULL));
+  PetscCall(PetscOptionsBool("-indent_line_search", "Armijo line search once the active set is fixed", NULL, in->line_search, &in->line_search, NULL));
+  PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the tangent with finite differences", NULL, in->fd_check, &in->fd_check, NULL));
+  PetscOptionsEnd();
+  in->max_it = PetscMin(in->max_it, 63);
+  /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
+     indenter row's shift (one contact node's stiffness) and the complementarity constant. */
+  p->time = 0, p->dt = 0, p->umat_tol = 0;
+  PetscCall(fe_residual(NULL, in->U, in->Ru, p));
+  PetscCall(fe_problem_commit(p));
+  PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, p));
+  PetscCall(contact_node_stiffness(&in->ct, in->K, &in->kshift));
+  {
+    PetscReal E = 0, Eall, ell = 0, lall;
+    for (PetscInt k = 0; k < p->npoint; k++) E = PetscMax(E, p->ddsdde[k * 36]);
+    for (PetscInt i = 0; i < in->ct.n; i++) { /* a contact-node spacing from the weights */
+      PetscReal w = in->ct.w[i], r = in->ct.X[i * in->ct.dim];
+      ell = PetscMax(ell, p->dim == 3 ? PetscSqrtReal(w) : p->kin == KIN_AXISYMMETRIC ? (r > 0 ? w / (2 * PETSC_PI * r) : 0) : w / p->thickness);
+    }
+    PetscCall(MPIU_Allreduce(&E, &Eall, 1, MPIU_REAL, MPI_MAX, comm));
+    PetscCall(MPIU_Allreduce(&ell, &lall, 1, MPIU_REAL, MPI_MAX, comm));
+    in->ct.c = is->c > 0 ? is->c : Eall / lall;
+  }
+  PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode semismooth_destroy(Semismooth *in) {
+  PetscFunctionBeginUser;
+  PetscCall(indent_solver_destroy(&in->sol));
+  PetscCall(contact_destroy(&in->ct));
+  Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
+  for (int k = 0; all[k]; k++) PetscCall(VecDestroy(all[k]));
+  PetscCall(MatDestroy(&in->K));
+  PetscFunctionReturn(0);
+}

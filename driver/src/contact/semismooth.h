@@ -1,0 +1,55 @@
+/* The semismooth Newton method of Box 1 (Yin, Liu & Borja 2021) for one step of an indentation: the
+ * finite-element problem plus one rigid indenter, the active set from the complementarity function inside
+ * the Newton loop (eqs. 13-14), the linearised system of eq. 15 as a MatNest over (u, u_r, lambda) solved
+ * directly or by a Schur-complement field split, a line search on the residual norm, a step accepted on a
+ * small residual and an unchanged active set. The stepping (stages, step lengths, events) is the stage
+ * runner's (stepping/indent_stepper). */
+#ifndef SEMISMOOTH_H
+#define SEMISMOOTH_H
+
+#include "../fe/fe_problem.h"
+#include "contact.h"
+#include "indent_scene.h"
+#include "indent_solver.h"
+
+/* Everything the Newton loop works on: the problem, the contact, the unknowns (u, u_r, lambda) with their
+ * committed values and last converged increments (the predictor), residual parts and settings. */
+typedef struct {
+  FeProblem   *p;
+  Contact      ct;
+  IndentSolver sol;
+  Mat          K;
+  Vec          U, lam, Ru, Rlam, du, dlam;       /* iterate, residual parts, Newton direction */
+  Vec          Uk, lamk;                         /* the iterate before a line search */
+  Vec          U0, lam0, rateU, ratelam;         /* committed; last converged increment */
+  PetscReal    ur, ur0, rateur, dt_prev;
+  PetscBool    have_rate, predictor, monitor, line_search, fd_check;
+  PetscReal    rtol, kshift, fref;
+  PetscInt     max_it;
+  /* the step being solved */
+  PetscBool    depth_control;
+  PetscReal    target;                           /* load or depth at the step's end */
+  PetscReal    Rr, ncp, ru;                      /* residual parts at the last evaluation */
+  PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
+  PetscInt     its_total, steps_total, cycles, kshift_uses;
+} Semismooth;
+
+enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };
+extern const char *semismooth_failure[];
+
+/* Contact nodes, vectors, the eq. 15 solver and the options (-indent_*), the initial state (the UMAT's
+ * zero increment), the complementarity constant and the indenter-row shift. */
+PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad);
+PetscErrorCode semismooth_destroy(Semismooth *in);
+/* Force control at zero load: no contact pressure anywhere, and the indenter rests on the surface. */
+PetscBool semismooth_released(const Semismooth *in);
+/* Residual at the iterate; merit: its norm relative to the force scale. */
+PetscErrorCode semismooth_evaluate(Semismooth *in, PetscReal *merit);
+/* One step of length h to in->target (load or depth): status STEP_OK or why not; its: Newton iterations. */
+PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out);
+/* After a converged step at zero load with nothing in contact: the indenter down onto the surface. */
+PetscErrorCode semismooth_rest_on_surface(Semismooth *in);
+/* Commit the converged step; same_stage: its increments predict the next step. */
+PetscErrorCode semismooth_commit(Semismooth *in, PetscReal h, PetscBool same_stage);
+
+#endif

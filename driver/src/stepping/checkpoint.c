@@ -1,0 +1,134 @@
+#include "checkpoint.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#define CKPT_MAGIC 0x43433952 /* "CC9R" */
+#define CKPT_VERSION 2
+
+static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
+  snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);
+}
+
+static int all_ok(MPI_Comm comm, int ok) {
+  int all = 0;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm);
+  return all;
+}
+
+int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
+  int rank, size;
+  MPI_Comm_rank(sv->comm, &rank);
+  MPI_Comm_size(sv->comm, &size);
+  long off = st->history_offset;
+  MPI_Bcast(&off, 1, MPI_LONG, 0, sv->comm); /* rank 0 holds the history */
+  st->history_offset = off;
+  char path[1100], tmp[1110];
+  set_path(opt, st->step, rank, path, sizeof path);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  unsigned long long hash = binfile_hash(opt->scene_file);
+  BinFile            f;
+  int                magic = CKPT_MAGIC, version = CKPT_VERSION;
+  binfile_open(&f, tmp, "wb");
+  binfile_write(&f, &magic, sizeof magic, 1);
+  binfile_write(&f, &version, sizeof version, 1);
+  binfile_write(&f, &size, sizeof size, 1);
+  binfile_write(&f, &rank, sizeof rank, 1);
+  binfile_write(&f, &hash, sizeof hash, 1);
+  binfile_write(&f, st, sizeof *st, 1);
+  if (f.ok && sv->save(sv->ctx, &f)) f.ok = 0;
+  binfile_write(&f, &magic, sizeof magic, 1);
+  int ok = !binfile_close(&f, 1) && !rename(tmp, path);
+  if (!all_ok(sv->comm, ok)) {
+    snprintf(err, errlen, "%s: cannot write the checkpoint (%s on this or another rank); the previous one is kept", path,
+             ok ? "failed" : strerror(errno));
+    remove(tmp);
+    return 1;
+  }
+  if (!rank) { /* the set is complete on every rank: make it the latest */
+    char latest[1100], ltmp[1110];
+    snprintf(latest, sizeof latest, "%s/checkpoint.latest", opt->outdir);
+    snprintf(ltmp, sizeof ltmp, "%s.tmp", latest);
+    BinFile l;
+    ok = !binfile_open(&l, ltmp, "w");
+    if (ok) ok = fprintf(l.fp, "%d %d\n", st->step, size) > 0;
+    ok = !binfile_close(&l, 1) && ok && !rename(ltmp, latest);
+  }
+  if (!all_ok(sv->comm, ok)) {
+    snprintf(err, errlen, "%s/checkpoint.latest: cannot write; the previous checkpoint is kept", opt->outdir);
+    return 1;
+  }
+  if (*last >= 0 && *last != st->step) { /* the previous set is no longer needed */
+    char old[1100];
+    set_path(opt, *last, rank, old, sizeof old);
+    remove(old);
+  }
+  *last = st->step;
+  return 0;
+}
+
+/* The step of the latest set (rank 0 reads it; every rank gets it). */
+static int latest_step(StepSolver *sv, const RunnerOptions *opt, int *step, int *nranks) {
+  int rank, v[2] = {-1, 0};
+  MPI_Comm_rank(sv->comm, &rank);
+  if (!rank) {
+    char path[1100];
+    snprintf(path, sizeof path, "%s/checkpoint.latest", opt->outdir);
+    FILE *fp = fopen(path, "r");
+    if (fp) {
+      if (fscanf(fp, "%d %d", &v[0], &v[1]) != 2) v[0] = -2;
+      fclose(fp);
+    }
+  }
+  MPI_Bcast(v, 2, MPI_INT, 0, sv->comm);
+  *step = v[0], *nranks = v[1];
+  return v[0] >= 0;
+}
+
+int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
+  int rank, size, step, nranks;
+  MPI_Comm_rank(sv->comm, &rank);
+  MPI_Comm_size(sv->comm, &size);
+  if (!latest_step(sv, opt, &step, &nranks)) {
+    snprintf(err, errlen, "-restart: %s/checkpoint.latest is missing or damaged (run with -checkpoint_every N first)", opt->outdir);
+    return 1;
+  }
+  if (nranks != size) {
+    snprintf(err, errlen, "-restart: the checkpoint in %s was written by %d ranks; restart with mpiexec -n %d", opt->outdir, nranks,
+             nranks);
+    return 2;
+  }
+  char path[1100];
+  set_path(opt, step, rank, path, sizeof path);
+  BinFile            f;
+  unsigned long long hash = 0;
+  int                code = 0; /* 0 ok, 1 missing or damaged, 2 another scene */
+  if (binfile_open(&f, path, "rb")) code = 1;
+  else {
+    binfile_expect_int(&f, CKPT_MAGIC);
+    binfile_expect_int(&f, CKPT_VERSION);
+    binfile_expect_int(&f, size);
+    binfile_expect_int(&f, rank);
+    binfile_read(&f, &hash, sizeof hash, 1);
+    if (f.ok && hash != binfile_hash(opt->scene_file)) code = 2;
+    binfile_read(&f, st, sizeof *st, 1);
+    if (f.ok && !code && sv->load(sv->ctx, &f)) f.ok = 0;
+    binfile_expect_int(&f, CKPT_MAGIC);
+    if (binfile_close(&f, 0) && !code) code = 1;
+    if (!code && st->step != step) code = 1;
+  }
+  int worst = 0;
+  MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);
+  if (worst == 2)
+    snprintf(err, errlen, "-restart: the scene %s differs from the one the checkpoint in %s was written for (material, loads or "
+                          "stages changed): run it afresh, without -restart", opt->scene_file, opt->outdir);
+  else if (worst)
+    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (%s here): "
+                          "nothing was written", step, opt->outdir, code ? "bad" : "fine");
+  if (worst) return worst;
+  *last = step;
+  if (!rank && !opt->quiet) printf("restart at step %d, t = %g s (stage %d)\n", st->step, st->t, st->stage);
+  return 0;
+}

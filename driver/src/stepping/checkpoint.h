@@ -1,0 +1,27 @@
+/* Checkpoints of the stage runner: where the run is (RunState) and the solver's state, one file per rank,
+ * as one set. A set is named by its step (checkpoint.<step>.rank<r>.bin) and becomes the one a restart
+ * uses only when every rank has written its file completely: then rank 0 replaces checkpoint.latest (a
+ * small text file, written to a temporary name, synced and renamed). The previous set is deleted only
+ * after that, so a kill at any moment leaves a complete set to restart from. A restart reads the set that
+ * checkpoint.latest names on every rank and checks it (magic, ranks, the scene's hash) on all ranks
+ * before anything is written. */
+#ifndef STEPPING_CHECKPOINT_H
+#define STEPPING_CHECKPOINT_H
+
+#include "stage_runner.h"
+
+/* Where a run is (plain values only: written as one block). */
+typedef struct {
+  int    stage, in_stage, first_in_stage, step, its, cutbacks, cut_in_step, rejected_error;
+  int    pending_instant, k_planned, cut_in_plan, next_time, have_prev, nout, kink;
+  double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio;
+  double out_prev[STEP_MAX_OUT], dout_prev[STEP_MAX_OUT], out_scale[STEP_MAX_OUT];
+  long   history_offset;
+} RunState;
+
+/* Write the set for st->step; *last: the step of the previous set (deleted once the new one is in place). */
+int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
+/* Read the latest set into st and the solver. Returns 0, 1 (missing or damaged) or 2 (another scene). */
+int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,43 @@
+/* Finite-element scenes on the stage runner: the SNES step solver (fe_stepper.c), the indentation step
+ * solver around the contact module's semismooth Newton (indent_stepper.c), and what the two share
+ * (fe_common.c): the boundary loads of a stage, the volume statistics that events and the error measures
+ * look at, field output and the problem's part of a checkpoint. */
+#ifndef FE_STEPPER_H
+#define FE_STEPPER_H
+
+#include "../contact/indent_scene.h"
+#include "../fe/fe_output.h"
+#include "../fe/fe_problem.h"
+#include "../fe/fe_scene.h"
+#include "stage_runner.h"
+
+typedef struct {
+  FeScene   *sc;
+  FeProblem *p;
+  FeOutput   out;
+  FeStats    stats;                    /* of the last solved state (trial) or, after a commit, the committed one */
+  double     start[FE_MAX_GROUPS];     /* the loads at the stage's start */
+  double     now[FE_MAX_GROUPS];       /* the loads of the committed state */
+  double     h_prev;                   /* the last accepted step's length */
+  PetscBool  fields;                   /* write fields.h5 */
+} FeCommon;
+
+/* Run the stages of an FE scene (SNES) or of an indentation scene on the set-up problem p. */
+int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);
+int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);
+
+/* Shared by the two. */
+PetscErrorCode fe_common_init(FeCommon *c, FeScene *sc, FeProblem *p, const RunnerOptions *opt);
+PetscErrorCode fe_common_finish(FeCommon *c);
+void           fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v);
+PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq);
+/* p, q and the viscoplastic rate of the solved state; the volume error if asked. */
+PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome *o);
+void           fe_common_accept(FeCommon *c, const StepRequest *rq);
+int            fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen);
+int            fe_common_promote(FeCommon *c);
+int            fe_common_save(FeCommon *c, Vec U, BinFile *f);
+int            fe_common_load(FeCommon *c, Vec U, BinFile *f);
+void           fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n);
+
+#endif

@@ -1,0 +1,212 @@
+/* Indentation scenes: each step solved by the semismooth Newton method of the contact module (Box 1) from
+ * the committed state; the indenter's load or depth follows the stage (indent_scene.h), the boundary loads
+ * and the 'until' events those of any FE stage. */
+#include "fe_stepper.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "../contact/semismooth.h"
+#include "../fe/fe_state.h"
+
+typedef struct {
+  FeCommon     c;
+  IndentScene *is;
+  Semismooth   in;
+  double       load, load_max, stage_start, force, pen, lmin;
+} Indent;
+
+static const char *shape_name(const IndentScene *is) {
+  return (const char *[]){"berkovich", "cone", "wedge", "sphere", "flat_punch"}[is->shape.kind];
+}
+
+static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+  Indent      *d  = ctx;
+  IndentStage *st = &d->is->stage[s];
+  Stage       *g  = &d->c.sc->stage[s];
+  fe_common_stage_begin(&d->c, s, resumed, v);
+  d->in.depth_control = st->kind == IND_DEPTH_RAMP;
+  if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load, d->in.have_rate = PETSC_FALSE;
+  if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE) {
+    snprintf(err, errlen, "%s: stage '%s': give one end event: indenter.until or until, not both", d->is->file, g->name);
+    return 1;
+  }
+  if (st->until_load > 0) { /* the time the load reaches the event, known in advance */
+    double start = d->stage_start, te = st->kind == IND_LOAD_EXP ? log(st->until_load / st->P0) / st->k
+                                                                 : (st->target != start ? g->duration * (st->until_load - start) / (st->target - start) : -1);
+    if (!(te >= 0 && te <= g->duration)) {
+      snprintf(err, errlen, "stage '%s': the load never reaches until.load = %g within the stage's duration %g s", g->name, st->until_load,
+               g->duration);
+      return 1;
+    }
+    v->duration = te;
+  }
+  if (st->until_depth > 0) v->until.kind = EVENT_DEPTH, v->until.value = st->until_depth, v->must_reach = 1, v->event_start = d->in.ur;
+  return 0;
+}
+
+static PetscReal umat_tol_of(const FeProblem *p, const StepRequest *rq) {
+  if (rq->umat_tol >= 0) return rq->umat_tol;
+  return p->mat.tol_slot >= 0 && p->mat.tol_slot < p->mat.nprops ? p->mat.props[p->mat.tol_slot] : 0;
+}
+
+static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+  Indent      *d  = ctx;
+  Semismooth  *in = &d->in;
+  FeProblem   *p  = d->c.p;
+  IndentStage *st = &d->is->stage[rq->s];
+  double       ts = rq->ts0 + rq->h;
+  if (fe_common_set_loads(&d->c, rq)) return 1;
+  in->target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
+  if (st->until_load > 0 && rq->lambda >= 1) in->target = st->until_load; /* the event time is the stage's end */
+  if (!in->depth_control) in->fref = PetscMax(PetscMax(d->load_max, in->target), 1e-300);
+  else in->fref = PetscMax(PetscMax(d->load_max, in->kshift * PetscAbsReal(in->target)), 1e-300);
+  int      status;
+  PetscInt its = 0;
+  p->umat_tol  = 0; /* Newton iterates without the UMAT's error control */
+  if (semismooth_step(in, rq->h, &status, &its)) {
+    snprintf(err, errlen, "the indentation step failed (see the PETSc message above)");
+    return 1;
+  }
+  in->its_total += its;
+  o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
+  if (!o->converged) return 0;
+  PetscReal tol = umat_tol_of(p, rq), m;
+  if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
+    p->umat_tol = tol;
+    if (semismooth_evaluate(in, &m)) return 1;
+    p->umat_tol = 0;
+  }
+  o->pnewdt = p->min_pnewdt;
+  if (fe_common_observe(&d->c, rq, o)) return 1;
+  if (contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
+  o->event[EVENT_DEPTH] = in->ur;
+  o->event[EVENT_LOAD]  = in->depth_control ? d->force : in->target;
+  o->progress           = st->until_depth > 0 ? in->ur / st->until_depth : -1;
+  o->kink               = in->changes > 0; /* a node entered or left contact: the depth rate jumps */
+  o->nout = 2, o->out[0] = in->ur, o->group[0] = 0, o->out[1] = d->force, o->group[1] = 1;
+  return 0;
+}
+
+static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+  Indent     *d  = ctx;
+  Semismooth *in = &d->in;
+  if (semismooth_released(in) && in->nactive == 0 && semismooth_rest_on_surface(in)) return 1;
+  if (semismooth_commit(in, rq->h, PETSC_TRUE)) return 1;
+  d->load = in->depth_control ? d->force : in->target;
+  if (!in->depth_control) d->load_max = PetscMax(d->load_max, in->target);
+  fe_common_accept(&d->c, rq);
+  return 0;
+}
+
+/* Beyond the potential contact surface the nodes are not checked: the results would be wrong from here. */
+static int check(void *ctx, double t, char *err, size_t errlen) {
+  Indent  *d = ctx;
+  PetscInt on_rim;
+  if (contact_on_rim(&d->in.ct, &on_rim)) return 1;
+  if (!on_rim) return 0;
+  snprintf(err, errlen, "%s: at t = %.6g s (depth %.6g) the contact reached the edge of the potential contact surface '%s' (%d active "
+                        "nodes on its rim): enlarge it (the mesh's contact region), then rerun; the history up to here is kept",
+           d->is->file, t, (double)d->in.ur, d->is->contact_group, (int)on_rim);
+  return 1;
+}
+
+static void history_header(void *ctx, FILE *fp) {
+  fprintf(fp, "time,stage,stage_name,step,dt,newton_its,cutbacks,load,depth,active_nodes,active_changes,contact_force,"
+              "max_penetration,min_lambda,umat_calls,wall,reaction_x,reaction_y,reaction_z\n");
+}
+
+static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
+  Indent    *d = ctx;
+  FeProblem *p = d->c.p;
+  fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g\n", row->t, row->stage,
+          row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks, d->load,
+          (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, d->force, d->pen, d->lmin, (long)p->umat_calls, row->wall,
+          p->reaction[0], p->reaction[1], p->reaction[2]);
+}
+
+static void progress(void *ctx, char *buf, size_t n) {
+  Indent *d = ctx;
+  snprintf(buf, n, "load %-10.5g depth %-10.5g active %4d (%3d changes) ", d->load, (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes);
+}
+
+static int write_fields(void *ctx, double t, char *err, size_t errlen) {
+  Indent *d = ctx;
+  return fe_common_fields(&d->c, d->in.U0, t, err, errlen);
+}
+
+static int promote(void *ctx) { return fe_common_promote(&((Indent *)ctx)->c); }
+
+static void vec_io(BinFile *f, Vec v, int write) {
+  PetscInt     n;
+  PetscScalar *a;
+  VecGetLocalSize(v, &n);
+  VecGetArray(v, &a);
+  if (write) binfile_write(f, a, sizeof(PetscScalar), (size_t)n);
+  else binfile_read(f, a, sizeof(PetscScalar), (size_t)n);
+  VecRestoreArray(v, &a);
+}
+
+/* The indenter's state, with the predictor's (the last converged increments), so a restart is exact. */
+static int state_io(Indent *d, BinFile *f, int write) {
+  Semismooth *in = &d->in;
+  double      vals[9] = {in->ur0, in->rateur, in->dt_prev, (double)in->have_rate, d->load, d->load_max, d->stage_start, in->its_total, in->cycles};
+  PetscInt    n = in->ct.n, m = n;
+  if (write) binfile_write(f, vals, sizeof(double), 9), binfile_write(f, &n, sizeof n, 1);
+  else binfile_read(f, vals, sizeof(double), 9), binfile_read(f, &m, sizeof m, 1);
+  if (m != n) return 1;
+  vec_io(f, in->lam0, write), vec_io(f, in->ratelam, write), vec_io(f, in->rateU, write);
+  if (!write) {
+    in->ur0 = in->ur = vals[0], in->rateur = vals[1], in->dt_prev = vals[2], in->have_rate = vals[3] != 0;
+    d->load = vals[4], d->load_max = vals[5], d->stage_start = vals[6], in->its_total = (PetscInt)vals[7], in->cycles = (PetscInt)vals[8];
+  }
+  return !f->ok;
+}
+
+static int save(void *ctx, BinFile *f) {
+  Indent *d = ctx;
+  return fe_common_save(&d->c, d->in.U0, f) || state_io(d, f, 1);
+}
+
+static int load(void *ctx, BinFile *f) {
+  Indent *d = ctx;
+  if (fe_common_load(&d->c, d->in.U0, f) || state_io(d, f, 0)) return 1;
+  VecCopy(d->in.U0, d->in.U);
+  VecCopy(d->in.lam0, d->in.lam);
+  return contact_update_gaps(&d->in.ct, d->in.U, d->in.ur) != 0;
+}
+
+static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((Indent *)ctx)->c, dir, msg, n); }
+
+static long umat_calls(void *ctx) { return (long)((Indent *)ctx)->c.p->umat_calls; }
+
+int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
+  Indent d;
+  int    bad = 0;
+  PetscMemzero(&d, sizeof d);
+  d.is = is;
+  if (semismooth_create(p, is, sc->msh, &d.in, err, errlen, &bad)) {
+    snprintf(err, errlen, "setting up the contact failed (see the PETSc message above)");
+    return 1;
+  }
+  if (bad) return bad;
+  if (fe_common_init(&d.c, sc, p, opt)) return 1;
+  MPI_Comm comm = PetscObjectComm((PetscObject)p->dm);
+  PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
+                    "indenter-row shift %.4g\n",
+              shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
+              (double)d.in.ct.c, (double)d.in.kshift);
+  StepSolver sv = {&d, "indentation", sc->nstage, comm, stage_begin, solve, accept, check, history_header, history_row, progress,
+                   write_fields, promote, save, load, replay, umat_calls};
+  RunnerSummary sum;
+  int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
+  fe_common_finish(&d.c);
+  PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
+                    "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations), wall %.2f s -> %s/history.csv\n",
+              sc->name, sum.steps, (int)d.in.its_total, d.in.predictor ? "on" : "off", sum.cutbacks, sum.rejected_error, (int)d.in.cycles,
+              sum.umat_calls, p->assembly_seconds, d.in.sol.seconds, d.in.sol.fieldsplit ? "fieldsplit" : "direct", (int)d.in.sol.linear_its,
+              sum.wall, opt->outdir);
+  semismooth_destroy(&d.in);
+  return rc;
+}

@@ -1,0 +1,252 @@
+#include "point_stepper.h"
+
+#include "camclay9.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "../io/fsutil.h"
+#include "../point/point_solve.h"
+
+/* The point being stepped: the committed call (cur), the trial (next), the predictor (the last increment)
+ * and the segment's start values. */
+typedef struct {
+  const PointScene *sc;
+  UmatMaterial      mat; /* the scene's material with the step's control in PROPS (a copy) */
+  UmatCall          cur, next;
+  PointStepResult   res;
+  double            last_deps[6], last_dt, start[6], devp_prev[6], t;
+  int               have_devp;
+  double           *t_start, *t_end;
+  PointSummary     *sum;
+} Point;
+
+static double sv_or_zero(const Point *pt, const UmatCall *c, int slot) { return slot < pt->sc->mat.nstatv ? c->statev[slot] : 0.0; }
+
+static EventKind event_of(UntilKind u) {
+  switch (u) {
+  case UNTIL_EVP_RATE_BELOW: return EVENT_EVP_RATE_BELOW;
+  case UNTIL_Q_ABOVE: return EVENT_Q_ABOVE;
+  case UNTIL_Q_BELOW: return EVENT_Q_BELOW;
+  case UNTIL_P_ABOVE: return EVENT_P_ABOVE;
+  default: return EVENT_NONE;
+  }
+}
+
+static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+  Point         *pt = ctx;
+  const Segment *sg = &pt->sc->seg[s];
+  int            n  = pt->sc->mat.ntens;
+  if (!resumed) { /* values at the segment start: ramps begin there; linear constraints keep their value */
+    for (int i = 0; i < n; i++) {
+      const Equation *eq = &sg->eq[i];
+      if (eq->kind == EQ_STRESS) pt->start[i] = pt->cur.stress[i];
+      else if (eq->kind == EQ_STRAIN) pt->start[i] = pt->cur.stran[i];
+      else if (!isnan(eq->value)) pt->start[i] = eq->value;
+      else {
+        double val = 0;
+        for (int j = 0; j < n; j++) val += eq->a[j] * pt->cur.stran[j] + eq->b[j] * pt->cur.stress[j];
+        pt->start[i] = val;
+      }
+    }
+    pt->t_start[s] = pt->t;
+  }
+  double p, q;
+  point_invariants(pt->cur.stress, n, &p, &q);
+  memset(v, 0, sizeof *v);
+  v->name = sg->name, v->duration = sg->duration, v->instant = sg->instant, v->steps = &sg->steps;
+  v->until.kind = event_of(sg->until), v->until.value = sg->until_value;
+  v->event_start = v->until.kind == EVENT_P_ABOVE ? p : q;
+  return 0;
+}
+
+static double norm6(const double *a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3] + a[4] * a[4] + a[5] * a[5]); }
+
+/* What the runner judges a converged step by: p, q, the viscoplastic rate, strain and stress (outputs), and
+ * the change of the viscoplastic strain rate (the 'volume' measure of one point). */
+static void observe(Point *pt, const StepRequest *rq, StepOutcome *o) {
+  int    n = pt->sc->mat.ntens;
+  double p, q, devp[6];
+  point_invariants(pt->next.stress, n, &p, &q);
+  for (int i = 0; i < 6; i++) devp[i] = sv_or_zero(pt, &pt->next, CAMCLAY9_SV_EVP + i) - sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_EVP + i);
+  o->event[EVENT_P_ABOVE] = p, o->event[EVENT_Q_ABOVE] = o->event[EVENT_Q_BELOW] = q;
+  o->event[EVENT_EVP_RATE_BELOW] = rq->h > 0 ? norm6(devp) / rq->h : INFINITY;
+  o->nout = 2 * n;
+  for (int i = 0; i < n; i++) {
+    o->out[i] = pt->cur.stran[i] + pt->next.dstran[i], o->group[i] = 0;
+    o->out[n + i] = pt->next.stress[i], o->group[n + i] = 1;
+  }
+  if (rq->want_volume_error && pt->have_devp && rq->h > 0 && pt->last_dt > 0) {
+    double d[6], evp[6];
+    for (int i = 0; i < 6; i++) d[i] = devp[i] - rq->h / pt->last_dt * pt->devp_prev[i], evp[i] = sv_or_zero(pt, &pt->next, CAMCLAY9_SV_EVP + i);
+    o->vol_err = norm6(d) / fmax(norm6(devp), 1e-9 * norm6(evp) + 1e-300);
+  }
+}
+
+static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+  Point         *pt = ctx;
+  const Segment *sg = &pt->sc->seg[rq->s];
+  int            n  = pt->sc->mat.ntens;
+  double         target[6], deps[6];
+  for (int i = 0; i < n; i++) target[i] = point_target(sg, i, pt->start, rq->lambda, rq->ts0 + rq->h);
+  for (int i = 0; i < n; i++) deps[i] = pt->last_dt > 0 && rq->h > 0 ? pt->last_deps[i] * rq->h / pt->last_dt : 0;
+  pt->mat = pt->sc->mat;
+  if (rq->umat_tol >= 0 && pt->mat.tol_slot >= 0 && pt->mat.tol_slot < pt->mat.nprops) pt->mat.props[pt->mat.tol_slot] = rq->umat_tol;
+  pt->cur.time[0] = rq->ts0, pt->cur.time[1] = rq->t0;
+  int rc = point_mixed_step(&pt->mat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
+  /* a UMAT that asks for a smaller step: 'converged' with PNEWDT < 1, so the runner cuts by PNEWDT */
+  o->converged = !rc || pt->res.umat_failed;
+  o->pnewdt    = pt->res.pnewdt;
+  o->its       = pt->res.newton;
+  o->why       = "the mixed-control Newton did not converge";
+  if (!rc) observe(pt, rq, o);
+  return 0;
+}
+
+static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+  Point            *pt = ctx;
+  const PointScene *sc = pt->sc;
+  if (sc->check_tangent && rq->h > 0)
+    pt->sum->worst_tangent_error = fmax(pt->sum->worst_tangent_error, point_tangent_check(&pt->mat, &pt->cur, &pt->next));
+  pt->sum->worst_control_error = fmax(pt->sum->worst_control_error, pt->res.control_error);
+  if (sc->replay_step > 0 && pt->sum->steps + 1 == sc->replay_step) {
+    UmatCall in = pt->cur;
+    memcpy(in.dstran, pt->next.dstran, sizeof in.dstran);
+    in.dtime = rq->h;
+    char rp[1100];
+    snprintf(rp, sizeof rp, "%s/replay_step_%d.yaml", sc->outdir, sc->replay_step);
+    if (umat_write_replay(rp, &pt->mat, &in, &pt->next, "requested with -write_replay_at_step")) fprintf(stderr, "driver: could not write %s\n", rp);
+  }
+  for (int i = 0; i < 6; i++)
+    pt->devp_prev[i] = sv_or_zero(pt, &pt->next, CAMCLAY9_SV_EVP + i) - sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_EVP + i);
+  pt->have_devp = rq->h > 0;
+  memcpy(pt->last_deps, pt->next.dstran, sizeof pt->last_deps);
+  pt->last_dt = rq->h;
+  for (int i = 0; i < sc->mat.ntens; i++) pt->next.stran[i] = pt->cur.stran[i] + pt->next.dstran[i];
+  pt->cur = pt->next;
+  pt->cur.kinc++;
+  pt->t += rq->h;
+  pt->sum->steps++;
+  pt->t_end[rq->s] = pt->t;
+  return 0;
+}
+
+static void history_header(void *ctx, FILE *fp) { point_history_header(fp); }
+
+static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
+  Point *pt = ctx;
+  point_history_row(fp, &pt->sc->mat, &pt->cur, row->t, row->step, row->stage, row->dt, row->its, row->cutbacks);
+}
+
+static void progress(void *ctx, char *buf, size_t n) {
+  Point *pt = ctx;
+  snprintf(buf, n, "local %d ", (int)sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_ITERATIONS));
+}
+
+static int save(void *ctx, BinFile *f) {
+  Point *pt = ctx;
+  int    nseg = pt->sc->nseg;
+  binfile_write(f, &pt->cur, sizeof pt->cur, 1); /* plain values only */
+  binfile_write(f, pt->last_deps, sizeof(double), 6);
+  binfile_write(f, &pt->last_dt, sizeof(double), 1);
+  binfile_write(f, pt->start, sizeof(double), 6);
+  binfile_write(f, pt->devp_prev, sizeof(double), 6);
+  binfile_write(f, &pt->have_devp, sizeof(int), 1);
+  binfile_write(f, &pt->t, sizeof(double), 1);
+  binfile_write(f, pt->t_start, sizeof(double), (size_t)nseg);
+  binfile_write(f, pt->t_end, sizeof(double), (size_t)nseg);
+  binfile_write(f, pt->sum, sizeof *pt->sum, 1);
+  return !f->ok;
+}
+
+static int load(void *ctx, BinFile *f) {
+  Point *pt = ctx;
+  int    nseg = pt->sc->nseg;
+  binfile_read(f, &pt->cur, sizeof pt->cur, 1);
+  binfile_read(f, pt->last_deps, sizeof(double), 6);
+  binfile_read(f, &pt->last_dt, sizeof(double), 1);
+  binfile_read(f, pt->start, sizeof(double), 6);
+  binfile_read(f, pt->devp_prev, sizeof(double), 6);
+  binfile_read(f, &pt->have_devp, sizeof(int), 1);
+  binfile_read(f, &pt->t, sizeof(double), 1);
+  binfile_read(f, pt->t_start, sizeof(double), (size_t)nseg);
+  binfile_read(f, pt->t_end, sizeof(double), (size_t)nseg);
+  binfile_read(f, pt->sum, sizeof *pt->sum, 1);
+  return !f->ok;
+}
+
+static void replay(void *ctx, const char *dir, char *msg, size_t n) {
+  Point *pt = ctx;
+  if (!pt->res.umat_failed) return;
+  char rp[1100];
+  snprintf(rp, sizeof rp, "%s/failed_call.yaml", dir);
+  if (!umat_write_replay(rp, &pt->mat, &pt->res.failed_in, &pt->res.failed_out, msg)) {
+    size_t len = strlen(msg);
+    snprintf(msg + len, n - len, "; the failing UMAT call is replayed by: driver -input %s", rp);
+  }
+}
+
+static void write_json(const PointScene *sc, const double *t_start, const double *t_end) {
+  char path[1100];
+  snprintf(path, sizeof path, "%s/scene.json", sc->outdir);
+  FILE *fp = fopen(path, "w");
+  if (!fp) return;
+  fprintf(fp, "{\"name\": \"%s\", \"ntens\": %d, \"props\": [", sc->name, sc->mat.ntens);
+  double props[23] = {0};
+  memcpy(props, sc->mat.props, sizeof(double) * (sc->mat.nprops < 23 ? sc->mat.nprops : 23));
+  if (sc->mat.nprops < 23) props[22] = 1;
+  for (int i = 0; i < 23; i++) fprintf(fp, "%s%.17g", i ? ", " : "", props[i]);
+  double nn = sqrt(props[20] * props[20] + props[21] * props[21] + props[22] * props[22]);
+  fprintf(fp, "], \"normal\": [%.17g, %.17g, %.17g], \"units\": {\"stress\": \"MPa\", \"time\": \"s\"}, \"segments\": [",
+          props[20] / nn, props[21] / nn, props[22] / nn);
+  for (int s = 0; s < sc->nseg; s++)
+    fprintf(fp, "%s{\"name\": \"%s\", \"t_start\": %.17g, \"t_end\": %.17g, \"creep\": %s, \"axis\": %d}", s ? ", " : "",
+            sc->seg[s].name, t_start[s], t_end[s], sc->seg[s].creep ? "true" : "false", sc->seg[s].axis);
+  fprintf(fp, "]}\n");
+  fclose(fp);
+}
+
+int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *sum, char *err, size_t errlen) {
+  Point pt;
+  memset(&pt, 0, sizeof pt);
+  memset(sum, 0, sizeof *sum);
+  pt.sc = sc, pt.sum = sum, pt.mat = sc->mat;
+  if (sc->outdir[0] && fs_make_directories(sc->outdir)) {
+    snprintf(err, errlen, "output directory '%s': cannot create: %s", sc->outdir, strerror(errno));
+    return 1;
+  }
+  memcpy(pt.cur.stress, sc->stress0, sizeof pt.cur.stress);
+  memcpy(pt.cur.statev, sc->statev0, sizeof pt.cur.statev);
+  pt.cur.noel = pt.cur.npt = pt.cur.kstep = pt.cur.kinc = 1;
+  /* A zero increment (DSTRAN = 0, DTIME = 0) first: the UMAT initialises its state from STRESS if it needs
+   * to (Cam-Clay IX's uninitialised-state rule), so that row 0 shows the real initial state. */
+  umat_invoke(&pt.mat, &pt.cur);
+  if (pt.cur.pnewdt < 1) {
+    snprintf(err, errlen, "the UMAT rejected the initial state (a zero increment returned PNEWDT = %g)", pt.cur.pnewdt);
+    return 1;
+  }
+  pt.t_start = calloc((size_t)sc->nseg + 1, sizeof(double)), pt.t_end = calloc((size_t)sc->nseg + 1, sizeof(double));
+  StepSolver sv = {&pt, "point", sc->nseg, MPI_COMM_SELF, stage_begin, solve, accept, NULL, history_header, history_row,
+                   progress, NULL, NULL, save, load, replay, NULL};
+  RunnerOptions opt;
+  memset(&opt, 0, sizeof opt);
+  if (given) opt = *given;
+  else opt.max_steps = -1;
+  opt.outdir = sc->outdir, opt.quiet = opt.quiet || (sc->progress_every <= 0 && opt.progress_every <= 0);
+  if (opt.progress_every <= 0) opt.progress_every = sc->progress_every;
+  RunnerSummary rs;
+  int           rc = stage_runner_run(&sv, &opt, &rs, err, errlen);
+  sum->cutbacks = rs.cutbacks, sum->failed = rc != 0, sum->wall = rs.wall;
+  memcpy(sum->final_stress, pt.cur.stress, sizeof sum->final_stress);
+  sum->finite = 1;
+  for (int i = 0; i < sc->mat.ntens; i++) sum->finite &= isfinite(pt.cur.stress[i]);
+  for (int i = 0; i < sc->mat.nstatv; i++) sum->finite &= isfinite(pt.cur.statev[i]);
+  if (sc->outdir[0]) write_json(sc, pt.t_start, pt.t_end);
+  free(pt.t_start);
+  free(pt.t_end);
+  return rc;
+}

@@ -1,0 +1,358 @@
+#include "stage_runner.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "checkpoint.h"
+
+/* ---------------------------------------------------------------------------------------------------- */
+/* Events                                                                                               */
+
+/* +1: the event is reached from below; -1: from above; 0: not a landing event. */
+static int event_direction(EventKind k) {
+  return k == EVENT_Q_BELOW ? -1 : (k == EVENT_Q_ABOVE || k == EVENT_P_ABOVE || k == EVENT_DEPTH || k == EVENT_LOAD);
+}
+
+/* ---------------------------------------------------------------------------------------------------- */
+/* The run                                                                                              */
+
+typedef struct {
+  StepSolver          *sv;
+  const RunnerOptions *opt;
+  RunState             st;
+  FILE                *hist;
+  int                  rank, promoted, last_ckpt;
+  struct timespec      w0;
+  double               stage_wall0;
+  StageView            view;
+  char                 hist_path[1024];
+} Run;
+
+static double wall_since(const struct timespec *w0) {
+  struct timespec w;
+  clock_gettime(CLOCK_MONOTONIC, &w);
+  return (double)(w.tv_sec - w0->tv_sec) + 1e-9 * (double)(w.tv_nsec - w0->tv_nsec);
+}
+
+/* The history: a fresh run writes history.csv.part, renamed once the first step is done, so a run that
+ * fails early leaves an earlier run's history in place; a restart continues history.csv at the offset the
+ * checkpoint recorded. */
+static int history_open(Run *r, char *err, size_t errlen) {
+  const char *dir = r->opt->outdir;
+  if (r->rank || !dir || !dir[0]) return 0;
+  snprintf(r->hist_path, sizeof r->hist_path, "%s/history.csv%s", dir, r->opt->restart ? "" : ".part");
+  if (r->opt->restart) {
+    if (truncate(r->hist_path, r->st.history_offset) || !(r->hist = fopen(r->hist_path, "a"))) {
+      snprintf(err, errlen, "%s: cannot continue the history at the checkpoint: %s", r->hist_path, strerror(errno));
+      return 1;
+    }
+    return 0;
+  }
+  if (!(r->hist = fopen(r->hist_path, "w"))) {
+    snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
+    return 1;
+  }
+  r->sv->history_header(r->sv->ctx, r->hist);
+  return 0;
+}
+
+/* The first valid output: the new files replace the earlier run's. */
+static int promote(Run *r) {
+  if (r->promoted || r->opt->restart) return 0;
+  r->promoted = 1;
+  if (r->hist) {
+    char final[1024];
+    fflush(r->hist);
+    snprintf(final, sizeof final, "%s/history.csv", r->opt->outdir);
+    if (rename(r->hist_path, final)) return 1;
+    snprintf(r->hist_path, sizeof r->hist_path, "%s", final);
+  }
+  if (!r->rank && r->opt->part_file) {
+    char final[1024];
+    snprintf(final, sizeof final, "%s", r->opt->part_file);
+    char *dot = strstr(final, ".part"); /* mesh.part.msh -> mesh.msh */
+    if (dot) {
+      memmove(dot, dot + 5, strlen(dot + 5) + 1);
+      if (rename(r->opt->part_file, final)) return 1;
+    }
+  }
+  return r->sv->promote ? r->sv->promote(r->sv->ctx) : 0;
+}
+
+static void history_row(Run *r, int its, double dt, int cut) {
+  if (!r->hist) return;
+  RunnerRow row = {r->st.t, dt, wall_since(&r->w0), r->st.stage, r->st.step, its, cut, r->view.name};
+  r->sv->history_row(r->sv->ctx, r->hist, &row);
+  fflush(r->hist);
+}
+
+static void progress_line(Run *r, const StepOutcome *o, double h) {
+  const RunnerOptions *opt = r->opt;
+  if (r->rank || opt->quiet || (opt->progress_every > 1 && r->st.step % opt->progress_every)) return;
+  double frac = o->progress >= 0 ? o->progress : r->view.duration > 0 ? r->st.t_stage / r->view.duration : 1;
+  frac        = fmin(fmax(frac, 0), 1);
+  double wall = wall_since(&r->w0), spent = wall - r->stage_wall0;
+  char   left[64] = "", part[256] = "";
+  if (frac >= 0.02 && frac < 1 && spent > 0.2) snprintf(left, sizeof left, ", about %.0f s left", spent * (1 - frac) / frac);
+  if (r->sv->progress) r->sv->progress(r->sv->ctx, part, sizeof part);
+  printf("step %5d  %-8s t = %-11.5g dt = %-10.4g newton %2d  %s cutbacks %d  wall %7.2f s  stage %3.0f%%%s%s\n",
+         r->st.step, r->view.name, r->st.t, h, o->its, part, r->st.cutbacks, wall, 100 * frac, left,
+         r->view.until.kind == EVENT_EVP_RATE_BELOW ? " (or less: it ends at steady state)" : "");
+  fflush(stdout);
+}
+
+/* The error estimate of a converged step relative to tol ('output', 'volume'), or -1 when there is none
+ * (worst_point, fixed steps, the first step of a stage, an instant step). */
+static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
+  const StepControl *sc = r->view.steps;
+  RunState          *st = &r->st;
+  if (!sc->adaptive || sc->measure == MEASURE_WORST_POINT || rq->h == 0) return -1;
+  if (sc->measure == MEASURE_VOLUME) return rq->first_in_stage || o->vol_err < 0 ? -1 : o->vol_err / sc->tol;
+  if (rq->first_in_stage || !st->have_prev || st->nout != o->nout || st->h_prev <= 0) return -1;
+  double ratio = rq->h / st->h_prev, worst = 0;
+  for (int g = 0; g <= o->group[o->nout - 1]; g++) {
+    double num = 0, den = 0, scale = 0;
+    for (int k = 0; k < o->nout; k++)
+      if (o->group[k] == g) {
+        double d = o->out[k] - st->out_prev[k];
+        num += pow(d - ratio * st->dout_prev[k], 2), den += d * d;
+        scale += fmax(st->out_scale[k] * st->out_scale[k], o->out[k] * o->out[k]);
+      }
+    double e = sqrt(num) / fmax(fmax(sqrt(den), 1e-6 * sqrt(scale)), 1e-300);
+    worst    = fmax(worst, e);
+  }
+  return worst / sc->tol;
+}
+
+static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq) {
+  RunState *st = &r->st;
+  int       same = st->have_prev && st->nout == o->nout, fresh = rq->first_in_stage || st->kink;
+  for (int k = 0; k < o->nout && k < STEP_MAX_OUT; k++) {
+    st->dout_prev[k] = same || fresh ? o->out[k] - st->out_prev[k] : 0;
+    st->out_prev[k]  = o->out[k];
+    st->out_scale[k] = fmax(st->out_scale[k], fabs(o->out[k]));
+  }
+  st->have_prev = rq->h > 0 && (same || fresh);
+  st->kink      = 0;
+  st->nout      = o->nout;
+  st->h_prev    = rq->h;
+}
+
+/* The length of the next step: the plan (fixed steps, resumed after a cutback once the planned step is
+ * done), or the controller (adaptive), then shortened to land on an output time. */
+static double next_length(Run *r, const StepRequest *rq, const StepOutcome *o, double ratio) {
+  const StepControl *sc = r->view.steps;
+  RunState          *st = &r->st;
+  double             dt;
+  if (sc->adaptive) dt = step_control_next(sc, rq->h, o->pnewdt, ratio);
+  else if (st->cut_in_plan) {
+    double planned_end = 0;
+    for (int k = 0; k <= st->k_planned; k++) planned_end += step_control_planned(sc, r->view.duration, k);
+    if (st->t_stage >= planned_end * (1 - 1e-12)) {
+      st->k_planned++, st->cut_in_plan = 0;
+      dt = step_control_planned(sc, r->view.duration, st->k_planned);
+    } else dt = fmin(2 * rq->h, planned_end - st->t_stage);
+  } else dt = step_control_planned(sc, r->view.duration, ++st->k_planned);
+  return dt;
+}
+
+/* The step to try: the planned length, cut to the stage's end, an event landing or an output time. */
+static void plan_step(Run *r, StepRequest *rq, int *at_output) {
+  RunState            *st = &r->st;
+  const RunnerOptions *opt = r->opt;
+  double               dur = r->view.duration;
+  memset(rq, 0, sizeof *rq);
+  rq->s = st->stage, rq->t0 = st->t, rq->ts0 = st->t_stage, rq->first_in_stage = st->first_in_stage;
+  *at_output = 0;
+  if (st->pending_instant) rq->h = 0;
+  else {
+    double h = st->landing > 0 ? st->landing : fmin(st->dt, dur - st->t_stage);
+    if (dur - st->t_stage - h < 1e-9 * dur) h = dur - st->t_stage; /* no sliver at the stage's end */
+    while (st->next_time < opt->nout_times && opt->out_times[st->next_time] <= st->t * (1 + 1e-14)) st->next_time++;
+    if (st->next_time < opt->nout_times && st->t + h >= opt->out_times[st->next_time] * (1 - 1e-12))
+      h = opt->out_times[st->next_time] - st->t, *at_output = 1;
+    rq->h = h;
+  }
+  rq->lambda = r->view.instant || dur == 0 ? 1 : fmin((st->t_stage + rq->h) / dur, 1);
+  const StepControl *sc = r->view.steps;
+  rq->umat_tol          = sc->adaptive && sc->measure == MEASURE_WORST_POINT ? (sc->tol > 0 ? sc->tol : -1) : 0;
+  if (!sc->adaptive) rq->umat_tol = -1; /* fixed steps: the material as given */
+  rq->want_volume_error = sc->adaptive && sc->measure == MEASURE_VOLUME;
+}
+
+enum { STEP_ACCEPTED, STEP_RETRY, STEP_FAILED };
+
+/* Judge a solved step: cut back (failure, the UMAT's PNEWDT, the error measure), land on an event, or
+ * accept. */
+static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ratio, int *landed, char *err, size_t errlen) {
+  RunState          *st = &r->st;
+  const StepControl *sc = r->view.steps;
+  *landed = 0, *ratio = -1;
+  if (o->converged && !o->kink) *ratio = error_ratio(r, o, rq);
+  if (o->converged && o->kink) st->kink = 1;
+  if (*ratio > 1 && st->reject_ratio > 0 && *ratio > 0.5 * st->reject_ratio) {
+    /* A shorter step did not lower the estimate as O(dt) would: the previous increment belongs to another
+       regime (a jump of the load, a point starting to yield). Accept, and restart the estimate here. */
+    *ratio = -1, st->kink = 1;
+  }
+  int error_cut = *ratio > 1 && rq->h > sc->min * (1 + 1e-9);
+  if (!o->converged || o->pnewdt < 1 || error_cut) {
+    double factor = step_control_cut_factor(!o->converged, o->pnewdt, *ratio);
+    st->cutbacks++, st->cut_in_step++;
+    if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio;
+    if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min)) {
+      snprintf(err, errlen, "stage '%s': step failed for good at t = %.6g s (dt = %.3g s): %s", r->view.name, st->t, rq->h,
+               !o->converged ? (o->why ? o->why : "not converged")
+               : o->pnewdt < 1 ? "the UMAT asked for a smaller step" : "the time-step error stays above its tolerance");
+      return STEP_FAILED;
+    }
+    st->dt = rq->h * factor, st->landing = 0, st->cut_in_plan = !sc->adaptive;
+    return STEP_RETRY;
+  }
+  int dir = event_direction(r->view.until.kind);
+  if (dir && rq->h > 0) {
+    double v = o->event[r->view.until.kind], target = r->view.until.value, scale = fmax(fabs(target), 1e-300);
+    double d = dir * (v - target) / scale;
+    if (d > EVENT_TOL) { /* overshot: redo the step shorter, by the secant through the step's start */
+      double frac = (target - st->event_prev) / (v - st->event_prev);
+      st->landing = rq->h * fmin(fmax(isfinite(frac) ? frac : 0.5, 0.01), 0.999);
+      return STEP_RETRY;
+    }
+    *landed = d >= -EVENT_TOL;
+  }
+  return STEP_ACCEPTED;
+}
+
+/* After an accepted step: the next length, and a landing on the event if it falls within it. */
+static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, double ratio) {
+  RunState *st = &r->st;
+  if (st->pending_instant) st->pending_instant = 0, st->dt = step_control_planned(r->view.steps, r->view.duration, 0);
+  else st->dt = next_length(r, rq, o, ratio);
+  st->landing = 0;
+  int dir = event_direction(r->view.until.kind);
+  if (dir && rq->h > 0) {
+    double v = o->event[r->view.until.kind], target = r->view.until.value;
+    if (dir * (v - st->event_prev) > 0) { /* moving toward the event: aim at it (secant) */
+      double h_event = rq->h * (target - v) / (v - st->event_prev);
+      if (h_event > 0 && h_event < st->dt) st->landing = h_event * (1 + 0.5 * EVENT_TOL);
+    }
+  }
+  if (dir) st->event_prev = o->event[r->view.until.kind];
+  remember_output(r, o, rq);
+  st->first_in_stage = 0, st->cut_in_step = 0, st->reject_ratio = 0;
+}
+
+static int write_fields(Run *r, char *err, size_t errlen) {
+  if (!r->sv->write_fields) return 0;
+  return r->sv->write_fields(r->sv->ctx, r->st.t, err, errlen);
+}
+
+/* One stage from where the state says. Returns 0 (done), 1 (failed), 3 (stopped by -max_steps). */
+static int run_stage(Run *r, char *err, size_t errlen) {
+  StepSolver          *sv = r->sv;
+  RunState            *st = &r->st;
+  const RunnerOptions *opt = r->opt;
+  int                  resumed = st->in_stage;
+  if (sv->stage_begin(sv->ctx, st->stage, resumed, &r->view, err, errlen)) return 1;
+  if (!resumed) {
+    st->t_stage = 0, st->k_planned = 0, st->cut_in_plan = 0, st->landing = 0, st->first_in_stage = 1;
+    st->pending_instant = r->view.instant || r->view.duration == 0;
+    st->dt              = step_control_planned(r->view.steps, r->view.duration, 0);
+    st->event_prev      = r->view.event_start;
+  }
+  st->in_stage   = 1;
+  r->stage_wall0 = wall_since(&r->w0);
+  int landed = 0, rate_done = 0;
+  while (st->pending_instant || (!landed && !rate_done && st->t_stage < r->view.duration * (1 - 1e-12))) {
+    StepRequest rq;
+    StepOutcome o;
+    int         at_output;
+    plan_step(r, &rq, &at_output);
+    memset(&o, 0, sizeof o);
+    o.pnewdt = 1e300, o.progress = -1, o.vol_err = -1;
+    if (sv->solve(sv->ctx, &rq, &o, err, errlen)) return 1;
+    double ratio;
+    int    verdict = judge(r, &rq, &o, &ratio, &landed, err, errlen);
+    if (verdict == STEP_FAILED) {
+      if (sv->replay && opt->outdir && opt->outdir[0]) sv->replay(sv->ctx, opt->outdir, err, errlen);
+      return 1;
+    }
+    if (verdict == STEP_RETRY) continue;
+    int was_instant = st->pending_instant, cut = st->cut_in_step;
+    if (sv->accept(sv->ctx, &rq, err, errlen)) return 1;
+    st->t += rq.h, st->t_stage += rq.h, st->step++, st->its += o.its;
+    after_accept(r, &rq, &o, ratio);
+    if (promote(r)) {
+      snprintf(err, errlen, "%s: cannot rename the new output files into place", opt->outdir);
+      return 1;
+    }
+    history_row(r, o.its, rq.h, cut);
+    progress_line(r, &o, rq.h);
+    if (sv->check && sv->check(sv->ctx, st->t, err, errlen)) return 1;
+    rate_done = !was_instant && r->view.until.kind == EVENT_EVP_RATE_BELOW && o.event[EVENT_EVP_RATE_BELOW] < r->view.until.value;
+    int stage_done = landed || rate_done || (!st->pending_instant && st->t_stage >= r->view.duration * (1 - 1e-12));
+    if (at_output || (opt->fields_every > 0 && st->step % opt->fields_every == 0) || stage_done)
+      if (write_fields(r, err, errlen)) return 1;
+    if (stage_done && !landed && r->view.must_reach && r->view.until.kind != EVENT_NONE) {
+      snprintf(err, errlen, "stage '%s': %s = %g (until) was not reached by the stage's end (t = %g s): lengthen its duration",
+               r->view.name, stage_event_name(r->view.until.kind), r->view.until.value, st->t);
+      return 1;
+    }
+    if (stage_done) st->stage++, st->in_stage = 0;
+    if (opt->checkpoint_every > 0 && st->step % opt->checkpoint_every == 0) {
+      if (r->hist) fflush(r->hist);
+      st->history_offset = r->hist ? ftell(r->hist) : 0;
+      if (checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen)) return 1;
+    }
+    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return 3;
+    if (stage_done) return 0;
+  }
+  st->stage++, st->in_stage = 0;
+  return 0;
+}
+
+int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *sum, char *err, size_t errlen) {
+  Run r;
+  memset(&r, 0, sizeof r);
+  memset(sum, 0, sizeof *sum);
+  r.sv = sv, r.opt = opt, r.last_ckpt = -1;
+  MPI_Comm_rank(sv->comm, &r.rank);
+  if (opt->checkpoint_every < 0) {
+    snprintf(err, errlen, "-checkpoint_every %d: expected a number of steps >= 0 (0: no checkpoints)", opt->checkpoint_every);
+    return 2;
+  }
+  if (opt->restart) {
+    int rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen);
+    if (rc) return rc;
+  }
+  if (history_open(&r, err, errlen)) return 1;
+  clock_gettime(CLOCK_MONOTONIC, &r.w0);
+  if (!opt->restart) {
+    r.view.name = sv->nstage > 0 ? "start" : "";
+    history_row(&r, 0, 0, 0);
+    if (write_fields(&r, err, errlen)) return 1;
+  }
+  int rc = 0;
+  while (!rc && r.st.stage < sv->nstage) {
+    rc = run_stage(&r, err, errlen);
+    if (rc == 3) {
+      if (!r.rank && !opt->quiet) printf("stopped after %d steps (-max_steps)\n", r.st.step);
+      sum->stopped = 1, rc = 0;
+      break;
+    }
+  }
+  if (r.hist) fclose(r.hist);
+  long calls = sv->umat_calls ? sv->umat_calls(sv->ctx) : 0;
+  MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
+  sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
+  sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
+  if (rc && opt->outdir && opt->outdir[0] && !r.promoted && !opt->restart) {
+    size_t len = strlen(err);
+    snprintf(err + len, errlen - len, " (nothing of an earlier run in %s was replaced; this run's files end in .part)", opt->outdir);
+  }
+  return rc;
+}

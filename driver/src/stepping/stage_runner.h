@@ -1,0 +1,114 @@
+/* The one stage runner of every scene kind (material point, finite elements, indentation).
+ *
+ * A scene is a list of stages. The runner divides each stage into steps (fixed plan or adaptive with the
+ * scene's error measure, step_control.h), applies instant loads as a first zero-time step, cuts a step back
+ * when it fails or is too inaccurate (one policy), lands on events ('until': depth, load, p, q) and on the
+ * output times, stops on a viscoplastic rate, writes the history (its own rows are the solver's columns),
+ * prints progress, writes checkpoints (the runner's state and the solver's, one set, kept until the next is
+ * complete) and restarts from them, and writes a replay of a UMAT call that failed for good.
+ *
+ * The physics is the solver's: a StepSolver solves one step from its committed state (SNES for FE scenes,
+ * the semismooth Newton of the contact module for indentation, the mixed-control Newton for a point) and
+ * reports what the runner needs to judge it. */
+#ifndef STAGE_RUNNER_H
+#define STAGE_RUNNER_H
+
+#include <mpi.h>
+#include <stdio.h>
+
+#include "../io/binfile.h"
+#include "../io/yaml_doc.h"
+#include "step_control.h"
+
+/* What the runner needs of a stage. */
+typedef struct {
+  const char        *name;
+  double             duration;
+  int                instant; /* the targets jump in a first zero-time step, then are held */
+  const StepControl *steps;
+  StageEvent         until;
+  int                must_reach; /* the until event must happen within the duration (else the run fails) */
+  double             event_start; /* the until quantity at the stage's start (for landing) */
+} StageView;
+
+/* The step to solve: from the committed state at total time t0 (stage time ts0) over h (0: an instant jump);
+ * lambda is the fraction of the stage's ramp done at the step's end. */
+typedef struct {
+  int    s, first_in_stage;
+  double t0, ts0, h, lambda;
+  double umat_tol; /* >= 0: evaluate the converged state with the UMAT's own control at this tol (worst_point) */
+  int    want_volume_error;
+} StepRequest;
+
+#define STEP_MAX_OUT 12
+typedef struct {
+  int         converged;
+  const char *why;     /* when not converged */
+  double      pnewdt;  /* smallest PNEWDT of the UMAT calls at the converged state (large: no request) */
+  int         its;     /* Newton iterations */
+  double      event[EVENT_KINDS];  /* the event quantities at the step's end */
+  double      progress;            /* fraction of the stage done, if the solver knows better (< 0: by time) */
+  int         nout;                /* reported outputs ('output' measure), in groups */
+  double      out[STEP_MAX_OUT];
+  int         group[STEP_MAX_OUT];
+  double      vol_err;             /* 'volume' measure: relative estimate (< 0: none) */
+  int         kink;                /* the step crossed a jump of the rates the estimates rest on (an active-set
+                                      change): no estimate for it, and the next starts afresh */
+} StepOutcome;
+
+/* A row of the history, as the runner knows it; the solver writes its columns. */
+typedef struct {
+  double t, dt, wall;
+  int    stage, step, its, cutbacks;
+  const char *stage_name;
+} RunnerRow;
+
+typedef struct {
+  void       *ctx;
+  const char *kind; /* for messages: "fe", "indentation", "point" */
+  int         nstage;
+  MPI_Comm    comm;
+  /* Stage s begins (resumed: from a checkpoint, midway): the solver records its start values. */
+  int (*stage_begin)(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen);
+  /* Solve the step from the committed state; o->converged says whether it did. Return nonzero only on a
+   * fatal error (err filled). */
+  int (*solve)(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen);
+  /* Commit the converged step. */
+  int (*accept)(void *ctx, const StepRequest *rq, char *err, size_t errlen);
+  /* Optional: after each accepted step, a check that can stop the run (err filled, nonzero). */
+  int (*check)(void *ctx, double t, char *err, size_t errlen);
+  /* Output: history columns (rank 0 writes), the solver's part of the progress line, fields. */
+  void (*history_header)(void *ctx, FILE *fp);
+  void (*history_row)(void *ctx, FILE *fp, const RunnerRow *row);
+  void (*progress)(void *ctx, char *buf, size_t n);
+  int (*write_fields)(void *ctx, double t, char *err, size_t errlen); /* may be NULL */
+  int (*promote)(void *ctx);                                           /* the solver's .part files; may be NULL */
+  /* Checkpoint: the solver's state (this rank's file). */
+  int (*save)(void *ctx, BinFile *f);
+  int (*load)(void *ctx, BinFile *f);
+  /* After a step failed for good: write a replay of the failing UMAT call into dir; append to msg. */
+  void (*replay)(void *ctx, const char *dir, char *msg, size_t n);
+  /* Totals for the last line. */
+  long (*umat_calls)(void *ctx);
+} StepSolver;
+
+typedef struct {
+  const char        *outdir;      /* "" or NULL: no files at all (the extremes sweep) */
+  const char        *scene_file;  /* hashed into checkpoints: a restart needs the same scene */
+  int                checkpoint_every, restart, max_steps, progress_every, fields_every, quiet;
+  int                nout_times;  /* fields at exactly these times (besides fields_every and stage ends) */
+  const double      *out_times;
+  const char        *part_file;   /* another new file of the run, named *.part until its first step (the mesh) */
+} RunnerOptions;
+
+typedef struct {
+  int    steps, cutbacks, its, rejected_error, failed, stopped;
+  long   umat_calls; /* all ranks */
+  double t, wall;
+} RunnerSummary;
+
+/* Run every stage. Returns 0, or 1 (a step failed for good, an event was missed, a file could not be
+ * written) or 2 (bad input found at run time: a restart that does not match) with err filled. */
+int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *sum, char *err, size_t errlen);
+
+#endif
