@@ -4,6 +4,10 @@
 !> Prints one Markdown table row per case: median ns per call over the repetitions, the spread, and
 !> the median local Newton iterations.
 !> Usage: umat_bench [calls_per_repetition] [repetitions] [elastic|vp|ri]
+!>        umat_bench <calls> 1 fuzz [results_file]: the distribution of single-call times over random
+!>        (seeded, reproducible) materials, states, strain increments and time steps, the kind of input
+!>        a fuzzer passes; optionally every call's STRESS, STATEV 1-32 and clock ticks (ns) written to
+!>        results_file.
 program umat_bench
   use, intrinsic :: iso_fortran_env, only: real64, int64, output_unit
   implicit none
@@ -28,6 +32,10 @@ program umat_bench
   only = ''
   if (command_argument_count() >= 3) call get_command_argument(3, only)   ! run only this kind
 
+  if (trim(only) == 'fuzz') then
+    call run_fuzz()
+    stop
+  end if
   write (output_unit, '(a)') '| case | NTENS | median ns/call | min-max ns/call | median local iterations |'
   write (output_unit, '(a)') '|---|---|---|---|---|'
   call run_case('elastic (both frames inside)', 6, 'elastic')
@@ -106,6 +114,107 @@ contains
     write (output_unit, '(a,a,a,i0,a,f9.1,a,f9.1,a,f9.1,a,f5.1,a)') '| ', name, ' | ', ntens, ' | ', median(times), &
       ' | ', minval(times), ' - ', maxval(times), ' | ', median(iters), ' |'
   end subroutine run_case
+
+  !> ncalls single calls in 8 blocks, one material per block (Woodford with viscosities, pc0 and
+  !> lambda_p scaled by random powers of ten; block 8 rate independent), each call from a random
+  !> initialised state (frame stresses around -p with a random deviator, pc of 0.1-300 MPa) with a
+  !> random strain increment of 1e-7 to 1e-2 and DTIME of 1e-3 to 1e5 s. Prints median, p90, p99,
+  !> p99.9 and max of the time per call, and how many calls used the fallback (STATEV(34) bit 16)
+  !> and were rejected (PNEWDT < 1).
+  subroutine run_fuzz()
+    integer, parameter :: nblock = 8
+    real(real64) :: props(23), stress(6), statev(nstatv), ddsdde(6, 6), dstran(6), pnewdt, dtime, u(40), &
+                    p, sse, spd, scd, rpl, ddsddt(6), drplde(6), drpldt, stran(6), time(2), temp, dtemp, &
+                    predef(1), dpred(1), coords(3), drot(3, 3), celent, f0(3, 3), f1(3, 3), t_sorted(ncalls)
+    integer(int64) :: t0, t1, rate, ticks(ncalls)
+    integer :: i, b, nfall, nrej, jstep(4), unit_out
+    character(len=256) :: out_file
+    character(len=80) :: cmname
+    external :: umat
+    out_file = ''
+    if (command_argument_count() >= 4) call get_command_argument(4, out_file)
+    if (len_trim(out_file) > 0) open (newunit=unit_out, file=trim(out_file), status='replace', action='write')
+    sse = 0; spd = 0; scd = 0; stran = 0; time = 0; temp = 0; dtemp = 0; predef = 0; dpred = 0; coords = 0
+    drot = reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3]); celent = 1; f0 = 0; f1 = 0; jstep = 1
+    cmname = 'CAMCLAY9'
+    call random_seed(put=[(4321 + i, i = 1, 64)])
+    nfall = 0
+    nrej = 0
+    call system_clock(t0, rate)
+    do i = 1, ncalls
+      b = 1 + ((i - 1) * nblock) / ncalls
+      if (i == 1 .or. b /= 1 + ((i - 2) * nblock) / ncalls) then
+        call random_number(u)
+        props = woodford
+        props(21:23) = [u(1) - 0.5_real64, u(2) - 0.5_real64, u(3) + 0.1_real64]
+        props(13) = props(13) * 10**(8 * u(4) - 6)
+        props(19) = props(19) * 10**(8 * u(5) - 6)
+        props(12) = props(12) * 10**(2 * u(6) - 1)
+        props(18) = props(18) * 10**(2 * u(7) - 1)
+        props(8) = props(8) * 10**(2 * u(8) - 1)
+        props(17) = props(17) * 10**(2 * u(9) - 1)
+        if (b == nblock) props([13, 19]) = 0
+      end if
+      call random_number(u)
+      p = 10**(3 * u(1) - 0.5_real64)
+      statev = 0
+      statev(1:6) = -p * [1, 1, 1, 0, 0, 0] + p * (u(2:7) - 0.5_real64)
+      statev(14:19) = -p * [1, 1, 1, 0, 0, 0] + p * (u(8:13) - 0.5_real64)
+      statev(13) = 10**(3.5_real64 * u(14) - 1)
+      statev(26) = 10**(3.5_real64 * u(15) - 1)
+      stress = 0.5_real64 * (statev(1:6) + statev(14:19))
+      dstran = 10**(5 * u(16) - 7) * (u(17:22) - [0.7_real64, 0.7_real64, 0.7_real64, 0.5_real64, &
+                                                   0.5_real64, 0.5_real64])
+      dtime = 10**(8 * u(23) - 3)
+      pnewdt = 1
+      call system_clock(t0)
+      call umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, stran, dstran, &
+                time, dtime, temp, dtemp, predef, dpred, cmname, 3, 3, 6, nstatv, props, 23, &
+                coords, drot, pnewdt, celent, f0, f1, 1, 1, 1, 1, jstep, 1)
+      call system_clock(t1)
+      ticks(i) = t1 - t0
+      if (pnewdt < 1) then
+        nrej = nrej + 1
+      else if (iand(nint(statev(34)), 16) /= 0) then
+        nfall = nfall + 1
+      end if
+      if (len_trim(out_file) > 0) write (unit_out, '(i0,1x,l1,38es24.16,1x,i0)') i, pnewdt < 1, stress, &
+                                          statev(1:32), ticks(i)
+    end do
+    if (len_trim(out_file) > 0) close (unit_out)
+    t_sorted = real(ticks, real64) / rate * 1e9_real64
+    call shell_sort(t_sorted)
+    write (output_unit, '(a)') '| calls | median ns | p90 ns | p99 ns | p99.9 ns | max ns | fallback calls | rejected |'
+    write (output_unit, '(a)') '|---|---|---|---|---|---|---|---|'
+    write (output_unit, '(a,i0,5(a,f0.0),a,i0,a,i0,a)') '| ', ncalls, ' | ', t_sorted(pct(50.0_real64)), &
+      ' | ', t_sorted(pct(90.0_real64)), ' | ', t_sorted(pct(99.0_real64)), ' | ', &
+      t_sorted(pct(99.9_real64)), ' | ', t_sorted(ncalls), ' | ', nfall, ' | ', nrej, ' |'
+  end subroutine run_fuzz
+
+  integer function pct(q)
+    real(real64), intent(in) :: q
+    pct = max(1, min(ncalls, nint(q / 100 * ncalls)))
+  end function pct
+
+  subroutine shell_sort(x)
+    real(real64), intent(inout) :: x(:)
+    real(real64) :: t
+    integer :: gap, i, j
+    gap = size(x) / 2
+    do while (gap > 0)
+      do i = gap + 1, size(x)
+        t = x(i)
+        j = i
+        do while (j > gap)
+          if (x(j - gap) <= t) exit
+          x(j) = x(j - gap)
+          j = j - gap
+        end do
+        x(j) = t
+      end do
+      gap = merge(gap / 2, (gap * 5) / 11, gap == 2)
+    end do
+  end subroutine shell_sort
 
   function median(x) result(m)
     real(real64), intent(in) :: x(:)

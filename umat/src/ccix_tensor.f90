@@ -252,7 +252,7 @@ contains
     integer, intent(in) :: n
     real(real64), intent(in) :: a(n, n)
     real(real64), intent(out) :: w(n), q(n, n)
-    real(real64) :: b(n, n), off, theta, t, c, s, bip, biq
+    real(real64) :: b(n, n), off, theta, t, c, s, bip, biq, h, scale
     integer :: sweep, p, r, i
     b = 0.5_real64 * (a + transpose(a))
     q = 0.0_real64
@@ -260,18 +260,30 @@ contains
       q(i, i) = 1.0_real64
     end do
     do sweep = 1, 100
+      ! Off-diagonal norm relative to the largest entry (scaled: no overflow for any finite A).
+      scale = maxval(abs(b))
+      if (.not. (scale > 0)) exit
       off = 0.0_real64
       do p = 1, n - 1
         do r = p + 1, n
-          off = off + b(p, r)**2
+          off = off + (b(p, r) / scale)**2
         end do
       end do
-      if (off <= (1.0e-17_real64 * maxval(abs(b)))**2) exit
+      if (off <= 1.0e-34_real64) exit
       do p = 1, n - 1
         do r = p + 1, n
           if (b(p, r) == 0.0_real64) cycle
-          theta = (b(r, r) - b(p, p)) / (2 * b(p, r))
-          t = sign(1.0_real64, theta) / (abs(theta) + sqrt(theta**2 + 1))
+          ! t = tan of the rotation angle, the smaller root of t^2 + 2 theta t - 1 = 0 with
+          ! theta = (b_rr - b_pp) / (2 b_pr). For |theta| > 1e150 (b_pr tiny against the diagonal gap)
+          ! theta^2 would overflow, and the quotient itself for a subnormal b_pr: there t = 1/(2 theta)
+          ! to within 1e-300 relative, computed as b_pr / (b_rr - b_pp) without forming theta.
+          h = b(r, r) - b(p, p)
+          if (abs(b(p, r)) < 1.0e-150_real64 * abs(h)) then
+            t = b(p, r) / h
+          else
+            theta = h / (2 * b(p, r))
+            t = sign(1.0_real64, theta) / (abs(theta) + sqrt(theta**2 + 1))
+          end if
           c = 1 / sqrt(t**2 + 1)
           s = t * c
           do i = 1, n

@@ -9,10 +9,10 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                 celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, jstep, kinc)
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
-                         tangent_to_abaqus, rotate_mandel, mandel_w
+                         tangent_to_abaqus, rotate_mandel, mandel_w, is_finite
   use ccix_props, only: ip_phi, ip_tol, is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, &
                         is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
-                        is_f_hard, is_f_soft, nstatv_diag, message_len
+                        is_f_hard, is_f_soft, nstatv_diag, nstatv_min, message_len
   use ccix_frame, only: flag_floor, flag_tension, flag_fallback
   use ccix_mixture, only: step_info_t, mixture_integrate, hard, soft
   use ccix_material_cache, only: prepare_material, current_material
@@ -28,6 +28,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   type(step_info_t) :: info
   real(real64) :: deps(6), sig(6), d(6, 6), sig_full(6), phi, tol, ratio, frac(2)
   real(real64) :: sig_n(6, 2), pc_n(2), sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6)
+  real(real64) :: sv(nstatv_min)   ! STATEV 1-32 at the start, rotated: STATEV itself changes only on success
   real(real64), parameter :: cutback = 0.25_real64, max_growth = 1.5_real64
   integer, parameter :: sig_slot(2) = [is_sig_hard, is_sig_soft], evp_slot(2) = [is_evp_hard, is_evp_soft]
   integer :: code, k, flags
@@ -51,9 +52,18 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   tol = 0
   if (nprops >= ip_tol) tol = props(ip_tol)
 
+  ! Arguments no smaller step can repair are rejected like a failed step (PNEWDT < 1, STRESS and
+  ! STATEV unchanged, a message naming the argument): a negative or non-finite DTIME, a non-finite
+  ! stored state (docs/umat.md "Rejected calls").
+  if (bad_arguments()) then
+    call suggest_step(pnewdt, cutback)
+    ddsdde = current_material%cbar_abaqus(1:ntens, 1:ntens)
+    return
+  end if
+
   ! State at the start of the increment. pc_hard <= 0 marks an uninitialised state: both frames
   ! start at the stress passed in, with pc = pc0 and no viscoplastic strain (theory.md §2).
-  initialise = .not. (statev(is_pc_hard) > 0)
+  initialise = statev(is_pc_hard) <= 0
   if (initialise) then
     sig_full = 0
     sig_full(1:ntens) = stress
@@ -61,16 +71,19 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
       sig_n(:, k) = stress_to_mandel(sig_full)
       pc_n(k) = current_material%frames(k)%pc0
     end do
+    sv = 0
   else
     ! Rigid rotation of the increment (umat-interface.md): rotate the stored tensors, not the normal.
+    ! A copy is rotated, so that a rejected call returns STATEV exactly as it came in.
+    sv = statev(1:nstatv_min)
     if (drot(1, 1) /= 1 .or. drot(2, 2) /= 1 .or. drot(3, 3) /= 1 .or. drot(1, 2) /= 0 .or. &
         drot(2, 1) /= 0 .or. drot(1, 3) /= 0 .or. drot(3, 1) /= 0 .or. drot(2, 3) /= 0 .or. &
-        drot(3, 2) /= 0) call rotate_state(statev)
+        drot(3, 2) /= 0) call rotate_state(sv)
     do k = hard, soft
-      sig_n(:, k) = statev(sig_slot(k):sig_slot(k) + 5) * mandel_w   ! Voigt stress -> Mandel
+      sig_n(:, k) = sv(sig_slot(k):sig_slot(k) + 5) * mandel_w   ! Voigt stress -> Mandel
     end do
-    pc_n(hard) = statev(is_pc_hard)
-    pc_n(soft) = statev(is_pc_soft)
+    pc_n(hard) = sv(is_pc_hard)
+    pc_n(soft) = sv(is_pc_soft)
   end if
 
   ! Strain increment: NTENS = 4 is 11, 22, 33, 12 with 13 = 23 = 0 (plane strain, axisymmetric).
@@ -119,21 +132,17 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
     ddsdde = current_material%cbar_abaqus(1:ntens, 1:ntens)
   end if
   do k = hard, soft
-    statev(sig_slot(k):sig_slot(k) + 5) = sig_frames(:, k) / mandel_w
+    sv(sig_slot(k):sig_slot(k) + 5) = sig_frames(:, k) / mandel_w
   end do
-  statev(is_pc_hard) = pc(hard)
-  statev(is_pc_soft) = pc(soft)
-  if (initialise) then
-    statev(is_evp_hard:is_evp_hard + 5) = 0
-    statev(is_evp_soft:is_evp_soft + 5) = 0
-    statev(is_evp_total:is_evp_total + 5) = 0
-  end if
+  sv(is_pc_hard) = pc(hard)
+  sv(is_pc_soft) = pc(soft)
   if (info%viscoplastic) then
     do k = hard, soft
-      statev(evp_slot(k):evp_slot(k) + 5) = statev(evp_slot(k):evp_slot(k) + 5) + devp(:, k) * mandel_w
+      sv(evp_slot(k):evp_slot(k) + 5) = sv(evp_slot(k):evp_slot(k) + 5) + devp(:, k) * mandel_w
     end do
-    statev(is_evp_total:is_evp_total + 5) = statev(is_evp_total:is_evp_total + 5) + devp_total * mandel_w
+    sv(is_evp_total:is_evp_total + 5) = sv(is_evp_total:is_evp_total + 5) + devp_total * mandel_w
   end if
+  statev(1:nstatv_min) = sv
   if (nstatv >= nstatv_diag) then
     ! Diagnostics (docs/umat.md): iterations, flags, yield function values at the end of the step.
     flags = 0
@@ -149,6 +158,43 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
   end if
 
 contains
+
+  !> True, with one line on error_unit naming the argument, its value and what was expected, when
+  !> DTIME is negative or not finite, or the stored state is not usable: a slot 1-32 not finite (unless
+  !> slot 13 <= 0 marks the state as uninitialised), or pc of a frame in use (slot 26) not positive.
+  logical function bad_arguments() result(bad)
+    character(len=*), parameter :: where = '; increment rejected (PNEWDT < 1) at element '
+    integer :: slot
+    bad = .true.
+    if (.not. (dtime >= 0 .and. dtime <= huge(dtime))) then
+      write (error_unit, '(a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: DTIME = ', dtime, &
+        ': expected a finite time increment >= 0', where, noel, ', integration point ', npt
+      return
+    end if
+    if (is_finite(statev(is_pc_hard)) .and. statev(is_pc_hard) <= 0) then
+      bad = .false.   ! uninitialised: every stored slot is set from PROPS and STRESS
+      return
+    end if
+    if (all(abs(statev(1:nstatv_min)) <= huge(dtime))) then   ! all finite (NaN compares false)
+      slot = nstatv_min + 1
+    else
+      slot = 1
+    end if
+    do slot = slot, nstatv_min
+      if (.not. is_finite(statev(slot))) then
+        write (error_unit, '(a,i0,a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: STATEV(', slot, ') = ', &
+          statev(slot), ': expected a finite number', where, noel, ', integration point ', npt
+        return
+      end if
+    end do
+    if (props(ip_phi) < 1 .and. .not. (statev(is_pc_soft) > 0)) then
+      write (error_unit, '(a,i0,a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: STATEV(', is_pc_soft, ') = ', &
+        statev(is_pc_soft), ': expected the soft-frame pc > 0 (slot 13 > 0: the state is initialised)', &
+        where, noel, ', integration point ', npt
+      return
+    end if
+    bad = .false.
+  end function bad_arguments
 
   !> Hosts differ in what PNEWDT holds on entry: Abaqus sets it large and takes the smallest request;
   !> CalculiX passes -1 ("no request") and redoes the increment for ANY positive value, above 1 too
