@@ -2,8 +2,8 @@
 exist: Sneddon's cone, Hertz's sphere, the flat punch, each on a large axisymmetric block graded toward
 the tip, with the error falling under refinement; the contact invariants at every converged step of a
 load-hold-unload run (contact force = load, no penetration, lambda >= 0), the release to zero depth and
-an empty active set, 1 vs 2 ranks, direct vs field-split solvers, 3D Berkovich vs its equivalent cone,
-a Cam-Clay IX indentation that creeps in the hold, and bad indenter input."""
+an empty active set, 1 vs 2 ranks, direct vs field-split solvers, 3D Berkovich vs its equivalent cone (a regression check),
+a Cam-Clay IX indentation whose creep scales with t/eta, and bad indenter input."""
 import math
 import os
 import shutil
@@ -151,10 +151,14 @@ def test_direct_and_fieldsplit_agree(tmp_path):
     assert len(a) == len(b) and diff < 1e-8
 
 
+MEASURED_BERKOVICH = {0.04: 0.1401, 0.03: 0.1350}      # Pb / Pc - 1, measured 2026-11 (regression values)
+
+
 def test_berkovich_vs_equivalent_cone(tmp_path):
     """Elastic, the same depth: the 3D Berkovich (half model, mirror plane x = 0) against the axisymmetric
-    cone of the same projected area (70.3 deg). The difference is stated; it shrinks as the 3D mesh is
-    refined (P1 tetrahedra are stiff where the contact radius spans few elements)."""
+    cone of the same projected area (70.3 deg). A labelled REGRESSION check of the measured differences (it
+    shrinks as the 3D mesh is refined: P1 tetrahedra are stiff where the contact radius spans few elements;
+    docs/contact.md), not an accuracy check."""
     c = run(axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", PUSH % 0.1, W=2, H=2, h_tip=0.02, h_far=0.2,
                       r_fine=0.4, r_contact=0.8), tmp_path / "cone")
     diff = {}
@@ -174,35 +178,55 @@ stages:
         b = run(cube, tmp_path / f"berkovich{h_tip}")
         Pb, Pc = 2 * b["load"][-1], c["load"][-1]   # the half model carries half the load
         diff[h_tip] = Pb / Pc - 1
-        print(f"h = 0.1: Berkovich (3D h_tip {h_tip}) P = {Pb:.4g}, equivalent cone P = {Pc:.4g}, difference {diff[h_tip]:+.1%}")
-    assert diff[0.03] < diff[0.04] and abs(diff[0.03]) < 0.15
+        print(f"h = 0.1: Berkovich (3D h_tip {h_tip}) P = {Pb:.6g}, equivalent cone P = {Pc:.6g}, difference {diff[h_tip]:+.3%}")
+    # REGRESSION check (no independent value: the 3D mesh is too coarse for the Berkovich-cone difference):
+    # the measured differences, +14.01 % and +13.50 %, to 0.1 % (absolute).
+    assert abs(diff[0.04] - MEASURED_BERKOVICH[0.04]) < 1e-3 and abs(diff[0.03] - MEASURED_BERKOVICH[0.03]) < 1e-3
 
 
-def test_camclay_creeps_in_hold(tmp_path):
-    """Cam-Clay IX kerogen (soft frame only) under a cone: the indenter sinks during the hold at constant load,
-    the invariants hold, and a residual indent remains after unloading."""
-    scene = f"""scene: fe
+def camclay_indent(eta, T):
+    """Cam-Clay IX kerogen (soft frame only, eta_soft = eta) under a cone, coarse axisymmetric: a load ramp to
+    100 uN in T/2, a hold of T (12 geometric steps), an unload to zero in T/2."""
+    return f"""scene: fe
 mesh:
   geometry: meshes/indent_block2d.geo
   parameters: {{W: 2, H: 2, half: 1, h_tip: 0.05, h_far: 0.2, r_fine: 0.4, r_contact: 0.9}}
   kinematics: axisymmetric
-material: {{props: woodford, set: {{phi: 0, tol: 1.0e-4}}}}
+material: {{props: woodford, set: {{phi: 0, eta_soft: {eta!r}}}}}
 boundary:
   fixed: {ROLLERS}
 indenter: {{shape: cone, half_angle: 70.3, contact: contact}}
 stages:
-  - {{name: load, duration: 600, indenter: {{load: {{exp: {{P0: 22, k: 0.0156}}}}, until: {{depth: 0.1}}}}, steps: {{adaptive: true, first: 1.0e-3, min: 1.0e-9, max: 10}}}}
-  - {{name: hold, duration: 20, indenter: {{load: hold}}, steps: {{adaptive: true, first: 0.1, min: 1.0e-9, max: 5}}}}
-  - {{name: unload, duration: 5, indenter: {{load: 0}}, steps: {{adaptive: true, first: 0.5, min: 1.0e-9, max: 0.5}}}}
+  - {{name: load, duration: {T / 2}, indenter: {{load: 100}}, steps: {{count: 5}}}}
+  - {{name: hold, duration: {T}, indenter: {{load: hold}}, steps: {{count: 12, spacing: geometric, ratio: 1.5}}}}
+  - {{name: unload, duration: {T / 2}, indenter: {{load: 0}}, steps: {{count: 4}}}}
 """
-    hist = run(scene, tmp_path / "cc", exe="driver")
-    check_invariants(hist, tol=1e-9)
-    hold = hist[hist["stage_name"] == "hold"]
-    creep = hold["depth"][-1] - hist[hist["stage_name"] == "load"]["depth"][-1]
-    print(f"Cam-Clay IX cone: load {hold['load'][-1]:.4g} uN at h = 0.1, creep in 20 s {creep:.4g} um, "
-          f"residual depth {hist['depth'][-1]:.4g} um, {len(hist) - 1} steps")
-    assert creep > 1e-3 and np.all(np.diff(hold["depth"]) >= 0)
-    assert 0 < hist["depth"][-1] < 0.1 and hist["active_nodes"][-1] == 0
+
+
+def test_camclay_creep_scales_with_eta(tmp_path):
+    """Perzyna with linear overstress (theory.md §3.1, Y21 eq. 27): time enters only as t/eta, so the run with
+    2 eta and every duration doubled is the run with eta at half the time: the same depths at matched steps
+    (1e-9), early creep rates in the ratio 2 exactly. Also: the invariants at every step, creep in the hold
+    at every step with a decaying rate, and a residual indent after unloading (viscoplastic strain stays)."""
+    eta = 1.3e10
+    a = run(camclay_indent(eta, 10.0), tmp_path / "eta", exe="driver")
+    b = run(camclay_indent(2 * eta, 20.0), tmp_path / "eta2", exe="driver")
+    for hist in (a, b):
+        check_invariants(hist, tol=1e-9)
+    assert len(a) == len(b) and np.allclose(b["time"], 2 * a["time"], rtol=1e-12, atol=0)
+    assert np.max(np.abs(b["depth"] - a["depth"])) <= 1e-9 * a["depth"].max()
+    hold = np.where(a["stage_name"] == "hold")[0]
+    h0 = hold[0] - 1                                    # the end of the load
+    rate_a = (a["depth"][hold[0]] - a["depth"][h0]) / (a["time"][hold[0]] - a["time"][h0])
+    rate_b = (b["depth"][hold[0]] - b["depth"][h0]) / (b["time"][hold[0]] - b["time"][h0])
+    rates = np.diff(a["depth"][np.r_[h0, hold]]) / np.diff(a["time"][np.r_[h0, hold]])
+    creep = a["depth"][hold[-1]] - a["depth"][h0]
+    print(f"Cam-Clay IX cone, 100 uN: depth {a['depth'][h0]:.5f} um at the end of the load, creep {creep:.5f} um "
+          f"in {a['time'][hold[-1]] - a['time'][h0]:g} s; first-step creep rates eta / 2 eta: {rate_a / rate_b:.12f}; "
+          f"rate at the end of the hold / at its start {rates[-1] / rates[0]:.3f}; residual depth {a['depth'][-1]:.5f}")
+    assert abs(rate_a / rate_b - 2) < 1e-8
+    assert creep > 0.05 * a["depth"][h0] and np.all(rates > 0) and np.all(np.diff(rates) < 0)
+    assert 0 < a["depth"][-1] < a["depth"][h0] and a["active_nodes"][-1] == 0
 
 
 BAD = [

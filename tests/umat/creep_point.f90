@@ -1,16 +1,16 @@
 !> One material point under constant stress (the Perzyna creep check of issue #2): both frames start
 !> at -35 MPa (isotropic) with zero strain; the overall stress jumps elastically (DTIME = 0 call) to
 !> diag(-35, -35, -75) MPa and is held for T seconds in N backward-Euler steps (uniform, or geometric
-!> with ratio r). Prints N, T, the creep strain eps33(T) - eps33(0+), pc_hard, pc_soft.
-!> Usage: creep_point THETA_DEG T N [RATIO]
+!> with ratio r), optionally after a hold of HOLD seconds at -35 MPa in NHOLD geometric steps (ratio
+!> 1 + 20/NHOLD; default 400). Prints N, T, the creep strain eps33(T) - eps33(0+), pc_hard, pc_soft.
+!> Usage: creep_point THETA_DEG T N [RATIO [HOLD [NHOLD]]]
 program creep_point
   use, intrinsic :: iso_fortran_env, only: real64, output_unit, error_unit
   use test_support
   implicit none
   real(real64) :: props(23), theta, t_end, ratio, stress(6), statev(nstatv_test), stran(6), dstran(6)
   real(real64) :: target(6), d(6, 6), dt, t, eps0_33, hold, hold_ratio
-  integer :: nsteps, k
-  integer, parameter :: hold_steps = 400
+  integer :: nsteps, k, hold_steps
   logical :: ok
   character(len=64) :: arg
 
@@ -25,6 +25,10 @@ program creep_point
   if (command_argument_count() >= 5) then
     call get_command_argument(5, arg); read (arg, *) hold
   end if
+  hold_steps = 400
+  if (command_argument_count() >= 6) then
+    call get_command_argument(6, arg); read (arg, *) hold_steps
+  end if
   theta = theta * pi / 180
   props = props_with(0.5_real64, [sin(theta), 0.0_real64, cos(theta)])
 
@@ -34,7 +38,7 @@ program creep_point
   target = stress
   if (hold > 0) then
     ! Hold the confinement; steps grow geometrically from 1e-3 s.
-    hold_ratio = 1.05_real64
+    hold_ratio = 1 + 20.0_real64 / hold_steps
     dt = hold * (hold_ratio - 1) / (hold_ratio**hold_steps - 1)
     t = 0
     do k = 1, hold_steps

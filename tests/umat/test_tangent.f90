@@ -63,7 +63,9 @@ contains
     err = maxval(abs(d - d_fd)) / maxval(abs(d))
     write (output_unit, '(a,a,a,es9.2,a,f7.1,a,es9.2)') 'tangent ', name, ': |D - D_fd|/|D| = ', err, &
       '  iterations ', statev(33), '  asymmetry ', maxval(abs(d - transpose(d))) / maxval(abs(d))
-    call check_true('tangent ' // name, err <= 1e-6_real64 .and. pnewdt >= 1)
+    ! Measured 3e-13 .. 6e-10; a symmetrised tangent errs by half the asymmetry (4e-8 .. 1.6e-5 in the
+    ! viscoplastic cases), so 5e-9 catches it in every case.
+    call check_true('tangent ' // name, err <= 5e-9_real64 .and. pnewdt >= 1)
   end subroutine fd_check
 
   !> Inside the surface: sigma + C:deps and DDSDDE = C (round-off), for the mixture at theta = 30.

@@ -1,0 +1,100 @@
+"""Plane-strain rigid-indenter contact on the linear-elastic UMAT (E = 1000, nu = 0.3; driver_elastic):
+
+* flat punch over the whole top of a laterally confined block (rollers on the sides, bottom fixed): the
+  strain is uniform uniaxial, eps_yy = -h/H, so P = E(1-nu)/((1+nu)(1-2nu)) h/H W t exactly (P1 too),
+  proportional to h; t = 0.5 checks that the thickness enters the plane-strain contact weights.
+* wedge (tip angle 136.51 deg, the paper's 2D section; linearised vertical gap) on a large block, two
+  independent checks: (1) the 2D wedge on an elastic half-plane (Johnson, Contact Mechanics, 1985, ch. 5:
+  p(x) = (E* tan(alpha)/pi) arccosh(a/|x|), hence P = E* a tan(alpha) per unit thickness, alpha = 90 deg -
+  half angle) with the contact half-width a bracketed by the last active and the first inactive node of
+  the top (read from the run's mesh.msh), 2 % slack for the FE error of P; (2) self-similarity: scaling
+  every length (block, mesh sizes, depth) by 2 scales the load per unit thickness by exactly 2.
+"""
+import math
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
+E, NU = 1000.0, 0.3
+ESTAR = E / (1 - NU**2)
+ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
+
+
+def run(text, out):
+    scene = out.parent / (out.name + ".yaml")
+    scene.write_text(text)
+    proc = subprocess.run([str(BIN / "driver_elastic"), "-input", str(scene), "-output_dir", str(out)],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+
+
+def msh_nodes(path):
+    """Node coordinates of a gmsh 4.1 ASCII file."""
+    lines = path.read_text().split("$Nodes\n")[1].split("$EndNodes")[0].splitlines()
+    nblocks, i, xyz = int(lines[0].split()[0]), 1, []
+    for _ in range(nblocks):
+        n = int(lines[i].split()[3])
+        xyz += [[float(v) for v in line.split()] for line in lines[i + 1 + n:i + 1 + 2 * n]]
+        i += 1 + 2 * n
+    return np.array(xyz)
+
+
+def test_flat_punch_on_a_confined_block(tmp_path):
+    W, H, t = 2.0, 1.0, 0.5
+    h = run(f"""scene: fe
+mesh: {{geometry: meshes/rectangle.geo, parameters: {{X0: {-W / 2}, Lx: {W}, Ly: {H}, size: 0.2}},
+        kinematics: plane_strain, thickness: {t}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: y0, components: [x, y]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}}]
+indenter: {{shape: flat_punch, radius: 5, tip: [0, {H}], contact: y1}}
+stages:
+  - {{name: push, duration: 1, indenter: {{depth: 0.002}}, steps: {{count: 2}}}}
+""", tmp_path / "punch")
+    exact = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU)) * h["depth"][1:] / H * W * t
+    print(f"plane-strain flat punch: P = {h['load'][1:]}, exact {exact}")
+    assert np.allclose(h["depth"][1:], [0.001, 0.002], rtol=1e-12, atol=0)
+    assert np.max(np.abs(h["load"][1:] / exact - 1)) < 1e-9
+
+
+def wedge_scene(k, h_tip, r_fine):
+    return f"""scene: fe
+mesh:
+  geometry: meshes/indent_block2d.geo
+  parameters: {{W: {40 * k}, H: {20 * k}, half: 0, h_tip: {h_tip * k}, h_far: {2 * k}, r_fine: {r_fine * k}, r_contact: {3 * r_fine * k}}}
+  kinematics: plane_strain
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y]}}, {{group: left, components: [x]}}, {{group: right, components: [x]}}]
+indenter: {{shape: wedge, tip_angle: 136.51, contact: contact, gap: vertical}}
+stages:
+  - {{name: push, duration: 1, indenter: {{depth: {0.02 * k}}}, steps: {{count: 2}}}}
+"""
+
+
+def test_wedge_johnson_half_width(tmp_path):
+    tan_alpha = 1 / math.tan(math.radians(136.51 / 2))
+    h = run(wedge_scene(1, 0.001, 0.03), tmp_path / "wedge")
+    xy = msh_nodes(tmp_path / "wedge" / "mesh.msh")
+    top = np.sort(np.abs(xy[np.abs(xy[:, 1]) < 1e-12, 0]))
+    n = int(h["active_nodes"][-1])
+    a_lo, a_hi = top[n - 1], top[n]                     # the n active nodes are the n nearest the tip
+    a = h["load"][-1] / (ESTAR * tan_alpha)
+    print(f"wedge, h = 0.02: P = {h['load'][-1]:.5g}, Johnson's a = P/(E* tan alpha) = {a:.5f}; {n} active nodes, "
+          f"the contact edge between {a_lo:.5f} and {a_hi:.5f}")
+    assert n >= 15 and a_hi - a_lo < 0.15 * a            # the bracket resolves a
+    assert a_lo * 0.98 <= a <= a_hi * 1.02
+
+
+def test_wedge_self_similar(tmp_path):
+    one = run(wedge_scene(1, 0.004, 0.03), tmp_path / "k1")
+    two = run(wedge_scene(2, 0.004, 0.03), tmp_path / "k2")
+    ratio = two["load"][1:] / one["load"][1:]
+    print(f"wedge scaled by 2 (block, mesh, depth): load ratio {ratio}")
+    assert np.all(one["load"][1:] > 0) and np.max(np.abs(ratio - 2)) < 1e-9
+    assert np.array_equal(one["active_nodes"], two["active_nodes"])
