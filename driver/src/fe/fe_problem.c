@@ -460,9 +460,9 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMRestoreLocalVector(dm, &Uloc));
   PetscCall(DMRestoreLocalVector(dm, &Floc));
   PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
-  /* the supports' reaction: minus the internal force on the fixed components, summed over all cells */
+  /* the supports' force on the body: at a fixed component F_int = F_ext + F_support, and no external load acts
+     there (pressures on fixed components are carried by the support directly), so F_support = F_int */
   PetscCall(MPIU_Allreduce(reaction, p->reaction, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
-  for (PetscInt d = 0; d < 3; d++) p->reaction[d] = -p->reaction[d];
   p->ddsdde_valid = 1;
   if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
   PetscCall(VecCopy(U, p->ddsdde_u));

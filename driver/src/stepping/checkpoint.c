@@ -1,5 +1,6 @@
 #include "checkpoint.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -16,6 +17,23 @@ static int all_ok(MPI_Comm comm, int ok) {
   int all = 0;
   MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm);
   return all;
+}
+
+/* The sets before this one are no longer needed: this rank's files of every other step (also those a kill
+   between the two renames left behind). */
+static void remove_older_sets(const RunnerOptions *opt, int rank, int step) {
+  DIR           *dir = opendir(opt->outdir);
+  struct dirent *e;
+  if (!dir) return;
+  while ((e = readdir(dir))) {
+    int  s, r, n = 0;
+    char path[1100];
+    if (sscanf(e->d_name, "checkpoint.%d.rank%d.bin%n", &s, &r, &n) == 2 && !e->d_name[n] && r == rank && s != step) {
+      set_path(opt, s, rank, path, sizeof path);
+      remove(path);
+    }
+  }
+  closedir(dir);
 }
 
 int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
@@ -60,11 +78,7 @@ int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int
     snprintf(err, errlen, "%s/checkpoint.latest: cannot write; the previous checkpoint is kept", opt->outdir);
     return 1;
   }
-  if (*last >= 0 && *last != st->step) { /* the previous set is no longer needed */
-    char old[1100];
-    set_path(opt, *last, rank, old, sizeof old);
-    remove(old);
-  }
+  remove_older_sets(opt, rank, st->step);
   *last = st->step;
   return 0;
 }
@@ -119,15 +133,20 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
     if (binfile_close(&f, 0) && !code) code = 1;
     if (!code && st->step != step) code = 1;
   }
-  int worst = 0;
+  int worst = 0, mine = code ? rank : size, first_bad = size;
   MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);
+  MPI_Allreduce(&mine, &first_bad, 1, MPI_INT, MPI_MIN, sv->comm);
   if (worst == 2)
     snprintf(err, errlen, "-restart: the scene %s differs from the one the checkpoint in %s was written for (material, loads or "
                           "stages changed): run it afresh, without -restart", opt->scene_file, opt->outdir);
   else if (worst)
-    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (%s here): "
-                          "nothing was written", step, opt->outdir, code ? "bad" : "fine");
+    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
+                          "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, first_bad, step, first_bad);
   if (worst) return worst;
+  if (sv->resume && sv->resume(sv->ctx)) {
+    snprintf(err, errlen, "-restart: the state of the checkpoint of step %d in %s could not be set up", step, opt->outdir);
+    return 1;
+  }
   *last = step;
   if (!rank && !opt->quiet) printf("restart at step %d, t = %g s (stage %d)\n", st->step, st->t, st->stage);
   return 0;

@@ -98,12 +98,16 @@ int fe_common_load(FeCommon *c, Vec U, BinFile *f) {
   binfile_read(f, &c->h_prev, sizeof(double), 1);
   binfile_read(f, &nout, sizeof nout, 1);
   if (!f->ok || nout < 0 || nout > 10000000) return 1;
-  PetscReal *times = NULL;
-  if (PetscMalloc1(nout + 1, &times)) return 1;
-  binfile_read(f, times, sizeof(PetscReal), (size_t)nout);
-  if (f->ok && c->fields && fe_output_resume(&c->out, nout, times)) f->ok = 0;
-  PetscFree(times);
-  if (!f->ok || fe_state_load(c->p, U, f)) return 1;
+  PetscFree(c->saved_times);
+  if (PetscMalloc1(nout + 1, &c->saved_times)) return 1;
+  c->nsaved = nout;
+  binfile_read(f, c->saved_times, sizeof(PetscReal), (size_t)nout);
+  return !f->ok || fe_state_load(c->p, U, f);
+}
+
+int fe_common_resume(FeCommon *c) {
+  if (c->fields && fe_output_resume(&c->out, c->nsaved, c->saved_times)) return 1;
+  PetscFree(c->saved_times);
   for (int k = 0; k < FE_MAX_GROUPS; k++) c->p->pressure[k] = c->now[k];
   return fe_problem_update_loads(c->p) != 0 || fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE) != 0;
 }

@@ -133,8 +133,12 @@ static int load(void *ctx, BinFile *b) {
   VecGetArray(f->dU, &d);
   binfile_read(b, d, sizeof(PetscScalar), (size_t)n);
   VecRestoreArray(f->dU, &d);
-  VecCopy(f->U0, f->U);
   return !b->ok;
+}
+
+static int resume(void *ctx) {
+  FeSolver *f = ctx;
+  return VecCopy(f->U0, f->U) || fe_common_resume(&f->c);
 }
 
 static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((FeSolver *)ctx)->c, dir, msg, n); }
@@ -205,7 +209,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
     if (fe_residual(f.snes, f.U, f.R, p) || fe_problem_commit(p) || fe_problem_stats(p, sc->axis, &f.c.stats, PETSC_FALSE)) return 1;
   }
   StepSolver sv = {&f, "fe", sc->nstage, PetscObjectComm((PetscObject)p->dm), stage_begin, solve, accept, NULL,
-                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls};
+                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&f.c);

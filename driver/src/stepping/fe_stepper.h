@@ -20,6 +20,8 @@ typedef struct {
   double     now[FE_MAX_GROUPS];       /* the loads of the committed state */
   double     h_prev;                   /* the last accepted step's length */
   PetscBool  fields;                   /* write fields.h5 */
+  PetscReal *saved_times;              /* a checkpoint's output times, until every rank has read its file */
+  PetscInt   nsaved;
 } FeCommon;
 
 /* Run the stages of an FE scene (SNES) or of an indentation scene on the set-up problem p. */
@@ -37,7 +39,8 @@ void           fe_common_accept(FeCommon *c, const StepRequest *rq);
 int            fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen);
 int            fe_common_promote(FeCommon *c);
 int            fe_common_save(FeCommon *c, Vec U, BinFile *f);
-int            fe_common_load(FeCommon *c, Vec U, BinFile *f);
+int            fe_common_load(FeCommon *c, Vec U, BinFile *f); /* reads only (no collective call) */
+int            fe_common_resume(FeCommon *c);                  /* collective: loads and statistics */
 void           fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n);
 
 #endif

@@ -114,16 +114,16 @@ static int check(void *ctx, double t, char *err, size_t errlen) {
 
 static void history_header(void *ctx, FILE *fp) {
   fprintf(fp, "time,stage,stage_name,step,dt,newton_its,cutbacks,load,depth,active_nodes,active_changes,contact_force,"
-              "max_penetration,min_lambda,umat_calls,wall,reaction_x,reaction_y,reaction_z\n");
+              "max_penetration,min_lambda,umat_calls,wall,reaction_x,reaction_y,reaction_z,evp_rate\n");
 }
 
 static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   Indent    *d = ctx;
   FeProblem *p = d->c.p;
-  fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g\n", row->t, row->stage,
+  fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g,%.6g\n", row->t, row->stage,
           row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks, d->load,
           (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, d->force, d->pen, d->lmin, (long)p->umat_calls, row->wall,
-          p->reaction[0], p->reaction[1], p->reaction[2]);
+          p->reaction[0], p->reaction[1], p->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
 }
 
 static void progress(void *ctx, char *buf, size_t n) {
@@ -157,6 +157,9 @@ static int state_io(Indent *d, BinFile *f, int write) {
   else binfile_read(f, vals, sizeof(double), 9), binfile_read(f, &m, sizeof m, 1);
   if (m != n) return 1;
   vec_io(f, in->lam0, write), vec_io(f, in->ratelam, write), vec_io(f, in->rateU, write);
+  /* the active set of the committed state: the next step's first iterate is judged against it */
+  if (write) binfile_write(f, in->ct.active, sizeof *in->ct.active, (size_t)n), binfile_write(f, &in->nactive, sizeof in->nactive, 1);
+  else binfile_read(f, in->ct.active, sizeof *in->ct.active, (size_t)n), binfile_read(f, &in->nactive, sizeof in->nactive, 1);
   if (!write) {
     in->ur0 = in->ur = vals[0], in->rateur = vals[1], in->dt_prev = vals[2], in->have_rate = vals[3] != 0;
     d->load = vals[4], d->load_max = vals[5], d->stage_start = vals[6], in->its_total = (PetscInt)vals[7], in->cycles = (PetscInt)vals[8];
@@ -171,10 +174,13 @@ static int save(void *ctx, BinFile *f) {
 
 static int load(void *ctx, BinFile *f) {
   Indent *d = ctx;
-  if (fe_common_load(&d->c, d->in.U0, f) || state_io(d, f, 0)) return 1;
-  VecCopy(d->in.U0, d->in.U);
-  VecCopy(d->in.lam0, d->in.lam);
-  return contact_update_gaps(&d->in.ct, d->in.U, d->in.ur) != 0;
+  return fe_common_load(&d->c, d->in.U0, f) || state_io(d, f, 0);
+}
+
+static int resume(void *ctx) {
+  Indent *d = ctx;
+  return VecCopy(d->in.U0, d->in.U) || VecCopy(d->in.lam0, d->in.lam) || contact_update_gaps(&d->in.ct, d->in.U, d->in.ur) ||
+         fe_common_resume(&d->c);
 }
 
 static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((Indent *)ctx)->c, dir, msg, n); }
@@ -198,7 +204,7 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
               shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
               (double)d.in.ct.c, (double)d.in.kshift);
   StepSolver sv = {&d, "indentation", sc->nstage, comm, stage_begin, solve, accept, check, history_header, history_row, progress,
-                   write_fields, promote, save, load, replay, umat_calls};
+                   write_fields, promote, save, load, replay, umat_calls, resume};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&d.c);

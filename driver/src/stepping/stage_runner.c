@@ -332,7 +332,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   if (history_open(&r, err, errlen)) return 1;
   clock_gettime(CLOCK_MONOTONIC, &r.w0);
   if (!opt->restart) {
-    r.view.name = sv->nstage > 0 ? "start" : "";
+    r.view.name = NULL; /* row 0: the solver names it */
     history_row(&r, 0, 0, 0);
     if (write_fields(&r, err, errlen)) return 1;
   }

@@ -90,6 +90,9 @@ typedef struct {
   void (*replay)(void *ctx, const char *dir, char *msg, size_t n);
   /* Totals for the last line. */
   long (*umat_calls)(void *ctx);
+  /* After every rank has loaded its checkpoint file (load reads only, so a rank whose file is bad cannot
+   * leave the others in a collective call): the collective work of a resumed state. May be NULL. */
+  int (*resume)(void *ctx);
 } StepSolver;
 
 typedef struct {
