@@ -121,7 +121,7 @@ boundary:
   pressure: [z1]
 stages:
   - {{name: ramp, duration: 10, pressure: {{z1: 10}}, steps: {{count: 4}}, until: {{q_above: 4.3}}}}
-  - {{name: hold, duration: 2, steps: {{count: 1}}}}
+  - {{name: hold, duration: 2, steps: {{count: 1}}, output: {{times: [0.5]}}}}
 """
 
 
@@ -132,6 +132,8 @@ def test_until_lands_in_every_kind(tmp_path):
     q = abs(ramp["sig_33"])
     print(f"FE until q_above 4.3: stage ends at t = {ramp['time']:.8f}, q = {q:.8f}; then t = {h['time'][-1]}")
     assert abs(q - 4.3) <= 1e-5 * 4.3 and abs(ramp["time"] - 4.3) <= 1e-5 * 4.3 and h["time"][-1] == ramp["time"] + 2
+    # the hold's one planned step is cut at its output time, stage time 0.5
+    assert np.allclose(h[h["stage"] == 1]["time"] - ramp["time"], [0.5, 2], rtol=1e-12, atol=1e-12)
     # point: an axial stress ramp from -35 to -75 MPa in 40 s in the elastic range, q = t
     pt = run("""scene: point
 material: {props: woodford, set: {phi: 0.5}}

@@ -132,6 +132,24 @@ static int component_of(const char *s) {
   return !strcmp(s, "x") || !strcmp(s, "0") ? 0 : !strcmp(s, "y") || !strcmp(s, "1") ? 1 : !strcmp(s, "z") || !strcmp(s, "2") ? 2 : -1;
 }
 
+/* A stage's output: {times: [t1, t2, ...]}: fields at exactly these stage times (the steps land on them). */
+static int read_stage_output(YdDoc *doc, YdNode *v, const char *path, Stage *g, char *err, size_t errlen) {
+  char    sub[300];
+  YdNode *t;
+  snprintf(sub, sizeof sub, "%s.output", path);
+  if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+  if ((t = yd_get(v, "times"))) {
+    snprintf(sub, sizeof sub, "%s.output.times", path);
+    if (yd_doubles(doc, t, sub, g->out_times, -FE_MAX_OUT_TIMES, &g->nout_times, err, errlen)) return 1;
+    for (int k = 0; k < g->nout_times; k++)
+      if (!(g->out_times[k] > (k ? g->out_times[k - 1] : 0) && g->out_times[k] <= g->duration))
+        FAIL("%s:%d: key '%s[%d]': expected increasing stage times in (0, %g], got %g", doc->file, t->line, sub, k, g->duration,
+             g->out_times[k]);
+  }
+  snprintf(sub, sizeof sub, "%s.output", path);
+  return yd_check_unused(doc, v, sub, "times", err, errlen);
+}
+
 int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   YdNode     *root = doc->root, *x, *v;
   const char *s;
@@ -345,8 +363,9 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     if (stage_event_read(doc, yd_get(st, "until"), sub, "evp_rate_below, q_above, q_below, p_above", &g->until, err, errlen)) return 1;
     snprintf(sub, sizeof sub, "%s.creep", path);
     if ((v = yd_get(st, "creep")) && yd_bool(doc, v, sub, &g->creep, err, errlen)) return 1;
+    if ((v = yd_get(st, "output")) && read_stage_output(doc, v, path, g, err, errlen)) return 1;
     g->indenter = yd_get(st, "indenter"); /* read by the contact module */
-    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter", err, errlen)) return 1;
+    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter, output", err, errlen)) return 1;
   }
   if ((x = yd_get(root, "solver"))) {
     if ((v = yd_get(x, "options"))) {

@@ -25,6 +25,8 @@ typedef struct {
   int       nrow[FE_MAX_GROUPS];
   double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
   StageEvent until;                  /* an end event (volume-mean p, q, viscoplastic rate); kind NONE: none */
+  int       nout_times;              /* fields at exactly these stage times (output: {times: [...]}) */
+  double    out_times[FE_MAX_OUT_TIMES];
   YdNode   *indenter;                /* the stage's indenter settings (read by the contact module), or NULL */
 } Stage;
 

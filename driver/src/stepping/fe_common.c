@@ -38,6 +38,7 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
   memset(v, 0, sizeof *v);
   v->name = g->name, v->duration = g->duration, v->instant = g->instant, v->steps = &g->steps, v->until = g->until;
   v->event_start = g->until.kind == EVENT_P_ABOVE ? p : q;
+  v->nout_times = g->nout_times, v->out_times = g->out_times;
 }
 
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {

@@ -175,6 +175,10 @@ static void plan_step(Run *r, StepRequest *rq, int *at_output) {
     while (st->next_time < opt->nout_times && opt->out_times[st->next_time] <= st->t * (1 + 1e-14)) st->next_time++;
     if (st->next_time < opt->nout_times && st->t + h >= opt->out_times[st->next_time] * (1 - 1e-12))
       h = opt->out_times[st->next_time] - st->t, *at_output = 1;
+    const StageView *v = &r->view; /* and the stage's own output times, in stage time */
+    while (st->next_stage_time < v->nout_times && v->out_times[st->next_stage_time] <= st->t_stage * (1 + 1e-14)) st->next_stage_time++;
+    if (st->next_stage_time < v->nout_times && st->t_stage + h >= v->out_times[st->next_stage_time] * (1 - 1e-12))
+      h = v->out_times[st->next_stage_time] - st->t_stage, *at_output = 1;
     rq->h = h;
   }
   rq->lambda = r->view.instant || dur == 0 ? 1 : fmin((st->t_stage + rq->h) / dur, 1);
@@ -259,7 +263,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
   int                  resumed = st->in_stage;
   if (sv->stage_begin(sv->ctx, st->stage, resumed, &r->view, err, errlen)) return 1;
   if (!resumed) {
-    st->t_stage = 0, st->k_planned = 0, st->cut_in_plan = 0, st->landing = 0, st->first_in_stage = 1;
+    st->t_stage = 0, st->k_planned = 0, st->cut_in_plan = 0, st->landing = 0, st->first_in_stage = 1, st->next_stage_time = 0;
     st->pending_instant = r->view.instant || r->view.duration == 0;
     st->dt              = step_control_planned(r->view.steps, r->view.duration, 0);
     st->event_prev      = r->view.event_start;

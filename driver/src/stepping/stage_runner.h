@@ -29,6 +29,8 @@ typedef struct {
   StageEvent         until;
   int                must_reach; /* the until event must happen within the duration (else the run fails) */
   double             event_start; /* the until quantity at the stage's start (for landing) */
+  int                nout_times;  /* fields at exactly these stage times (output: {times} of a stage) */
+  const double      *out_times;
 } StageView;
 
 /* The step to solve: from the committed state at total time t0 (stage time ts0) over h (0: an instant jump);
