@@ -24,7 +24,7 @@ fi
 
 # Python packages for post/ and the independent reference integrations in tests/.
 py=${PYTHON:-python3}
-if ! "$py" -c "import numpy, scipy, matplotlib, h5py, yaml, pytest" 2>/dev/null; then
+if ! "$py" -c "import numpy, scipy, matplotlib, h5py, yaml, pytest, meshio" 2>/dev/null; then
   echo "setup: installing Python packages from post/requirements.txt"
   "$py" -m pip install --quiet --disable-pip-version-check -r "$here/post/requirements.txt"
 else
