@@ -9,7 +9,6 @@
 #include <time.h>
 
 /* Index of the state of point (local cell c, quadrature point q). */
-#define SV(p, c, q) (((c) - (p)->cStart) * (p)->nq + (q))
 
 
 /* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
@@ -532,77 +531,5 @@ PetscErrorCode fe_problem_update_loads(FeProblem *p) {
 PetscErrorCode fe_problem_commit(FeProblem *p) {
   PetscFunctionBeginUser;
   PetscCall(PetscArraycpy(p->state, p->trial, p->npoint * p->nsv));
-  PetscFunctionReturn(0);
-}
-
-static int cmp_real(const void *a, const void *b) {
-  PetscReal x = *(const PetscReal *)a, y = *(const PetscReal *)b;
-  return (x > y) - (x < y);
-}
-
-PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool use_trial) {
-  MPI_Comm        comm = PetscObjectComm((PetscObject)p->dm);
-  PetscReal       loc[14] = {0}, glob[14];
-  const PetscReal *src = use_trial ? p->trial : p->state;
-  PetscMPIInt     size, rank;
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(s, sizeof *s));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscReal *vals;
-  PetscCall(PetscMalloc1(2 * p->npoint + 1, &vals));
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    for (PetscInt q = 0; q < p->nq; q++) {
-      const PetscReal *st = &src[SV(p, c, q) * p->nsv], *old = &p->state[SV(p, c, q) * p->nsv];
-      PetscReal        w  = p->wdetJ[SV(p, c, q)];
-      loc[0] += w;
-      for (PetscInt vI = 0; vI < 6; vI++) loc[1 + vI] += w * st[ST_STRAN + vI], loc[7 + vI] += w * st[ST_STRESS + vI];
-      if (p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
-        PetscReal d2 = 0;
-        for (PetscInt vI = 0; vI < 6; vI++)
-          d2 += PetscSqr(st[ST_STATEV + CAMCLAY9_SV_EVP + vI] - old[ST_STATEV + CAMCLAY9_SV_EVP + vI]);
-        loc[13] += w * PetscSqrtReal(d2);
-        vals[SV(p, c, q)]             = st[ST_STATEV + CAMCLAY9_SV_EVP_HARD + axis]; /* axial vp strain */
-        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + CAMCLAY9_SV_EVP_SOFT + axis];
-      }
-    }
-  }
-  PetscCall(MPIU_Allreduce(loc, glob, 14, MPIU_REAL, MPIU_SUM, comm));
-  s->volume = glob[0];
-  for (PetscInt vI = 0; vI < 6; vI++) s->strain_mean[vI] = glob[1 + vI] / glob[0], s->stress_mean[vI] = glob[7 + vI] / glob[0];
-  s->evp_rate = p->dt > 0 ? glob[13] / glob[0] / p->dt : 0;
-  PetscReal spread = 0;
-  for (PetscInt k = 0; k < p->npoint; k++)
-    for (PetscInt vI = 0; vI < 6; vI++) spread = PetscMax(spread, PetscAbsReal(src[k * p->nsv + ST_STRAN + vI] - s->strain_mean[vI]));
-  PetscCall(MPIU_Allreduce(&spread, &s->strain_spread, 1, MPIU_REAL, MPIU_MAX, comm));
-  if (p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
-    /* Gather both frames' values on rank 0 for the quantiles. */
-    PetscMPIInt n = (PetscMPIInt)p->npoint, *counts = NULL, *displs = NULL, total = 0;
-    if (!rank) PetscCall(PetscMalloc2(size, &counts, size, &displs));
-    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
-    if (!rank)
-      for (PetscMPIInt r = 0; r < size; r++) displs[r] = total, total += counts[r];
-    PetscReal *all = NULL;
-    if (!rank) PetscCall(PetscMalloc1(total + 1, &all));
-    for (PetscInt f = 0; f < 2; f++) {
-      PetscCallMPI(MPI_Gatherv(vals + f * p->npoint, n, MPIU_REAL, all, counts, displs, MPIU_REAL, 0, comm));
-      if (!rank && total) {
-        qsort(all, (size_t)total, sizeof(PetscReal), cmp_real);
-        PetscReal mean = 0;
-        for (PetscMPIInt k = 0; k < total; k++) mean += all[k];
-        s->frame_evp[f][0] = mean / total;
-        s->frame_evp[f][1] = all[0];
-        s->frame_evp[f][2] = all[total / 4];
-        s->frame_evp[f][3] = all[total / 2];
-        s->frame_evp[f][4] = all[(3 * total) / 4];
-        s->frame_evp[f][5] = all[total - 1];
-      }
-    }
-    if (!rank) {
-      PetscCall(PetscFree(all));
-      PetscCall(PetscFree2(counts, displs));
-    }
-  }
-  PetscCall(PetscFree(vals));
   PetscFunctionReturn(0);
 }

@@ -13,6 +13,8 @@
 
 /* The state of a quadrature point: stress (6), total strain (6), then the UMAT's STATEV. */
 enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
+/* The index of quadrature point q of local cell c among the points of this rank. */
+#define SV(p, c, q) (((c) - (p)->cStart) * (p)->nq + (q))
 
 #define FE_MAX_GROUPS 24 /* loads: pressures on groups, and traction components 'GROUP.x' etc. */
 

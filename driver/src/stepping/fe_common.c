@@ -41,6 +41,12 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
   v->nout_times = g->nout_times, v->out_times = g->out_times;
 }
 
+PetscReal fe_common_umat_tol(const FeCommon *c, const StepRequest *rq) {
+  const UmatMaterial *m = &c->p->mat;
+  if (rq->umat_tol >= 0) return rq->umat_tol;
+  return m->tol_slot >= 0 && m->tol_slot < m->nprops ? m->props[m->tol_slot] : 0;
+}
+
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {
   Stage *g = &c->sc->stage[rq->s];
   PetscFunctionBeginUser;

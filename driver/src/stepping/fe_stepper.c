@@ -24,12 +24,6 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   return 0;
 }
 
-/* The UMAT's own error control (worst_point) at the converged state, when it is on. */
-static PetscReal umat_tol_of(const FeProblem *p, const StepRequest *rq) {
-  if (rq->umat_tol >= 0) return rq->umat_tol;
-  return p->mat.tol_slot >= 0 && p->mat.tol_slot < p->mat.nprops ? p->mat.props[p->mat.tol_slot] : 0;
-}
-
 static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   FeSolver           *f = ctx;
   FeProblem          *p = f->c.p;
@@ -45,7 +39,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   }
   o->converged = reason > 0, o->its = (int)its, o->why = SNESConvergedReasons[reason];
   if (!o->converged) return 0;
-  PetscReal tol = umat_tol_of(p, rq);
+  PetscReal tol = fe_common_umat_tol(&f->c, rq);
   PetscBool same = PETSC_FALSE;
   if (p->ddsdde_valid) VecEqual(f->U, p->ddsdde_u, &same);
   if (tol > 0 || !same) { /* the converged state again, with the UMAT's PNEWDT on */

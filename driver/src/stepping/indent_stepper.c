@@ -46,11 +46,6 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   return 0;
 }
 
-static PetscReal umat_tol_of(const FeProblem *p, const StepRequest *rq) {
-  if (rq->umat_tol >= 0) return rq->umat_tol;
-  return p->mat.tol_slot >= 0 && p->mat.tol_slot < p->mat.nprops ? p->mat.props[p->mat.tol_slot] : 0;
-}
-
 static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   Indent      *d  = ctx;
   Semismooth  *in = &d->in;
@@ -72,7 +67,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   in->its_total += its;
   o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
   if (!o->converged) return 0;
-  PetscReal tol = umat_tol_of(p, rq), m;
+  PetscReal tol = fe_common_umat_tol(&d->c, rq), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
     p->umat_tol = tol;
     if (semismooth_evaluate(in, &m)) return 1;

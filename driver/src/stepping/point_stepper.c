@@ -147,37 +147,21 @@ static void progress(void *ctx, char *buf, size_t n) {
   snprintf(buf, n, "local %d ", (int)sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_ITERATIONS));
 }
 
-static int save(void *ctx, BinFile *f) {
-  Point *pt = ctx;
-  int    nseg = pt->sc->nseg;
-  binfile_write(f, &pt->cur, sizeof pt->cur, 1); /* plain values only */
-  binfile_write(f, pt->last_deps, sizeof(double), 6);
-  binfile_write(f, &pt->last_dt, sizeof(double), 1);
-  binfile_write(f, pt->start, sizeof(double), 6);
-  binfile_write(f, pt->devp_prev, sizeof(double), 6);
-  binfile_write(f, &pt->have_devp, sizeof(int), 1);
-  binfile_write(f, &pt->t, sizeof(double), 1);
-  binfile_write(f, pt->t_start, sizeof(double), (size_t)nseg);
-  binfile_write(f, pt->t_end, sizeof(double), (size_t)nseg);
-  binfile_write(f, pt->sum, sizeof *pt->sum, 1);
+/* The point's state for a checkpoint: the committed call (plain values only), the predictor, the
+   segment's start values, the times of the segments and the summary so far. */
+static int state_io(Point *pt, BinFile *f, int write) {
+  void  *parts[] = {&pt->cur, pt->last_deps, &pt->last_dt, pt->start, pt->devp_prev, &pt->have_devp, &pt->t, pt->t_start, pt->t_end, pt->sum};
+  size_t sizes[] = {sizeof pt->cur, 6 * sizeof(double), sizeof(double), 6 * sizeof(double), 6 * sizeof(double), sizeof(int),
+                    sizeof(double), (size_t)pt->sc->nseg * sizeof(double), (size_t)pt->sc->nseg * sizeof(double), sizeof *pt->sum};
+  for (size_t k = 0; k < sizeof parts / sizeof parts[0]; k++) {
+    if (write) binfile_write(f, parts[k], sizes[k], 1);
+    else binfile_read(f, parts[k], sizes[k], 1);
+  }
   return !f->ok;
 }
 
-static int load(void *ctx, BinFile *f) {
-  Point *pt = ctx;
-  int    nseg = pt->sc->nseg;
-  binfile_read(f, &pt->cur, sizeof pt->cur, 1);
-  binfile_read(f, pt->last_deps, sizeof(double), 6);
-  binfile_read(f, &pt->last_dt, sizeof(double), 1);
-  binfile_read(f, pt->start, sizeof(double), 6);
-  binfile_read(f, pt->devp_prev, sizeof(double), 6);
-  binfile_read(f, &pt->have_devp, sizeof(int), 1);
-  binfile_read(f, &pt->t, sizeof(double), 1);
-  binfile_read(f, pt->t_start, sizeof(double), (size_t)nseg);
-  binfile_read(f, pt->t_end, sizeof(double), (size_t)nseg);
-  binfile_read(f, pt->sum, sizeof *pt->sum, 1);
-  return !f->ok;
-}
+static int save(void *ctx, BinFile *f) { return state_io(ctx, f, 1); }
+static int load(void *ctx, BinFile *f) { return state_io(ctx, f, 0); }
 
 static void replay(void *ctx, const char *dir, char *msg, size_t n) {
   Point *pt = ctx;
