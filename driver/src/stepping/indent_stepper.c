@@ -87,7 +87,9 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
 static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Indent     *d  = ctx;
   Semismooth *in = &d->in;
-  if (semismooth_released(in) && in->nactive == 0 && semismooth_rest_on_surface(in)) return 1;
+  if (semismooth_released(in) && in->nactive == 0) { /* the indenter rests on the surface: its gaps change */
+    if (semismooth_rest_on_surface(in) || contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
+  }
   if (semismooth_commit(in, rq->h, PETSC_TRUE)) return 1;
   d->load = in->depth_control ? d->force : in->target;
   if (!in->depth_control) d->load_max = PetscMax(d->load_max, in->target);
