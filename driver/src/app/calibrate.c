@@ -242,7 +242,7 @@ static PetscErrorCode solve(Calib *c, double *u, PetscInt *its, char *reason, si
   PetscCall(TaoSetSolution(tao, U));
   PetscCall(TaoSetResidualRoutine(tao, R, tao_residual, c));
   PetscCall(TaoSetVariableBounds(tao, L, H));
-  PetscCall(TaoSetTolerances(tao, 1e-10, 0, 0)); /* the trust region's radius ends it (-tao_pounders_delta) */
+  PetscCall(TaoSetTolerances(tao, 1e-9, 0, 1e-4)); /* gatol; gttol: the gradient reduced 1e4 times */
   PetscCall(TaoSetMaximumFunctionEvaluations(tao, 60));
   PetscCall(TaoSetMonitor(tao, tao_monitor, c, NULL));
   PetscCall(TaoSetFromOptions(tao));

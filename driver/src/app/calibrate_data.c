@@ -254,8 +254,13 @@ int cal_run_setup(CalRun *run, const char *dir, char *err, size_t errlen) {
   return 0;
 }
 
-/* y at x on the polyline (xs, ys) rows i0..i1 (either direction): the first bracketing segment. */
+/* y at x on the polyline (xs, ys) rows i0..i1 (either direction): the first bracketing segment. An x
+ * beyond the ends by 1e-7 of the span (data written with 10 digits) is taken at the end. */
 static int interp(const double *h, int i0, int i1, double x, double *y) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (int i = i0; i <= i1; i++) lo = fmin(lo, h[4 * i + 2]), hi = fmax(hi, h[4 * i + 2]);
+  if (x < lo && x >= lo - 1e-7 * (hi - lo)) x = lo;
+  if (x > hi && x <= hi + 1e-7 * (hi - lo)) x = hi;
   for (int i = i0; i < i1; i++) {
     double xa = h[4 * i + 2], xb = h[4 * (i + 1) + 2];
     if ((x - xa) * (x - xb) <= 0 && xa != xb) {
@@ -270,28 +275,35 @@ static int interp(const double *h, int i0, int i1, double x, double *y) {
   return 1;
 }
 
+/* A relative block compares shapes: model and data each less their mean over the block (a noisy first
+ * point would shift the whole block otherwise). */
+static double block_mean(const double *v, int n) {
+  double s = 0;
+  for (int i = 0; i < n; i++) s += v[i];
+  return s / n;
+}
+
 int cal_run_residual(CalRun *run, const char *dir, double *r, char *err, size_t errlen) {
   int m = 0;
   for (int k = 0; k < run->ncurve; k++) {
     CalCurve *c = &run->curve[k];
-    double   *h, ref = 0, ref_data = c->relative ? c->y[0] : 0;
+    double   *h, ref = 0, ref_data = 0;
     int       rows, i0, i1;
     if (read_history(run, c, dir, &h, &rows, err, errlen)) return 1;
     if (stage_span(h, rows, c->stage, &i0, &i1)) {
       free(h);
       FAIL("run '%s': the forward run has no steps in stage '%s'", run->name, c->stage_name);
     }
-    for (int i = 0; i < c->n; i++) {
+    for (int i = 0; i < c->n; i++)
       if (interp(h, i0, i1, c->x[i], &c->model[i])) {
         double xa = h[4 * i0 + 2], xb = h[4 * i1 + 2];
         free(h);
         FAIL("run '%s': residual '%s': the data's %s = %g lies outside the forward run's range in stage '%s' (%g to %g)",
              run->name, kind_names[c->kind], c->xcol, c->x[i], c->stage_name, xa, xb);
       }
-      if (c->relative && i == 0) ref = c->model[0];
-      r[m++] = c->weight * ((c->model[i] - ref) - (c->y[i] - ref_data)) / c->scale;
-    }
     free(h);
+    if (c->relative) ref = block_mean(c->model, c->n), ref_data = block_mean(c->y, c->n);
+    for (int i = 0; i < c->n; i++) r[m++] = c->weight * ((c->model[i] - ref) - (c->y[i] - ref_data)) / c->scale;
   }
   return 0;
 }
@@ -299,7 +311,7 @@ int cal_run_residual(CalRun *run, const char *dir, double *r, char *err, size_t 
 int cal_run_write_curves(const CalRun *run, FILE *fp) {
   for (int k = 0; k < run->ncurve; k++) {
     const CalCurve *c   = &run->curve[k];
-    double          ref = c->relative ? c->model[0] : 0, ref_data = c->relative ? c->y[0] : 0;
+    double          ref = c->relative ? block_mean(c->model, c->n) : 0, ref_data = c->relative ? block_mean(c->y, c->n) : 0;
     for (int i = 0; i < c->n; i++)
       fprintf(fp, "%s,%s,%s,%s,%.10g,%.10g,%.10g\n", run->name, kind_names[c->kind], c->xcol, c->ycol, c->x[i],
               c->y[i] - ref_data, c->model[i] - ref);

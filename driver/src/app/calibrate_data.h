@@ -22,7 +22,7 @@ typedef struct {
   char    stage_name[64];
   int     stage;          /* 0-based index in the forward scene's stages (segments) */
   char    xcol[64], ycol[64]; /* model columns of history.csv */
-  int     relative;       /* y taken relative to its value at the first data row of the block */
+  int     relative;       /* model and data y each less their mean over the block (hold: the creep depth) */
   double  weight, scale;  /* residual = weight * (model - data) / scale; scale: the data's range of y */
   int     n;              /* data rows in the block (fixed at the first evaluation) */
   double *x, *y, *t;      /* data, in the forward scene's units */

@@ -86,7 +86,8 @@ static double reference_error(Calib *c, CalRun *run, const double *p) {
   off = 0;
   for (int k = 0; k < run->ncurve && !isnan(worst); k++) {
     CalCurve *cv = &run->curve[k];
-    double    rc = cv->relative ? cheap[off] : 0, rf = cv->relative ? cv->model[0] : 0;
+    double    rc = 0, rf = 0;
+    for (int i = 0; cv->relative && i < cv->n; i++) rc += cheap[off + i] / cv->n, rf += cv->model[i] / cv->n;
     for (int i = 0; i < cv->n; i++) worst = fmax(worst, fabs((cheap[off + i] - rc) - (cv->model[i] - rf)) / cv->scale);
     off += cv->n;
   }
