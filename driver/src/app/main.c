@@ -10,6 +10,7 @@
 #include "fe_app.h"
 #include "../point/replay.h"
 #include "sweep.h"
+#include "calibrate.h"
 
 static const char help[] =
   "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project.\n"
@@ -38,6 +39,11 @@ static const char help[] =
   "               table: {file: data.csv, time: column, time_factor: f}}\n"
   "Extremes sweep (scene: sweep): material, matrix: {dt, eta, strain_increment, bedding_angle, phi},\n"
   "  reference_steps, output: {directory}\n"
+  "Calibration (scene: calibrate; docs/calibrate.md): parameters: - {name: PROPS name, start, min, max, scale: log},\n"
+  "  runs: - {name, scene: forward.yaml, reference: full.yaml, set: {NAME: v}, options: '-...',\n"
+  "          data: {file, columns: {time, load, depth, value}, factors: {...}},\n"
+  "          residuals: - {kind: loading | hold | unloading | series, stage, weight, model: column, relative}}\n"
+  "  output: {directory}; TAO options -tao_type (pounders), -tao_max_funcs, -tao_pounders_delta, ...\n"
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
   "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
 
@@ -125,7 +131,8 @@ static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
   if (!strcmp(kind, "fe")) return fe_app_run(doc, outdir, err, errlen);
   if (!strcmp(kind, "sweep")) return sweep_run(doc, outdir, err, errlen);
   if (!strcmp(kind, "replay")) return replay_run(doc, err, errlen);
-  snprintf(err, errlen, "%s:%d: key 'scene': expected fe, point, replay or sweep, got '%s'", doc->file,
+  if (!strcmp(kind, "calibrate")) return calibrate_run(doc, outdir, err, errlen);
+  snprintf(err, errlen, "%s:%d: key 'scene': expected calibrate, fe, point, replay or sweep, got '%s'", doc->file,
            yd_key_line(doc->root, "scene"), kind);
   return 2;
 }

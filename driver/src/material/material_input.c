@@ -1,7 +1,9 @@
 #include "material_input.h"
 
 #include <math.h>
+#include <petscsys.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "camclay9.h"
@@ -21,6 +23,52 @@ int material_slot(const char *name) {
   for (int i = 0; i < NSLOTS; i++)
     if (!strcmp(slot_names[i], name)) return i;
   return -1;
+}
+
+#define SLOT_LIST                                                                                                   \
+  "phi, lambda_hard, muT_hard, muL_hard, a_hard, b_hard, M_hard, lambda_p_hard, c1, c2, c3, pc0_hard, eta_hard, "     \
+  "lambda_soft, mu_soft, M_soft, lambda_p_soft, pc0_soft, eta_soft, tol, n1, n2, n3"
+
+/* Set a named slot, growing nprops as 'set' does; *normal set when it is one of n1..n3. */
+static void set_slot(UmatMaterial *mat, int slot, double v, int *normal) {
+  mat->props[slot] = v;
+  if (slot >= 20) *normal = 1;
+  if (slot + 1 > mat->nprops) mat->nprops = slot + 1 <= 20 ? slot + 1 : 23; /* 21, 22: a partial normal */
+}
+
+/* -material_set NAME=VALUE[,NAME=VALUE...]: PROPS overrides from the command line, applied after the
+ * scene's material.set with the same names and checks (the calibrate scene's forward runs use it). */
+static int apply_option_set(UmatMaterial *mat, int *normal, char *err, size_t errlen) {
+  char      buf[2048] = "", *tok, *save = NULL;
+  PetscBool given     = PETSC_FALSE;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Material", NULL);
+  if (PetscOptionsString("-material_set", "PROPS overrides NAME=VALUE[,NAME=VALUE...] (names as in material.set), "
+                         "applied after the scene's material.set", NULL, buf, buf, sizeof buf, &given)) {
+    snprintf(err, errlen, "option -material_set: could not be read");
+    return 1;
+  }
+  PetscOptionsEnd();
+  if (!given) return 0;
+  for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    char *eq = strchr(tok, '='), *end = NULL;
+    if (!eq) {
+      snprintf(err, errlen, "option -material_set: '%s': expected NAME=VALUE", tok);
+      return 1;
+    }
+    *eq      = '\0';
+    int slot = material_slot(tok);
+    if (slot < 0) {
+      snprintf(err, errlen, "option -material_set: unknown PROPS name '%s': the names are " SLOT_LIST, tok);
+      return 1;
+    }
+    double v = strtod(eq + 1, &end);
+    if (end == eq + 1 || *end || !isfinite(v)) {
+      snprintf(err, errlen, "option -material_set: '%s=%s': expected a finite number", tok, eq + 1);
+      return 1;
+    }
+    set_slot(mat, slot, v, normal);
+  }
+  return 0;
 }
 
 int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen) {
@@ -61,19 +109,17 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
       char path[128];
       snprintf(path, sizeof path, "material.set.%s", nd->keys[i]);
       if (slot < 0) {
-        snprintf(err, errlen,
-                 "%s:%d: unknown key '%s': the PROPS slot names are phi, lambda_hard, muT_hard, muL_hard, a_hard, "
-                 "b_hard, M_hard, lambda_p_hard, c1, c2, c3, pc0_hard, eta_hard, lambda_soft, mu_soft, M_soft, "
-                 "lambda_p_soft, pc0_soft, eta_soft, tol, n1, n2, n3",
-                 doc->file, nd->key_lines[i], path);
+        snprintf(err, errlen, "%s:%d: unknown key '%s': the PROPS slot names are " SLOT_LIST, doc->file,
+                 nd->key_lines[i], path);
         return 1;
       }
       nd->used[i] = 1;
-      if (yd_double(doc, nd->items[i], path, &mat->props[slot], err, errlen)) return 1;
-      if (slot >= 20) normal_in_props = 1;
-      if (slot + 1 > mat->nprops) mat->nprops = slot + 1 <= 20 ? slot + 1 : 23; /* 21, 22: a partial normal */
+      double v;
+      if (yd_double(doc, nd->items[i], path, &v, err, errlen)) return 1;
+      set_slot(mat, slot, v, &normal_in_props);
     }
   }
+  if (camclay && apply_option_set(mat, &normal_in_props, err, errlen)) return 1;
   /* Bedding: an angle theta to the loading axis (theory.md §4.1), or the normal itself. */
   YdNode *bed = yd_get(node, "bedding_angle"), *normal = yd_get(node, "normal");
   if (bed && normal) {

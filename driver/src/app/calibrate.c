@@ -1,0 +1,326 @@
+/* scene: calibrate: the scene, the forward processes (posix_spawn of this executable, no shell), and TAO's
+ * least-squares solve over the parameters mapped to [0, 1] (linear or logarithmic within their bounds). */
+#include "calibrate.h"
+
+#include <fcntl.h>
+#include <math.h>
+#include <petsctao.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "../io/fsutil.h"
+#include "../material/material_input.h"
+
+extern char **environ;
+
+#define FAIL(...)                                                                                                   \
+  do {                                                                                                              \
+    snprintf(err, errlen, __VA_ARGS__);                                                                             \
+    return 1;                                                                                                       \
+  } while (0)
+
+double cal_param(const CalParam *p, double u) {
+  return p->log ? exp(log(p->lo) + u * (log(p->hi) - log(p->lo))) : p->lo + u * (p->hi - p->lo);
+}
+double cal_dparam(const CalParam *p, double u) { return p->log ? cal_param(p, u) * log(p->hi / p->lo) : p->hi - p->lo; }
+static double param_u(const CalParam *p, double v) {
+  return p->log ? log(v / p->lo) / log(p->hi / p->lo) : (v - p->lo) / (p->hi - p->lo);
+}
+
+/* parameters: [{name, start, min, max, scale: linear | log}] */
+static int read_param(const YdDoc *doc, YdNode *nd, int k, CalParam *p, char *err, size_t errlen) {
+  char        path[64], sub[96];
+  const char *s;
+  YdNode     *v;
+  snprintf(path, sizeof path, "parameters[%d]", k);
+  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.name", path);
+  if (!(v = yd_require(doc, nd, "name", YD_SCALAR, sub, err, errlen)) || yd_string(doc, v, sub, &s, err, errlen)) return 1;
+  snprintf(p->name, sizeof p->name, "%s", s);
+  if ((p->slot = material_slot(s)) < 0)
+    FAIL("%s:%d: key '%s': unknown PROPS name '%s': expected one of phi, lambda_hard, muT_hard, muL_hard, a_hard, "
+         "b_hard, M_hard, lambda_p_hard, c1, c2, c3, pc0_hard, eta_hard, lambda_soft, mu_soft, M_soft, lambda_p_soft, "
+         "pc0_soft, eta_soft", doc->file, v->line, sub, s);
+  const char *keys[3] = {"start", "min", "max"};
+  double     *vals[3] = {&p->start, &p->lo, &p->hi};
+  for (int i = 0; i < 3; i++) {
+    snprintf(sub, sizeof sub, "%s.%s", path, keys[i]);
+    if (!(v = yd_require(doc, nd, keys[i], YD_SCALAR, sub, err, errlen)) || yd_double(doc, v, sub, vals[i], err, errlen))
+      return 1;
+  }
+  p->log = 0;
+  snprintf(sub, sizeof sub, "%s.scale", path);
+  if ((v = yd_get(nd, "scale"))) {
+    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+    if (strcmp(s, "log") && strcmp(s, "linear"))
+      FAIL("%s:%d: key '%s': expected linear or log, got '%s'", doc->file, v->line, sub, s);
+    p->log = !strcmp(s, "log");
+  }
+  int line = yd_key_line(nd, "max");
+  if (!(p->lo < p->hi))
+    FAIL("%s:%d: key '%s': bounds the wrong way round: min = %g must be below max = %g", doc->file, line, path, p->lo, p->hi);
+  if (p->log && !(p->lo > 0))
+    FAIL("%s:%d: key '%s.min': a log scale needs min > 0, got %g", doc->file, yd_key_line(nd, "min"), path, p->lo);
+  if (!(p->start >= p->lo && p->start <= p->hi))
+    FAIL("%s:%d: key '%s.start': expected a start within [min, max] = [%g, %g], got %g", doc->file,
+         yd_key_line(nd, "start"), path, p->lo, p->hi, p->start);
+  return yd_check_unused(doc, nd, path, "name, start, min, max, scale", err, errlen);
+}
+
+static int read_scene(YdDoc *doc, Calib *c, const char *outdir, char *err, size_t errlen) {
+  const char *s;
+  YdNode     *v;
+  snprintf(c->name, sizeof c->name, "calibrate");
+  if ((v = yd_get(doc->root, "name")) && !yd_string(doc, v, "name", &s, err, errlen)) snprintf(c->name, sizeof c->name, "%s", s);
+  else if (v) return 1;
+  YdNode *ps = yd_require(doc, doc->root, "parameters", YD_SEQUENCE, "parameters", err, errlen);
+  if (!ps) return 1;
+  if (ps->n < 1 || ps->n > CAL_MAX_PARAMS)
+    FAIL("%s:%d: key 'parameters': expected 1 to %d parameters, got %zu", doc->file, ps->line, CAL_MAX_PARAMS, ps->n);
+  c->np = (int)ps->n;
+  for (int k = 0; k < c->np; k++) {
+    if (read_param(doc, ps->items[k], k, &c->p[k], err, errlen)) return 1;
+    for (int j = 0; j < k; j++)
+      if (c->p[j].slot == c->p[k].slot)
+        FAIL("%s:%d: key 'parameters[%d].name': '%s' is fitted twice", doc->file, ps->items[k]->line, k, c->p[k].name);
+  }
+  YdNode *rs = yd_require(doc, doc->root, "runs", YD_SEQUENCE, "runs", err, errlen);
+  if (!rs) return 1;
+  if (rs->n < 1 || rs->n > CAL_MAX_RUNS)
+    FAIL("%s:%d: key 'runs': expected 1 to %d forward runs, got %zu", doc->file, rs->line, CAL_MAX_RUNS, rs->n);
+  for (size_t k = 0; k < rs->n; k++, c->nrun++)
+    if (cal_run_read(doc, rs->items[k], (int)k, &c->run[k], err, errlen)) return 1;
+  snprintf(c->outdir, sizeof c->outdir, "out/calibrate/%s", c->name);
+  YdNode *out = yd_get(doc->root, "output"), *d;
+  if (out && (yd_expect(doc, out, YD_MAPPING, "output", err, errlen) ||
+              ((d = yd_get(out, "directory")) && yd_string(doc, d, "output.directory", &s, err, errlen)) ||
+              yd_check_unused(doc, out, "output", "directory", err, errlen)))
+    return 1;
+  if (out && yd_get(out, "directory")) snprintf(c->outdir, sizeof c->outdir, "%s", s);
+  if (outdir && outdir[0]) snprintf(c->outdir, sizeof c->outdir, "%s", outdir);
+  return yd_check_unused(doc, doc->root, "", "scene, name, parameters, runs, output", err, errlen);
+}
+
+/* The environment without the MPI launcher's variables: a forward run is its own singleton. */
+static char **child_environment(void) {
+  int n = 0;
+  while (environ[n]) n++;
+  char **env = malloc(sizeof(char *) * (size_t)(n + 1));
+  int    k   = 0;
+  for (int i = 0; i < n; i++)
+    if (strncmp(environ[i], "OMPI_", 5) && strncmp(environ[i], "PMIX_", 5) && strncmp(environ[i], "PMI_", 4) &&
+        strncmp(environ[i], "HYDRA_", 6))
+      env[k++] = environ[i];
+  env[k] = NULL;
+  return env;
+}
+
+int cal_forward(Calib *c, const CalRun *run, const char *scene, const double *p, const char *dir) {
+  char  set[1024], opts[512], log[PATH_MAX + 16], *argv[64], *tok, *save = NULL;
+  int   argc = 0, status = 0;
+  pid_t pid;
+  snprintf(set, sizeof set, "%s", run->set);
+  for (int k = 0; k < c->np; k++) {
+    size_t len = strlen(set);
+    snprintf(set + len, sizeof set - len, "%s%s=%.17g", len ? "," : "", c->p[k].name, p[k]);
+  }
+  if (fs_make_directories(dir)) return -1;
+  argv[argc++] = c->exe, argv[argc++] = "-input", argv[argc++] = (char *)scene, argv[argc++] = "-output_dir";
+  argv[argc++] = (char *)dir, argv[argc++] = "-material_set", argv[argc++] = set;
+  argv[argc++] = "-progress_every", argv[argc++] = "1000000";
+  snprintf(opts, sizeof opts, "%s", run->options);
+  for (tok = strtok_r(opts, " \t", &save); tok && argc < 62; tok = strtok_r(NULL, " \t", &save)) argv[argc++] = tok;
+  argv[argc] = NULL;
+  snprintf(log, sizeof log, "%s/forward.log", dir);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  char **env = child_environment();
+  double t0  = MPI_Wtime();
+  int    rc  = posix_spawn(&pid, c->exe, &fa, NULL, argv, env);
+  posix_spawn_file_actions_destroy(&fa);
+  free(env);
+  if (rc) return -1;
+  while (waitpid(pid, &status, 0) < 0) {}
+  c->nforward++, c->forward_wall += MPI_Wtime() - t0;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+int cal_evaluate(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen) {
+  double p[CAL_MAX_PARAMS];
+  int    m = 0;
+  for (int k = 0; k < c->np; k++) p[k] = cal_param(&c->p[k], u[k]);
+  for (int j = 0; j < c->nrun; j++) {
+    char dir[PATH_MAX + 200];
+    snprintf(dir, sizeof dir, "%s/forward/%s_%s", c->outdir, tag, c->run[j].name);
+    int rc = cal_forward(c, &c->run[j], c->run[j].scene, p, dir);
+    if (rc) FAIL("run '%s': the forward run failed (exit code %d; its log: %s/forward.log)", c->run[j].name, rc, dir);
+    if (!c->m && cal_run_setup(&c->run[j], dir, err, errlen)) return 1;
+    if (cal_run_residual(&c->run[j], dir, r + m, err, errlen)) return 1;
+    m += cal_run_size(&c->run[j]);
+  }
+  return 0;
+}
+
+/* TAO's residual routine: a failed evaluation is rejected (a large residual), not fatal. */
+static PetscErrorCode tao_residual(Tao tao, Vec U, Vec R, void *ctx) {
+  Calib             *c = ctx;
+  const PetscScalar *u;
+  PetscScalar       *r;
+  char               tag[32], err[1024] = "";
+  double             uu[CAL_MAX_PARAMS], f = 0, t0 = MPI_Wtime();
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &u));
+  for (int k = 0; k < c->np; k++) uu[k] = PetscMin(1, PetscMax(0, PetscRealPart(u[k])));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscCall(VecGetArray(R, &r));
+  snprintf(tag, sizeof tag, "e%04d", ++c->nevals);
+  int bad = cal_evaluate(c, uu, r, tag, err, sizeof err);
+  for (int i = 0; i < c->m; i++) {
+    if (bad) r[i] = c->penalty;
+    f += r[i] * r[i];
+  }
+  PetscCall(VecRestoreArray(R, &r));
+  if (bad) {
+    c->nrejected++;
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  evaluation %d rejected: %s\n", c->nevals, err));
+  } else if (f < c->best_f) {
+    c->best_f = f;
+    memcpy(c->best_u, uu, sizeof uu);
+  }
+  fprintf(c->evals, "%d,%d", c->nevals, !bad);
+  for (int k = 0; k < c->np; k++) fprintf(c->evals, ",%.10g", cal_param(&c->p[k], uu[k]));
+  fprintf(c->evals, ",%.10g,%.3f\n", bad ? NAN : f, MPI_Wtime() - t0);
+  fflush(c->evals);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode tao_monitor(Tao tao, void *ctx) {
+  Calib             *c = ctx;
+  PetscInt           its;
+  PetscReal          f;
+  Vec                U;
+  const PetscScalar *u;
+  PetscFunctionBeginUser;
+  PetscCall(TaoGetSolutionStatus(tao, &its, &f, NULL, NULL, NULL, NULL));
+  PetscCall(TaoGetSolution(tao, &U));
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "iteration %3d  misfit (sum of squares) %.6e ", (int)its, (double)f));
+  for (int k = 0; k < c->np; k++)
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, " %s %.6g", c->p[k].name, cal_param(&c->p[k], PetscRealPart(u[k]))));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "  forward runs %d (%d rejected evaluations)  wall %.1f s\n", c->nforward,
+                        c->nrejected, MPI_Wtime() - c->wall0));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  c->iterations = (int)its;
+  PetscFunctionReturn(0);
+}
+
+/* TAO over u in [0, 1]^n from the start; its solution and converged reason. */
+static PetscErrorCode solve(Calib *c, double *u, PetscInt *its, char *reason, size_t rlen) {
+  Tao                tao;
+  Vec                U, R, L, H;
+  TaoType            type;
+  TaoConvergedReason why;
+  PetscScalar       *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->np, &U));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->m, &R));
+  PetscCall(VecDuplicate(U, &L));
+  PetscCall(VecDuplicate(U, &H));
+  PetscCall(VecSet(L, 0));
+  PetscCall(VecSet(H, 1));
+  PetscCall(VecGetArray(U, &a));
+  for (int k = 0; k < c->np; k++) a[k] = u[k];
+  PetscCall(VecRestoreArray(U, &a));
+  PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
+  PetscCall(TaoSetType(tao, TAOPOUNDERS));
+  PetscCall(TaoSetSolution(tao, U));
+  PetscCall(TaoSetResidualRoutine(tao, R, tao_residual, c));
+  PetscCall(TaoSetVariableBounds(tao, L, H));
+  PetscCall(TaoSetTolerances(tao, 1e-9, 0, 1e-4)); /* gatol; gttol: the gradient reduced 1e4 times */
+  PetscCall(TaoSetMaximumFunctionEvaluations(tao, 60));
+  PetscCall(TaoSetMonitor(tao, tao_monitor, c, NULL));
+  PetscCall(TaoSetFromOptions(tao));
+  PetscCall(TaoGetType(tao, &type));
+  snprintf(c->tao_type, sizeof c->tao_type, "%s", type);
+  PetscCall(TaoSolve(tao));
+  PetscCall(TaoGetSolutionStatus(tao, its, NULL, NULL, NULL, NULL, &why));
+  snprintf(reason, rlen, "%s", TaoConvergedReasons[why]);
+  PetscCall(VecGetArray(U, &a));
+  for (int k = 0; k < c->np; k++) u[k] = PetscRealPart(a[k]);
+  PetscCall(VecRestoreArray(U, &a));
+  PetscCall(TaoDestroy(&tao));
+  PetscCall(VecDestroy(&U));
+  PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&L));
+  PetscCall(VecDestroy(&H));
+  PetscFunctionReturn(0);
+}
+
+/* The first evaluation, at the start: every error here is the input's (fatal). */
+static int start(Calib *c, double *u, char *err, size_t errlen) {
+  double *r = malloc(sizeof(double) * 1);
+  int     m = 0;
+  for (int k = 0; k < c->np; k++) u[k] = param_u(&c->p[k], c->p[k].start);
+  double p[CAL_MAX_PARAMS];
+  for (int k = 0; k < c->np; k++) p[k] = c->p[k].start;
+  for (int j = 0; j < c->nrun; j++) {
+    char dir[PATH_MAX + 200];
+    snprintf(dir, sizeof dir, "%s/forward/start_%s", c->outdir, c->run[j].name);
+    int rc = cal_forward(c, &c->run[j], c->run[j].scene, p, dir);
+    if (rc) {
+      free(r);
+      FAIL("run '%s': the forward run at the start failed (exit code %d): see %s/forward.log", c->run[j].name, rc, dir);
+    }
+    if (cal_run_setup(&c->run[j], dir, err, errlen)) return free(r), 1;
+    int n = cal_run_size(&c->run[j]);
+    r     = realloc(r, sizeof(double) * (size_t)(m + n));
+    if (cal_run_residual(&c->run[j], dir, r + m, err, errlen)) return free(r), 1;
+    m += n;
+  }
+  c->m = m;
+  double f = 0, rmax = 0;
+  for (int i = 0; i < m; i++) f += r[i] * r[i], rmax = fmax(rmax, fabs(r[i]));
+  c->penalty = 10 * fmax(1, rmax), c->best_f = f;
+  memcpy(c->best_u, u, sizeof(double) * c->np);
+  free(r);
+  if (m < c->np) FAIL("%s: %d data points for %d parameters: need at least as many points", c->doc->file, m, c->np);
+  PetscPrintf(PETSC_COMM_SELF, "calibrate %s: %d parameters, %d runs, %d residuals; misfit at the start %.6e\n", c->name,
+              c->np, c->nrun, m, f);
+  return 0;
+}
+
+int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
+  Calib   *c = calloc(1, sizeof *c);
+  double   u[CAL_MAX_PARAMS];
+  PetscInt its    = 0;
+  char     reason[64], file[PATH_MAX + 32];
+  int      rc     = 2;
+  c->doc          = doc;
+  c->wall0        = MPI_Wtime();
+  ssize_t len     = readlink("/proc/self/exe", c->exe, sizeof c->exe - 1);
+  if (len <= 0) snprintf(err, errlen, "calibrate: cannot find the driver's own executable (/proc/self/exe)");
+  else if (read_scene(doc, c, outdir, err, errlen)) {
+  } else if (fs_prepare_output_dir(c->outdir, err, errlen)) {
+  } else if (start(c, u, err, errlen)) {
+  } else {
+    rc = 1;
+    snprintf(file, sizeof file, "%s/evaluations.csv", c->outdir);
+    if (!(c->evals = fopen(file, "w"))) snprintf(err, errlen, "calibrate: cannot write %s", file);
+    else {
+      fprintf(c->evals, "evaluation,ok");
+      for (int k = 0; k < c->np; k++) fprintf(c->evals, ",%s", c->p[k].name);
+      fprintf(c->evals, ",misfit,wall\n");
+      if (!solve(c, u, &its, reason, sizeof reason) && !cal_report(c, u, its, reason, err, errlen)) rc = 0;
+      fclose(c->evals);
+    }
+  }
+  for (int j = 0; j < c->nrun; j++) cal_run_free(&c->run[j]);
+  free(c);
+  return rc;
+}

@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Synthetic measured data for the calibrate examples: run a forward scene with the driver at known PROPS
+(-material_set), then sample its history like a measurement and optionally add noise.
+
+Indentation (history with load, depth): N points on loading at evenly spaced loads, N on the hold at evenly
+spaced times, N on unloading at evenly spaced loads; columns time_s, load_uN, depth_um. Point scene: N points
+evenly spaced in time over the named segment; columns time_h, axial_strain_percent (compression positive).
+
+  make_synthetic.py --driver build/bin/driver --scene forward/nano_fast.yaml --set eta_soft=1.3e10 \\
+      --out data/nano_synthetic.csv [--noise 0.01 --seed 1] [--points 15]
+Noise: each depth (strain) times (1 + noise * N(0, 1)), a fixed seed.
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+
+def read_history(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0] if k != "stage_name"}
+
+
+def sample_indentation(h, n):
+    """Rows (time, load, depth) on loading, hold, unloading, interpolated in the history."""
+    stage = h["stage"].astype(int)
+    out = []
+    for s, by in ((0, "load"), (1, "time"), (2, "load")):
+        idx = np.nonzero(stage == s)[0]
+        if s > 0:
+            idx = np.concatenate([[idx[0] - 1], idx])
+        x = h[by][idx]
+        lo, hi = (x.min(), x.max())
+        if s == 0:
+            targets = np.linspace(lo + 0.1 * (hi - lo), hi, n)
+        elif s == 1:
+            targets = np.linspace(lo, hi, n + 1)[1:]  # after the hold's start
+        else:
+            targets = np.linspace(hi, lo, n + 1)[1:-1]  # decreasing loads, not the first nor the final zero
+        order = np.argsort(x)
+        for v in targets:
+            t = np.interp(v, x[order], h["time"][idx][order])
+            d = np.interp(v, x[order], h["depth"][idx][order])
+            load = np.interp(v, x[order], h["load"][idx][order])
+            out.append((t, load, d))
+    out.sort()
+    return ["time_s", "load_uN", "depth_um"], out
+
+
+def sample_point(h, n, segment, column):
+    idx = np.nonzero(h["segment"].astype(int) == segment)[0]
+    t = h["time"][idx]
+    targets = np.linspace(t[0], t[-1], n + 1)[1:]
+    y = np.interp(targets, t, h[column][idx])
+    return ["time_h", "axial_strain_percent"], [(tt / 3600.0, -100.0 * yy) for tt, yy in zip(targets, y)]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--driver", required=True)
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--set", required=True, help="NAME=VALUE[,NAME=VALUE]: the known parameters")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--points", type=int, default=15)
+    ap.add_argument("--noise", type=float, default=0.0)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--segment", type=int, default=1, help="point scenes: the segment sampled")
+    ap.add_argument("--column", default="eps_33", help="point scenes: the strain column sampled")
+    a = ap.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        r = subprocess.run([a.driver, "-input", a.scene, "-output_dir", tmp, "-material_set", a.set],
+                           capture_output=True, text=True)
+        if r.returncode:
+            sys.exit(f"make_synthetic: the driver failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
+        h = read_history(os.path.join(tmp, "history.csv"))
+    if "depth" in h:
+        header, rows = sample_indentation(h, a.points)
+    else:
+        header, rows = sample_point(h, a.points, a.segment, a.column)
+    rng = np.random.default_rng(a.seed)
+    rows = [(r[:-1] + (r[-1] * (1 + a.noise * rng.standard_normal()),)) for r in rows]
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
+    with open(a.out, "w") as f:
+        f.write(f"# synthetic: {os.path.basename(a.scene)} with {a.set}, noise {a.noise} (seed {a.seed}); "
+                "input/calibrate/make_synthetic.py\n")
+        f.write(",".join(header) + "\n")
+        for r in rows:
+            f.write(",".join(f"{v:.10g}" for v in r) + "\n")
+    print(f"{a.out}: {len(rows)} rows")
+
+
+if __name__ == "__main__":
+    main()
