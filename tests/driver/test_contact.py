@@ -1,10 +1,12 @@
 """Rigid-indenter contact (issue #5), on a linear-elastic UMAT (E = 1000, nu = 0.3) where closed forms
 exist: Sneddon's cone, Hertz's sphere, the flat punch, each on a large axisymmetric block graded toward
-the tip, with the error falling under refinement; the contact invariants at every converged step of a
-load-hold-unload run (contact force = load, no penetration, lambda >= 0), the release to zero depth and
+the tip, with the error falling under refinement; at every converged step of a load-hold-unload run the
+supports' reaction (element forces on the fixed components) equal to the load, the gaps of the surface
+recomputed from the written fields against the analytic cone (no penetration), the release to zero depth and
 an empty active set, 1 vs 2 ranks, direct vs field-split solvers, 3D Berkovich vs its equivalent cone (a regression check),
 a Cam-Clay IX indentation whose creep scales with t/eta, and bad indenter input."""
 import math
+import re
 import os
 import shutil
 import subprocess
@@ -71,6 +73,11 @@ def test_sneddon_cone(tmp_path):
         print(f"cone, vertical gap, h_tip {h_tip}: P = {hist['load'][-1]:.5g}, Sneddon {sneddon(0.1):.5g}, error {err[h_tip]:+.2%}")
     assert abs(err[0.01]) < 0.02 and abs(err[0.01]) < abs(err[0.02])
     hist = run(axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", PUSH % 0.1), tmp_path / "normal")
+    check_invariants(hist)
+    g = gaps_from_fields(tmp_path / "normal", hist["depth"][-1], PSI)
+    print(f"cone, normal gap: smallest vertical gap of the top surface from the fields {g.min():+.3e} "
+          f"(of {np.sum(g < 1e-9 * 0.1)} nodes in contact)")
+    assert g.min() >= -1e-8 * 0.1 and np.sum(g < 1e-6 * 0.1) >= 3   # no penetration, and nodes in contact
     gamma = 1 + (1 - 2 * NU) / (4 * (1 - NU) * math.tan(PSI))
     ratio = hist["load"][-1] / sneddon(0.1)
     print(f"cone, normal gap: P / Sneddon = {ratio:.4f}; Hay et al. gamma = {gamma:.4f}")
@@ -108,12 +115,26 @@ LHU = """  - {name: load, duration: 100, indenter: {load: {exp: {P0: 5, k: 0.1}}
 
 
 def check_invariants(hist, tol=1e-10):
-    """Every converged step: sum of contact forces = load (relative to the largest load), no penetration
-    beyond the tolerance, lambda >= 0 on the active set."""
+    """Every converged step, an independent balance: the supports' vertical reaction (from the element
+    forces on the fixed components, not from the multipliers) equals the indenter load, relative to the
+    largest load (equilibrium of the whole block; the rollers on the sides carry no vertical force)."""
     pmax = hist["load"].max()
-    assert np.max(np.abs(hist["contact_force"] - hist["load"])) <= tol * pmax
-    assert np.max(hist["max_penetration"]) <= 1e-9 * hist["depth"].max()
-    assert np.min(hist["min_lambda"]) >= 0
+    assert np.max(np.abs(hist["reaction_y"] - hist["load"])) <= tol * pmax
+
+
+def gaps_from_fields(run, depth, psi):
+    """The gaps of the top surface's nodes to the rigid cone (apex on the axis at the surface's height minus
+    the depth, half-angle psi) recomputed from the written fields (mesh and displacement at the last output),
+    against the analytic cone above the block: (H - depth + r cot psi) - y_node, measured vertically."""
+    import h5py
+    with h5py.File(run / "fields.h5", "r") as f:
+        X = f["/mesh/coordinates"][()]
+        k = sorted(f["/fields/displacement"].keys())[-1]
+        u = f[f"/fields/displacement/{k}"][()][:, :2]
+    H = X[:, 1].max()
+    top = np.abs(X[:, 1] - H) < 1e-12 * np.ptp(X[:, 1])
+    x = X[top] + u[top]
+    return (H - depth + x[:, 0] / math.tan(psi)) - x[:, 1]
 
 
 def test_load_hold_unload_elastic(tmp_path):
@@ -264,3 +285,29 @@ def test_contact_outgrows_its_surface(tmp_path):
     msg = proc.stdout + proc.stderr
     assert proc.returncode != 0 and "edge of the potential contact surface 'contact'" in msg and "small.yaml" in msg, msg
     assert (tmp_path / "small" / "history.csv").read_text().count("\n") >= 2
+
+
+def test_contact_tangent_against_finite_differences(tmp_path):
+    """-indent_check_tangent: the whole linearised system of eq. 15 (FE block, contact blocks, indenter row,
+    multiplier rows of the active set) against central differences of the residual along a random direction,
+    at every Newton iterate. With the vertical gap (the normal fixed along the axis) the tangent is exact:
+    < 1e-6 at every iterate on the elastic UMAT, and on Cam-Clay IX except at the first iterate of a step that
+    starts to yield (central differences across the yield surface), where it is asserted < 1e-4. The normal
+    gap's tangent freezes the normal (exact on a flat face); under the apex the normal turns with the node,
+    which this check shows as a large difference there (not asserted: docs/contact.md)."""
+    stages = "  - {name: push, duration: 1, indenter: {load: 100}, steps: {count: 3}}"
+    cone = "{shape: cone, half_angle: 70.3, contact: contact, gap: vertical}"
+    checks = {}
+    for exe, material in (("driver_elastic", ELASTIC), ("driver", "{props: woodford, set: {phi: 0}}")):
+        text = axi_scene(cone, stages, W=2, H=2, h_tip=0.08, h_far=0.3, r_fine=0.4, r_contact=0.9).replace(
+            f"material: {ELASTIC}", f"material: {material}")
+        scene = tmp_path / f"{exe}.yaml"
+        scene.write_text(text)
+        proc = subprocess.run([str(BIN / exe), "-input", str(scene), "-output_dir", str(tmp_path / exe), "-indent_check_tangent"],
+                              capture_output=True, text=True, cwd=ROOT)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        checks[exe] = [float(m) for m in re.findall(r"whole system\): \|J d - FD\| / \|J d\| = ([0-9.eE+-]+)", proc.stdout)]
+        print(f"{exe}: {len(checks[exe])} iterates, |J d - FD| / |J d| from {min(checks[exe]):.1e} to {max(checks[exe]):.1e}")
+    assert len(checks["driver_elastic"]) >= 3 and max(checks["driver_elastic"]) < 1e-6
+    cc = checks["driver"]
+    assert len(cc) >= 3 and max(cc) < 1e-4 and sorted(cc)[len(cc) // 2] < 1e-6

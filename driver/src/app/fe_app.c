@@ -87,6 +87,11 @@ static int mesh_geometry(FeScene *sc, const RunnerOptions *opt, char *err, size_
   snprintf(sc->msh, sizeof sc->msh, "%s/mesh%s.msh", sc->outdir, opt->restart ? "" : ".part");
   if (!rank) rc = gmsh_mesh(sc->geometry, sc->kin == KIN_3D ? 3 : 2, sc->ngmsh, (const char(*)[64])sc->gmsh_name, sc->gmsh_value, sc->msh,
                             err, errlen);
+  if (!rank && !rc) { /* gmsh's log is kept only when it failed */
+    char log[1100];
+    snprintf(log, sizeof log, "%s.log", sc->msh);
+    remove(log);
+  }
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
   return rc;
@@ -105,24 +110,30 @@ static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p) {
   PetscFunctionReturn(0);
 }
 
+/* A PETSc error: main prints PETSc's own message for it (err left empty). */
+static int petsc_failure(PetscErrorCode ierr, char *err) {
+  err[0] = '\0';
+  return (int)ierr;
+}
+
 static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, char *err, size_t errlen) {
   DM        dm;
   FeProblem p;
   PetscMemzero(&p, sizeof p);
-  if (fe_mesh_create(PETSC_COMM_WORLD, sc->msh, sc->kin == KIN_3D ? 3 : 2, &dm)) return 1;
+  PetscErrorCode ierr = fe_mesh_create(PETSC_COMM_WORLD, sc->msh, sc->kin == KIN_3D ? 3 : 2, &dm);
+  if (ierr) return petsc_failure(ierr, err);
   int rc = check_groups(doc, sc, dm, err, errlen);
   if (rc) {
     DMDestroy(&dm);
     return rc;
   }
-  if (fe_problem_setup(&p, dm, sc->kin, sc->thickness, sc->order, &sc->mat, sc->fixed, sc->nfixed, (const char(*)[64])sc->pressure_group,
-                       sc->npressure))
-    return 1;
+  ierr = fe_problem_setup(&p, dm, sc->kin, sc->thickness, sc->order, &sc->mat, sc->fixed, sc->nfixed, (const char(*)[64])sc->pressure_group,
+                          sc->npressure);
+  if (ierr) return petsc_failure(ierr, err);
   snprintf(p.outdir, sizeof p.outdir, "%s", sc->outdir);
-  if (print_sizes(sc, &p)) return 1;
-  if (fe_problem_set_initial_stress(&p, sc->stress0) ||
-      fe_problem_set_phi(&p, sc->phi_mean, sc->phi_std, sc->phi_lo, sc->phi_hi, sc->phi_seed, sc->phi_corr))
-    return 1;
+  if ((ierr = print_sizes(sc, &p)) || (ierr = fe_problem_set_initial_stress(&p, sc->stress0)) ||
+      (ierr = fe_problem_set_phi(&p, sc->phi_mean, sc->phi_std, sc->phi_lo, sc->phi_hi, sc->phi_seed, sc->phi_corr)))
+    return petsc_failure(ierr, err);
   opt->outdir = sc->outdir, opt->scene_file = doc->file, opt->fields_every = sc->fields_every;
   opt->nout_times = sc->nout_times, opt->out_times = sc->out_times;
   opt->part_file = sc->geometry[0] && !opt->restart ? sc->msh : NULL;

@@ -171,6 +171,7 @@ int main(int argc, char **argv) {
     yd_free(&doc);
   }
   if (rc) print_failure(rc, err);
+  if (rc > 2) rc = 1; /* a PETSc error code: the run failed */
   if (rc != 2) PetscCall(warn_unused_options()); /* not after a scene error: nothing was run */
   if (!traceback) PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());

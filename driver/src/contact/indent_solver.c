@@ -1,4 +1,5 @@
 #include "indent_solver.h"
+#include "../io/log_events.h"
 
 #include <string.h>
 #include <time.h>
@@ -154,6 +155,7 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscScalar       *a;
   PetscInt           n, its;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT_SOLVE), 0, 0, 0, 0));
   PetscCall(part(s->F, s->is[0], Ru, PETSC_TRUE));
   PetscCall(part(s->F, s->is[2], Rlam, PETSC_TRUE));
   PetscCall(VecGetSubVector(s->F, s->is[1], &sub));
@@ -190,5 +192,40 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCallMPI(MPI_Bcast(&v, 1, MPIU_REAL, 0, PetscObjectComm((PetscObject)s->X)));
   *dur = v;
   s->seconds += wall() - t0;
+  PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT_SOLVE), 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The indenter's entry of a flat vector (on rank 0), set or read. */
+static PetscErrorCode indenter_entry(IndentSolver *s, Vec flat, PetscReal *v, PetscBool set) {
+  Vec          sub;
+  PetscScalar *a;
+  PetscInt     n;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSubVector(flat, s->is[1], &sub));
+  PetscCall(VecGetLocalSize(sub, &n));
+  PetscCall(VecGetArray(sub, &a));
+  if (n && set) a[0] = *v;
+  PetscReal got = n ? PetscRealPart(a[0]) : 0;
+  PetscCall(VecRestoreArray(sub, &a));
+  PetscCall(VecRestoreSubVector(flat, s->is[1], &sub));
+  if (!set) {
+    PetscCallMPI(MPI_Bcast(&got, 1, MPIU_REAL, 0, PetscObjectComm((PetscObject)flat)));
+    *v = got;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode indent_solver_apply(IndentSolver *s, Vec du, PetscReal dur, Vec dlam, Vec ju, PetscReal *jr, Vec jlam) {
+  PetscFunctionBeginUser;
+  PetscCall(part(s->X, s->is[0], du, PETSC_TRUE));
+  PetscCall(part(s->X, s->is[2], dlam, PETSC_TRUE));
+  PetscCall(indenter_entry(s, s->X, &dur, PETSC_TRUE));
+  PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatMult(s->A, s->X, s->F));
+  PetscCall(part(s->F, s->is[0], ju, PETSC_FALSE));
+  PetscCall(part(s->F, s->is[2], jlam, PETSC_FALSE));
+  PetscCall(indenter_entry(s, s->F, jr, PETSC_FALSE));
   PetscFunctionReturn(0);
 }

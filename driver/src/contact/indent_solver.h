@@ -31,4 +31,8 @@ PetscErrorCode indent_solver_destroy(IndentSolver *s);
 PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, Vec du, PetscReal *dur,
                                    Vec dlam, PetscBool *ok);
 
+/* The product of the current blocks with a direction (du, dur, dlam): (ju, jr, jlam) = J d (for the
+ * finite-difference check of the tangent). */
+PetscErrorCode indent_solver_apply(IndentSolver *s, Vec du, PetscReal dur, Vec dlam, Vec ju, PetscReal *jr, Vec jlam);
+
 #endif

@@ -1,6 +1,7 @@
 #include "semismooth.h"
 
 #include "../fe/fe_state.h"
+#include "../io/log_events.h"
 
 #include <math.h>
 #include <petscksp.h>
@@ -19,8 +20,10 @@ PetscBool semismooth_released(const Semismooth *in) { return !in->depth_control 
 PetscErrorCode semismooth_evaluate(Semismooth *in, PetscReal *merit) {
   PetscFunctionBeginUser;
   PetscCall(fe_residual(NULL, in->U, in->Ru, in->p));
+  PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
   PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
   PetscCall(contact_residual(&in->ct, in->lam, in->ur, in->depth_control, in->target, in->Ru, &in->Rr, &in->ncp));
+  PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT), 0, 0, 0, 0));
   PetscCall(VecNorm(in->Ru, NORM_2, &in->ru));
   if (semismooth_released(in)) { /* released: the indenter rests on the surface (set after
                                                    the step), so only lambda = 0 is asked for */
@@ -53,34 +56,81 @@ static PetscErrorCode active_signature(Semismooth *in, unsigned long long *sig) 
 
 const char *semismooth_failure[] = {"", "Newton did not converge", "the active set cycles", "the linear solver failed"};
 
-/* -indent_check_tangent: the displacement block against a finite difference of the element loop. */
-static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
+/* The residual (R_u, R_r, R_lambda) at (U, ur, lam) + e (du, dur, dlam), into (ru, rr, rl); the active set
+   stays the one the tangent was built for. */
+static PetscErrorCode residual_along(Semismooth *in, PetscReal e, Vec du, PetscReal dur, Vec dlam, Vec ru, PetscReal *rr, Vec rl) {
+  PetscReal m;
   PetscFunctionBeginUser;
-  { /* the displacement block against a finite difference of the element loop */
-      Vec       r0, r1, kd;
-      PetscReal eps = 1e-7, nd, nk;
-      PetscCall(VecDuplicate(in->U, &r0));
-      PetscCall(VecDuplicate(in->U, &r1));
-      PetscCall(VecDuplicate(in->U, &kd));
-      PetscCall(VecSetRandom(in->du, NULL));
-      PetscCall(VecCopy(in->U, in->Uk));
-      PetscCall(fe_residual(NULL, in->Uk, r0, in->p));
-      PetscCall(VecAXPY(in->Uk, eps, in->du));
-      PetscCall(fe_residual(NULL, in->Uk, r1, in->p));
-      PetscCall(VecAXPY(r1, -1.0, r0));
-      PetscCall(VecScale(r1, 1 / eps));
-      PetscCall(fe_residual(NULL, in->U, r0, in->p));
-      PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
-      PetscCall(MatMult(in->K, in->du, kd));
-      PetscCall(VecNorm(kd, NORM_2, &nk));
-      PetscCall(VecAXPY(kd, -1.0, r1));
-      PetscCall(VecNorm(kd, NORM_2, &nd));
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    tangent check: |K du - FD| / |K du| = %.3e\n", (double)(nd / nk)));
-      PetscCall(VecDestroy(&r0));
-      PetscCall(VecDestroy(&r1));
-      PetscCall(VecDestroy(&kd));
-      PetscCall(semismooth_evaluate(in, merit));
-    }
+  PetscCall(VecAXPY(in->U, e, du));
+  PetscCall(VecAXPY(in->lam, e, dlam));
+  in->ur += e * dur;
+  PetscCall(semismooth_evaluate(in, &m));
+  PetscCall(contact_constraint_residual(&in->ct, in->lam, rl));
+  PetscCall(VecCopy(in->Ru, ru));
+  *rr = in->Rr;
+  PetscCall(VecAXPY(in->U, -e, du));
+  PetscCall(VecAXPY(in->lam, -e, dlam));
+  in->ur -= e * dur;
+  PetscFunctionReturn(0);
+}
+
+/* -indent_check_tangent: the whole linearised system of eq. 15 (the FE block with the UMAT's tangent, the
+   contact blocks, the indenter row and the complementarity rows of the current active set) against central
+   differences of the residual along a random direction; prints |J d - FD| / |J d|. */
+static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
+  Vec       du, dl, ju, jl, rp, rm, lp, lm;
+  PetscReal jr, rrp, rrm, nu, eps;
+  PetscFunctionBeginUser;
+  Vec *v[] = {&du, &ju, &rp, &rm, NULL}, *w[] = {&dl, &jl, &lp, &lm, NULL};
+  for (int k = 0; v[k]; k++) PetscCall(VecDuplicate(in->U, v[k]));
+  for (int k = 0; w[k]; k++) PetscCall(VecDuplicate(in->lam, w[k]));
+  PetscCall(VecSetRandom(du, NULL));
+  PetscCall(VecSetRandom(dl, NULL));
+  { /* the multipliers of the active set only: the inactive ones sit on identity rows (eq. 14) */
+    PetscScalar *a;
+    PetscCall(VecGetArray(dl, &a));
+    for (PetscInt i = 0; i < in->ct.n; i++)
+      if (!in->ct.active[i]) a[i] = 0;
+    PetscCall(VecRestoreArray(dl, &a));
+  }
+  PetscCall(VecNorm(in->U, NORM_INFINITY, &nu));
+  PetscReal xmax = 0, xall;
+  for (PetscInt i = 0; i < in->ct.n * in->ct.dim; i++) xmax = PetscMax(xmax, PetscAbsReal(in->ct.X[i]));
+  PetscCall(MPIU_Allreduce(&xmax, &xall, 1, MPIU_REAL, MPI_MAX, PetscObjectComm((PetscObject)in->U)));
+  PetscReal scale = PetscMax(PetscMax(nu, PetscAbsReal(in->ur)), 1e-3 * xall), dur = scale; /* of the solution's size */
+  PetscCall(VecScale(du, scale));
+  PetscCall(VecScale(dl, in->fref / PetscMax(in->ct.weight_sum, 1e-300)));
+  { /* -indent_check_tangent_part u | r | lambda: only that part of the direction */
+    char      which[16] = "";
+    PetscBool set;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-indent_check_tangent_part", which, sizeof which, &set));
+    if (set && strcmp(which, "u")) PetscCall(VecZeroEntries(du));
+    if (set && strcmp(which, "r")) dur = 0;
+    if (set && strcmp(which, "lambda")) PetscCall(VecZeroEntries(dl));
+  }
+  eps = 1e-6;
+  PetscCall(indent_solver_apply(&in->sol, du, dur, dl, ju, &jr, jl));
+  PetscCall(residual_along(in, eps, du, dur, dl, rp, &rrp, lp));
+  PetscCall(residual_along(in, -eps, du, dur, dl, rm, &rrm, lm));
+  PetscCall(VecAXPY(rp, -1.0, rm));
+  PetscCall(VecScale(rp, 1 / (2 * eps))); /* FD of R_u */
+  PetscCall(VecAXPY(lp, -1.0, lm));
+  PetscCall(VecScale(lp, 1 / (2 * eps)));
+  PetscReal fr = (rrp - rrm) / (2 * eps), nj[2], nd[2];
+  PetscCall(VecNorm(ju, NORM_2, &nj[0]));
+  PetscCall(VecNorm(jl, NORM_2, &nj[1]));
+  PetscCall(VecAXPY(rp, -1.0, ju));
+  PetscCall(VecAXPY(lp, -1.0, jl));
+  PetscCall(VecNorm(rp, NORM_2, &nd[0]));
+  PetscCall(VecNorm(lp, NORM_2, &nd[1]));
+  PetscReal num = PetscSqrtReal(nd[0] * nd[0] + nd[1] * nd[1] + PetscSqr(fr - jr)), den = PetscSqrtReal(nj[0] * nj[0] + nj[1] * nj[1] + jr * jr);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    tangent check (eq. 15, whole system): |J d - FD| / |J d| = %.3e  (u rows %.2e, indenter row %.2e, "
+                                          "multiplier rows %.2e)\n", (double)(num / den), (double)(nd[0] / den), (double)(PetscAbsReal(fr - jr) / den),
+                        (double)(nd[1] / den)));
+  for (int k = 0; v[k]; k++) PetscCall(VecDestroy(v[k]));
+  for (int k = 0; w[k]; k++) PetscCall(VecDestroy(w[k]));
+  PetscCall(semismooth_evaluate(in, merit)); /* back to the iterate */
+  PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
   PetscFunctionReturn(0);
 }
 
@@ -145,9 +195,11 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     PetscBool shift = !in->depth_control && in->nactive == 0;
     in->kshift_uses += shift;
     PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
+    PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
     PetscCall(contact_jacobian(&in->ct, in->depth_control, shift ? in->kshift : 0.0));
+    PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT), 0, 0, 0, 0));
     PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
-    if (in->fd_check) PetscCall(check_tangent(in, &merit));
+    if (in->fd_check && !shift) PetscCall(check_tangent(in, &merit)); /* the shift is in the tangent only */
     PetscReal dur;
     PetscBool ok;
     PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, in->du, &dur, in->dlam, &ok));
@@ -269,6 +321,18 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     in->ct.c = is->c > 0 ? is->c : Eall / lall;
   }
   PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
+  { /* the indenter starts on or above the surface: a node already inside it is a scene error */
+    PetscReal gmin = PETSC_MAX_REAL, all, scale = 0, sall;
+    for (PetscInt i = 0; i < in->ct.n; i++) gmin = PetscMin(gmin, in->ct.g[i]);
+    for (PetscInt i = 0; i < in->ct.n * in->ct.dim; i++) scale = PetscMax(scale, PetscAbsReal(in->ct.X[i]));
+    PetscCall(MPIU_Allreduce(&gmin, &all, 1, MPIU_REAL, MPI_MIN, comm));
+    PetscCall(MPIU_Allreduce(&scale, &sall, 1, MPIU_REAL, MPI_MAX, comm));
+    if (all < -1e-9 * PetscMax(sall, 1e-300)) {
+      snprintf(err, errlen, "%s: key 'indenter.tip': the indenter starts %g below the surface of the contact group '%s' (a gap of %g): "
+                            "place its tip on or above the surface", is->file, (double)-all, is->contact_group, (double)all);
+      *bad = 2;
+    }
+  }
   PetscFunctionReturn(0);
 }
 

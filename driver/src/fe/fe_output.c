@@ -1,4 +1,5 @@
 #include "fe_output.h"
+#include "../io/log_events.h"
 
 #include <petsclayouthdf5.h>
 #include <petscviewerhdf5.h>
@@ -363,6 +364,7 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   char group[64], name[16];
   Vec  v;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_OUTPUT), 0, 0, 0, 0));
   PetscCall(PetscSNPrintf(name, sizeof name, "%06d", (int)o->nout));
   PetscCall(displacement_vec(p, U, o, &v));
   PetscCall(PetscObjectSetName((PetscObject)v, name));
@@ -386,6 +388,7 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   o->times[o->nout++] = time;
   PetscCall(xmf_write(p, o));
   if (o->auto_promote && o->nout >= 2) PetscCall(fe_output_promote(o));
+  PetscCall(PetscLogEventEnd(driver_event(EV_OUTPUT), 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

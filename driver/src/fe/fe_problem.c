@@ -1,4 +1,5 @@
 #include "fe_problem.h"
+#include "../io/log_events.h"
 
 #include "camclay9.h"
 
@@ -387,6 +388,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscReal    min_pnewdt = PETSC_MAX_REAL;
   clock_t      t0         = clock();
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
   PetscCheck(p->nq <= 64 && p->nb <= 90, PETSC_COMM_SELF, PETSC_ERR_SUP, "element too large");
   PetscCall(DMGetLocalSection(dm, &s));
   PetscCall(DMGetLocalVector(dm, &Uloc));
@@ -466,6 +468,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
   PetscCall(VecCopy(U, p->ddsdde_u));
   p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscCall(PetscLogEventEnd(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -476,6 +479,7 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   PetscBool        same = PETSC_FALSE;
   clock_t          t0   = clock();
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
   if (p->ddsdde_valid) PetscCall(VecEqual(U, p->ddsdde_u, &same));
   if (!same) { /* the cached tangents belong to another U: evaluate there first */
     p->tangent_recomputes++;
@@ -518,6 +522,7 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
     PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
   }
   p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscCall(PetscLogEventEnd(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

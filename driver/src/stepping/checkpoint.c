@@ -1,5 +1,7 @@
 #include "checkpoint.h"
 
+#include "../io/log_events.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
@@ -36,7 +38,16 @@ static void remove_older_sets(const RunnerOptions *opt, int rank, int step) {
   closedir(dir);
 }
 
+static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
+
 int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
+  PetscLogEventBegin(driver_event(EV_CHECKPOINT), 0, 0, 0, 0);
+  int rc = write_set(sv, opt, st, last, err, errlen);
+  PetscLogEventEnd(driver_event(EV_CHECKPOINT), 0, 0, 0, 0);
+  return rc;
+}
+
+static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
   int rank, size;
   MPI_Comm_rank(sv->comm, &rank);
   MPI_Comm_size(sv->comm, &size);

@@ -194,9 +194,10 @@ static PetscErrorCode solver_setup(FeSolver *f) {
 int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
   FeSolver f;
   PetscMemzero(&f, sizeof f);
-  if (fe_common_init(&f.c, sc, p, opt) || solver_setup(&f)) {
-    snprintf(err, errlen, "setting up the FE solver failed (see the PETSc message above)");
-    return 1;
+  PetscErrorCode ierr = fe_common_init(&f.c, sc, p, opt);
+  if (ierr || (ierr = solver_setup(&f))) {
+    err[0] = '\0'; /* main prints PETSc's message */
+    return (int)ierr;
   }
   if (!opt->restart) { /* the initial state: the UMAT initialises its state on a zero increment */
     p->time = 0, p->dt = 0, p->umat_tol = 0;

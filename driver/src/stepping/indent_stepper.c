@@ -189,9 +189,10 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   int    bad = 0;
   PetscMemzero(&d, sizeof d);
   d.is = is;
-  if (semismooth_create(p, is, sc->msh, &d.in, err, errlen, &bad)) {
-    snprintf(err, errlen, "setting up the contact failed (see the PETSc message above)");
-    return 1;
+  PetscErrorCode ierr = semismooth_create(p, is, sc->msh, &d.in, err, errlen, &bad);
+  if (ierr) {
+    err[0] = '\0'; /* main prints PETSc's message */
+    return (int)ierr;
   }
   if (bad) return bad;
   if (fe_common_init(&d.c, sc, p, opt)) return 1;
