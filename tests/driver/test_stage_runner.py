@@ -258,3 +258,16 @@ def test_failed_run_keeps_earlier_results(tmp_path):
     assert proc.returncode == 1 and "nothing of an earlier run" in proc.stderr
     for name, data in files.items():
         assert (out / name).read_bytes() == data, name
+
+
+def test_bad_run_options_and_indenter_below_the_surface(tmp_path):
+    out = tmp_path / "neg"
+    proc = run(camclay_cone(load_hold(0.1, hold=2)), out, args=["-checkpoint_every", "-3"], check=False)
+    assert proc.returncode == 2 and "-checkpoint_every -3: expected a number of steps >= 0" in proc.stderr.splitlines()[0]
+    below = camclay_cone(load_hold(0.1, hold=2)).replace("contact: contact}", "contact: contact, tip: [0, -0.01]}")
+    proc = run(below, tmp_path / "below", check=False)
+    print(proc.stderr.strip())
+    first = proc.stderr.splitlines()[0]
+    depth = float(re.search(r"starts ([0-9.eE+-]+) below the surface", first).group(1))
+    # the gap is measured normal to the cone: a tip 0.01 under a flat surface is 0.01 sin(70.3 deg) from it
+    assert proc.returncode == 2 and "indenter.tip" in first and abs(depth / (0.01 * math.sin(math.radians(70.3))) - 1) < 1e-4
