@@ -214,16 +214,20 @@ def test_kill_at_any_moment_then_restart(tmp_path):
     (tmp_path / "killed.yaml").write_text(scene)
     args = ["-input", str(tmp_path / "killed.yaml"), "-output_dir", str(out), "-checkpoint_every", "1"]
     rng = np.random.default_rng(7)
-    restarted = False
     for k in range(3):
-        proc = subprocess.Popen([str(BIN / "driver"), *args, *(["-restart"] if restarted else [])], cwd=tmp_path,
+        latest = out / "checkpoint.latest"
+        before = latest.read_text() if latest.exists() else ""
+        proc = subprocess.Popen([str(BIN / "driver"), *args, *(["-restart"] if k else [])], cwd=tmp_path,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        time.sleep(0.6 + rng.uniform(0, 0.8))
+        deadline = time.time() + 120          # wait for a new checkpoint (the machine may be slow), then kill
+        while proc.poll() is None and time.time() < deadline and (not latest.exists() or latest.read_text() == before):
+            time.sleep(0.02)
+        time.sleep(rng.uniform(0, 0.3))       # at a random moment of the steps and checkpoints that follow
         if proc.poll() is None:
             proc.send_signal(signal.SIGKILL)
         proc.wait()
-        restarted = restarted or (out / "checkpoint.latest").exists()
-    final = run(scene, out, args=["-restart", "-checkpoint_every", "1"]) if restarted else run(scene, out)
+        assert latest.exists(), "no checkpoint was written"
+    final = run(scene, out, args=["-restart", "-checkpoint_every", "1"])
     assert len(final) == len(full) and np.array_equal(final["depth"], full["depth"])
     assert len(list(out.glob("checkpoint.*.rank0.bin"))) == 1   # the previous set is removed
 
