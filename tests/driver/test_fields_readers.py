@@ -124,9 +124,8 @@ def test_uniaxial_bar(tmp_path, kind, order, ranks):
     out = tmp_path / f"{kind}{order}_{ranks}"
     run(DRIVER_ELASTIC, bar_3d(order) if kind == "3d" else bar_2d(kind), out, ranks)
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
-    assert hist.size == NSTEPS                  # one row per step; fields: the initial state and every step
-    pts, frames = check_series(out, dim, "tetra" if dim == 3 else "triangle", {"stress", "strain", "phi"},
-                               np.r_[0.0, hist["time"]])
+    assert hist.size == NSTEPS + 1              # the initial state and one row per step; fields: the same
+    pts, frames = check_series(out, dim, "tetra" if dim == 3 else "triangle", {"stress", "strain", "phi"}, hist["time"])
     corner = int(np.argmin(np.sum((pts - np.array([LX, LY, LZ][:dim])) ** 2, axis=1)))
     assert np.allclose(pts[corner], [LX, LY, LZ][:dim], atol=1e-12)
     for t, pd, cd in frames:
@@ -175,15 +174,15 @@ def test_xmf_valid_after_each_output(tmp_path):
 
 
 def test_unpromoted_run_keeps_earlier_results(tmp_path):
-    """A run into the directory of an earlier one that ends before its first output after the initial
-    state (here stopped by -max_steps 1 with no output during the stage) leaves its files as
+    """A run into the directory of an earlier one that ends before its first step (here stopped by
+    -max_steps 0 after writing the initial state) leaves its files as
     fields.h5.part / fields.xmf.part (a valid index of its one output) and the earlier fields.h5 and
     fields.xmf byte for byte."""
     out = tmp_path / "keep"
     run(DRIVER_ELASTIC, bar_3d(1), out)
     before = {n: (out / n).read_bytes() for n in ("fields.h5", "fields.xmf")}
-    proc = run(DRIVER_ELASTIC, bar_3d(1).replace("fields_every: 1", "fields_every: 0"), out, args=["-max_steps", "1"])
-    assert "stopped after 1 steps" in proc.stdout
+    proc = run(DRIVER_ELASTIC, bar_3d(1).replace("fields_every: 1", "fields_every: 0"), out, args=["-max_steps", "0"])
+    assert "stopped after 0 steps" in proc.stdout
     assert {n: (out / n).read_bytes() for n in before} == before
     assert len(read_series(out / "fields.xmf")[2]) == NSTEPS + 1
     part = ET.parse(out / "fields.xmf.part")

@@ -342,7 +342,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   }
   int rc = 0;
   while (!rc && r.st.stage < sv->nstage) {
-    rc = run_stage(&r, err, errlen);
+    rc = opt->max_steps >= 0 && r.st.step >= opt->max_steps ? 3 : run_stage(&r, err, errlen);
     if (rc == 3) {
       if (!r.rank && !opt->quiet) printf("stopped after %d steps (-max_steps)\n", r.st.step);
       sum->stopped = 1, rc = 0;
