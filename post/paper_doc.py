@@ -51,6 +51,21 @@ def summary(n, trends):
     t = {k: x for k, x in zip(("rate", "aniso", "theta", "soft"), trends)}
     rows.append(f"| 3–5 | P–h curves match the experiments (§3, Figs. 3–4) | our P–h curves, below | not compared: the paper gives the curves only as images |")
     rows.append(f"| 7, 8 | faster loading: shallower indent, more creep (§4.1) | {t['rate']['detail']} | {_verdict(t['rate']['ok'])} |")
+    R = _regions(n["indent"])
+    if all(R.values()):
+        rows.append("| 9 | ‖dev εvp‖ more intense, more concentrated; tr εvp weaker, more pervasive (§4.1) | dev/tr 99th percentile "
+                    + ", ".join(f"{r['dev_p99'] / r['tr_p99']:.0f}×" for r in R.values()) + " for α = 0.1, 1, 10; dev area "
+                    + ", ".join(f"{r['dev_area'] / r['tr_area']:.2f}" for r in R.values()) + " of tr's | "
+                    + _verdict(all(r["dev_p99"] > r["tr_p99"] and r["dev_area"] < r["tr_area"] for r in R.values())) + " |")
+    ev = [(n["indent"].get(f"loading_rate_a{a}") or {}).get("evp_start") for a in ALPHAS]
+    if all(ev):
+        rows.append("| 10 | before creep, faster loading → less viscoplastic strain around the tip (§4.1) | mean ‖εvp‖ within 0.5 µm: "
+                    + " > ".join(f"{e['mean']:.3g}" for e in ev) + " | " + _verdict(ev[0]["mean"] > ev[1]["mean"] > ev[2]["mean"]) + " |")
+    if all(R.values()):
+        rows.append("| 12 | α = 0.1: sides relax; α = 1, 10: relaxation beneath the tip (§4.1) | Δ‖σ‖ beneath / sides: "
+                    + ", ".join(f"{r['dsig_beneath']:+.3g} / {r['dsig_sides']:+.3g} MPa" for r in R.values())
+                    + f" for α = 0.1, 1, 10 | α = 1, 10: {_verdict(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))}; "
+                    f"α = 0.1: {_verdict(R['0.1']['dsig_sides'] < 0 < R['0.1']['dsig_beneath'])} |")
     if f13:
         falls = all(v["change_end"] < 0 for v in f13.values())
         ours = ", ".join(f"α = {a}: {v['change_end']:+.3g} MPa" for a, v in f13.items())
@@ -111,12 +126,14 @@ def loading_rate(n, trends, images, rel):
         d = f13.get(a, {})
         L.append(f"| {a} | {_f(s['depth_end_of_load'], '.4g')} | {_f(s['creep_depth'], '.4g')} | "
                  f"{_f(e.get('max'))} / {_f(e.get('mean'))} | {_f(d.get('change_end'), '+.3g')} (min {_f(d.get('change_min'), '+.3g')}, max {_f(d.get('change_max'), '+.3g')}) |")
+    L += regions_table(ind)
     ev = [(ind.get(f"loading_rate_a{a}") or {}).get("evp_start") for a in ALPHAS]
     L += ["", f"**Verdicts.** Figs. 7, 8: {_verdict(trends[0]['ok'])} ({trends[0]['detail']})."]
     if all(ev):
         ok = ev[0]["mean"] > ev[1]["mean"] > ev[2]["mean"]
         L.append(f"Fig. 10: {_verdict(ok)}: the mean ‖εvp‖ near the tip at the start of the hold "
                  f"{'falls' if ok else 'does not fall monotonically'} from α = 0.1 to 10.")
+    L += regions_verdicts(ind)
     if f13:
         falls = [a for a, v in f13.items() if v["change_end"] < 0]
         L.append(f"Fig. 13: the stress beneath the tip falls during the hold for α = {', '.join(falls)}; the paper has it "
@@ -127,6 +144,41 @@ def loading_rate(n, trends, images, rel):
     for fid in ("fig7", "fig8", "fig13", "fig9", "fig10", "fig11", "fig12"):
         L.append(_images(images, fid, rel))
     return L
+
+
+def _regions(ind):
+    return {a: (ind.get(f"loading_rate_a{a}") or {}).get("regions") for a in ALPHAS}
+
+
+def regions_table(ind):
+    R = _regions(ind)
+    if not all(R.values()):
+        return []
+    L = ["", "Figs. 9 and 12 as numbers, at the end of the hold (undeformed mesh, tip at the origin, a = contact half-width "
+         "h tan 68.26°; post/paper_numbers.py field_regions):", "",
+         "| α | a [µm] | ‖dev εvp‖ / \|tr εvp\| (99th percentiles within 2a) | area above 10 % of it, dev / tr [µm²] | "
+         "mean Δ‖σ‖ beneath the tip (\|x\| < a/4, depth < a/2) [MPa] | on the sides (a/2 < \|x\| < 3a/2, depth < a/2) [MPa] |",
+         "|---|---|---|---|---|---|"]
+    for a, r in R.items():
+        L.append(f"| {a} | {r['a_contact']:.3f} | {r['dev_p99']:.3g} / {r['tr_p99']:.3g} | {r['dev_area']:.3g} / {r['tr_area']:.3g} | "
+                 f"{r['dsig_beneath']:+.3g} | {r['dsig_sides']:+.3g} |")
+    return L
+
+
+def regions_verdicts(ind):
+    R = _regions(ind)
+    if not all(R.values()):
+        return []
+    ok9 = all(r["dev_p99"] > r["tr_p99"] and r["dev_area"] < r["tr_area"] for r in R.values())
+    r01 = R["0.1"]
+    ok12_slow = r01["dsig_sides"] < 0 < r01["dsig_beneath"]
+    ok12_fast = all(R[a]["dsig_beneath"] < 0 for a in ("1", "10"))
+    return [f"Fig. 9: {_verdict(ok9)}: the deviatoric viscoplastic strain is the more intense and the more concentrated, "
+            "the volumetric the weaker and the more pervasive, for every α.",
+            f"Fig. 12, α = 1 and 10: {_verdict(ok12_fast)} (stress relaxes beneath the tip). α = 0.1: {_verdict(ok12_slow)}: "
+            f"the paper has the sides relaxing and the stress beneath the tip rising; ours falls beneath "
+            f"({r01['dsig_beneath']:+.3g} MPa) and {'rises' if r01['dsig_sides'] > 0 else 'falls'} on the sides "
+            f"({r01['dsig_sides']:+.3g} MPa), the pattern of the faster rates, weaker."]
 
 
 def bedding(n, trends, images, rel):
@@ -184,7 +236,7 @@ def triaxial(n, trends, images, rel):
           f"θ0 > θ90: {_verdict(trends[2]['ok'])} (ratio within {max(abs(r[k] / rp[k] - 1) for k in r):.0%} of the paper's fits); "
           "Fig. 17 late (1–10 h): **differs**: about half the paper's creep. Fig. 18: **agrees** early "
           f"(soft > {SOFT_OVER_HARD:g}× hard at 385 s for both θ), **differs** later: the ratio falls below 10 at the times in the table and "
-          "is about 1.5–2.5 at 10 h.", ""]
+          f"is {tri[0]['soft_over_hard']['36000']:.1f} (θ0) and {tri[90]['soft_over_hard']['36000']:.1f} (θ90) at 10 h.", ""]
     for fid in ("fig17", "fig18"):
         L.append(_images(images, fid, rel))
     return L
@@ -199,7 +251,7 @@ def why():
             "frame at p ≈ 22 MPa, below pc = 35 MPa: it never creeps (hard frame only, 5.7e-6 at 385 s). Starting both "
             "frames at the in-situ −35 MPa puts the soft frame on its yield surface (why Table 2 sets pc0 = σc = 35 MPa), "
             "and it dominates early. But during the hold the hard frame compacts (pc 2 → 27.6 MPa) and its share of the "
-            "creep grows, so the ratio falls below 10 after about 2000 s (θ0) and 5100 s (θ90).",
+            "creep grows, so the ratio falls below 10 after about 2000 s (θ0) and 5100 s (θ90) at the point (the cylinder: table above).",
             "* **No reading of the equations gives the early creep, the late creep, the θ ratio and Fig. 18 together.** "
             "Tried (one point, both θ): p and q from σ′ or from q only; the normalisation of f (q′² + M²p′(p′−pc): the "
             "same curve about M⁴ ≈ 4.5× faster); hardening with total, mixture or (1+e)-scaled volumetric strain; holds "
@@ -209,8 +261,8 @@ def why():
             "but creeps about 4× too fast at 385 s (2.5e-4 against 6.9e-5) and saturates (4.4e-4 at 10 h after 3.7e-4 at "
             "1 h): the wrong shape.",
             "* **The Lomnitz fit depends on sampling.** For the same θ0 point curve: evenly in t, B 6.7e-5, τ 597 s; "
-            "evenly in log t, B 5.0e-5, τ 208 s. A fit weighted toward late times reads a larger B: part of the "
-            "paper's B may come from how it sampled, which it does not state.", "",
+            "evenly in log t, B 5.0e-5, τ 208 s. The paper does not state its sampling, so both are given above; "
+            "neither comes near its B (9.97e-5): the difference is in the curve after 1 h, not in the fit.", "",
             "The adopted reading (theory.md §5.4) is kept: it matches 385 s within about 11 % and the θ ratio within "
             "about 17 %, creeps about half as much as the paper's fits from 1 to 10 h, and has the soft frame > 10× the "
             "hard one only early. The model is not tuned to the figures.", ""]

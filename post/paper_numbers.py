@@ -116,6 +116,41 @@ def evp_at_start_of_hold(run, radius):
         return {"max": float(n.max()), "mean": float(n.mean()), "radius": radius, "cells": int(near.sum())}
 
 
+def _cell_areas(F):
+    x = F.x[:, :2][F.cells]
+    return 0.5 * np.abs(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]))
+
+
+def field_regions(run, a_contact):
+    """Fig. 9 and Fig. 12 as numbers, at the end of the hold, over the undeformed 2D mesh (tip at the origin):
+    fig9: the 99th percentile of |tr evp| and of |dev evp| over the cells within 2 a_contact of the tip, and
+    the area where each exceeds 10 % of that value (deviatoric: "more intense and concentrated over a smaller
+    zone"); fig12: the area-mean change of |sigma| since the start of the hold beneath the tip (|x| < a/4,
+    -a/2 < y < 0) and on the sides of the indent (a/2 < |x| < 3a/2, -a/2 < y < 0), a the contact half-width."""
+    from fields_h5 import Fields, dev_norm, tensor_norm, trace
+    from indent_plots import History, STAGE_COLUMNS
+    if not (Path(run) / "fields.h5").is_file():
+        return None
+    t0, t1 = History(run, need=STAGE_COLUMNS).hold_times()
+    with Fields(run) as F:
+        k0, k1 = F.nearest(t0), F.nearest(t1)
+        A = _cell_areas(F)
+        x, y = F.centroids[:, 0], F.centroids[:, 1]
+        near = np.hypot(x, y) < 2 * a_contact
+        e = F.cell("evp", k1)
+        tr, dv = np.abs(trace(e)), dev_norm(e, True)
+        res = {"a_contact": a_contact}
+        for name, v in (("tr", tr), ("dev", dv)):
+            top = float(np.percentile(v[near], 99))
+            res[f"{name}_p99"], res[f"{name}_area"] = top, float(A[v > 0.1 * top].sum())
+        ds = tensor_norm(F.cell("stress", k1), False) - tensor_norm(F.cell("stress", k0), False)
+        strip = (y < 0) & (y > -0.5 * a_contact)
+        for name, m in (("beneath", strip & (np.abs(x) < 0.25 * a_contact)),
+                        ("sides", strip & (np.abs(x) > 0.5 * a_contact) & (np.abs(x) < 1.5 * a_contact))):
+            res[f"dsig_{name}"] = float(np.sum(ds[m] * A[m]) / np.sum(A[m]))
+        return res
+
+
 # ------------------------------------------------------------------ all
 def collect(out):
     """All numbers of the runs in `out` (missing runs are left out); writes out/numbers.json."""
@@ -135,6 +170,8 @@ def collect(out):
                     "cell_centroid": xy, "change_end": float(ds[-1]), "change_min": float(ds.min()),
                     "change_max": float(ds.max()), "hold": float(dt[-1]), "outputs": int(dt.size)}
             n["indent"][d.name]["evp_start"] = evp_at_start_of_hold(d, 0.5)
+            a = n["indent"][d.name]["depth_end_of_hold"] * np.tan(np.radians(136.51 / 2))   # wedge: a = h tan(68.26)
+            n["indent"][d.name]["regions"] = field_regions(d, a)
     (out / "numbers.json").write_text(json.dumps(n, indent=1, default=float) + "\n", encoding="utf-8")
     return n
 
