@@ -1,0 +1,165 @@
+"""The figures of docs/paper.md, drawn from the runs of tools/reproduce.py into DIR/figures.
+
+Per-run figures come from post/indent_plots.py and post/triaxial_plots.py (their output is logged to
+DIR/figures/plots.log); the figures that set runs side by side (Fig. 13 for the three loading rates,
+Fig. 17 for both theta with the paper's fits, Fig. 18's soft/hard ratio) are drawn here.
+draw_all returns {figure id: [(png path, caption)]}.
+"""
+import contextlib
+import shutil
+import sys
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import indent_plots  # noqa: E402
+import triaxial_plots  # noqa: E402
+from lomnitz import lomnitz  # noqa: E402
+from paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,  # noqa: E402
+                           tip_stress_change, triaxial_series)
+
+DPI = 90
+
+
+def _save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    return path
+
+
+def _plot(log, argv, main=indent_plots.main):
+    """Run a plot script's main(argv), its printout into the log; False if the run is missing or fails."""
+    with contextlib.redirect_stdout(log):
+        print("$ " + " ".join(str(a) for a in argv))
+        try:
+            return main([str(a) for a in argv]) == 0
+        except SystemExit as e:
+            print(f"skipped: {e}")
+            return False
+
+
+def _copy(src, dest):
+    if Path(src).is_file():
+        shutil.copyfile(src, dest)
+        return dest
+    return None
+
+
+def fig13(out, figs):
+    fig = Figure(figsize=(6, 4))
+    ax = fig.subplots()
+    drawn = False
+    for k, a in enumerate(ALPHAS):
+        r = tip_stress_change(out / f"loading_rate_a{a}")
+        if r is None:
+            continue
+        dt, ds, xy = r
+        ax.plot(dt, ds, ".-", ms=3, color=f"C{k}", label=f"α = {a} (cell at {xy[0]:.2g}, {xy[1]:.2g} µm)")
+        drawn = True
+    if not drawn:
+        return None
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlabel("time since the start of the hold [s]")
+    ax.set_ylabel("Δ‖σ‖ beneath the tip [MPa]")
+    ax.set_title("cf. Fig. 13: paper has a rise for α = 0.1, falls for α = 1, 10", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return _save(fig, figs / "fig13_tip_stress.png")
+
+
+def fig17(out, figs):
+    fig = Figure(figsize=(10, 4))
+    ax1, ax2 = fig.subplots(1, 2)
+    drawn = False
+    for k, th in enumerate(THETAS_TRIAXIAL):
+        run = out / f"triaxial_theta{th}"
+        if not (run / "history.csv").is_file():
+            continue
+        t, eps, _, _ = triaxial_series(run)
+        B, tau = PAPER_LOMNITZ[th]
+        for ax in (ax1, ax2):
+            ax.plot(t[1:] / 3600, eps[1:], "-", color=f"C{k}", label=f"ours, θ = {th}")
+            ax.plot(t[1:] / 3600, lomnitz(t[1:], B, tau), "--", color=f"C{k}",
+                    label=f"paper's fit θ = {th}: B = {B:.3g}, τ = {tau:g} s")
+        drawn = True
+    if not drawn:
+        return None
+    ax2.set_xscale("log")
+    ax2.set_xlim(left=1.0 / 3600)
+    for ax in (ax1, ax2):
+        ax.set_xlabel("time after σd [h]")
+        ax.set_ylabel("axial creep strain (compression +)")
+        ax.grid(alpha=0.3)
+    ax1.legend(fontsize=7)
+    ax1.set_title("cf. Fig. 17 (linear time)", fontsize=9)
+    ax2.set_title("the same, log time", fontsize=9)
+    return _save(fig, figs / "fig17_creep.png")
+
+
+def fig18_ratio(out, figs):
+    fig = Figure(figsize=(6, 4))
+    ax = fig.subplots()
+    drawn = False
+    for k, th in enumerate(THETAS_TRIAXIAL):
+        run = out / f"triaxial_theta{th}"
+        if not (run / "history.csv").is_file():
+            continue
+        t, _, soft, hard = triaxial_series(run)
+        pos = t > 0
+        ax.loglog(t[pos], soft[pos] / np.maximum(hard[pos], 1e-300), color=f"C{k}", label=f"θ = {th}")
+        drawn = True
+    if not drawn:
+        return None
+    ax.axhline(SOFT_OVER_HARD, color="k", ls="--", lw=0.8, label="paper: > 10 over the whole test")
+    ax.set_xlabel("time after σd [s]")
+    ax.set_ylabel("soft / hard mean axial creep")
+    ax.set_title("cf. Fig. 18: ratio of the frames' creep", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    return _save(fig, figs / "fig18_ratio.png")
+
+
+def draw_all(out, numbers=None):
+    out = Path(out)
+    figs = out / "figures"
+    figs.mkdir(exist_ok=True)
+    images = {}
+
+    def add(fid, path, caption):
+        if path:
+            images.setdefault(fid, []).append((Path(path), caption))
+
+    with open(figs / "plots.log", "w", encoding="utf-8") as log:
+        for key, fid in (("nanoindent_kerogen", "fig3"), ("microindent_BN", "fig4a"), ("microindent_BP", "fig4b")):
+            if _plot(log, ["ph", out / key, "--out", out / key]):
+                add(fid, _copy(out / key / "ph.png", figs / f"{fid}_ph.png"), f"P–h, {key}")
+        if _plot(log, ["profile", out / "microindent_BN", "--out", out / "microindent_BN"]):
+            add("fig5", _copy(out / "microindent_BN" / "profile.png", figs / "fig5_profile.png"),
+                "residual surface profile after unloading, microindent_BN")
+        runs = [out / f"loading_rate_a{a}" for a in ALPHAS]
+        if _plot(log, ["compare", *runs, "--labels", *[f"α = {a}" for a in ALPHAS], "--out", figs / "lr"]):
+            add("fig7", _copy(figs / "lr" / "compare_ph.png", figs / "fig7_ph.png"), "P–h for α = 0.1, 1, 10")
+            add("fig8", _copy(figs / "lr" / "compare_creep.png", figs / "fig8_creep.png"), "creep depth vs hold time")
+        for a, run in zip(ALPHAS, runs):
+            if _plot(log, ["fields", run, "--window", "0.6", "--out", run]):
+                if a == "1":
+                    add("fig9", _copy(run / "fig9.png", figs / f"fig9_a{a}.png"), f"α = {a}")
+                for f in ("fig10", "fig11", "fig12"):
+                    add(f, _copy(run / f"{f}.png", figs / f"{f}_a{a}.png"), f"α = {a}")
+        add("fig13", fig13(out, figs), "Δ‖σ‖ in the cell beneath the tip, all α")
+        runs = [out / f"bedding_theta{t}" for t in THETAS_BEDDING]
+        if _plot(log, ["compare", *runs, "--labels", *[f"θ = {t}" for t in THETAS_BEDDING], "--out", figs / "bed"]):
+            add("fig14", _copy(figs / "bed" / "compare_creep.png", figs / "fig14_creep.png"), "creep depth vs hold time")
+        if _plot(log, ["vectors", out / "bedding_theta45", "--window", "12.5", "--out", out / "bedding_theta45"]):
+            add("fig15", _copy(out / "bedding_theta45" / "vectors.png", figs / "fig15_vectors.png"),
+                "displacement increments during the hold, θ = 45")
+        add("fig17", fig17(out, figs), "axial creep strain after σd, both θ, with the paper's Lomnitz fits")
+        for th in THETAS_TRIAXIAL:
+            run = out / f"triaxial_theta{th}"
+            if _plot(log, [run, "--theta", th], main=triaxial_plots.main):
+                add("fig18", _copy(run / "frames.png", figs / f"fig18_frames_theta{th}.png"),
+                    f"per-frame axial viscoplastic strain, θ = {th}")
+        add("fig18", fig18_ratio(out, figs), "soft/hard ratio of the mean axial creep")
+    return images

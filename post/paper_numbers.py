@@ -1,0 +1,221 @@
+"""The numbers of docs/paper.md, read from the runs of tools/reproduce.py, and the paper's stated trends.
+
+collect(DIR) reads DIR/<scene>/history.csv (and fields.h5 of the loading-rate runs) and returns a dict
+(also written to DIR/numbers.json); check_trends(numbers) checks the four trends the paper states and
+that the quick mode asserts. Conventions: creep strain = axial strain since the deviator was applied,
+compression positive; indentation creep depth = h - h(start of hold); Lomnitz law B ln(1 + t/tau) with
+the natural logarithm (post/lomnitz.py).
+"""
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from lomnitz import lomnitz, lomnitz_fit  # noqa: E402
+
+ALPHAS = ("0.1", "1", "10")
+THETAS_BEDDING = (0, 30, 45, 60, 90)
+THETAS_TRIAXIAL = (0, 90)
+PAPER_LOMNITZ = {0: (9.97e-5, 385.0), 90: (6.74e-5, 364.0)}   # Yin et al. 2021 §5, eq. 28 and Fig. 17
+CREEP_TIMES = (385.0, 3600.0, 36000.0)                          # s after the deviator
+RATIO_TIMES = (100.0, 385.0, 1000.0, 3600.0, 36000.0)
+SOFT_OVER_HARD = 10.0                                           # §5, Fig. 18: "more than 10 times larger"
+EARLY = 385.0          # "early creep" in the checks: the paper's tau (385 s, 364 s), Fig. 17
+N_FIT = 400            # samples of the resampled Lomnitz fits
+
+
+# ------------------------------------------------------------------ triaxial
+def triaxial_series(run):
+    """(t, eps, soft, hard) of the creep stage: time since the deviator, axial creep strain and the mean
+    axial viscoplastic strain of each frame since the deviator (compression positive)."""
+    h = np.atleast_1d(np.genfromtxt(Path(run) / "history.csv", delimiter=",", names=True))
+    rows = np.flatnonzero(h["stage"] == h["stage"].max())
+    t = h["time"][rows] - h["time"][rows[0]]
+
+    def since(col):
+        return -(h[col][rows] - h[col][rows[0]])
+    return t, since("eps_33"), since("evp33_soft_mean"), since("evp33_hard_mean")
+
+
+def resampled_fits(t, eps):
+    """Lomnitz fits of one curve sampled three ways: evenly in t, evenly in log t (from 1 s), and at the
+    driver's steps (adaptive, close to even in log t)."""
+    tl = np.linspace(0.0, t[-1], N_FIT)
+    tg = np.geomspace(1.0, t[-1], N_FIT)
+    return {"even_t": lomnitz_fit(tl, np.interp(tl, t, eps)),
+            "even_log_t": lomnitz_fit(tg, np.interp(tg, t, eps)),
+            "steps": lomnitz_fit(t, eps)}
+
+
+def last_time_above(t, ratio, level):
+    """The last time at which ratio >= level, interpolated linearly between samples; None if never."""
+    above = np.flatnonzero(ratio >= level)
+    if above.size == 0:
+        return None
+    k = above[-1]
+    if k == ratio.size - 1:
+        return float(t[-1])
+    r0, r1 = ratio[k], ratio[k + 1]
+    return float(t[k] + (t[k + 1] - t[k]) * (r0 - level) / (r0 - r1))
+
+
+def triaxial_numbers(run, theta):
+    t, eps, soft, hard = triaxial_series(run)
+    B, tau = PAPER_LOMNITZ[theta]
+    pos = t > 0
+    ratio = soft[pos] / np.maximum(hard[pos], 1e-300)
+    return {
+        "duration": float(t[-1]),
+        "creep": {f"{x:g}": float(np.interp(x, t, eps)) for x in CREEP_TIMES},
+        "paper_creep": {f"{x:g}": float(lomnitz(x, B, tau)) for x in CREEP_TIMES},
+        "fits": {k: {"B": v[0], "tau": v[1]} for k, v in resampled_fits(t, eps).items()},
+        "soft_over_hard": {f"{x:g}": float(np.interp(x, t[pos], ratio)) for x in RATIO_TIMES if x <= t[-1] * (1 + 1e-6)},
+        "soft_over_hard_10x_until": last_time_above(t[pos], ratio, SOFT_OVER_HARD),
+    }
+
+
+# ------------------------------------------------------------------ indentation
+def indent_numbers(run):
+    from indent_plots import History, creep_summary
+    h = History(run)
+    s = creep_summary(h)
+    s["max_depth"] = float(np.max(h["depth"]))
+    return s
+
+
+def tip_stress_change(run):
+    """(dt, d|sigma|) in the cell beneath the tip during the hold (Fig. 13), from fields.h5; None without it."""
+    from fields_h5 import Fields, tensor_norm
+    from indent_plots import History, STAGE_COLUMNS, probe_cell
+    if not (Path(run) / "fields.h5").is_file():
+        return None
+    t0, t1 = History(run, need=STAGE_COLUMNS).hold_times()
+    with Fields(run) as F:
+        T = F.times
+        k0 = F.nearest(t0)
+        c, _ = probe_cell(F, None)
+        idx = np.flatnonzero((T >= T[k0]) & (T <= t1 + 1e-9 * max(1.0, t1)))
+        sig = tensor_norm(F.cell_history("stress", c)[idx], False)
+        return T[idx] - T[k0], sig - sig[0], tuple(float(x) for x in F.centroids[c, :2])
+
+
+def evp_at_start_of_hold(run, radius):
+    """Max and mean of |evp| (soft and hard frames together) over the cells within `radius` of the tip at
+    the output nearest to the start of the hold (Fig. 10, A1/B1/C1); None without fields.h5."""
+    from fields_h5 import Fields, tensor_norm
+    from indent_plots import History, STAGE_COLUMNS
+    if not (Path(run) / "fields.h5").is_file():
+        return None
+    t0, _ = History(run, need=STAGE_COLUMNS).hold_times()
+    with Fields(run) as F:
+        k0 = F.nearest(t0)
+        near = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < radius
+        n = tensor_norm(F.cell("evp", k0), True)[near]
+        return {"max": float(n.max()), "mean": float(n.mean()), "radius": radius, "cells": int(near.sum())}
+
+
+def _cell_areas(F):
+    x = F.x[:, :2][F.cells]
+    return 0.5 * np.abs(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]))
+
+
+def field_regions(run, a_contact):
+    """Fig. 9 and Fig. 12 as numbers, at the end of the hold, over the undeformed 2D mesh (tip at the origin):
+    fig9: the 99th percentile of |tr evp| and of |dev evp| over the cells within 2 a_contact of the tip, and
+    the area where each exceeds 10 % of that value (deviatoric: "more intense and concentrated over a smaller
+    zone"); fig12: the area-mean change of |sigma| since the start of the hold beneath the tip (|x| < a/4,
+    -a/2 < y < 0) and on the sides of the indent (a/2 < |x| < 3a/2, -a/2 < y < 0), a the contact half-width."""
+    from fields_h5 import Fields, dev_norm, tensor_norm, trace
+    from indent_plots import History, STAGE_COLUMNS
+    if not (Path(run) / "fields.h5").is_file():
+        return None
+    t0, t1 = History(run, need=STAGE_COLUMNS).hold_times()
+    with Fields(run) as F:
+        k0, k1 = F.nearest(t0), F.nearest(t1)
+        A = _cell_areas(F)
+        x, y = F.centroids[:, 0], F.centroids[:, 1]
+        near = np.hypot(x, y) < 2 * a_contact
+        e = F.cell("evp", k1)
+        tr, dv = np.abs(trace(e)), dev_norm(e, True)
+        res = {"a_contact": a_contact}
+        for name, v in (("tr", tr), ("dev", dv)):
+            top = float(np.percentile(v[near], 99))
+            res[f"{name}_p99"], res[f"{name}_area"] = top, float(A[v > 0.1 * top].sum())
+        ds = tensor_norm(F.cell("stress", k1), False) - tensor_norm(F.cell("stress", k0), False)
+        strip = (y < 0) & (y > -0.5 * a_contact)
+        for name, m in (("beneath", strip & (np.abs(x) < 0.25 * a_contact)),
+                        ("sides", strip & (np.abs(x) > 0.5 * a_contact) & (np.abs(x) < 1.5 * a_contact))):
+            res[f"dsig_{name}"] = float(np.sum(ds[m] * A[m]) / np.sum(A[m]))
+        return res
+
+
+# ------------------------------------------------------------------ all
+def collect(out):
+    """All numbers of the runs in `out` (missing runs are left out); writes out/numbers.json."""
+    out = Path(out)
+    n = {"indent": {}, "fig13": {}, "triaxial": {}}
+    for d in sorted(p for p in out.iterdir() if (p / "history.csv").is_file()):
+        if d.name.startswith("triaxial_theta"):
+            theta = int(d.name.removeprefix("triaxial_theta"))
+            n["triaxial"][theta] = triaxial_numbers(d, theta)
+            continue
+        n["indent"][d.name] = indent_numbers(d)
+        if d.name.startswith("loading_rate_a"):
+            r = tip_stress_change(d)
+            if r is not None:
+                dt, ds, xy = r
+                n["fig13"][d.name.removeprefix("loading_rate_a")] = {
+                    "cell_centroid": xy, "change_end": float(ds[-1]), "change_min": float(ds.min()),
+                    "change_max": float(ds.max()), "hold": float(dt[-1]), "outputs": int(dt.size)}
+            n["indent"][d.name]["evp_start"] = evp_at_start_of_hold(d, 0.5)
+            a = n["indent"][d.name]["depth_end_of_hold"] * np.tan(np.radians(136.51 / 2))   # wedge: a = h tan(68.26)
+            n["indent"][d.name]["regions"] = field_regions(d, a)
+    (out / "numbers.json").write_text(json.dumps(n, indent=1, default=float) + "\n", encoding="utf-8")
+    return n
+
+
+def _trend(name, ok, detail):
+    return {"name": name, "ok": bool(ok), "detail": detail}
+
+
+def check_trends(n):
+    """The four trends of the paper the model reproduces (issue 14), each with its measured margin. A
+    missing run fails its trend."""
+    out = []
+    ind, tri = n["indent"], n["triaxial"]
+    lr = [ind.get(f"loading_rate_a{a}") for a in ALPHAS]
+    if all(lr):
+        d = [r["depth_end_of_load"] for r in lr]
+        c = [r["creep_depth"] for r in lr]
+        ok = d[0] > d[1] > d[2] and c[0] < c[1] < c[2]
+        out.append(_trend("faster loading: shallower at the end of loading, more creep in the hold (§4.1, Figs. 7, 8)", ok,
+                          "alpha 0.1/1/10: depth at end of load " + " > ".join(f"{x:.4g}" for x in d) + " um, creep "
+                          + " < ".join(f"{x:.4g}" for x in c) + f" um; margins: depth ratios {d[0] / d[1]:.3f}, "
+                          f"{d[1] / d[2]:.3f}, creep ratios {c[1] / c[0]:.3f}, {c[2] / c[1]:.3f} (must be > 1)"))
+    else:
+        out.append(_trend("faster loading (§4.1)", False, "loading-rate runs missing"))
+    bed = [ind.get(f"bedding_theta{t}") for t in THETAS_BEDDING]
+    if all(bed) and 0 in tri and 90 in tri:
+        c = np.array([r["creep_depth"] for r in bed])
+        spread = c.max() / c.min()
+        tx = tri[0]["creep"]["36000"] / tri[90]["creep"]["36000"]
+        out.append(_trend("anisotropy weak in indentation creep, strong in triaxial creep (§4.2, Fig. 14; §5)",
+                          spread < tx, f"indentation creep depth max/min over theta 0-90 = {spread:.3f} "
+                          f"({', '.join(f'{x:.4g}' for x in c)} um) < triaxial theta0/theta90 creep at 10 h = {tx:.3f}"))
+    else:
+        out.append(_trend("anisotropy weak in indentation (§4.2)", False, "bedding or triaxial runs missing"))
+    if 0 in tri and 90 in tri:
+        r = {k: tri[0]["creep"][k] / tri[90]["creep"][k] for k in tri[0]["creep"]}
+        out.append(_trend("theta = 0 creeps more than theta = 90 (§5, Fig. 17)", all(v > 1 for v in r.values()),
+                          "theta0/theta90 creep ratio " + ", ".join(f"{v:.3f} at {k} s" for k, v in r.items())
+                          + f" (paper's fits: {lomnitz(385, *PAPER_LOMNITZ[0]) / lomnitz(385, *PAPER_LOMNITZ[90]):.3f} "
+                          "at 385 s; must be > 1)"))
+        e = {th: tri[th]["soft_over_hard"][f"{EARLY:g}"] for th in THETAS_TRIAXIAL}
+        out.append(_trend("the soft frame dominates early creep (§5, Fig. 18)", all(v > SOFT_OVER_HARD for v in e.values()),
+                          "soft/hard mean axial creep at 385 s: " + ", ".join(f"theta {th}: {v:.1f}" for th, v in e.items())
+                          + f" (must be > {SOFT_OVER_HARD:g})"))
+    else:
+        out.append(_trend("triaxial trends (§5)", False, "triaxial runs missing"))
+    return out

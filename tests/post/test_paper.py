@@ -1,0 +1,74 @@
+"""post/paper_numbers.py: the numbers of docs/paper.md and the trend checks of tools/reproduce.py --quick,
+on synthetic runs whose answers are known."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "post"))
+import paper_numbers as pn  # noqa: E402
+from lomnitz import lomnitz  # noqa: E402
+
+
+def write_triaxial(run, t, eps, soft, hard, t_hold=1.0e6):
+    """A history.csv as the FE triaxial scene writes it: stage 0 the hold, stage 1 the creep (compression
+    negative)."""
+    run.mkdir(parents=True)
+    rows = ["time,stage,step,eps_33,evp33_hard_mean,evp33_soft_mean", f"{t_hold},0,1,-0.001,-0.0001,-0.0002"]
+    rows += [f"{t_hold + ti},1,{k + 2},{-0.001 - e},{-0.0001 - h},{-0.0002 - s}"
+             for k, (ti, e, s, h) in enumerate(zip(t, eps, soft, hard))]
+    (run / "history.csv").write_text("\n".join(rows) + "\n")
+
+
+def test_lomnitz_curve_gives_its_own_parameters_however_sampled(tmp_path):
+    t = np.r_[0.0, np.geomspace(0.01, 36000.0, 300)]
+    eps = lomnitz(t, 9.97e-5, 385.0)
+    write_triaxial(tmp_path / "r", t, eps, eps, 0.01 * eps)
+    n = pn.triaxial_numbers(tmp_path / "r", 0)
+    for fit in n["fits"].values():
+        assert fit["B"] == pytest.approx(9.97e-5, rel=1e-3) and fit["tau"] == pytest.approx(385.0, rel=1e-2)
+    assert n["creep"]["385"] == pytest.approx(9.97e-5 * np.log(2.0), rel=1e-4)
+    assert n["creep"]["385"] == pytest.approx(n["paper_creep"]["385"], rel=1e-4)
+    assert n["soft_over_hard"]["385"] == pytest.approx(100.0)
+    assert n["soft_over_hard_10x_until"] == pytest.approx(36000.0)
+
+
+def test_sampling_changes_the_fit_of_a_non_lomnitz_curve(tmp_path):
+    """A curve that is not a Lomnitz law (two log terms): the even-in-t fit weighs the late times and
+    reads a larger tau than the even-in-log-t fit (issue 14: 597 s vs 208 s on the model's point curve)."""
+    t = np.r_[0.0, np.geomspace(0.01, 36000.0, 400)]
+    eps = lomnitz(t, 4e-5, 20.0) + lomnitz(t, 4e-5, 3000.0)
+    write_triaxial(tmp_path / "r", t, eps, eps, eps)
+    f = pn.triaxial_numbers(tmp_path / "r", 0)["fits"]
+    assert f["even_t"]["tau"] > 1.5 * f["even_log_t"]["tau"]
+
+
+def test_last_time_above_interpolates_the_crossing():
+    t = np.array([1.0, 2.0, 3.0, 4.0])
+    r = np.array([30.0, 20.0, 5.0, 4.0])
+    assert pn.last_time_above(t, r, 10.0) == pytest.approx(2.0 + 10.0 / 15.0)
+    assert pn.last_time_above(t, r, 50.0) is None
+
+
+def trends_input(creep_slow=0.01, creep_fast=0.04, bedding=(0.7, 0.72, 0.74, 0.76, 0.8), ratio=(60.0, 80.0)):
+    ind = {f"loading_rate_a{a}": {"depth_end_of_load": d, "creep_depth": c}
+           for a, d, c in zip(pn.ALPHAS, (0.21, 0.19, 0.17), (creep_slow, 0.02, creep_fast))}
+    ind.update({f"bedding_theta{t}": {"creep_depth": c} for t, c in zip(pn.THETAS_BEDDING, bedding)})
+    tri = {th: {"creep": {"385": c, "3600": 2 * c, "36000": 4 * c}, "soft_over_hard": {"385": r}}
+           for th, c, r in ((0, 6e-5, ratio[0]), (90, 4e-5, ratio[1]))}
+    return {"indent": ind, "triaxial": tri, "fig13": {}}
+
+
+def test_trends_pass_and_each_fails_when_its_trend_is_reversed():
+    assert all(t["ok"] for t in pn.check_trends(trends_input()))
+    assert not pn.check_trends(trends_input(creep_slow=0.05))[0]["ok"]            # slow loading creeps more
+    assert not pn.check_trends(trends_input(bedding=(0.5, 0.6, 0.7, 0.8, 0.9)))[1]["ok"]  # 1.8 > 1.5
+    n = trends_input()
+    n["triaxial"][90]["creep"]["36000"] = 1e-3                                    # theta 90 overtakes
+    assert not pn.check_trends(n)[2]["ok"]
+    assert not pn.check_trends(trends_input(ratio=(60.0, 8.0)))[3]["ok"]          # hard frame not negligible
+    n = trends_input()
+    del n["triaxial"][90]
+    assert not any(t["ok"] for t in pn.check_trends(n)[1:])                        # a missing run fails

@@ -1,0 +1,195 @@
+#!/usr/bin/env python3
+"""Reproduce Yin, Liu & Borja (2021) in one command: run every scene of the paper, draw its figures, write
+the comparison with the paper (docs/paper.md), and check the trends the paper states.
+
+Usage: tools/reproduce.py [--quick] [--out DIR] [--driver PATH] [--jobs 2] [--docs | --no-docs]
+
+  full (default)  the shipped scenes (input/*.yaml) as they are; output in out/paper; writes docs/paper.md
+                  and its images (docs/paper/).
+  --quick         coarse variants of the same scenes (meshes coarsened, the UMAT's step tolerance 1e-3, the
+                  same loads, durations and materials), written as scene files into DIR/scenes; output in
+                  out/paper_quick; writes DIR/paper.md (docs/ only with --docs). Exits 1 unless the four
+                  trends the paper states hold (post/paper_numbers.py, check_trends).
+
+Scenes run two at a time (--jobs), each driver on one core; the triaxial cylinders of the full run use
+`mpiexec -n 2` and take both slots. One progress line per scene as it starts and as it ends.
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import yaml
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "post"))
+import paper_numbers  # noqa: E402
+import paper_figures  # noqa: E402
+import paper_doc  # noqa: E402
+
+# key: (scene file in input/, quick overrides). Quick: mesh parameters, the UMAT's tol (worst_point step
+# control), fields_every. Order: longest first in the full run (the 3D microindentation).
+IND2 = {"tol": 1.0e-3, "fields_every": 20}
+SCENES = {
+    "microindent_BN": {"mesh": {"h_tip": 2.5, "h_far": 15}, "tol": 1.0e-3},
+    "microindent_BP": {"mesh": {"h_tip": 2.5, "h_far": 15}, "tol": 1.0e-3},
+    "nanoindent_kerogen": {"mesh": {"h_tip": 0.1, "h_far": 0.6}, "tol": 1.0e-3},
+    "loading_rate_a0.1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3}),
+    "loading_rate_a1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3}),
+    "loading_rate_a10": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3}),
+    "bedding_theta0": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
+    "bedding_theta30": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
+    "bedding_theta45": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
+    "bedding_theta60": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
+    "bedding_theta90": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
+    "triaxial_theta0": {"mesh": {"size": 12.0}, "mpi": 2},
+    "triaxial_theta90": {"mesh": {"size": 12.0}, "mpi": 2},
+}
+
+
+def quick_scene(key, dest):
+    """Write the coarse variant of input/<key>.yaml to dest: absolute mesh path, coarser mesh, looser UMAT
+    tolerance; loads, durations, materials and boundary conditions unchanged."""
+    q = SCENES[key]
+    d = yaml.safe_load((ROOT / "input" / f"{key}.yaml").read_text(encoding="utf-8"))
+    geo = Path(d["mesh"]["geometry"])
+    d["mesh"]["geometry"] = str((ROOT / "meshes" / geo.name).resolve())
+    d["mesh"]["parameters"].update(q.get("mesh", {}))
+    if "tol" in q:
+        d["material"].setdefault("set", {})["tol"] = q["tol"]
+    if "fields_every" in q:
+        d["output"]["fields_every"] = q["fields_every"]
+    dest.write_text(f"# Coarse variant of input/{key}.yaml written by tools/reproduce.py --quick\n"
+                    + yaml.safe_dump(d, sort_keys=False), encoding="utf-8")
+    return dest
+
+
+def mpiexec():
+    exe = shutil.which("mpiexec")
+    return [exe, "--allow-run-as-root", "--oversubscribe", "-n", "2"] if exe else None
+
+
+class Job:
+    def __init__(self, key, scene, out, driver, ranks):
+        self.key, self.out, self.ranks = key, out, ranks
+        cmd = [driver, "-input", str(scene), "-output_dir", str(out)]
+        self.cmd = (mpiexec() + cmd) if ranks > 1 else cmd
+        self.proc = self.log = None
+        self.t0 = self.wall = None
+
+    def start(self):
+        self.out.mkdir(parents=True, exist_ok=True)
+        self.log = open(self.out / "driver.log", "w", encoding="utf-8")
+        self.t0 = time.monotonic()
+        self.proc = subprocess.Popen(self.cmd, cwd=ROOT, stdout=self.log, stderr=subprocess.STDOUT)
+
+    def poll(self):
+        rc = self.proc.poll()
+        if rc is not None:
+            self.wall = time.monotonic() - self.t0
+            self.log.close()
+        return rc
+
+
+def last_line(path, prefix):
+    lines = [ln for ln in path.read_text(encoding="utf-8", errors="replace").splitlines() if ln.strip()]
+    hits = [ln for ln in lines if ln.startswith(prefix)]
+    return (hits or lines or ["(no output)"])[-1]
+
+
+def run_all(jobs, slots):
+    """Run the jobs, at most `slots` cores busy (an MPI job of n ranks takes n). Returns {key: wall}."""
+    pending, running, walls, failed = list(jobs), [], {}, []
+    n, done = len(jobs), 0
+    while pending or running:
+        busy = sum(j.ranks for j in running)
+        while pending and busy + min(pending[0].ranks, slots) <= slots:
+            j = pending.pop(0)
+            j.start()
+            busy += j.ranks
+            running.append(j)
+            print(f"[{done:2d}/{n}] start {j.key} ({j.ranks} rank{'s' if j.ranks > 1 else ''})", flush=True)
+        time.sleep(0.2)
+        for j in list(running):
+            rc = j.poll()
+            if rc is None:
+                continue
+            running.remove(j)
+            done += 1
+            walls[j.key] = j.wall
+            summary = last_line(j.out / "driver.log", ("indentation", "fe scene"))
+            status = "done" if rc == 0 else f"FAILED (exit {rc})"
+            print(f"[{done:2d}/{n}] {status} {j.key} in {j.wall:.1f} s: {summary[:150]}", flush=True)
+            if rc != 0:
+                failed.append(j.key)
+    return walls, failed
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="coarse variants, check the paper's trends")
+    ap.add_argument("--out", help="output directory (default out/paper or out/paper_quick)")
+    ap.add_argument("--driver", default=os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver")))
+    ap.add_argument("--jobs", type=int, default=2, help="cores to use (default 2)")
+    ap.add_argument("--docs", dest="docs", action="store_true", default=None,
+                    help="write docs/paper.md and docs/paper/*.png (default: only in the full run)")
+    ap.add_argument("--no-docs", dest="docs", action="store_false")
+    ap.add_argument("--only", nargs="+", help="run only these scenes (the others' runs must exist in DIR)")
+    ap.add_argument("--no-run", action="store_true", help="only plot and write, from the runs already in DIR")
+    a = ap.parse_args(argv)
+    mode = "quick" if a.quick else "full"
+    out = Path(a.out or ROOT / "out" / ("paper_quick" if a.quick else "paper")).resolve()
+    docs = (not a.quick) if a.docs is None else a.docs
+    if not Path(a.driver).is_file():
+        raise SystemExit(f"reproduce: no driver at {a.driver} (build it: cmake -S . -B build && cmake --build build)")
+    out.mkdir(parents=True, exist_ok=True)
+    t_start = time.monotonic()
+    keys = a.only or list(SCENES)
+    jobs = []
+    for key in keys:
+        if key not in SCENES:
+            raise SystemExit(f"reproduce: unknown scene '{key}' (known: {', '.join(SCENES)})")
+        if a.quick:
+            (out / "scenes").mkdir(exist_ok=True)
+            scene, ranks = quick_scene(key, out / "scenes" / f"{key}.yaml"), 1
+        else:
+            scene, ranks = ROOT / "input" / f"{key}.yaml", SCENES[key].get("mpi", 1)
+            ranks = ranks if (ranks > 1 and a.jobs >= ranks and mpiexec()) else 1
+        jobs.append(Job(key, scene, out / key, a.driver, ranks))
+    meta_path = out / "runs.json"
+    if a.no_run:
+        prev = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
+        walls, t_runs = prev.get("walls", {}), prev.get("wall_runs", float("nan"))
+    else:
+        print(f"reproduce ({mode}): {len(jobs)} scenes, {a.jobs} at a time, driver {a.driver}, output {out}", flush=True)
+        walls, failed = run_all(jobs, max(1, a.jobs))
+        t_runs = time.monotonic() - t_start
+        if failed:
+            print(f"reproduce: {len(failed)} scene(s) failed: {', '.join(failed)} (see DIR/<scene>/driver.log)")
+            return 1
+        meta_path.write_text(json.dumps({"walls": walls, "wall_runs": t_runs}) + "\n", encoding="utf-8")
+    print(f"runs: {t_runs:.1f} s wall; plotting", flush=True)
+    numbers = paper_numbers.collect(out)
+    images = paper_figures.draw_all(out, numbers)
+    trends = paper_numbers.check_trends(numbers)
+    t_all = time.monotonic() - t_start
+    meta = {"mode": mode, "wall_runs": t_runs, "wall_total": t_all if not a.no_run else t_runs + t_all, "walls": walls, "out": str(out),
+            "scene_source": "input/*.yaml as shipped" if not a.quick else "coarse variants (out/.../scenes)"}
+    paper_doc.write(out / "paper.md", numbers, trends, images, meta, image_dir=out / "figures")
+    if docs:
+        paper_doc.write(ROOT / "docs" / "paper.md", numbers, trends, images, meta, image_dir=ROOT / "docs" / "paper")
+    print(f"reproduce ({mode}): runs {t_runs:.1f} s, total {meta['wall_total']:.1f} s wall; {out / 'paper.md'}"
+          + (f", {ROOT / 'docs' / 'paper.md'}" if docs else ""))
+    for t in trends:
+        print(f"trend {'PASS' if t['ok'] else 'FAIL'}: {t['name']}: {t['detail']}")
+    if a.quick and not all(t["ok"] for t in trends):
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

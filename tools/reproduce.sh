@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Reproduce Yin, Liu & Borja (2021): run every scene of the paper (two at a time), draw the figures, write
+# docs/paper.md. --quick: coarse variants in out/paper_quick, checks the paper's trends (exit 1 if one fails).
+# Needs tools/setup.sh once (Debian packages, post/requirements.txt); builds the driver if needed.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+if [ -z "${DRIVER:-}" ]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+  cmake --build build -j 2 --target driver > /dev/null
+  export DRIVER=$PWD/build/bin/driver
+fi
+exec python3 tools/reproduce.py "$@"
