@@ -136,8 +136,10 @@ static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq)
     st->out_prev[k]  = o->out[k];
     st->out_scale[k] = fmax(st->out_scale[k], fabs(o->out[k]));
   }
-  st->have_prev = rq->h > 0 && (same || fresh);
-  st->kink      = 0;
+  /* The stage's first step may hold a jump of the load (an exp load from P0, an instant load): its increment
+     predicts nothing, so the estimate starts from the second step's increment, at the third. */
+  st->have_prev = rq->h > 0 && (same || fresh) && !rq->first_in_stage;
+  st->kink      = rq->first_in_stage;
   st->nout      = o->nout;
   st->h_prev    = rq->h;
 }
