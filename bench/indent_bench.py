@@ -68,12 +68,12 @@ def errors(c, ref):
 
 def axi(h_tip, tol):
     text = (ROOT / "input" / "nanoindent_kerogen_axi.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
-    return text.replace("h_tip: 0.02", f"h_tip: {h_tip}").replace("tol: 1.0e-5", f"tol: {tol:g}").replace("fields_every: 10", "fields_every: 0")
+    return text.replace("h_tip: 0.02", f"h_tip: {h_tip}").replace("tol: 1.5e-2", f"tol: {tol:g}")
 
 
 def cube(h_tip, tol):
     text = (ROOT / "input" / "nanoindent_kerogen.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
-    return text.replace("h_tip: 0.05", f"h_tip: {h_tip}").replace("tol: 1.0e-5", f"tol: {tol:g}").replace("fields_every: 10", "fields_every: 0")
+    return text.replace("h_tip: 0.05", f"h_tip: {h_tip}").replace("tol: 1.5e-2", f"tol: {tol:g}")
 
 
 def main(argv=None):
@@ -85,17 +85,17 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         # Part 1: nanoindentation variants; the reference is the fine axisymmetric cone at a tight tolerance
-        ref_case = ("axisymmetric cone (reference)", axi(0.01, 1e-6), (), 1, 1)
-        cases = [("axisymmetric cone", axi(0.02, 1e-5), (), 1, a.repeats),
-                 ("axisymmetric cone, predictor off", axi(0.02, 1e-5), ("-indent_predictor", "0"), 1, 1),
-                 ("axisymmetric cone", axi(0.04, 1e-5), (), 1, a.repeats),
-                 ("axisymmetric cone", axi(0.02, 1e-4), (), 1, a.repeats),
-                 ("axisymmetric cone", axi(0.04, 1e-4), (), 1, a.repeats)]
+        ref_case = ("axisymmetric cone (reference)", axi(0.01, 2.5e-3), (), 1, 1)
+        cases = [("axisymmetric cone", axi(0.02, 1.5e-2), (), 1, a.repeats),
+                 ("axisymmetric cone, predictor off", axi(0.02, 1.5e-2), ("-indent_predictor", "0"), 1, 1),
+                 ("axisymmetric cone", axi(0.04, 1.5e-2), (), 1, a.repeats),
+                 ("axisymmetric cone", axi(0.02, 3e-2), (), 1, a.repeats),
+                 ("axisymmetric cone", axi(0.04, 3e-2), (), 1, a.repeats)]
         if not a.quick:
-            cases += [("3D Berkovich, half model", cube(0.05, 1e-5), (), 2, 1),
-                      ("3D Berkovich, half model", cube(0.08, 1e-4), (), 2, 1)]
+            cases += [("3D Berkovich, half model", cube(0.05, 1.5e-2), (), 2, 1),
+                      ("3D Berkovich, half model", cube(0.08, 3e-2), (), 2, 1)]
         else:
-            ref_case = ("axisymmetric cone (reference)", axi(0.02, 1e-5), (), 1, 1)
+            ref_case = ("axisymmetric cone (reference)", axi(0.02, 5e-3), (), 1, 1)
         ref_run = run(ref_case[1], tmp / "ref")
         ref = curve_numbers(ref_run["hist"], 1)
         print(f"reference: {ref_run['cells']} cells, {ref_run['steps']} steps, wall {ref_run['wall']:.1f} s, "
