@@ -198,7 +198,9 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
   RunState          *st = &r->st;
   const StepControl *sc = r->view.steps;
   *landed = 0, *ratio = -1;
-  if (o->converged && !o->kink) *ratio = error_ratio(r, o, rq);
+  /* A step whose Newton method made no iteration (the predictor met the tolerance) is the extrapolation
+     itself: its estimate would be zero whatever the error, so it gets none. */
+  if (o->converged && !o->kink && o->its > 0) *ratio = error_ratio(r, o, rq);
   if (o->converged && o->kink) st->kink = 1;
   if (*ratio > 1 && st->reject_ratio > 0 && *ratio > 0.5 * st->reject_ratio) {
     /* A shorter step did not lower the estimate as O(dt) would: the previous increment belongs to another
@@ -249,7 +251,8 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   }
   if (dir) st->event_prev = o->event[r->view.until.kind];
   remember_output(r, o, rq);
-  st->first_in_stage = 0, st->cut_in_step = 0, st->reject_ratio = 0;
+  st->first_in_stage = 0, st->cut_in_step = 0;
+  if (ratio >= 0) st->reject_ratio = 0; /* an estimated step passed: a later rejection starts afresh */
 }
 
 static int write_fields(Run *r, char *err, size_t errlen) {
