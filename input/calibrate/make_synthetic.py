@@ -4,7 +4,8 @@
 
 Indentation (history with load, depth): N points on loading at evenly spaced loads, N on the hold at evenly
 spaced times, N on unloading at evenly spaced loads; columns time_s, load_uN, depth_um. Point scene: N points
-evenly spaced in time over the named segment; columns time_h, axial_strain_percent (compression positive).
+evenly spaced in time over the segment (--segment, 0-based); columns time_<unit> (--time-unit s|min|h),
+axial_strain_percent (compression positive); --from-start: time and strain from the segment's start.
 
   make_synthetic.py --driver build/bin/driver --scene forward/nano_fast.yaml --set eta_soft=1.3e10 \\
       --out data/nano_synthetic.csv [--noise 0.01 --seed 1] [--points 15]
@@ -52,12 +53,23 @@ def sample_indentation(h, n):
     return ["time_s", "load_uN", "depth_um"], out
 
 
-def sample_point(h, n, segment, column):
+TIME_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
+
+
+def sample_point(h, n, segment, column, unit="h", from_start=False):
+    """N times evenly spaced over the segment (after its start); with from_start, time and strain counted from
+    the segment's start (a lab creep record: the time since the load, the creep strain)."""
     idx = np.nonzero(h["segment"].astype(int) == segment)[0]
+    idx = np.concatenate([[idx[0] - 1], idx]) if idx[0] > 0 else idx  # the segment's start: the row before it
     t = h["time"][idx]
+    if from_start:  # the instant load's zero-time step: the creep strain counts from after it
+        t0, y0 = t[0], h[column][idx][t == t[0]][-1]
+    else:
+        t0, y0 = 0.0, 0.0
     targets = np.linspace(t[0], t[-1], n + 1)[1:]
     y = np.interp(targets, t, h[column][idx])
-    return ["time_h", "axial_strain_percent"], [(tt / 3600.0, -100.0 * yy) for tt, yy in zip(targets, y)]
+    return ([f"time_{unit}", "axial_strain_percent"],
+            [((tt - t0) / TIME_UNITS[unit], -100.0 * (yy - y0)) for tt, yy in zip(targets, y)])
 
 
 def main():
@@ -71,6 +83,9 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--segment", type=int, default=1, help="point scenes: the segment sampled")
     ap.add_argument("--column", default="eps_33", help="point scenes: the strain column sampled")
+    ap.add_argument("--time-unit", choices=sorted(TIME_UNITS), default="h", help="point scenes: the time column's unit")
+    ap.add_argument("--from-start", action="store_true",
+                    help="point scenes: time and strain from the segment's start (a lab creep record)")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         r = subprocess.run([a.driver, "-input", a.scene, "-output_dir", tmp, "-material_set", a.set],
@@ -81,7 +96,7 @@ def main():
     if "depth" in h:
         header, rows = sample_indentation(h, a.points)
     else:
-        header, rows = sample_point(h, a.points, a.segment, a.column)
+        header, rows = sample_point(h, a.points, a.segment, a.column, a.time_unit, a.from_start)
     rng = np.random.default_rng(a.seed)
     rows = [(r[:-1] + (r[-1] * (1 + a.noise * rng.standard_normal()),)) for r in rows]
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)

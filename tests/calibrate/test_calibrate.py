@@ -1,6 +1,8 @@
 """scene: calibrate (issue 15). The synthetic checks: data made by the driver at known viscosities
 (input/calibrate/data, make_synthetic.py), fitted from a start 3x off; the values must come back within 1 %.
-With 1 % noise on the data the fit moves by about its reported standard error. Bad input stops with a
+With 1 % noise on the data the fit moves by about its reported standard error. The paper's two steps
+(nano for eta_soft, then micro BN for eta_hard with eta_soft held at step 1's fit) chained; a point-scene
+lab creep record (time from the load in minutes, strain in percent) fitted for both viscosities. Bad input stops with a
 message naming the file, key and value. Forward runs are the coarse axisymmetric scenes of
 input/calibrate/forward (about 1 s each)."""
 import os
@@ -66,6 +68,72 @@ def test_joint_nano_micro_both_frames_recovered(tmp_path):
         v = res["parameters"][name]["value"]
         assert abs(v / TRUE[name] - 1) < 0.01, (name, v)
     assert len(res["correlation"]) == 2
+
+
+def test_point_lab_creep_record_recovered(tmp_path):
+    """A point-scene fit of a lab creep record: minutes since the load (data.time_from: creep), creep strain in
+    percent (factors), both viscosities from a start 3x off; a point run takes milliseconds, so exact."""
+    scene = CAL / "triaxial_creep_lab.yaml"
+    s = starts(scene)
+    assert abs(s["eta_soft"] / TRUE["eta_soft"] - 3) < 1e-3 and abs(TRUE["eta_hard"] / s["eta_hard"] - 3) < 1e-3
+    res = fit(scene, tmp_path)
+    for name in ("eta_soft", "eta_hard"):
+        v = res["parameters"][name]["value"]
+        assert abs(v / TRUE[name] - 1) < 0.01, (name, v)
+    assert res["cost"]["rejected"] == 0 and res["misfit"]["residuals"] == 30
+    rows = [r.split(",") for r in (tmp_path / "out" / "curves.csv").read_text().splitlines()[1:]]
+    data = [r.split(",") for r in (CAL / "data" / "triaxial_creep_synthetic.csv").read_text().splitlines()[2:]]
+    # curves.csv: the data's own times (minutes to s, from the creep's start), not the forward run's clock
+    assert [float(r[4]) for r in rows] == pytest.approx([60 * float(d[0]) for d in data], rel=1e-9)
+
+
+def test_two_step_nano_then_micro_BN(tmp_path):
+    """The paper's workflow: eta_soft from nano (step 1), then eta_hard from micro BN with eta_soft held at step
+    1's fit, pasted from its fit.yaml `set:` line into the step-2 scene (whose shipped value must be that fit)."""
+    (tmp_path / "step1").mkdir(), (tmp_path / "step2").mkdir()
+    res1 = fit(CAL / "nano_eta_soft.yaml", tmp_path / "step1")
+    eta_soft = res1["parameters"]["eta_soft"]["value"]
+    assert abs(eta_soft / TRUE["eta_soft"] - 1) < 0.01, eta_soft
+    held = re.search(r"^set: \{eta_soft: (\S+)\}", (tmp_path / "step1" / "out" / "fit.yaml").read_text(), re.M).group(1)
+    step2 = (CAL / "micro_BN_eta_hard.yaml").read_text()
+    shipped = re.search(r"set: \{eta_soft: (\S+)\}", step2).group(1)
+    assert float(shipped) == pytest.approx(float(held), rel=1e-4), (shipped, held)
+    text = step2.replace(f"eta_soft: {shipped}", f"eta_soft: {held}")
+    for rel in ("forward/micro_BN_fast.yaml", "data/micro_BN_synthetic.csv"):
+        text = text.replace(rel, str(CAL / rel))
+    (tmp_path / "step2.yaml").write_text(text)
+    res2 = fit(tmp_path / "step2.yaml", tmp_path / "step2")
+    assert list(res2["parameters"]) == ["eta_hard"] and abs(starts(tmp_path / "step2.yaml")["eta_hard"] * 3 / TRUE["eta_hard"] - 1) < 1e-3
+    eta_hard = res2["parameters"]["eta_hard"]["value"]
+    assert abs(eta_hard / TRUE["eta_hard"] - 1) < 0.01, eta_hard
+
+
+def lab_scene(tmp_path, old, new):
+    text = (CAL / "triaxial_creep_lab.yaml").read_text()
+    text = text.replace("forward/triaxial_creep_fixed.yaml", str(CAL / "forward" / "triaxial_creep_fixed.yaml"))
+    text = text.replace("data/triaxial_creep_synthetic.csv", str(CAL / "data" / "triaxial_creep_synthetic.csv"))
+    assert old in text
+    path = tmp_path / "bad.yaml"
+    path.write_text(text.replace(old, new))
+    return path
+
+
+LAB_BAD = [
+    # without time_from the record's times (8 to 240 min) fall in the 2e6 s hold, not in the creep stage
+    ("no time_from", ("      time_from: creep\n", ""),
+     r"residual 'series' \(line \d+\): 0 data rows of .*triaxial_creep_synthetic.csv lie in stage 'creep'"),
+    ("unknown time_from stage", ("time_from: creep", "time_from: crepe"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.time_from': the forward scene .* has no stage \(segment\) named 'crepe'"),
+    ("held PROPS misspelt", ("    data:", "    set: {eta_sfot: 1.0e10}\n    data:"),
+     r"run 'creep': the forward run at the start failed"),
+]
+
+
+@pytest.mark.parametrize("name,edit,message", LAB_BAD, ids=[b[0] for b in LAB_BAD])
+def test_point_bad_input(tmp_path, name, edit, message):
+    r = run(lab_scene(tmp_path, *edit), tmp_path / "out")
+    assert r.returncode != 0
+    assert re.search(message, r.stderr), r.stderr
 
 
 def bad_scene(tmp_path, old, new, data=None):

@@ -39,7 +39,25 @@ static int forward_stage(const char *scene, const char *name, int *point, char *
   return idx;
 }
 
-/* data: {file, columns: {time, load, depth, value}, factors: {time, load, depth, value}} */
+/* data.time_from: STAGE: the data's time 0 is that stage's start in the forward run (a lab creep record's
+ * time from the load). */
+static int read_time_from(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path, char *err, size_t errlen) {
+  const char *s;
+  char        sub[256];
+  YdNode     *v = yd_get(nd, "time_from");
+  run->time_stage = -1;
+  if (!v) return 0;
+  snprintf(sub, sizeof sub, "%s.time_from", path);
+  if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+  snprintf(run->time_from, sizeof run->time_from, "%s", s);
+  run->time_stage = forward_stage(run->scene, s, &run->point, err, errlen);
+  if (run->time_stage == -2) return 1;
+  if (run->time_stage < 0)
+    FAIL("%s:%d: key '%s': the forward scene %s has no stage (segment) named '%s'", doc->file, v->line, sub, run->scene, s);
+  return 0;
+}
+
+/* data: {file, columns: {time, load, depth, value}, factors: {time, load, depth, value}, time_from} */
 static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path, char *err, size_t errlen) {
   static const char *roles[4] = {"time", "load", "depth", "value"};
   const char        *file, *names[4];
@@ -69,6 +87,7 @@ static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path
   }
   snprintf(sub, sizeof sub, "%s.columns", path);
   if (yd_check_unused(doc, cols, sub, "time, load, depth, value", err, errlen)) return 1;
+  if (read_time_from(doc, nd, run, path, err, errlen)) return 1;
   snprintf(sub, sizeof sub, "%s.factors", path);
   if (fac && yd_check_unused(doc, fac, sub, "time, load, depth, value", err, errlen)) return 1;
   if (run->col_time < 0) FAIL("%s:%d: key '%s.columns.time' is missing: the data rows are assigned to the forward "
@@ -79,7 +98,7 @@ static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path
   for (int i = 0; i < run->rows; i++)
     for (int r = 0; r < 4; r++)
       if (*col[r] >= 0) run->data[i * run->ncol + *col[r]] *= factor[r];
-  return yd_check_unused(doc, nd, path, "file, columns, factors", err, errlen);
+  return yd_check_unused(doc, nd, path, "file, columns, factors, time_from", err, errlen);
 }
 
 /* residuals: [{kind: loading | hold | unloading | series, stage, weight, model, relative}] */
@@ -222,7 +241,24 @@ static int stage_span(const double *h, int rows, int stage, int *i0, int *i1) {
   return *i0 < 0 || *i1 <= *i0;
 }
 
+/* data.time_from: shift the data's times by the named stage's start in the first forward run (once). */
+static int shift_time(CalRun *run, const char *dir, char *err, size_t errlen) {
+  double *h;
+  int     rows, i0, i1;
+  if (run->time_stage < 0 || run->time_shifted) return 0;
+  if (read_history(run, &run->curve[0], dir, &h, &rows, err, errlen)) return 1;
+  int empty = stage_span(h, rows, run->time_stage, &i0, &i1);
+  run->time_shift = empty ? 0 : h[4 * i0];
+  free(h);
+  if (empty) FAIL("run '%s': data.time_from: the forward run %s/history.csv has no steps in stage '%s'", run->name, dir,
+                  run->time_from);
+  for (int i = 0; i < run->rows; i++) run->data[i * run->ncol + run->col_time] += run->time_shift;
+  run->time_shifted = 1;
+  return 0;
+}
+
 int cal_run_setup(CalRun *run, const char *dir, char *err, size_t errlen) {
+  if (shift_time(run, dir, err, errlen)) return 1;
   for (int k = 0; k < run->ncurve; k++) {
     CalCurve *c = &run->curve[k];
     double   *h;
@@ -312,8 +348,9 @@ int cal_run_write_curves(const CalRun *run, FILE *fp) {
   for (int k = 0; k < run->ncurve; k++) {
     const CalCurve *c   = &run->curve[k];
     double          ref = c->relative ? block_mean(c->model, c->n) : 0, ref_data = c->relative ? block_mean(c->y, c->n) : 0;
+    double          x0  = strcmp(c->xcol, "time") ? 0 : run->time_shift; /* times as in the data file */
     for (int i = 0; i < c->n; i++)
-      fprintf(fp, "%s,%s,%s,%s,%.10g,%.10g,%.10g\n", run->name, kind_names[c->kind], c->xcol, c->ycol, c->x[i],
+      fprintf(fp, "%s,%s,%s,%s,%.10g,%.10g,%.10g\n", run->name, kind_names[c->kind], c->xcol, c->ycol, c->x[i] - x0,
               c->y[i] - ref_data, c->model[i] - ref);
   }
   return 0;

@@ -40,6 +40,10 @@ typedef struct {
   double  *data;              /* CSV columns: time, load, depth, value (those named); ncol of them */
   int      rows, ncol, col_time, col_load, col_depth, col_value;
   char     data_file[PATH_MAX];
+  char     time_from[64];     /* data.time_from: the data's time counts from this stage's start ("": absolute) */
+  int      time_stage;        /* its index, or -1 */
+  double   time_shift;        /* the stage's start in the forward run, added to the data's times at setup */
+  int      time_shifted;
   CalCurve curve[CAL_MAX_CURVES];
   int      ncurve;
 } CalRun;
