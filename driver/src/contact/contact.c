@@ -3,32 +3,25 @@
 #include <math.h>
 #include <petscsf.h>
 
-PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct) {
-  DM           dm = p->dm;
-  DMLabel      label;
-  PetscInt     pStart, pEnd, vStart, vEnd, fStart, fEnd, ustart;
-  MPI_Comm     comm = PetscObjectComm((PetscObject)dm);
-  PetscSection cs, ls, gs;
-  Vec          coords, wvec;
-  const PetscScalar *ca, *wa;
-  PetscReal   *nfacet; /* 2D: contact edges at each vertex; 3D: contact faces at each edge */
+/* eq. 18's weights w_i = int N_i dGamma (the same as nodal quadrature of N_i^2 for P1 in 3D and plane strain;
+   axisymmetric: int N_i 2 pi r ds, exact, so that a node on the axis keeps a weight): the nodal forces of a unit
+   traction along the indentation axis on the group. */
+static PetscErrorCode contact_weights(FeProblem *p, const char *group, Vec *wvec, PetscInt *ustart) {
+  char load[80];
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(ct, sizeof *ct));
-  ct->shape = *shape;
-  ct->dim   = p->dim;
-  PetscCheck(p->order == 1, comm, PETSC_ERR_SUP, "contact: only P1 elements (mesh.order: 1); nodal quadrature of P2 faces puts no weight on the vertices");
-  PetscCall(DMGetLabel(dm, group, &label));
-  PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
-  { /* eq. 18's weights w_i = int N_i dGamma (the same as nodal quadrature of N_i^2 for P1 in 3D and plane
-       strain; axisymmetric: int N_i 2 pi r ds, exact, so that a node on the axis keeps a weight): the
-       nodal forces of a unit traction along the indentation axis on the group */
-    char load[80];
-    PetscCall(PetscSNPrintf(load, sizeof load, "%s.%c", group, 'x' + (int)p->dim - 1));
-    PetscCall(fe_problem_unit_load(p, load, &wvec));
-    PetscCall(VecGetOwnershipRange(wvec, &ustart, NULL));
-  }
+  PetscCall(PetscSNPrintf(load, sizeof load, "%s.%c", group, 'x' + (int)p->dim - 1));
+  PetscCall(fe_problem_unit_load(p, load, wvec));
+  PetscCall(VecGetOwnershipRange(*wvec, ustart, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* nfacet (allocated over the chart): 2D: the group's edges at each vertex; 3D: its faces at each edge; totals over the ranks. */
+static PetscErrorCode contact_facet_counts(DM dm, DMLabel label, PetscReal **nfacet_out) {
+  PetscInt   pStart, pEnd, fStart, fEnd;
+  PetscReal *nfacet;
+  PetscSF    sf;
+  PetscFunctionBeginUser;
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
   PetscCall(PetscCalloc1(pEnd - pStart, &nfacet));
   for (PetscInt f = fStart; f < fEnd; f++) { /* the group's facets on this rank, for the rim */
@@ -40,22 +33,54 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
     PetscCall(DMPlexGetCone(dm, f, &cone)); /* 2D: the edge's vertices; 3D: the face's edges */
     for (PetscInt k = 0; k < nc; k++) nfacet[cone[k] - pStart] += 1;
   }
-  { /* the totals over the ranks, on every rank */
-    PetscSF sf;
-    PetscCall(DMGetPointSF(dm, &sf));
-    PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
-    PetscCall(PetscSFReduceEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
-    PetscCall(PetscSFBcastBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
-    PetscCall(PetscSFBcastEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
+  /* the totals over the ranks, on every rank */
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFReduceBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
+  PetscCall(PetscSFReduceEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_SUM));
+  PetscCall(PetscSFBcastBegin(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf, MPIU_REAL, nfacet, nfacet, MPI_REPLACE));
+  *nfacet_out = nfacet;
+  PetscFunctionReturn(0);
+}
+
+/* Whether vertex v (global rows row, of which negative ones are fixed) is on the rim of the contact surface: an end
+   of the contact edges (2D), on an edge with one contact face (3D); a node with a fixed component (a mirror plane,
+   the axis) is a rim of the model, not of the surface. */
+static PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart,
+                                         PetscBool *rim) {
+  PetscBool fixed = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < dim; d++) fixed = fixed || row[d] < 0;
+  if (dim == 2) *rim = nfacet[v - pStart] == 1;
+  else {
+    const PetscInt *supp;
+    PetscInt        ns;
+    PetscCall(DMPlexGetSupportSize(dm, v, &ns));
+    PetscCall(DMPlexGetSupport(dm, v, &supp));
+    for (PetscInt k = 0; k < ns; k++) *rim = *rim || nfacet[supp[k] - pStart] == 1;
   }
+  *rim = *rim && !fixed;
+  PetscFunctionReturn(0);
+}
+
+/* The contact nodes: owned vertices with a weight (coordinates, weights, global rows, rim); two passes, count then
+   fill; wsum: this rank's sum of the weights. */
+static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, const PetscReal nfacet[], Contact *ct, PetscReal *wsum) {
+  DM                 dm = p->dm;
+  PetscInt           pStart, pEnd, vStart, vEnd;
+  PetscSection       cs, ls, gs;
+  Vec                coords;
+  const PetscScalar *ca, *wa;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &coords));
   PetscCall(VecGetArrayRead(coords, &ca));
   PetscCall(VecGetArrayRead(wvec, &wa));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetGlobalSection(dm, &gs));
-  /* The contact nodes: owned vertices with a weight; two passes, count then fill. */
-  PetscReal wsum = 0;
+  *wsum = 0;
   for (int pass = 0; pass < 2; pass++) {
     PetscInt n = 0;
     for (PetscInt v = vStart; v < vEnd; v++) {
@@ -73,20 +98,8 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
         PetscCall(PetscSectionGetOffset(cs, v, &off));
         for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * p->dim + d] = row[d];
         ct->w[n] = PetscRealPart(wa[ra - ustart]);
-        wsum += ct->w[n];
-        /* on the rim: an end of the contact edges (2D), on an edge with one contact face (3D); a node with
-           a fixed component (a mirror plane, the axis) is a rim of the model, not of the surface */
-        PetscBool fixed = PETSC_FALSE;
-        for (PetscInt d = 0; d < p->dim; d++) fixed = fixed || row[d] < 0;
-        if (p->dim == 2) ct->rim[n] = nfacet[v - pStart] == 1;
-        else {
-          const PetscInt *supp;
-          PetscInt        ns;
-          PetscCall(DMPlexGetSupportSize(dm, v, &ns));
-          PetscCall(DMPlexGetSupport(dm, v, &supp));
-          for (PetscInt k = 0; k < ns; k++) ct->rim[n] = ct->rim[n] || nfacet[supp[k] - pStart] == 1;
-        }
-        ct->rim[n] = ct->rim[n] && !fixed;
+        *wsum += ct->w[n];
+        PetscCall(contact_vertex_rim(dm, p->dim, v, row, nfacet, pStart, &ct->rim[n]));
       }
       n++;
     }
@@ -98,21 +111,17 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   }
   PetscCall(VecRestoreArrayRead(coords, &ca));
   PetscCall(VecRestoreArrayRead(wvec, &wa));
-  PetscCall(PetscFree(nfacet));
-  PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
-  PetscCallMPI(MPI_Scan(&ct->n, &ct->rstart, 1, MPIU_INT, MPI_SUM, comm));
-  ct->rstart -= ct->n;
-  PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, p->dim == 3 ? "faces" : "edges", p->dim == 3 ? "faces" : "edges");
+  PetscFunctionReturn(0);
+}
 
-  /* The blocks of eq. 15 with their nonzero pattern fixed once (preallocated exactly). */
+/* The blocks of eq. 15 with their nonzero pattern fixed once (preallocated exactly); nu: the local displacement rows. */
+static PetscErrorCode contact_matrices(FeProblem *p, PetscInt nu, PetscInt ustart, Contact *ct) {
+  MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
   PetscMPIInt rank;
-  PetscInt    nu, nr;
+  PetscInt    nr, *dnz;
+  PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   nr = rank == 0 ? 1 : 0;
-  PetscCall(VecGetLocalSize(wvec, &nu)); /* the displacement layout */
-  PetscCall(VecDestroy(&wvec));
-  PetscInt *dnz;
   PetscCall(PetscCalloc1(PetscMax(nu, 1), &dnz));
   for (PetscInt i = 0; i < ct->n; i++)
     for (PetscInt d = 0; d < p->dim; d++)
@@ -126,6 +135,36 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCall(MatCreateAIJ(comm, nr, nr, 1, 1, 1, NULL, 0, NULL, &ct->Kr));
   Mat all[6] = {ct->Bt, ct->B, ct->Ct, ct->C, ct->D, ct->Kr};
   for (int k = 0; k < 6; k++) PetscCall(MatSetOption(all[k], MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct) {
+  DM         dm = p->dm;
+  DMLabel    label;
+  PetscInt   ustart, nu;
+  MPI_Comm   comm = PetscObjectComm((PetscObject)dm);
+  Vec        wvec;
+  PetscReal *nfacet, wsum; /* nfacet: 2D: contact edges at each vertex; 3D: contact faces at each edge */
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(ct, sizeof *ct));
+  ct->shape = *shape;
+  ct->dim   = p->dim;
+  PetscCheck(p->order == 1, comm, PETSC_ERR_SUP, "contact: only P1 elements (mesh.order: 1); nodal quadrature of P2 faces puts no weight on the vertices");
+  PetscCall(DMGetLabel(dm, group, &label));
+  PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
+  PetscCall(contact_weights(p, group, &wvec, &ustart));
+  PetscCall(contact_facet_counts(dm, label, &nfacet));
+  PetscCall(contact_nodes(p, wvec, ustart, nfacet, ct, &wsum));
+  PetscCall(PetscFree(nfacet));
+  /* the numbering of the contact nodes over the ranks */
+  PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
+  PetscCallMPI(MPI_Scan(&ct->n, &ct->rstart, 1, MPIU_INT, MPI_SUM, comm));
+  ct->rstart -= ct->n;
+  PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, p->dim == 3 ? "faces" : "edges", p->dim == 3 ? "faces" : "edges");
+  PetscCall(VecGetLocalSize(wvec, &nu)); /* the displacement layout */
+  PetscCall(VecDestroy(&wvec));
+  PetscCall(contact_matrices(p, nu, ustart, ct));
   PetscFunctionReturn(0);
 }
 

@@ -21,6 +21,77 @@ static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[],
   return 0;
 }
 
+/* The area of a boundary face and the direction n of its load: the outward normal (a pressure, t = -p n), or for a
+ * traction along axis (>= 0) -e_axis (the force is +t, written as -(-e_axis)). */
+static PetscErrorCode face_load_direction(FeProblem *p, PetscInt face, PetscInt axis, PetscReal *area, PetscReal n[3]) {
+  DM              dm = p->dm;
+  const PetscInt *support;
+  PetscReal       fc[3], cc[3], vol, out = 0;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetSupport(dm, face, &support));
+  PetscCall(DMPlexComputeCellGeometryFVM(dm, face, area, fc, n));
+  PetscCall(DMPlexComputeCellGeometryFVM(dm, support[0], &vol, cc, NULL));
+  for (PetscInt d = 0; d < p->dim; d++) out += (fc[d] - cc[d]) * n[d];
+  if (out < 0)
+    for (PetscInt d = 0; d < p->dim; d++) n[d] = -n[d];
+  if (axis >= 0) /* a unit traction along the axis: the force is +t, written here as -(-e_axis) */
+    for (PetscInt d = 0; d < p->dim; d++) n[d] = d == axis ? -1.0 : 0.0;
+  PetscFunctionReturn(0);
+}
+
+/* An edge: nodal forces of t = -p n by 3-point Gauss on s in [0, 1] (exact here), with the weight of the
+ * kinematics: the thickness (plane strain) or 2 pi r (axisymmetric); added to the local array a. */
+static PetscErrorCode edge_load(FeProblem *p, PetscSection s, PetscInt face, PetscReal area, const PetscReal n[], PetscScalar *a) {
+  DM              dm = p->dm;
+  Vec             coords;
+  PetscSection    cs;
+  PetscScalar    *xe = NULL;
+  PetscInt        nx, offa, offb, offm = -1, ndof;
+  const PetscInt *cone;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(DMPlexVecGetClosure(dm, cs, coords, face, &nx, &xe));
+  PetscCall(DMPlexGetCone(dm, face, &cone));
+  PetscCall(PetscSectionGetOffset(s, cone[0], &offa));
+  PetscCall(PetscSectionGetOffset(s, cone[1], &offb));
+  PetscCall(PetscSectionGetDof(s, face, &ndof));
+  if (ndof) PetscCall(PetscSectionGetOffset(s, face, &offm));
+  static const PetscReal gs[3] = {0.1127016653792583, 0.5, 0.8872983346207417}, gw[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
+  for (int g = 0; g < 3; g++) {
+    PetscReal sg = gs[g], r = (1 - sg) * PetscRealPart(xe[0]) + sg * PetscRealPart(xe[2]);
+    PetscReal w = gw[g] * area * (p->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : p->thickness);
+    PetscReal Na = p->order == 1 ? 1 - sg : (1 - sg) * (1 - 2 * sg), Nb = p->order == 1 ? sg : sg * (2 * sg - 1);
+    PetscReal Nm = p->order == 1 ? 0 : 4 * sg * (1 - sg);
+    for (PetscInt d = 0; d < 2; d++) {
+      a[offa + d] -= w * Na * n[d];
+      a[offb + d] -= w * Nb * n[d];
+      if (offm >= 0) a[offm + d] -= w * Nm * n[d];
+    }
+  }
+  PetscCall(DMPlexVecRestoreClosure(dm, cs, coords, face, &nx, &xe));
+  PetscFunctionReturn(0);
+}
+
+/* A flat triangle: P1 gives A/3 to each vertex, P2 A/3 to each edge node and 0 to the corners; added to a. */
+static PetscErrorCode triangle_load(FeProblem *p, PetscSection s, PetscInt face, PetscReal area, const PetscReal n[], PetscScalar *a) {
+  DM        dm      = p->dm;
+  PetscInt *closure = NULL, nclosure;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
+  for (PetscInt j = 0; j < nclosure; j++) {
+    PetscInt pt = closure[2 * j], depth, ndof, off;
+    PetscCall(DMPlexGetPointDepth(dm, pt, &depth));
+    PetscCall(PetscSectionGetDof(s, pt, &ndof));
+    if (!ndof) continue;
+    PetscReal share = p->order == 1 ? (depth == 0 ? area / 3 : 0) : (depth == 1 ? area / 3 : 0);
+    PetscCall(PetscSectionGetOffset(s, pt, &off));
+    for (PetscInt d = 0; d < p->dim; d++) a[off + d] -= share * n[d];
+  }
+  PetscCall(DMPlexRestoreTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
+  PetscFunctionReturn(0);
+}
+
 /* Consistent nodal forces of a unit pressure on the boundary faces of a group: t = -p n (n outward).
  * Faces of simplices are flat: in 3D closed forms on triangles; in 2D Gauss quadrature on the edges
  * (the axisymmetric weight 2 pi r varies along an edge). */
@@ -65,65 +136,14 @@ PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
     PetscCall(ISGetLocalSize(pointIS, &npoints));
     PetscCall(ISGetIndices(pointIS, &points));
     for (PetscInt k = 0; k < npoints; k++) {
-      PetscInt face = points[k], nsupport;
+      PetscInt  face = points[k], nsupport;
+      PetscReal area, n[3];
       if (face < fStart || face >= fEnd) continue; /* vertices and edges of the group */
       PetscCall(DMPlexGetSupportSize(dm, face, &nsupport));
       if (nsupport != 1) continue;                 /* an interior face: no load */
-      const PetscInt *support;
-      PetscReal       area, fc[3], n[3], cc[3], vol;
-      PetscCall(DMPlexGetSupport(dm, face, &support));
-      PetscCall(DMPlexComputeCellGeometryFVM(dm, face, &area, fc, n));
-      PetscCall(DMPlexComputeCellGeometryFVM(dm, support[0], &vol, cc, NULL));
-      PetscReal out = 0;
-      for (PetscInt d = 0; d < p->dim; d++) out += (fc[d] - cc[d]) * n[d];
-      if (out < 0)
-        for (PetscInt d = 0; d < p->dim; d++) n[d] = -n[d];
-      if (axis >= 0) /* a unit traction along the axis: the force is +t, written here as -(-e_axis) */
-        for (PetscInt d = 0; d < p->dim; d++) n[d] = d == axis ? -1.0 : 0.0;
-      if (p->dim == 2) {
-        /* An edge: nodal forces of t = -p n by 3-point Gauss on s in [0, 1] (exact here), with the
-         * weight of the kinematics: the thickness (plane strain) or 2 pi r (axisymmetric). */
-        Vec          coords;
-        PetscSection cs;
-        PetscScalar *xe = NULL;
-        PetscInt     nx, offa, offb, offm = -1, ndof;
-        const PetscInt *cone;
-        PetscCall(DMGetCoordinatesLocal(dm, &coords));
-        PetscCall(DMGetCoordinateSection(dm, &cs));
-        PetscCall(DMPlexVecGetClosure(dm, cs, coords, face, &nx, &xe));
-        PetscCall(DMPlexGetCone(dm, face, &cone));
-        PetscCall(PetscSectionGetOffset(s, cone[0], &offa));
-        PetscCall(PetscSectionGetOffset(s, cone[1], &offb));
-        PetscCall(PetscSectionGetDof(s, face, &ndof));
-        if (ndof) PetscCall(PetscSectionGetOffset(s, face, &offm));
-        static const PetscReal gs[3] = {0.1127016653792583, 0.5, 0.8872983346207417}, gw[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
-        for (int g = 0; g < 3; g++) {
-          PetscReal sg = gs[g], r = (1 - sg) * PetscRealPart(xe[0]) + sg * PetscRealPart(xe[2]);
-          PetscReal w = gw[g] * area * (p->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : p->thickness);
-          PetscReal Na = p->order == 1 ? 1 - sg : (1 - sg) * (1 - 2 * sg), Nb = p->order == 1 ? sg : sg * (2 * sg - 1);
-          PetscReal Nm = p->order == 1 ? 0 : 4 * sg * (1 - sg);
-          for (PetscInt d = 0; d < 2; d++) {
-            a[offa + d] -= w * Na * n[d];
-            a[offb + d] -= w * Nb * n[d];
-            if (offm >= 0) a[offm + d] -= w * Nm * n[d];
-          }
-        }
-        PetscCall(DMPlexVecRestoreClosure(dm, cs, coords, face, &nx, &xe));
-        continue;
-      }
-      PetscInt *closure = NULL, nclosure;
-      PetscCall(DMPlexGetTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
-      for (PetscInt j = 0; j < nclosure; j++) {
-        PetscInt pt = closure[2 * j], depth, ndof, off;
-        PetscCall(DMPlexGetPointDepth(dm, pt, &depth));
-        PetscCall(PetscSectionGetDof(s, pt, &ndof));
-        if (!ndof) continue;
-        /* flat triangles: P1 gives A/3 to each vertex, P2 A/3 to each edge node and 0 to the corners */
-        PetscReal share = p->order == 1 ? (depth == 0 ? area / 3 : 0) : (depth == 1 ? area / 3 : 0);
-        PetscCall(PetscSectionGetOffset(s, pt, &off));
-        for (PetscInt d = 0; d < p->dim; d++) a[off + d] -= share * n[d];
-      }
-      PetscCall(DMPlexRestoreTransitiveClosure(dm, face, PETSC_TRUE, &nclosure, &closure));
+      PetscCall(face_load_direction(p, face, axis, &area, n));
+      if (p->dim == 2) PetscCall(edge_load(p, s, face, area, n, a));
+      else PetscCall(triangle_load(p, s, face, area, n, a));
     }
     PetscCall(ISRestoreIndices(pointIS, &points));
     PetscCall(ISDestroy(&pointIS));

@@ -150,12 +150,10 @@ static int read_stage_output(YdDoc *doc, YdNode *v, const char *path, Stage *g, 
   return yd_check_unused(doc, v, sub, "times", err, errlen);
 }
 
-int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
-  YdNode     *root = doc->root, *x, *v;
+/* name, units and output (directory, fields_every, times) of the scene. */
+static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
+  YdNode     *x, *v;
   const char *s;
-  memset(sc, 0, sizeof *sc);
-  snprintf(sc->name, sizeof sc->name, "fe");
-  yd_get(root, "scene");
   if ((x = yd_get(root, "name"))) {
     if (yd_string(doc, x, "name", &s, err, errlen)) return 1;
     snprintf(sc->name, sizeof sc->name, "%s", s);
@@ -177,8 +175,14 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     }
     if (yd_check_unused(doc, x, "output", "directory, fields_every, times", err, errlen)) return 1;
   }
-  /* Mesh: a gmsh geometry (meshed now, with parameters), a .msh file, or a box (tests). */
-  YdNode *mesh = yd_require(doc, root, "mesh", YD_MAPPING, "mesh", err, errlen);
+  return 0;
+}
+
+/* mesh: a gmsh geometry (meshed now, with parameters), a .msh file; its order, kinematics and thickness. */
+static int read_mesh(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
+  YdNode     *v;
+  const char *s;
+  YdNode     *mesh = yd_require(doc, root, "mesh", YD_MAPPING, "mesh", err, errlen);
   if (!mesh) return 1;
   sc->order = 1;
   if ((v = yd_get(mesh, "order")) && yd_int(doc, v, "mesh.order", &sc->order, err, errlen)) return 1;
@@ -201,8 +205,12 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       FAIL("%s:%d: key 'mesh.thickness': expected > 0, and only with kinematics: plane_strain", doc->file, v->line);
   }
   if (read_mesh_source(doc, mesh, geo, file, sc, err, errlen)) return 1;
-  if (yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen)) return 1;
+  return yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen);
+}
 
+/* material (the UMAT's properties) and phi (the hard-frame fraction's field). */
+static int read_material_phi(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
+  YdNode *x, *v;
   if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
       material_read(doc, x, sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen))
     return 1;
@@ -222,40 +230,58 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       FAIL("%s:%d: key 'phi': expected 0 <= min <= mean <= max <= 1 and std >= 0", doc->file, x->line);
     if (yd_check_unused(doc, x, "phi", "mean, std, min, max, seed, correlation_length", err, errlen)) return 1;
   }
-  YdNode *initial_pressure = NULL;
+  return 0;
+}
+
+/* initial.stress now; initial.pressure is handed back (read once the loaded groups are known). */
+static int read_initial(YdDoc *doc, YdNode *root, FeScene *sc, YdNode **initial_pressure, char *err, size_t errlen) {
+  YdNode *x, *v;
+  *initial_pressure = NULL;
   if ((x = yd_get(root, "initial"))) {
     if ((v = yd_get(x, "stress")) && yd_doubles(doc, v, "initial.stress", sc->stress0, 6, NULL, err, errlen)) return 1;
-    initial_pressure = yd_get(x, "pressure");
+    *initial_pressure = yd_get(x, "pressure");
     if (yd_check_unused(doc, x, "initial", "stress (both frames), pressure (in equilibrium with it)", err, errlen)) return 1;
   }
-  YdNode *bc = yd_require(doc, root, "boundary", YD_MAPPING, "boundary", err, errlen);
-  if (!bc) return 1;
-  if ((x = yd_get(bc, "fixed"))) {
-    if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
-    if (x->n > 8) FAIL("%s:%d: key 'boundary.fixed': at most 8 entries, got %zu", doc->file, x->line, x->n);
-    for (size_t k = 0; k < x->n; k++) {
-      YdNode *f = x->items[k], *comps;
-      char    path[64], sub[96];
-      snprintf(path, sizeof path, "boundary.fixed[%zu]", k);
-      if (yd_expect(doc, f, YD_MAPPING, path, err, errlen)) return 1;
-      snprintf(sub, sizeof sub, "%s.group", path);
-      if (yd_string(doc, yd_get(f, "group"), sub, &s, err, errlen)) return 1;
-      snprintf(sc->fixed[k].group, sizeof sc->fixed[k].group, "%s", s);
-      snprintf(sub, sizeof sub, "%s.components", path);
-      if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, sub, err, errlen)) return 1;
-      if (comps->n < 1 || comps->n > 3) FAIL("%s:%d: key '%s': expected 1 to 3 components, got %zu", doc->file, comps->line, sub, comps->n);
-      for (size_t j = 0; j < comps->n; j++) {
-        int c = comps->items[j]->kind == YD_SCALAR ? component_of(comps->items[j]->text) : -1;
-        if (c < 0 || (sc->kin != KIN_3D && c > 1))
-          FAIL("%s:%d: key '%s[%zu]': expected x, y%s, got '%s'", doc->file, comps->items[j]->line, sub, j,
-               sc->kin == KIN_3D ? " or z" : " (a 2D mesh; axisymmetric: x = r, y = z)",
-               comps->items[j]->kind == YD_SCALAR ? comps->items[j]->text : "a list or mapping");
-        sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
-      }
-      if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
-      sc->nfixed++;
+  return 0;
+}
+
+/* boundary.fixed: groups with fixed displacement components. */
+static int read_fixed(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t errlen) {
+  const char *s;
+  if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
+  if (x->n > 8) FAIL("%s:%d: key 'boundary.fixed': at most 8 entries, got %zu", doc->file, x->line, x->n);
+  for (size_t k = 0; k < x->n; k++) {
+    YdNode *f = x->items[k], *comps;
+    char    path[64], sub[96];
+    snprintf(path, sizeof path, "boundary.fixed[%zu]", k);
+    if (yd_expect(doc, f, YD_MAPPING, path, err, errlen)) return 1;
+    snprintf(sub, sizeof sub, "%s.group", path);
+    if (yd_string(doc, yd_get(f, "group"), sub, &s, err, errlen)) return 1;
+    snprintf(sc->fixed[k].group, sizeof sc->fixed[k].group, "%s", s);
+    snprintf(sub, sizeof sub, "%s.components", path);
+    if (yd_expect(doc, comps = yd_get(f, "components"), YD_SEQUENCE, sub, err, errlen)) return 1;
+    if (comps->n < 1 || comps->n > 3) FAIL("%s:%d: key '%s': expected 1 to 3 components, got %zu", doc->file, comps->line, sub, comps->n);
+    for (size_t j = 0; j < comps->n; j++) {
+      int c = comps->items[j]->kind == YD_SCALAR ? component_of(comps->items[j]->text) : -1;
+      if (c < 0 || (sc->kin != KIN_3D && c > 1))
+        FAIL("%s:%d: key '%s[%zu]': expected x, y%s, got '%s'", doc->file, comps->items[j]->line, sub, j,
+             sc->kin == KIN_3D ? " or z" : " (a 2D mesh; axisymmetric: x = r, y = z)",
+             comps->items[j]->kind == YD_SCALAR ? comps->items[j]->text : "a list or mapping");
+      sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
     }
+    if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
+    sc->nfixed++;
   }
+  return 0;
+}
+
+/* boundary: fixed groups, pressure groups and traction groups (loads GROUP.x, GROUP.y (, GROUP.z)). */
+static int read_boundary(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
+  YdNode     *x;
+  const char *s;
+  YdNode     *bc = yd_require(doc, root, "boundary", YD_MAPPING, "boundary", err, errlen);
+  if (!bc) return 1;
+  if ((x = yd_get(bc, "fixed")) && read_fixed(doc, x, sc, err, errlen)) return 1;
   if ((x = yd_get(bc, "pressure"))) {
     if (yd_expect(doc, x, YD_SEQUENCE, "boundary.pressure", err, errlen)) return 1;
     if (x->n > FE_MAX_GROUPS) FAIL("%s:%d: key 'boundary.pressure': at most %d groups, got %zu", doc->file, x->line, FE_MAX_GROUPS, x->n);
@@ -277,96 +303,111 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
       for (int d = 0; d < dim; d++) snprintf(sc->pressure_group[sc->npressure++], 64, "%s.%c", s, 'x' + d);
     }
   }
-  if (yd_check_unused(doc, bc, "boundary", "fixed, pressure, traction", err, errlen)) return 1;
+  return yd_check_unused(doc, bc, "boundary", "fixed, pressure, traction", err, errlen);
+}
+
+/* initial.pressure: the starting pressure of each loaded group named in it (0 otherwise). */
+static int read_initial_pressure(YdDoc *doc, YdNode *initial_pressure, FeScene *sc, char *err, size_t errlen) {
   for (int k = 0; k < FE_MAX_GROUPS; k++) sc->pressure0[k] = 0;
-  if (initial_pressure) {
-    if (yd_expect(doc, initial_pressure, YD_MAPPING, "initial.pressure", err, errlen)) return 1;
-    for (size_t k = 0; k < initial_pressure->n; k++) {
+  if (!initial_pressure) return 0;
+  if (yd_expect(doc, initial_pressure, YD_MAPPING, "initial.pressure", err, errlen)) return 1;
+  for (size_t k = 0; k < initial_pressure->n; k++) {
+    int gi = -1;
+    for (int j = 0; j < sc->npressure; j++)
+      if (!strcmp(sc->pressure_group[j], initial_pressure->keys[k])) gi = j;
+    if (gi < 0) FAIL("%s:%d: key 'initial.pressure.%s': not a group listed in boundary.pressure", doc->file,
+                     initial_pressure->key_lines[k], initial_pressure->keys[k]);
+    initial_pressure->used[k] = 1;
+    char item[128];
+    snprintf(item, sizeof item, "initial.pressure.%s", initial_pressure->keys[k]);
+    if (yd_double(doc, initial_pressure->items[k], item, &sc->pressure0[gi], err, errlen)) return 1;
+  }
+  return 0;
+}
+
+/* A stage's pressure (a mapping group -> pressure) and traction (group -> vector) blocks. */
+static int read_stage_loads(YdDoc *doc, YdNode *st, const char *path, const FeScene *sc, Stage *g, char *err, size_t errlen) {
+  YdNode *v;
+  char    sub[96];
+  for (int k = 0; k < FE_MAX_GROUPS; k++) g->pressure[k] = NAN;
+  if ((v = yd_get(st, "pressure"))) {
+    snprintf(sub, sizeof sub, "%s.pressure", path);
+    if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+    for (size_t k = 0; k < v->n; k++) {
       int gi = -1;
       for (int j = 0; j < sc->npressure; j++)
-        if (!strcmp(sc->pressure_group[j], initial_pressure->keys[k])) gi = j;
-      if (gi < 0) FAIL("%s:%d: key 'initial.pressure.%s': not a group listed in boundary.pressure", doc->file,
-                       initial_pressure->key_lines[k], initial_pressure->keys[k]);
-      initial_pressure->used[k] = 1;
-      char item[128];
-      snprintf(item, sizeof item, "initial.pressure.%s", initial_pressure->keys[k]);
-      if (yd_double(doc, initial_pressure->items[k], item, &sc->pressure0[gi], err, errlen)) return 1;
+        if (!strcmp(sc->pressure_group[j], v->keys[k])) gi = j;
+      if (gi < 0) FAIL("%s:%d: key '%s.%s': not a group listed in boundary.pressure", doc->file, v->key_lines[k], sub, v->keys[k]);
+      v->used[k] = 1;
+      char sub2[160];
+      snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
+      if (read_pressure(doc, v->items[k], sub2, g, gi, err, errlen)) return 1;
     }
   }
-
-  YdNode *stages = yd_require(doc, root, "stages", YD_SEQUENCE, "stages", err, errlen);
-  if (!stages) return 1;
-  if (stages->n == 0 || stages->n > MAXSTAGES) FAIL("%s:%d: key 'stages': expected 1 to %d stages", doc->file, stages->line, MAXSTAGES);
-  sc->nstage = (int)stages->n;
-  for (int i = 0; i < sc->nstage; i++) {
-    YdNode *st = stages->items[i];
-    Stage  *g  = &sc->stage[i];
-    char    path[64], sub[96];
-    snprintf(path, sizeof path, "stages[%d]", i);
-    if (yd_expect(doc, st, YD_MAPPING, path, err, errlen)) return 1;
-    snprintf(g->name, sizeof g->name, "stage%d", i);
-    if ((v = yd_get(st, "name"))) {
-      snprintf(sub, sizeof sub, "%s.name", path);
-      if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
-      snprintf(g->name, sizeof g->name, "%s", s);
-    }
-    snprintf(sub, sizeof sub, "%s.duration", path);
-    if (yd_double(doc, yd_get(st, "duration"), sub, &g->duration, err, errlen)) return 1;
-    if ((v = yd_get(st, "load"))) {
-      snprintf(sub, sizeof sub, "%s.load", path);
-      if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
-      if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s': expected instant or linear, got '%s'", doc->file, v->line, sub, s);
-      g->instant = !strcmp(s, "instant");
-    }
-    if (g->duration < 0 || (g->duration == 0 && !g->instant))
-      FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear stage of zero duration "
-           "would never apply its target), got %g", doc->file, yd_key_line(st, "duration"), path, g->duration);
-    for (int k = 0; k < FE_MAX_GROUPS; k++) g->pressure[k] = NAN;
-    if ((v = yd_get(st, "pressure"))) {
-      snprintf(sub, sizeof sub, "%s.pressure", path);
-      if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
-      for (size_t k = 0; k < v->n; k++) {
-        int gi = -1;
+  if ((v = yd_get(st, "traction"))) {
+    snprintf(sub, sizeof sub, "%s.traction", path);
+    if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
+    int dim = sc->kin == KIN_3D ? 3 : 2;
+    for (size_t k = 0; k < v->n; k++) {
+      double t[3];
+      char   sub2[200];
+      snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
+      v->used[k] = 1;
+      if (yd_doubles(doc, v->items[k], sub2, t, dim, NULL, err, errlen)) return 1;
+      for (int d = 0; d < dim; d++) {
+        char name[72];
+        int  gi = -1;
+        snprintf(name, sizeof name, "%s.%c", v->keys[k], 'x' + d);
         for (int j = 0; j < sc->npressure; j++)
-          if (!strcmp(sc->pressure_group[j], v->keys[k])) gi = j;
-        if (gi < 0) FAIL("%s:%d: key '%s.%s': not a group listed in boundary.pressure", doc->file, v->key_lines[k], sub, v->keys[k]);
-        v->used[k] = 1;
-        char sub2[160];
-        snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
-        if (read_pressure(doc, v->items[k], sub2, g, gi, err, errlen)) return 1;
+          if (!strcmp(sc->pressure_group[j], name)) gi = j;
+        if (gi < 0) FAIL("%s:%d: key '%s': not a group listed in boundary.traction", doc->file, v->key_lines[k], sub2);
+        g->pressure[gi] = t[d], g->fn[gi] = FN_RAMP;
       }
     }
-    if ((v = yd_get(st, "traction"))) {
-      snprintf(sub, sizeof sub, "%s.traction", path);
-      if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
-      int dim = sc->kin == KIN_3D ? 3 : 2;
-      for (size_t k = 0; k < v->n; k++) {
-        double t[3];
-        char   sub2[200];
-        snprintf(sub2, sizeof sub2, "%s.%s", sub, v->keys[k]);
-        v->used[k] = 1;
-        if (yd_doubles(doc, v->items[k], sub2, t, dim, NULL, err, errlen)) return 1;
-        for (int d = 0; d < dim; d++) {
-          char name[72];
-          int  gi = -1;
-          snprintf(name, sizeof name, "%s.%c", v->keys[k], 'x' + d);
-          for (int j = 0; j < sc->npressure; j++)
-            if (!strcmp(sc->pressure_group[j], name)) gi = j;
-          if (gi < 0) FAIL("%s:%d: key '%s': not a group listed in boundary.traction", doc->file, v->key_lines[k], sub2);
-          g->pressure[gi] = t[d], g->fn[gi] = FN_RAMP;
-        }
-      }
-    }
-    snprintf(sub, sizeof sub, "%s.steps", path);
-    if (step_control_read(doc, yd_get(st, "steps"), sub, g->duration, &g->steps, err, errlen)) return 1;
-    snprintf(sub, sizeof sub, "%s.until", path);
-    if (stage_event_read(doc, yd_get(st, "until"), sub, "evp_rate_below, q_above, q_below, p_above", &g->until, err, errlen)) return 1;
-    snprintf(sub, sizeof sub, "%s.creep", path);
-    if ((v = yd_get(st, "creep")) && yd_bool(doc, v, sub, &g->creep, err, errlen)) return 1;
-    if ((v = yd_get(st, "output")) && read_stage_output(doc, v, path, g, err, errlen)) return 1;
-    g->indenter = yd_get(st, "indenter"); /* read by the contact module */
-    if (yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter, output", err, errlen)) return 1;
   }
+  return 0;
+}
+
+/* stages[i]: name, duration, load, pressure, traction, steps, until, creep, output (indenter: the contact module's). */
+static int read_stage(YdDoc *doc, YdNode *st, int i, const FeScene *sc, Stage *g, char *err, size_t errlen) {
+  YdNode     *v;
+  const char *s;
+  char        path[64], sub[96];
+  snprintf(path, sizeof path, "stages[%d]", i);
+  if (yd_expect(doc, st, YD_MAPPING, path, err, errlen)) return 1;
+  snprintf(g->name, sizeof g->name, "stage%d", i);
+  if ((v = yd_get(st, "name"))) {
+    snprintf(sub, sizeof sub, "%s.name", path);
+    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+    snprintf(g->name, sizeof g->name, "%s", s);
+  }
+  snprintf(sub, sizeof sub, "%s.duration", path);
+  if (yd_double(doc, yd_get(st, "duration"), sub, &g->duration, err, errlen)) return 1;
+  if ((v = yd_get(st, "load"))) {
+    snprintf(sub, sizeof sub, "%s.load", path);
+    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+    if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s': expected instant or linear, got '%s'", doc->file, v->line, sub, s);
+    g->instant = !strcmp(s, "instant");
+  }
+  if (g->duration < 0 || (g->duration == 0 && !g->instant))
+    FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear stage of zero duration "
+         "would never apply its target), got %g", doc->file, yd_key_line(st, "duration"), path, g->duration);
+  if (read_stage_loads(doc, st, path, sc, g, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.steps", path);
+  if (step_control_read(doc, yd_get(st, "steps"), sub, g->duration, &g->steps, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.until", path);
+  if (stage_event_read(doc, yd_get(st, "until"), sub, "evp_rate_below, q_above, q_below, p_above", &g->until, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.creep", path);
+  if ((v = yd_get(st, "creep")) && yd_bool(doc, v, sub, &g->creep, err, errlen)) return 1;
+  if ((v = yd_get(st, "output")) && read_stage_output(doc, v, path, g, err, errlen)) return 1;
+  g->indenter = yd_get(st, "indenter"); /* read by the contact module */
+  return yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter, output", err, errlen);
+}
+
+/* solver.options: PETSc options (the command line overrides them). */
+static int read_solver(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
+  YdNode     *x, *v;
+  const char *s;
   if ((x = yd_get(root, "solver"))) {
     if ((v = yd_get(x, "options"))) {
       if (yd_string(doc, v, "solver.options", &s, err, errlen)) return 1;
@@ -375,6 +416,25 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
     }
     if (yd_check_unused(doc, x, "solver", "options (PETSc options; the command line overrides them)", err, errlen)) return 1;
   }
+  return 0;
+}
+
+int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
+  YdNode *root = doc->root, *initial_pressure;
+  memset(sc, 0, sizeof *sc);
+  snprintf(sc->name, sizeof sc->name, "fe");
+  yd_get(root, "scene");
+  if (read_output(doc, root, sc, err, errlen) || read_mesh(doc, root, sc, err, errlen) || read_material_phi(doc, root, sc, err, errlen) ||
+      read_initial(doc, root, sc, &initial_pressure, err, errlen) || read_boundary(doc, root, sc, err, errlen) ||
+      read_initial_pressure(doc, initial_pressure, sc, err, errlen))
+    return 1;
+  YdNode *stages = yd_require(doc, root, "stages", YD_SEQUENCE, "stages", err, errlen);
+  if (!stages) return 1;
+  if (stages->n == 0 || stages->n > MAXSTAGES) FAIL("%s:%d: key 'stages': expected 1 to %d stages", doc->file, stages->line, MAXSTAGES);
+  sc->nstage = (int)stages->n;
+  for (int i = 0; i < sc->nstage; i++)
+    if (read_stage(doc, stages->items[i], i, sc, &sc->stage[i], err, errlen)) return 1;
+  if (read_solver(doc, root, sc, err, errlen)) return 1;
   sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
   sc->indenter = yd_get(root, "indenter");
   for (int i = 0; i < sc->nstage; i++)

@@ -71,27 +71,17 @@ static int apply_option_set(UmatMaterial *mat, int *normal, char *err, size_t er
   return 0;
 }
 
-int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen) {
-  if (yd_expect(doc, node, YD_MAPPING, "material", err, errlen)) return 1;
-  const char *umat_name = "camclay9", *name = "CAMCLAY9";
-  YdNode     *nd;
-  if ((nd = yd_get(node, "umat")) && yd_string(doc, nd, "material.umat", &umat_name, err, errlen)) return 1;
-  if ((nd = yd_get(node, "name")) && yd_string(doc, nd, "material.name", &name, err, errlen)) return 1;
-  int camclay = !strcmp(umat_name, "camclay9");
-  memset(mat, 0, sizeof *mat);
-  mat->ntens  = ntens;
-  mat->nstatv = camclay ? CAMCLAY9_NSTATV_DIAGNOSTICS : 0;
-  mat->phi_slot = camclay ? 0 : -1;
-  mat->tol_slot = camclay ? 19 : -1;
-  umat_material_set_name(mat, name);
-
-  YdNode *props = yd_get(node, "props");
+/* material.props (woodford or a list of numbers) and material.set (named slots); *props_out: the props node;
+ * *normal_in_props set when set names n1..n3. */
+static int read_props_set(const YdDoc *doc, YdNode *node, UmatMaterial *mat, YdNode **props_out, int *normal_in_props,
+                          char *err, size_t errlen) {
+  YdNode *nd, *props = yd_get(node, "props");
+  *props_out = props;
   if (!props) {
     snprintf(err, errlen, "%s:%d: key 'material.props' is missing: expected 'woodford' or a list of numbers",
              doc->file, node->line);
     return 1;
   }
-  int normal_in_props = 0; /* n1..n3 given in props or set: bedding_angle would override them */
   if (props->kind == YD_SCALAR && !strcmp(props->text, "woodford")) {
     memcpy(mat->props, woodford, sizeof woodford);
     mat->nprops = 19; /* no normal: the UMAT's material 3-axis, unless given below */
@@ -116,11 +106,16 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
       nd->used[i] = 1;
       double v;
       if (yd_double(doc, nd->items[i], path, &v, err, errlen)) return 1;
-      set_slot(mat, slot, v, &normal_in_props);
+      set_slot(mat, slot, v, normal_in_props);
     }
   }
-  if (camclay && apply_option_set(mat, &normal_in_props, err, errlen)) return 1;
-  /* Bedding: an angle theta to the loading axis (theory.md §4.1), or the normal itself. */
+  return 0;
+}
+
+/* Bedding: an angle theta to the loading axis (theory.md §4.1), or the normal itself (PROPS(21-23)); 2D
+ * camclay9 without one: n = e2. *nprops_given: nprops before a normal from bedding_angle fills PROPS(21-23). */
+static int read_bedding(const YdDoc *doc, YdNode *node, int ntens, int camclay, int normal_in_props, UmatMaterial *mat,
+                        int *nprops_given, char *err, size_t errlen) {
   YdNode *bed = yd_get(node, "bedding_angle"), *normal = yd_get(node, "normal");
   if (bed && normal) {
     snprintf(err, errlen, "%s:%d: give either 'material.bedding_angle' or 'material.normal', not both", doc->file,
@@ -128,7 +123,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
     return 1;
   }
   if (mat->nprops > 20) normal_in_props = 1;
-  int nprops_given = mat->nprops; /* before a normal from bedding_angle fills PROPS(21-23) */
+  *nprops_given = mat->nprops; /* before a normal from bedding_angle fills PROPS(21-23) */
   if (bed && normal_in_props) {
     snprintf(err, errlen, "%s:%d: key 'material.bedding_angle': the normal (n1, n2, n3: PROPS(21-23)) is already given "
              "in material.props or material.set: give one of them", doc->file, yd_key_line(node, "bedding_angle"));
@@ -155,6 +150,28 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
     mat->props[20] = 0, mat->props[21] = 1, mat->props[22] = 0;
     mat->nprops    = 23;
   }
+  return 0;
+}
+
+int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen) {
+  if (yd_expect(doc, node, YD_MAPPING, "material", err, errlen)) return 1;
+  const char *umat_name = "camclay9", *name = "CAMCLAY9";
+  YdNode     *nd, *props;
+  if ((nd = yd_get(node, "umat")) && yd_string(doc, nd, "material.umat", &umat_name, err, errlen)) return 1;
+  if ((nd = yd_get(node, "name")) && yd_string(doc, nd, "material.name", &name, err, errlen)) return 1;
+  int camclay = !strcmp(umat_name, "camclay9");
+  memset(mat, 0, sizeof *mat);
+  mat->ntens  = ntens;
+  mat->nstatv = camclay ? CAMCLAY9_NSTATV_DIAGNOSTICS : 0;
+  mat->phi_slot = camclay ? 0 : -1;
+  mat->tol_slot = camclay ? 19 : -1;
+  umat_material_set_name(mat, name);
+
+  int normal_in_props = 0; /* n1..n3 given in props or set: bedding_angle would override them */
+  int nprops_given;
+  if (read_props_set(doc, node, mat, &props, &normal_in_props, err, errlen)) return 1;
+  if (camclay && apply_option_set(mat, &normal_in_props, err, errlen)) return 1;
+  if (read_bedding(doc, node, ntens, camclay, normal_in_props, mat, &nprops_given, err, errlen)) return 1;
   if ((nd = yd_get(node, "nstatv")) && yd_int(doc, nd, "material.nstatv", &mat->nstatv, err, errlen)) return 1;
   if (mat->nstatv < 0 || mat->nstatv > UMAT_MAX_STATEV) {
     snprintf(err, errlen, "%s:%d: key 'material.nstatv': expected 0 to %d, got %d", doc->file,

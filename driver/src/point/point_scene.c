@@ -84,11 +84,9 @@ static int check_equations(YdDoc *doc, YdNode *nd, const char *path, const Segme
   return 0;
 }
 
-static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *sg, char *err, size_t errlen) {
-  char path[64], sub[160];
-  snprintf(path, sizeof path, "segments[%d]", index);
-  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
-  memset(sg, 0, sizeof *sg);
+/* A segment's name, duration and load (instant or linear). */
+static int read_segment_head(YdDoc *doc, YdNode *nd, const char *path, int index, Segment *sg, char *err, size_t errlen) {
+  char        sub[160];
   const char *s;
   YdNode     *x;
   snprintf(sg->name, sizeof sg->name, "segment%d", index);
@@ -109,11 +107,14 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
   if (sg->duration < 0 || (sg->duration == 0 && !sg->instant))
     FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear segment of zero duration "
          "would never apply its targets), got %g", doc->file, yd_key_line(nd, "duration"), path, sg->duration);
+  return 0;
+}
 
-  /* Control of each component. */
-  char   *table_cols[8];
-  int     ntable = 0;
-  YdNode *ctl    = yd_get(nd, "control");
+/* A segment's control: the equation of each component (given, or 'others'); table columns go to table_cols. */
+static int read_controls(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char **table_cols, int *ntable,
+                         char *err, size_t errlen) {
+  char    sub[160];
+  YdNode *ctl = yd_get(nd, "control");
   snprintf(sub, sizeof sub, "%s.control", path);
   if (yd_expect(doc, ctl, YD_MAPPING, sub, err, errlen)) return 1;
   int given[6] = {0};
@@ -126,7 +127,7 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
     ctl->used[i] = 1;
     char p2[200];
     snprintf(p2, sizeof p2, "%s.%s", sub, ctl->keys[i]);
-    if (read_equation(doc, ctl->items[i], p2, &sg->eq[c], table_cols, &ntable, err, errlen)) return 1;
+    if (read_equation(doc, ctl->items[i], p2, &sg->eq[c], table_cols, ntable, err, errlen)) return 1;
     given[c] = 1;
   }
   YdNode *others = yd_get(ctl, "others");
@@ -137,61 +138,71 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
            doc->file, ctl->line, sub, component_names[c]);
     char p2[200];
     snprintf(p2, sizeof p2, "%s.others", sub);
-    if (read_equation(doc, others, p2, &sg->eq[c], table_cols, &ntable, err, errlen)) return 1;
+    if (read_equation(doc, others, p2, &sg->eq[c], table_cols, ntable, err, errlen)) return 1;
   }
+  return 0;
+}
 
-  /* Linear constraints replace the equation of one component each. */
-  if ((x = yd_get(nd, "constraints"))) {
-    snprintf(sub, sizeof sub, "%s.constraints", path);
-    if (yd_expect(doc, x, YD_SEQUENCE, sub, err, errlen)) return 1;
-    for (size_t k = 0; k < x->n; k++) {
-      YdNode *cn = x->items[k];
-      char    p2[200];
-      snprintf(p2, sizeof p2, "%s[%zu]", sub, k);
-      if (yd_expect(doc, cn, YD_MAPPING, p2, err, errlen)) return 1;
-      const char *rep;
-      char        p3[240];
-      snprintf(p3, sizeof p3, "%s.replaces", p2);
-      if (yd_string(doc, yd_get(cn, "replaces"), p3, &rep, err, errlen)) return 1;
-      int c = point_component(rep);
-      if (c < 0 || c >= ntens) FAIL("%s:%d: key '%s': expected a component, got '%s'", doc->file, cn->line, p3, rep);
-      Equation *eq = &sg->eq[c];
-      memset(eq, 0, sizeof *eq);
-      eq->kind         = EQ_LINEAR;
-      eq->table_column = -1;
-      eq->value        = NAN;
-      const char *parts[2] = {"strain", "stress"};
-      for (int part = 0; part < 2; part++) {
-        YdNode *coef = yd_get(cn, parts[part]);
-        if (!coef) continue;
-        snprintf(p3, sizeof p3, "%s.%s", p2, parts[part]);
-        if (yd_expect(doc, coef, YD_MAPPING, p3, err, errlen)) return 1;
-        for (size_t j = 0; j < coef->n; j++) {
-          int cc = point_component(coef->keys[j]);
-          if (cc < 0 || cc >= ntens) FAIL("%s:%d: unknown key '%s.%s': expected a component", doc->file, coef->key_lines[j], p3, coef->keys[j]);
-          coef->used[j] = 1;
-          char p4[300];
-          snprintf(p4, sizeof p4, "%s.%s", p3, coef->keys[j]);
-          if (yd_double(doc, coef->items[j], p4, part ? &eq->b[cc] : &eq->a[cc], err, errlen)) return 1;
-        }
-      }
-      int nonzero = 0;
-      for (int k = 0; k < ntens; k++) nonzero |= eq->a[k] != 0 || eq->b[k] != 0;
-      if (!nonzero)
-        FAIL("%s:%d: key '%s': an empty constraint (no non-zero strain or stress coefficient): expected e.g. "
-             "strain: {11: 1, 22: 1, 33: 1}", doc->file, cn->line, p2);
-      YdNode *val = yd_get(cn, "value");
-      snprintf(p3, sizeof p3, "%s.value", p2);
-      if (val && yd_double(doc, val, p3, &eq->value, err, errlen)) return 1;
-      if (yd_check_unused(doc, cn, p2, "replaces, strain, stress, value (omitted: keep the value at the segment start)", err, errlen)) return 1;
+/* One linear constraint (path p2): replaces the equation of one component by a.eps + b.sigma = value. */
+static int read_constraint(YdDoc *doc, YdNode *cn, const char *p2, int ntens, Segment *sg, char *err, size_t errlen) {
+  if (yd_expect(doc, cn, YD_MAPPING, p2, err, errlen)) return 1;
+  const char *rep;
+  char        p3[240];
+  snprintf(p3, sizeof p3, "%s.replaces", p2);
+  if (yd_string(doc, yd_get(cn, "replaces"), p3, &rep, err, errlen)) return 1;
+  int c = point_component(rep);
+  if (c < 0 || c >= ntens) FAIL("%s:%d: key '%s': expected a component, got '%s'", doc->file, cn->line, p3, rep);
+  Equation *eq = &sg->eq[c];
+  memset(eq, 0, sizeof *eq);
+  eq->kind         = EQ_LINEAR;
+  eq->table_column = -1;
+  eq->value        = NAN;
+  const char *parts[2] = {"strain", "stress"};
+  for (int part = 0; part < 2; part++) {
+    YdNode *coef = yd_get(cn, parts[part]);
+    if (!coef) continue;
+    snprintf(p3, sizeof p3, "%s.%s", p2, parts[part]);
+    if (yd_expect(doc, coef, YD_MAPPING, p3, err, errlen)) return 1;
+    for (size_t j = 0; j < coef->n; j++) {
+      int cc = point_component(coef->keys[j]);
+      if (cc < 0 || cc >= ntens) FAIL("%s:%d: unknown key '%s.%s': expected a component", doc->file, coef->key_lines[j], p3, coef->keys[j]);
+      coef->used[j] = 1;
+      char p4[300];
+      snprintf(p4, sizeof p4, "%s.%s", p3, coef->keys[j]);
+      if (yd_double(doc, coef->items[j], p4, part ? &eq->b[cc] : &eq->a[cc], err, errlen)) return 1;
     }
   }
+  int nonzero = 0;
+  for (int k = 0; k < ntens; k++) nonzero |= eq->a[k] != 0 || eq->b[k] != 0;
+  if (!nonzero)
+    FAIL("%s:%d: key '%s': an empty constraint (no non-zero strain or stress coefficient): expected e.g. "
+         "strain: {11: 1, 22: 1, 33: 1}", doc->file, cn->line, p2);
+  YdNode *val = yd_get(cn, "value");
+  snprintf(p3, sizeof p3, "%s.value", p2);
+  if (val && yd_double(doc, val, p3, &eq->value, err, errlen)) return 1;
+  return yd_check_unused(doc, cn, p2, "replaces, strain, stress, value (omitted: keep the value at the segment start)", err, errlen);
+}
 
-  if (check_equations(doc, nd, path, sg, ntens, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.steps", path);
-  if (step_control_read(doc, yd_get(nd, "steps"), sub, sg->duration, &sg->steps, err, errlen)) return 1;
+/* A segment's constraints: a sequence of linear constraints, each replacing one component's equation. */
+static int read_constraints(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char *err, size_t errlen) {
+  char    sub[160];
+  YdNode *x = yd_get(nd, "constraints");
+  if (!x) return 0;
+  snprintf(sub, sizeof sub, "%s.constraints", path);
+  if (yd_expect(doc, x, YD_SEQUENCE, sub, err, errlen)) return 1;
+  for (size_t k = 0; k < x->n; k++) {
+    char p2[200];
+    snprintf(p2, sizeof p2, "%s[%zu]", sub, k);
+    if (read_constraint(doc, x->items[k], p2, ntens, sg, err, errlen)) return 1;
+  }
+  return 0;
+}
 
-  /* End condition. */
+/* A segment's end condition (until), creep flag and loading axis. */
+static int read_until_axis(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char *err, size_t errlen) {
+  char        sub[160];
+  const char *s;
+  YdNode     *x;
   if ((x = yd_get(nd, "until"))) {
     snprintf(sub, sizeof sub, "%s.until", path);
     if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen) || x->n != 1)
@@ -215,40 +226,63 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
     if (c < 0 || c > 2) FAIL("%s:%d: key '%s.axis': expected 11, 22 or 33, got '%s'", doc->file, x->line, path, s);
     sg->axis = c;
   }
+  return 0;
+}
 
-  /* Table of lab data driving targets. */
+/* A segment's table of lab data (the time column and the columns the controls read). */
+static int read_segment_table(YdDoc *doc, YdNode *nd, const char *path, Segment *sg, char **table_cols, int ntable, char *err,
+                              size_t errlen) {
+  char    sub[160];
   YdNode *tab = yd_get(nd, "table");
   if (ntable && !tab) FAIL("%s:%d: key '%s': a component reads a table column but the segment has no 'table'", doc->file, nd->line, path);
-  if (tab) {
-    snprintf(sub, sizeof sub, "%s.table", path);
-    if (yd_expect(doc, tab, YD_MAPPING, sub, err, errlen)) return 1;
-    const char *file, *tcol;
-    double      tfac = 1;
-    if (yd_string(doc, yd_get(tab, "file"), sub, &file, err, errlen)) return 1;
-    if (yd_string(doc, yd_get(tab, "time"), sub, &tcol, err, errlen)) return 1;
-    YdNode *f = yd_get(tab, "time_factor");
-    if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
-    if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
-    char resolved[1024], where[1200];
-    snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(tab, "file"), sub);
-    if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
-    snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, tab->line, sub);
-    const char *want[9];
-    want[0] = tcol;
-    for (int c = 0; c < ntable; c++) want[c + 1] = table_cols[c];
-    double *data;
-    int     rows;
-    if (csv_read_columns(resolved, where, want, ntable + 1, 0, &data, &rows, err, errlen)) return 1;
-    sg->table_rows = rows;
-    sg->table_cols = ntable;
-    sg->table_time = malloc(sizeof(double) * rows);
-    sg->table      = malloc(sizeof(double) * rows * (ntable ? ntable : 1));
-    for (int r = 0; r < rows; r++) {
-      sg->table_time[r] = data[r * (ntable + 1)] * tfac;
-      for (int c = 0; c < ntable; c++) sg->table[r * ntable + c] = data[r * (ntable + 1) + c + 1];
-    }
-    free(data);
+  if (!tab) return 0;
+  snprintf(sub, sizeof sub, "%s.table", path);
+  if (yd_expect(doc, tab, YD_MAPPING, sub, err, errlen)) return 1;
+  const char *file, *tcol;
+  double      tfac = 1;
+  if (yd_string(doc, yd_get(tab, "file"), sub, &file, err, errlen)) return 1;
+  if (yd_string(doc, yd_get(tab, "time"), sub, &tcol, err, errlen)) return 1;
+  YdNode *f = yd_get(tab, "time_factor");
+  if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
+  if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
+  char resolved[1024], where[1200];
+  snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(tab, "file"), sub);
+  if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
+  snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, tab->line, sub);
+  const char *want[9];
+  want[0] = tcol;
+  for (int c = 0; c < ntable; c++) want[c + 1] = table_cols[c];
+  double *data;
+  int     rows;
+  if (csv_read_columns(resolved, where, want, ntable + 1, 0, &data, &rows, err, errlen)) return 1;
+  sg->table_rows = rows;
+  sg->table_cols = ntable;
+  sg->table_time = malloc(sizeof(double) * rows);
+  sg->table      = malloc(sizeof(double) * rows * (ntable ? ntable : 1));
+  for (int r = 0; r < rows; r++) {
+    sg->table_time[r] = data[r * (ntable + 1)] * tfac;
+    for (int c = 0; c < ntable; c++) sg->table[r * ntable + c] = data[r * (ntable + 1) + c + 1];
   }
+  free(data);
+  return 0;
+}
+
+static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *sg, char *err, size_t errlen) {
+  char path[64], sub[160];
+  snprintf(path, sizeof path, "segments[%d]", index);
+  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  memset(sg, 0, sizeof *sg);
+  char *table_cols[8];
+  int   ntable = 0;
+  if (read_segment_head(doc, nd, path, index, sg, err, errlen) ||
+      read_controls(doc, nd, path, ntens, sg, table_cols, &ntable, err, errlen) ||
+      read_constraints(doc, nd, path, ntens, sg, err, errlen) || check_equations(doc, nd, path, sg, ntens, err, errlen))
+    return 1;
+  snprintf(sub, sizeof sub, "%s.steps", path);
+  if (step_control_read(doc, yd_get(nd, "steps"), sub, sg->duration, &sg->steps, err, errlen)) return 1;
+  if (read_until_axis(doc, nd, path, ntens, sg, err, errlen) ||
+      read_segment_table(doc, nd, path, sg, table_cols, ntable, err, errlen))
+    return 1;
   return yd_check_unused(doc, nd, path,
                          "name, duration, load, control, constraints, steps, until, creep, axis, table", err, errlen);
 }
