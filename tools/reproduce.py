@@ -187,8 +187,7 @@ def main(argv=None):
     paper_doc.write(out / "paper.md", numbers, trends, images, meta, image_dir=out / "figures")
     if docs:
         paper_doc.write(ROOT / "docs" / "paper.md", numbers, trends, images, meta, image_dir=ROOT / "docs" / "paper")
-        if not a.no_run:
-            write_performance(meta, a.jobs)
+        write_performance(meta, a.jobs)
     print(f"reproduce ({mode}): runs {t_runs:.1f} s, total {meta['wall_total']:.1f} s wall; {out / 'paper.md'}"
           + (f", {ROOT / 'docs' / 'paper.md'}" if docs else ""))
     for t in trends:
