@@ -166,12 +166,13 @@ def part2(tmp, lines, plot):
             lines.append(f"| {measure} | {tol:g} | {r['steps']} | {r['newton']} | {r['wall']:.1f} | {r['cpu']:.1f} | "
                          f"{e['load at end of loading']:+.2%} | {e['creep depth']:+.2%} | {e['residual depth']:+.2%} |")
             plot.append((measure, tol, r["cpu"], max(abs(v) for v in e.values())))
-    # the shipped scene's Newton tolerance (-indent_rtol 1e-7) against the driver's default, 1e-10
-    for rtol in ("1e-7", "1e-10"):
+    # the Newton tolerance: the default (1e-10 of the load) against a looser one (fewer iterations, same outputs at
+    # this tol; at much finer tols the looser Newton's error accumulates over the steps, so it is not shipped)
+    for rtol in ("1e-10", "1e-8", "1e-7"):
         r = run(text, tmp / f"table_rtol{rtol}", args=("-indent_rtol", rtol))
         e = errors(outputs(r["hist"]), ref)
         print(f"  shipped, -indent_rtol {rtol}: {r['steps']} steps, {r['newton']} Newton, wall {r['wall']:.1f} s; {fmt_err(e)}", flush=True)
-        lines.append(f"| output, shipped, Newton to {rtol} of the load | 1.5e-2 | {r['steps']} | {r['newton']} | {r['wall']:.1f} | "
+        lines.append(f"| output (shipped), Newton to {rtol} of the load | 1.5e-2 | {r['steps']} | {r['newton']} | {r['wall']:.1f} | "
                      f"{r['cpu']:.1f} | {e['load at end of loading']:+.4%} | {e['creep depth']:+.4%} | {e['residual depth']:+.4%} |")
 
 
