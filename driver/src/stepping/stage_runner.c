@@ -252,7 +252,9 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   if (dir) st->event_prev = o->event[r->view.until.kind];
   remember_output(r, o, rq);
   st->first_in_stage = 0, st->cut_in_step = 0;
-  if (ratio >= 0) st->reject_ratio = 0; /* an estimated step passed: a later rejection starts afresh */
+  /* a later rejection starts afresh, unless this step was the predictor itself (no Newton iteration): then
+     the rejection before it still tells whether shorter steps lower the estimate */
+  if (ratio >= 0 || o->its > 0) st->reject_ratio = 0;
 }
 
 static int write_fields(Run *r, char *err, size_t errlen) {
