@@ -275,3 +275,27 @@ def test_bad_run_options_and_indenter_below_the_surface(tmp_path):
     depth = float(re.search(r"starts ([0-9.eE+-]+) below the surface", first).group(1))
     # the gap is measured normal to the cone: a tip 0.01 under a flat surface is 0.01 sin(70.3 deg) from it
     assert proc.returncode == 2 and "indenter.tip" in first and abs(depth / (0.01 * math.sin(math.radians(70.3))) - 1) < 1e-4
+
+
+def test_point_and_fe_restarts_are_bit_identical(tmp_path):
+    """The same checkpoints serve every scene kind: a point scene (adaptive steps with the output measure) and
+    an FE box stopped after a checkpoint and restarted end exactly where the uninterrupted runs end."""
+    point = """scene: point
+material: {props: woodford, set: {phi: 0.5}}
+initial: {stress: [-35, -35, -35, 0, 0, 0]}
+segments:
+  - {name: creep, duration: 3600, load: instant, control: {others: {stress: 0}, 11: {stress: -35}, 22: {stress: -35}, 33: {stress: -75}},
+     steps: {adaptive: true, first: 1.0e-3, max: 500, error: {measure: output, tol: 0.02}}}
+"""
+    box = BOX.replace(ELASTIC, "{props: woodford, set: {phi: 0.5}}").replace(
+        "  - {name: ramp, duration: 10, pressure: {z1: 10}, steps: {count: 4}, until: {q_above: 4.3}}",
+        "  - {name: ramp, duration: 100, pressure: {z1: 40}, steps: {adaptive: true, first: 1, error: {measure: volume, tol: 0.1}}}")
+    for name, text, exe in (("point", point, "driver"), ("box", box, "driver")):
+        full = run(text, tmp_path / f"{name}_full", exe=exe)
+        run(text, tmp_path / f"{name}_part", exe=exe, args=["-checkpoint_every", "3", "-max_steps", "7"])
+        again = run(text, tmp_path / f"{name}_part", exe=exe, args=["-restart"])
+        cols = [c for c in full.dtype.names if c not in ("wall",)]
+        print(f"{name}: {len(full) - 1} steps; restarted after step 6")
+        assert len(again) == len(full) and len(full) > 8
+        for c in cols:
+            assert np.array_equal(again[c], full[c]), (name, c)
