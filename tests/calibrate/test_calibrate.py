@@ -38,6 +38,18 @@ def starts(scene):
         return {p["name"]: float(p["start"]) for p in yaml.safe_load(f)["parameters"]}
 
 
+def assert_recovered(scene, tmp_path):
+    """The scene's starts are 3x off the truth (soft above, hard below); the fit brings every viscosity back
+    within 1 %. Returns fit.yaml."""
+    s = starts(scene)
+    assert abs(s["eta_soft"] / TRUE["eta_soft"] - 3) < 1e-3 and abs(TRUE["eta_hard"] / s["eta_hard"] - 3) < 1e-3
+    res = fit(scene, tmp_path)
+    for name in ("eta_soft", "eta_hard"):
+        v = res["parameters"][name]["value"]
+        assert abs(v / TRUE[name] - 1) < 0.01, (name, v)
+    return res
+
+
 def test_nano_soft_frame_recovered(tmp_path):
     scene = CAL / "nano_eta_soft.yaml"
     assert abs(starts(scene)["eta_soft"] / TRUE["eta_soft"] - 3) < 1e-3  # the start is 3x off
@@ -60,26 +72,14 @@ def test_nano_noise_within_standard_error(tmp_path):
 
 
 def test_joint_nano_micro_both_frames_recovered(tmp_path):
-    scene = CAL / "nano_micro_joint.yaml"
-    s = starts(scene)
-    assert abs(s["eta_soft"] / TRUE["eta_soft"] - 3) < 1e-3 and abs(TRUE["eta_hard"] / s["eta_hard"] - 3) < 1e-3
-    res = fit(scene, tmp_path)
-    for name in ("eta_soft", "eta_hard"):
-        v = res["parameters"][name]["value"]
-        assert abs(v / TRUE[name] - 1) < 0.01, (name, v)
+    res = assert_recovered(CAL / "nano_micro_joint.yaml", tmp_path)
     assert len(res["correlation"]) == 2
 
 
 def test_point_lab_creep_record_recovered(tmp_path):
     """A point-scene fit of a lab creep record: minutes since the load (data.time_from: creep), creep strain in
     percent (factors), both viscosities from a start 3x off; a point run takes milliseconds, so exact."""
-    scene = CAL / "triaxial_creep_lab.yaml"
-    s = starts(scene)
-    assert abs(s["eta_soft"] / TRUE["eta_soft"] - 3) < 1e-3 and abs(TRUE["eta_hard"] / s["eta_hard"] - 3) < 1e-3
-    res = fit(scene, tmp_path)
-    for name in ("eta_soft", "eta_hard"):
-        v = res["parameters"][name]["value"]
-        assert abs(v / TRUE[name] - 1) < 0.01, (name, v)
+    res = assert_recovered(CAL / "triaxial_creep_lab.yaml", tmp_path)
     assert res["cost"]["rejected"] == 0 and res["misfit"]["residuals"] == 30
     rows = [r.split(",") for r in (tmp_path / "out" / "curves.csv").read_text().splitlines()[1:]]
     data = [r.split(",") for r in (CAL / "data" / "triaxial_creep_synthetic.csv").read_text().splitlines()[2:]]

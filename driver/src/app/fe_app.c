@@ -87,11 +87,6 @@ static int mesh_geometry(FeScene *sc, const RunnerOptions *opt, char *err, size_
   snprintf(sc->msh, sizeof sc->msh, "%s/mesh%s.msh", sc->outdir, opt->restart ? "" : ".part");
   if (!rank) rc = gmsh_mesh(sc->geometry, sc->kin == KIN_3D ? 3 : 2, sc->ngmsh, (const char(*)[64])sc->gmsh_name, sc->gmsh_value, sc->msh,
                             err, errlen);
-  if (!rank && !rc) { /* gmsh's log is kept only when it failed */
-    char log[1100];
-    snprintf(log, sizeof log, "%s.log", sc->msh);
-    remove(log);
-  }
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
   return rc;
@@ -135,7 +130,6 @@ static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions 
       (ierr = fe_problem_set_phi(&p, sc->phi_mean, sc->phi_std, sc->phi_lo, sc->phi_hi, sc->phi_seed, sc->phi_corr)))
     return petsc_failure(ierr, err);
   opt->outdir = sc->outdir, opt->scene_file = doc->file, opt->fields_every = sc->fields_every;
-  opt->nout_times = sc->nout_times, opt->out_times = sc->out_times;
   opt->part_file = sc->geometry[0] && !opt->restart ? sc->msh : NULL;
   rc = sc->indenter ? indent_stepper_run(sc, isc, &p, opt, err, errlen) : fe_stepper_run(sc, &p, opt, err, errlen);
   fe_problem_destroy(&p);

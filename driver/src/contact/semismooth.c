@@ -193,7 +193,6 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     /* eq. 15 for the current set; a stiffness shift on the indenter row when no node is in contact
        (force control: the row would be empty) */
     PetscBool shift = !in->depth_control && in->nactive == 0;
-    in->kshift_uses += shift;
     PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
     PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
     PetscCall(contact_jacobian(&in->ct, in->depth_control, shift ? in->kshift : 0.0));

@@ -31,7 +31,7 @@ typedef struct {
   PetscReal    target;                           /* load or depth at the step's end */
   PetscReal    Rr, ncp, ru;                      /* residual parts at the last evaluation */
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
-  PetscInt     its_total, steps_total, cycles, kshift_uses;
+  PetscInt     its_total, cycles;
 } Semismooth;
 
 enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };

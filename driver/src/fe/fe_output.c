@@ -196,7 +196,7 @@ PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append
   PetscCall(PetscMemzero(o, sizeof *o));
   PetscCall(PetscSNPrintf(o->dir, sizeof o->dir, "%s", outdir));
   o->comm = comm;
-  o->promoted = append, o->auto_promote = PETSC_TRUE;
+  o->promoted = append;
   PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
   PetscCall(DMPlexGetVertexNumbering(p->dm, &num));
   PetscCall(owned_points(num, vStart, &o->nvloc, &o->vown));
@@ -387,7 +387,6 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   }
   o->times[o->nout++] = time;
   PetscCall(xmf_write(p, o));
-  if (o->auto_promote && o->nout >= 2) PetscCall(fe_output_promote(o));
   PetscCall(PetscLogEventEnd(driver_event(EV_OUTPUT), 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

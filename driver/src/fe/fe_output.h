@@ -27,8 +27,6 @@ typedef struct {
   PetscReal  *times;          /* the output times written so far */
   char        dir[512];
   PetscBool   promoted;       /* the files have their final names (always so when appending) */
-  PetscBool   auto_promote;   /* PETSC_TRUE after open: fe_output_write promotes at the first output after
-                                 the initial one; a runner that calls fe_output_promote itself sets it false */
   PetscInt    nv, nc;         /* global vertices and cells */
   PetscInt    nvloc, ncloc;   /* those owned by this rank, a contiguous block of the global numbering */
   PetscInt   *vown, *cown;    /* their local mesh points, in global order */

@@ -481,9 +481,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMRestoreLocalVector(dm, &Uloc));
   PetscCall(DMRestoreLocalVector(dm, &Floc));
   PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
-  /* the supports' force on the body: at a fixed component F_int = F_ext + F_support, and no external load acts
-     there (pressures on fixed components are carried by the support directly), so F_support = F_int */
-  PetscCall(MPIU_Allreduce(reaction, p->reaction, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt d = 0; d < 3; d++) p->reaction_local[d] = reaction[d];
   p->ddsdde_valid = 1;
   if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
   PetscCall(VecCopy(U, p->ddsdde_u));
@@ -556,5 +554,14 @@ PetscErrorCode fe_problem_update_loads(FeProblem *p) {
 PetscErrorCode fe_problem_commit(FeProblem *p) {
   PetscFunctionBeginUser;
   PetscCall(PetscArraycpy(p->state, p->trial, p->npoint * p->nsv));
+  PetscFunctionReturn(0);
+}
+
+/* The supports' force on the body: at a fixed component F_int = F_ext + F_support, and no external load acts
+   there (pressures on fixed components are carried by the support directly), so F_support = F_int, summed
+   over the cells of all ranks (each cell is on one rank). Collective; called for a converged state only. */
+PetscErrorCode fe_problem_reactions(FeProblem *p) {
+  PetscFunctionBeginUser;
+  PetscCall(MPIU_Allreduce(p->reaction_local, p->reaction, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)p->dm)));
   PetscFunctionReturn(0);
 }

@@ -56,7 +56,8 @@ typedef struct FeProblem {
                                            reject keeps its old stress with a new tangent, which no
                                            iteration can converge; the stepper judges the converged state */
   PetscInt       *bc_local, nbc_local;  /* local indices of the fixed components */
-  PetscReal       reaction[3];          /* the supports' reaction force at the last residual (all ranks) */
+  PetscReal       reaction_local[3];    /* the supports' force from this rank's cells at the last residual */
+  PetscReal       reaction[3];          /* ... summed over the ranks by fe_problem_reactions */
   PetscReal      *devp_prev;            /* per point: the viscoplastic strain increment of the last step */
   PetscBool       have_devp;
   PetscInt        umat_calls, tangent_recomputes;
@@ -97,6 +98,8 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f);
 /* Update the external force for the current pressures. */
 PetscErrorCode fe_problem_update_loads(FeProblem *p);
+/* The supports' reaction of the last residual, summed over the ranks (collective). */
+PetscErrorCode fe_problem_reactions(FeProblem *p);
 /* Commit the trial state (call after a converged step, with the residual evaluated at the solution). */
 PetscErrorCode fe_problem_commit(FeProblem *p);
 
@@ -108,6 +111,6 @@ typedef struct {
   PetscReal frame_evp[2][6];          /* axial vp strain of each frame over the points: mean, min, q1,
                                          median, q3, max (Yin et al. 2021 Fig. 18) */
 } FeStats;
-PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool trial);
+PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool trial, PetscBool quantiles);
 
 #endif

@@ -167,13 +167,7 @@ static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t 
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
     if ((v = yd_get(x, "fields_every")) && yd_int(doc, v, "output.fields_every", &sc->fields_every, err, errlen)) return 1;
-    if ((v = yd_get(x, "times"))) { /* fields at exactly these times (the steps land on them) */
-      if (yd_doubles(doc, v, "output.times", sc->out_times, -FE_MAX_OUT_TIMES, &sc->nout_times, err, errlen)) return 1;
-      for (int k = 0; k < sc->nout_times; k++)
-        if (!(sc->out_times[k] > (k ? sc->out_times[k - 1] : 0)))
-          FAIL("%s:%d: key 'output.times[%d]': expected increasing times > 0, got %g", doc->file, v->line, k, sc->out_times[k]);
-    }
-    if (yd_check_unused(doc, x, "output", "directory, fields_every, times", err, errlen)) return 1;
+    if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
   }
   return 0;
 }

@@ -51,8 +51,6 @@ typedef struct {
   Stage        stage[MAXSTAGES];
   int          axis;
   int          fields_every;         /* field output every N steps, besides the start and each stage's end */
-  int          nout_times;           /* and at exactly these times */
-  double       out_times[FE_MAX_OUT_TIMES];
   char         solver_options[1024]; /* PETSc options from the scene; the command line wins */
   YdNode      *indenter;             /* a rigid indenter (contact/indent_scene.h), or NULL */
 } FeScene;

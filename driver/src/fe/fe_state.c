@@ -84,7 +84,7 @@ static int cmp_real(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool use_trial) {
+PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBool use_trial, PetscBool quantiles) {
   MPI_Comm        comm = PetscObjectComm((PetscObject)p->dm);
   PetscReal       loc[14] = {0}, glob[14];
   const PetscReal *src = use_trial ? p->trial : p->state;
@@ -119,7 +119,7 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
   for (PetscInt k = 0; k < p->npoint; k++)
     for (PetscInt vI = 0; vI < 6; vI++) spread = PetscMax(spread, PetscAbsReal(src[k * p->nsv + ST_STRAN + vI] - s->strain_mean[vI]));
   PetscCall(MPIU_Allreduce(&spread, &s->strain_spread, 1, MPIU_REAL, MPIU_MAX, comm));
-  if (p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
+  if (quantiles && p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
     /* Gather both frames' values on rank 0 for the quantiles. */
     PetscMPIInt n = (PetscMPIInt)p->npoint, *counts = NULL, *displs = NULL, total = 0;
     if (!rank) PetscCall(PetscMalloc2(size, &counts, size, &displs));

@@ -111,6 +111,7 @@ int gmsh_mesh(const char *geo, int dim, int nparam, const char (*names)[64], con
              first[0] ? ": " : "", first, log);
     return 1;
   }
+  remove(log); /* kept only when gmsh failed */
   return msh_check(out_msh, dim, 0, err, errlen);
 }
 

@@ -15,7 +15,7 @@ int gmsh_valid_name(const char *name);
 
 /* Mesh 'geo' (gmsh -3: a 2D geometry gives a 2D mesh) into out_msh (format msh41) with 'gmsh' from PATH, run as
  * gmsh -3 -format msh41 -v 2 GEO [-setnumber NAME VALUE]... -o OUT through an argument vector (no
- * shell: any path works). gmsh's own output goes to OUT.log. Returns 0, or 1 with err filled (gmsh's
+ * shell: any path works). gmsh's own output goes to OUT.log, which is removed when gmsh succeeds. Returns 0, or 1 with err filled (gmsh's
  * first error line quoted). Call on one rank only. */
 int gmsh_mesh(const char *geo, int dim, int nparam, const char (*names)[64], const double *values,
               const char *out_msh, char *err, size_t errlen);

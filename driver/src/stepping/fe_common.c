@@ -5,15 +5,17 @@
 #include <string.h>
 
 #include "../fe/fe_state.h"
+#include "../point/point_solve.h"
 
 PetscErrorCode fe_common_init(FeCommon *c, FeScene *sc, FeProblem *p, const RunnerOptions *opt) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(c, sizeof *c));
   c->sc = sc, c->p = p, c->fields = opt->outdir && opt->outdir[0] ? PETSC_TRUE : PETSC_FALSE;
+  c->quantiles = sc->indenter ? PETSC_FALSE : PETSC_TRUE;
   for (int k = 0; k < FE_MAX_GROUPS; k++) c->now[k] = sc->pressure0[k];
   if (c->fields) PetscCall(fe_output_open(p, opt->outdir, opt->restart ? PETSC_TRUE : PETSC_FALSE, &c->out));
-  c->out.auto_promote = PETSC_FALSE; /* the runner promotes at its first step */
-  PetscCall(fe_problem_stats(p, sc->axis, &c->stats, PETSC_FALSE));
+  PetscCall(fe_problem_stats(p, sc->axis, &c->stats, PETSC_FALSE, c->quantiles));
+  PetscCall(fe_problem_reactions(p));
   PetscFunctionReturn(0);
 }
 
@@ -23,18 +25,13 @@ PetscErrorCode fe_common_finish(FeCommon *c) {
   PetscFunctionReturn(0);
 }
 
-static void invariants(const double s[6], double *p, double *q) {
-  *p          = -(s[0] + s[1] + s[2]) / 3;
-  double d[3] = {s[0] + *p, s[1] + *p, s[2] + *p};
-  *q          = sqrt(1.5 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
-}
 
 void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
   Stage *g = &c->sc->stage[s];
   if (!resumed)
     for (int k = 0; k < c->sc->npressure; k++) c->start[k] = c->now[k];
   double p, q;
-  invariants(c->stats.stress_mean, &p, &q);
+  point_invariants(c->stats.stress_mean, 6, &p, &q);
   memset(v, 0, sizeof *v);
   v->name = g->name, v->duration = g->duration, v->instant = g->instant, v->steps = &g->steps, v->until = g->until;
   v->event_start = g->until.kind == EVENT_P_ABOVE ? p : q;
@@ -62,17 +59,17 @@ PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {
 PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome *o) {
   double p, q;
   PetscFunctionBeginUser;
-  PetscCall(fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_TRUE));
-  invariants(c->stats.stress_mean, &p, &q);
+  PetscCall(fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_TRUE, c->quantiles));
+  point_invariants(c->stats.stress_mean, 6, &p, &q);
   o->event[EVENT_P_ABOVE] = p, o->event[EVENT_Q_ABOVE] = o->event[EVENT_Q_BELOW] = q;
   o->event[EVENT_EVP_RATE_BELOW] = rq->h > 0 ? c->stats.evp_rate : INFINITY;
-  if (rq->want_volume_error) PetscCall(fe_state_volume_error(c->p, rq->h, c->h_prev, &o->vol_err));
+  if (rq->want_volume_error) PetscCall(fe_state_volume_error(c->p, rq->h, rq->h_prev, &o->vol_err));
   PetscFunctionReturn(0);
 }
 
 void fe_common_accept(FeCommon *c, const StepRequest *rq) {
   for (int k = 0; k < c->sc->npressure; k++) c->now[k] = c->p->pressure[k];
-  c->h_prev = rq->h;
+  fe_problem_reactions(c->p);
 }
 
 int fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen) {
@@ -90,7 +87,6 @@ int fe_common_promote(FeCommon *c) { return c->fields ? (int)fe_output_promote(&
 int fe_common_save(FeCommon *c, Vec U, BinFile *f) {
   binfile_write(f, c->start, sizeof(double), FE_MAX_GROUPS);
   binfile_write(f, c->now, sizeof(double), FE_MAX_GROUPS);
-  binfile_write(f, &c->h_prev, sizeof(double), 1);
   PetscInt nout = c->fields ? c->out.nout : 0;
   binfile_write(f, &nout, sizeof nout, 1);
   if (nout) binfile_write(f, c->out.times, sizeof(PetscReal), (size_t)nout);
@@ -102,7 +98,6 @@ int fe_common_load(FeCommon *c, Vec U, BinFile *f) {
   PetscInt nout = 0;
   binfile_read(f, c->start, sizeof(double), FE_MAX_GROUPS);
   binfile_read(f, c->now, sizeof(double), FE_MAX_GROUPS);
-  binfile_read(f, &c->h_prev, sizeof(double), 1);
   binfile_read(f, &nout, sizeof nout, 1);
   if (!f->ok || nout < 0 || nout > 10000000) return 1;
   PetscFree(c->saved_times);
@@ -116,7 +111,7 @@ int fe_common_resume(FeCommon *c) {
   if (c->fields && fe_output_resume(&c->out, c->nsaved, c->saved_times)) return 1;
   PetscFree(c->saved_times);
   for (int k = 0; k < FE_MAX_GROUPS; k++) c->p->pressure[k] = c->now[k];
-  return fe_problem_update_loads(c->p) != 0 || fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE) != 0;
+  return fe_problem_update_loads(c->p) != 0 || fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE, c->quantiles) != 0;
 }
 
 void fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {

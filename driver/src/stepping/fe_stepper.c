@@ -31,11 +31,12 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   PetscInt            its;
   if (fe_common_set_loads(&f->c, rq)) return 1;
   VecCopy(f->U0, f->U);
-  if (f->predictor && f->have_rate && rq->h > 0 && f->c.h_prev > 0) VecAXPY(f->U, rq->h / f->c.h_prev, f->dU);
+  if (f->predictor && f->have_rate && rq->h > 0 && rq->h_prev > 0) VecAXPY(f->U, rq->h / rq->h_prev, f->dU);
   p->umat_tol = 0; /* Newton iterates without the UMAT's error control */
-  if (SNESSolve(f->snes, NULL, f->U) || SNESGetConvergedReason(f->snes, &reason) || SNESGetIterationNumber(f->snes, &its)) {
-    snprintf(err, errlen, "the nonlinear solver failed (see the PETSc message above)");
-    return 1;
+  PetscErrorCode ierr;
+  if ((ierr = SNESSolve(f->snes, NULL, f->U)) || (ierr = SNESGetConvergedReason(f->snes, &reason)) || (ierr = SNESGetIterationNumber(f->snes, &its))) {
+    err[0] = '\0'; /* main prints PETSc's message */
+    return (int)ierr;
   }
   o->converged = reason > 0, o->its = (int)its, o->why = SNESConvergedReasons[reason];
   if (!o->converged) return 0;
@@ -201,7 +202,9 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
   }
   if (!opt->restart) { /* the initial state: the UMAT initialises its state on a zero increment */
     p->time = 0, p->dt = 0, p->umat_tol = 0;
-    if (fe_residual(f.snes, f.U, f.R, p) || fe_problem_commit(p) || fe_problem_stats(p, sc->axis, &f.c.stats, PETSC_FALSE)) return 1;
+    if (fe_residual(f.snes, f.U, f.R, p) || fe_problem_commit(p) || fe_problem_stats(p, sc->axis, &f.c.stats, PETSC_FALSE, f.c.quantiles) ||
+        fe_problem_reactions(p))
+      return 1;
   }
   StepSolver sv = {&f, "fe", sc->nstage, PetscObjectComm((PetscObject)p->dm), stage_begin, solve, accept, NULL,
                    history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume};

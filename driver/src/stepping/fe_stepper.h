@@ -18,8 +18,8 @@ typedef struct {
   FeStats    stats;                    /* of the last solved state (trial) or, after a commit, the committed one */
   double     start[FE_MAX_GROUPS];     /* the loads at the stage's start */
   double     now[FE_MAX_GROUPS];       /* the loads of the committed state */
-  double     h_prev;                   /* the last accepted step's length */
   PetscBool  fields;                   /* write fields.h5 */
+  PetscBool  quantiles;                /* per-frame quantiles in the statistics (the FE history has them) */
   PetscReal *saved_times;              /* a checkpoint's output times, until every rank has read its file */
   PetscInt   nsaved;
 } FeCommon;
@@ -37,6 +37,7 @@ PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq);
 PetscReal      fe_common_umat_tol(const FeCommon *c, const StepRequest *rq);
 /* p, q and the viscoplastic rate of the solved state; the volume error if asked. */
 PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome *o);
+/* After a commit: the loads now in force, the supports' reactions (all ranks). */
 void           fe_common_accept(FeCommon *c, const StepRequest *rq);
 int            fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen);
 int            fe_common_promote(FeCommon *c);

@@ -60,9 +60,10 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   int      status;
   PetscInt its = 0;
   p->umat_tol  = 0; /* Newton iterates without the UMAT's error control */
-  if (semismooth_step(in, rq->h, &status, &its)) {
-    snprintf(err, errlen, "the indentation step failed (see the PETSc message above)");
-    return 1;
+  PetscErrorCode ierr = semismooth_step(in, rq->h, &status, &its);
+  if (ierr) {
+    err[0] = '\0'; /* main prints PETSc's message */
+    return (int)ierr;
   }
   in->its_total += its;
   o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];

@@ -164,20 +164,16 @@ static double next_length(Run *r, const StepRequest *rq, const StepOutcome *o, d
 
 /* The step to try: the planned length, cut to the stage's end, an event landing or an output time. */
 static void plan_step(Run *r, StepRequest *rq, int *at_output) {
-  RunState            *st = &r->st;
-  const RunnerOptions *opt = r->opt;
-  double               dur = r->view.duration;
+  RunState *st  = &r->st;
+  double    dur = r->view.duration;
   memset(rq, 0, sizeof *rq);
-  rq->s = st->stage, rq->t0 = st->t, rq->ts0 = st->t_stage, rq->first_in_stage = st->first_in_stage;
+  rq->s = st->stage, rq->t0 = st->t, rq->ts0 = st->t_stage, rq->first_in_stage = st->first_in_stage, rq->h_prev = st->h_prev;
   *at_output = 0;
   if (st->pending_instant) rq->h = 0;
   else {
     double h = st->landing > 0 ? st->landing : fmin(st->dt, dur - st->t_stage);
     if (dur - st->t_stage - h < 1e-9 * dur) h = dur - st->t_stage; /* no sliver at the stage's end */
-    while (st->next_time < opt->nout_times && opt->out_times[st->next_time] <= st->t * (1 + 1e-14)) st->next_time++;
-    if (st->next_time < opt->nout_times && st->t + h >= opt->out_times[st->next_time] * (1 - 1e-12))
-      h = opt->out_times[st->next_time] - st->t, *at_output = 1;
-    const StageView *v = &r->view; /* and the stage's own output times, in stage time */
+    const StageView *v = &r->view; /* the stage's output times, in stage time */
     while (st->next_stage_time < v->nout_times && v->out_times[st->next_stage_time] <= st->t_stage * (1 + 1e-14)) st->next_stage_time++;
     if (st->next_stage_time < v->nout_times && st->t_stage + h >= v->out_times[st->next_stage_time] * (1 - 1e-12))
       h = v->out_times[st->next_stage_time] - st->t_stage, *at_output = 1;

@@ -38,6 +38,7 @@ typedef struct {
 typedef struct {
   int    s, first_in_stage;
   double t0, ts0, h, lambda;
+  double h_prev;   /* the last accepted step's length (0: none yet) */
   double umat_tol; /* >= 0: evaluate the converged state with the UMAT's own control at this tol (worst_point) */
   int    want_volume_error;
 } StepRequest;
@@ -101,8 +102,6 @@ typedef struct {
   const char        *outdir;      /* "" or NULL: no files at all (the extremes sweep) */
   const char        *scene_file;  /* hashed into checkpoints: a restart needs the same scene */
   int                checkpoint_every, restart, max_steps, progress_every, fields_every, quiet;
-  int                nout_times;  /* fields at exactly these times (besides fields_every and stage ends) */
-  const double      *out_times;
   const char        *part_file;   /* another new file of the run, named *.part until its first step (the mesh) */
 } RunnerOptions;
 
