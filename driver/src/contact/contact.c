@@ -1,4 +1,5 @@
 #include "contact.h"
+#include "contact_mortar.h"
 
 #include <math.h>
 #include <petscsf.h>
@@ -46,7 +47,7 @@ static PetscErrorCode contact_facet_counts(DM dm, DMLabel label, PetscReal **nfa
 /* Whether vertex v (global rows row, of which negative ones are fixed) is on the rim of the contact surface: an end
    of the contact edges (2D), on an edge with one contact face (3D); a node with a fixed component (a mirror plane,
    the axis) is a rim of the model, not of the surface. */
-static PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart,
+PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart,
                                          PetscBool *rim) {
   PetscBool fixed = PETSC_FALSE;
   PetscFunctionBeginUser;
@@ -122,13 +123,15 @@ static PetscErrorCode contact_matrices(FeProblem *p, PetscInt nu, PetscInt ustar
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   nr = rank == 0 ? 1 : 0;
-  PetscCall(PetscCalloc1(PetscMax(nu, 1), &dnz));
-  for (PetscInt i = 0; i < ct->n; i++)
-    for (PetscInt d = 0; d < p->dim; d++)
-      if (ct->row[i * p->dim + d] >= 0) dnz[ct->row[i * p->dim + d] - ustart] = 1;
-  PetscCall(MatCreateAIJ(comm, nu, ct->n, PETSC_DETERMINE, PETSC_DETERMINE, 0, dnz, 0, NULL, &ct->Bt));
-  PetscCall(PetscFree(dnz));
-  PetscCall(MatCreateAIJ(comm, ct->n, nu, PETSC_DETERMINE, PETSC_DETERMINE, p->dim, NULL, 0, NULL, &ct->B));
+  if (!ct->mortar) { /* P1: one node per multiplier (P2: Bt and B from contact_mortar_setup) */
+    PetscCall(PetscCalloc1(PetscMax(nu, 1), &dnz));
+    for (PetscInt i = 0; i < ct->n; i++)
+      for (PetscInt d = 0; d < p->dim; d++)
+        if (ct->row[i * p->dim + d] >= 0) dnz[ct->row[i * p->dim + d] - ustart] = 1;
+    PetscCall(MatCreateAIJ(comm, nu, ct->n, PETSC_DETERMINE, PETSC_DETERMINE, 0, dnz, 0, NULL, &ct->Bt));
+    PetscCall(PetscFree(dnz));
+    PetscCall(MatCreateAIJ(comm, ct->n, nu, PETSC_DETERMINE, PETSC_DETERMINE, p->dim, NULL, 0, NULL, &ct->B));
+  }
   PetscCall(MatCreateAIJ(comm, nr, ct->n, 1, ct->N, ct->n, NULL, ct->N - ct->n, NULL, &ct->Ct));
   PetscCall(MatCreateAIJ(comm, ct->n, nr, ct->N, 1, 1, NULL, 1, NULL, &ct->C));
   PetscCall(MatCreateAIJ(comm, ct->n, ct->n, ct->N, ct->N, 1, NULL, 0, NULL, &ct->D));
@@ -149,19 +152,21 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCall(PetscMemzero(ct, sizeof *ct));
   ct->shape = *shape;
   ct->dim   = p->dim;
-  PetscCheck(p->order == 1, comm, PETSC_ERR_SUP, "contact: only P1 elements (mesh.order: 1); nodal quadrature of P2 faces puts no weight on the vertices");
+  PetscCheck(p->order == 1 || p->order == 2, comm, PETSC_ERR_SUP, "contact: P1 or P2 elements only (mesh.order 1 or 2)");
   PetscCall(DMGetLabel(dm, group, &label));
   PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
   PetscCall(contact_weights(p, group, &wvec, &ustart));
   PetscCall(contact_facet_counts(dm, label, &nfacet));
-  PetscCall(contact_nodes(p, wvec, ustart, nfacet, ct, &wsum));
+  if (p->order == 1) PetscCall(contact_nodes(p, wvec, ustart, nfacet, ct, &wsum));
+  else PetscCall(contact_mortar_nodes(p, label, nfacet, ct)); /* P2: the facets' vertices, weights below */
   PetscCall(PetscFree(nfacet));
   /* the numbering of the contact nodes over the ranks */
   PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
   PetscCallMPI(MPI_Scan(&ct->n, &ct->rstart, 1, MPIU_INT, MPI_SUM, comm));
   ct->rstart -= ct->n;
   PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, p->dim == 3 ? "faces" : "edges", p->dim == 3 ? "faces" : "edges");
+  if (ct->mortar) PetscCall(contact_mortar_setup(p, label, ct, &wsum));
+  PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
   PetscCall(VecGetLocalSize(wvec, &nu)); /* the displacement layout */
   PetscCall(VecDestroy(&wvec));
   PetscCall(contact_matrices(p, nu, ustart, ct));
@@ -172,6 +177,7 @@ PetscErrorCode contact_destroy(Contact *ct) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree5(ct->X, ct->w, ct->row, ct->g, ct->nrm));
   PetscCall(PetscFree2(ct->active, ct->rim));
+  PetscCall(contact_mortar_destroy(ct));
   Mat *all[6] = {&ct->Bt, &ct->B, &ct->Ct, &ct->C, &ct->D, &ct->Kr};
   for (int k = 0; k < 6; k++) PetscCall(MatDestroy(all[k]));
   PetscFunctionReturn(0);
@@ -182,6 +188,10 @@ PetscErrorCode contact_update_gaps(Contact *ct, Vec U, PetscReal ur) {
   PetscInt           ustart;
   const PetscInt     dim = ct->dim;
   PetscFunctionBeginUser;
+  if (ct->mortar) { /* P2: weighted gaps at the facets' Gauss points */
+    PetscCall(contact_mortar_gaps(ct, U, ur));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecGetOwnershipRange(U, &ustart, NULL));
   PetscCall(VecGetArrayRead(U, &ua));
   for (PetscInt i = 0; i < ct->n; i++) {
@@ -230,13 +240,14 @@ PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool de
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscReal l = PetscRealPart(la[i]);
-    for (PetscInt d = 0; d < dim; d++) /* R_u -= lambda w n (eq. 10's last term, nodal quadrature) */
+    for (PetscInt d = 0; d < dim && !ct->mortar; d++) /* R_u -= lambda w n (eq. 10's last term, nodal quadrature) */
       if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * ct->nrm[i * dim + d];
     loc[0] += l * ct->w[i] * contact_ndotd(ct, i);                           /* eq. 19: P = 1^T M lambda */
     loc[1] += PetscSqr(ct->w[i] * (l - PetscMax(0, l - ct->c * ct->g[i]))); /* eq. 13, g >= 0 open */
   }
   PetscCall(VecRestoreArrayRead(lam, &la));
   PetscCall(VecRestoreArray(Ru, &ra));
+  if (ct->mortar) PetscCall(contact_mortar_forces(ct, lam, Ru)); /* P2: int lambda_h N n dA */
   PetscCall(MPIU_Allreduce(loc, all, 2, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)lam)));
   *Rr       = depth_control ? ur - target : all[0] - target;
   *ncp_norm = PetscSqrtReal(all[1]);
@@ -264,7 +275,7 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
     PetscInt  li = ct->rstart + i, zero = 0;
     PetscReal wn[3], c = ct->w[i] * contact_ndotd(ct, i), one = 1.0, z = 0.0;
     for (PetscInt d = 0; d < dim; d++) wn[d] = -ct->w[i] * ct->nrm[i * dim + d];
-    for (PetscInt d = 0; d < dim; d++) { /* dR_u/dlambda = -w n, all nodes (exact) */
+    for (PetscInt d = 0; d < dim && !ct->mortar; d++) { /* dR_u/dlambda = -w n, all nodes (exact) */
       PetscInt r = ct->row[i * dim + d];
       if (r < 0) continue;
       PetscCall(MatSetValue(ct->Bt, r, li, wn[d], INSERT_VALUES));
@@ -274,11 +285,12 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
     PetscCall(MatSetValue(ct->C, li, zero, ct->active[i] ? c : 0.0, INSERT_VALUES));  /* d(-w g)/du_r */
     PetscCall(MatSetValue(ct->D, li, li, ct->active[i] ? z : one, INSERT_VALUES));    /* identity rows */
   }
+  if (ct->mortar) PetscCall(contact_mortar_coupling(ct)); /* P2: Bt and B from the facet integrals */
   ct->kr = depth_control ? 1.0 : kshift, ct->depth_control = depth_control;
   if (!rank) PetscCall(MatSetValue(ct->Kr, 0, 0, ct->kr, INSERT_VALUES));
   Mat all[6] = {ct->Bt, ct->B, ct->Ct, ct->C, ct->D, ct->Kr};
-  for (int k = 0; k < 6; k++) PetscCall(MatAssemblyBegin(all[k], MAT_FINAL_ASSEMBLY));
-  for (int k = 0; k < 6; k++) PetscCall(MatAssemblyEnd(all[k], MAT_FINAL_ASSEMBLY));
+  for (int k = ct->mortar ? 2 : 0; k < 6; k++) PetscCall(MatAssemblyBegin(all[k], MAT_FINAL_ASSEMBLY));
+  for (int k = ct->mortar ? 2 : 0; k < 6; k++) PetscCall(MatAssemblyEnd(all[k], MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 

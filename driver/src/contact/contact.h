@@ -35,6 +35,7 @@ typedef struct {
   Mat           Kr, Bt, Ct, B, C, D; /* (u_r,u_r), (u,lam), (u_r,lam), (lam,u), (lam,u_r), (lam,lam) */
   PetscReal     kr;                /* the value in Kr */
   PetscBool     depth_control;     /* of the last contact_jacobian */
+  struct ContactMortar *mortar;    /* P2: the facet integrals of contact_mortar.c; NULL: P1, nodal quadrature */
 } Contact;
 
 /* n_i . d of node i at the last gaps (d = -e_z in 3D, -e_y in 2D): the part of its pressure that bears
@@ -43,7 +44,8 @@ static inline PetscReal contact_ndotd(const Contact *ct, PetscInt i) { return -c
 
 /* The potential contact nodes: the vertices of the faces (3D) or edges (2D) of the group, owned by this
  * rank, with their weights int N_i dGamma (eq. 18; plane strain: times the thickness; axisymmetric: with
- * 2 pi r), taken from fe_problem_unit_load, the integral the FE loads use. */
+ * 2 pi r), taken from fe_problem_unit_load, the integral the FE loads use. P2 (mesh.order 2): the same
+ * vertices carry the multipliers of the mortar form of contact_mortar.h. */
 PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct);
 PetscErrorCode contact_destroy(Contact *ct);
 /* Gaps and normals at displacement U (global vector of the problem's DM) and indenter position ur. */
@@ -66,6 +68,9 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
 PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal *penetration, PetscReal *min_lambda);
 /* Active nodes on the rim of the potential contact surface (all ranks): the contact has outgrown it. */
 PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count);
+/* Whether vertex v (global rows row, < 0 fixed) is on the rim of the contact surface (nfacet: the group's
+ * facets at each vertex in 2D, at each edge in 3D; rim must come in false). */
+PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart, PetscBool *rim);
 /* The largest diagonal entry of the stiffness on the contact nodes (a one-node stiffness). */
 PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k);
 

@@ -111,7 +111,6 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   if ((v = yd_get(nd, "complementarity_c")) && (yd_double(doc, v, "indenter.complementarity_c", &is->c, err, errlen) || !(is->c > 0)))
     FAIL("%s:%d: key 'indenter.complementarity_c': expected > 0 (stress per length)", doc->file, v->line);
   if (yd_check_unused(doc, nd, "indenter", "shape, half_angle, tip_angle, radius, rotation, tip, contact, gap, complementarity_c", err, errlen)) return 1;
-  if (sc->order != 1) FAIL("%s: key 'mesh.order': contact needs P1 elements (order 1): nodal quadrature of P2 faces gives the vertices no weight", doc->file);
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))
     FAIL("%s:%d: key 'indenter.tip': axisymmetric: the tip must be on the axis (x = 0)", doc->file, yd_key_line(nd, "tip"));
   for (int i = 0; i < sc->nstage; i++)

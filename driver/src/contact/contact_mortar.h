@@ -1,0 +1,31 @@
+/* Contact on quadratic (P2) elements: a mortar-type weak form of the contact constraints (docs/contact.md,
+ * "Quadratic elements"). Nodal quadrature cannot serve P2 faces (a P2 triangle's corners get no weight), so:
+ * one multiplier per vertex of the potential contact surface with a piecewise-linear basis psi_j on it
+ * (Wohlmuth 2000, 2011; the linear multipliers for quadratic displacements of Popp, Wohlmuth, Gee & Wall
+ * 2012), the weighted gap gt_j = int psi_j g(u_h) dA (Hueber & Wohlmuth 2005; Popp, Gee & Wall 2009) and the
+ * contact work int lambda_h n . du_h dA, both integrated at Gauss points of the contact facets (edges with the
+ * thickness or 2 pi r, triangles in 3D). The Contact's per-multiplier arrays keep their meaning:
+ *   w_j = int psi_j dA,   g_j = gt_j / w_j (a mean gap),   n_j = int psi_j n dA / w_j,
+ * so that w_j g_j is the weighted gap, w_j (n_j . d) = int psi_j (n . d) dA is the multiplier's share of the
+ * indenter force (eq. 19), and the active set, the indenter row and the multiplier rows are those of P1. Only
+ * R_u and the coupling block Bt (and B, its transpose on the active rows) are integrals over the facets. */
+#ifndef CONTACT_MORTAR_H
+#define CONTACT_MORTAR_H
+
+#include "contact.h"
+
+/* The multiplier nodes: the vertices of the group's boundary facets owned here, with a free axial
+   component; their coordinates, displacement rows and rim flags (ct->n, X, row, rim; allocates as P1). */
+PetscErrorCode contact_mortar_nodes(FeProblem *p, DMLabel label, const PetscReal nfacet[], Contact *ct);
+/* After the multipliers are numbered (ct->N, ct->rstart): the facets here, their quadrature, the weights
+   w_j (wsum: their sum here) and the coupling blocks Bt and B with their fixed nonzero pattern. */
+PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, PetscReal *wsum);
+PetscErrorCode contact_mortar_destroy(Contact *ct);
+/* Weighted gaps and mean normals of the multipliers (g_j, n_j) and the normal at every Gauss point. */
+PetscErrorCode contact_mortar_gaps(Contact *ct, Vec U, PetscReal ur);
+/* R_u -= int lambda_h N_k n dA (the contact work, at the last gaps' normals). */
+PetscErrorCode contact_mortar_forces(Contact *ct, Vec lam, Vec Ru);
+/* Bt = dR_u/dlambda = -int psi_j N_k n dA, all multipliers; B = its transpose on the active rows. */
+PetscErrorCode contact_mortar_coupling(Contact *ct);
+
+#endif
