@@ -339,3 +339,16 @@ PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count) {
   PetscCall(MPIU_Allreduce(&loc, count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ct->D)));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode contact_first_touch(Contact *ct, PetscReal *dmin) {
+  PetscReal loc = PETSC_MAX_REAL;
+  PetscFunctionBeginUser;
+  if (ct->mortar) PetscCall(contact_mortar_first_touch(ct, &loc));
+  else
+    for (PetscInt i = 0; i < ct->n; i++) {
+      PetscReal nd = contact_ndotd(ct, i);
+      if (nd > 1e-3) loc = PetscMin(loc, ct->g[i] / nd);
+    }
+  PetscCall(MPIU_Allreduce(&loc, dmin, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)ct->D)));
+  PetscFunctionReturn(0);
+}

@@ -16,7 +16,8 @@ struct ContactMortar {
   PetscInt  *ab;              /* nf x nn x 2: the facet vertices of each node (a = b: a vertex) */
   PetscReal *Xv;              /* nf x nv x dim: reference coordinates of the vertices */
   PetscReal *L, *dA;          /* nq x nv barycentric coordinates; nf x nq: weight x measure (x 2 pi r, thickness) */
-  PetscReal *nq_;             /* nf x nq x dim: the normal at the last gaps */
+  PetscReal *nq_, *gq;        /* nf x nq x dim: the normal at the last gaps; nf x nq: the gap */
+  PetscReal  ur;              /* the indenter's position at the last gaps (Uloc: the displacement) */
   PetscInt  *vpt;             /* ct->n: the plex vertex of each multiplier */
   Vec        gn, wv, act;     /* multiplier layout: (dim + 1) x: int psi g, int psi n; int psi; active flags */
   Vec        lamloc, Uloc;
@@ -271,7 +272,7 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   PetscCall(contact_facets(p->dm, label, &m->nf, &facets));
   PetscInt nf = PetscMax(m->nf, 1);
   PetscCall(PetscMalloc5(nf * m->nv, &m->mult, nf * m->nv, &m->lmult, nf * m->nn * dim, &m->rows, nf * m->nn * dim, &m->dofs, nf * m->nn * 2, &m->ab));
-  PetscCall(PetscMalloc3(nf * m->nv * dim, &m->Xv, nf * nqp, &m->dA, nf * nqp * dim, &m->nq_));
+  PetscCall(PetscMalloc4(nf * m->nv * dim, &m->Xv, nf * nqp, &m->dA, nf * nqp * dim, &m->nq_, nf * nqp, &m->gq));
   PetscCall(multiplier_points(ct, &mpt));
   PetscCall(DMGetCoordinateSection(p->dm, &cs));
   PetscCall(DMGetCoordinatesLocal(p->dm, &coords));
@@ -311,7 +312,7 @@ PetscErrorCode contact_mortar_destroy(Contact *ct) {
   PetscFunctionBeginUser;
   if (!m) PetscFunctionReturn(0);
   PetscCall(PetscFree5(m->mult, m->lmult, m->rows, m->dofs, m->ab));
-  PetscCall(PetscFree3(m->Xv, m->dA, m->nq_));
+  PetscCall(PetscFree4(m->Xv, m->dA, m->nq_, m->gq));
   PetscCall(PetscFree(m->L));
   PetscCall(PetscFree(m->vpt));
   PetscCall(VecDestroy(&m->gn));
@@ -329,6 +330,7 @@ PetscErrorCode contact_mortar_gaps(Contact *ct, Vec U, PetscReal ur) {
   const PetscInt        dim = ct->dim, nv = m->nv, nn = m->nn;
   const PetscScalar    *ua, *ga;
   PetscFunctionBeginUser;
+  m->ur = ur;
   PetscCall(VecZeroEntries(m->Uloc)); /* fixed components stay zero */
   PetscCall(DMGlobalToLocal(m->dm, U, INSERT_VALUES, m->Uloc));
   PetscCall(VecGetArrayRead(m->Uloc, &ua));
@@ -348,6 +350,7 @@ PetscErrorCode contact_mortar_gaps(Contact *ct, Vec U, PetscReal ur) {
       }
       double g = indenter_gap(&ct->shape, X, x, ur, nv_);
       for (PetscInt d = 0; d < dim; d++) m->nq_[(k * m->nq + q) * dim + d] = nv_[d];
+      m->gq[k * m->nq + q] = g;
       for (PetscInt a = 0; a < nv; a++) { /* int psi_a g dA, int psi_a n dA */
         acc[a * (dim + 1)] += L[a] * g * dA;
         for (PetscInt d = 0; d < dim; d++) acc[a * (dim + 1) + 1 + d] += L[a] * nv_[d] * dA;
@@ -423,5 +426,31 @@ PetscErrorCode contact_mortar_coupling(Contact *ct) {
   for (PetscInt i = 0; i < ct->n; i++) aa[i] = ct->active[i] ? 1.0 : 0.0;
   PetscCall(VecRestoreArray(m->act, &aa));
   PetscCall(MatDiagonalScale(ct->B, m->act, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode contact_mortar_first_touch(Contact *ct, PetscReal *dmin) {
+  struct ContactMortar *m   = ct->mortar;
+  const PetscInt        dim = ct->dim;
+  const PetscScalar    *ua;
+  PetscFunctionBeginUser;
+  *dmin = PETSC_MAX_REAL;
+  for (PetscInt k = 0; k < m->nf * m->nq; k++) { /* the Gauss points */
+    PetscReal nd = -m->nq_[k * dim + dim - 1];   /* n . d, d = -e_z (-e_y in 2D) */
+    if (nd > 1e-3) *dmin = PetscMin(*dmin, m->gq[k] / nd);
+  }
+  PetscCall(VecGetArrayRead(m->Uloc, &ua));
+  for (PetscInt k = 0; k < m->nf; k++) /* and the P2 nodes (a tip over a vertex touches there first) */
+    for (PetscInt j = 0; j < m->nn; j++) {
+      const PetscInt *ab = &m->ab[(k * m->nn + j) * 2];
+      double          X[3] = {0, 0, 0}, x[3], n[3];
+      for (PetscInt d = 0; d < dim; d++) {
+        X[d] = (m->Xv[(k * m->nv + ab[0]) * dim + d] + m->Xv[(k * m->nv + ab[1]) * dim + d]) / 2;
+        x[d] = X[d] + PetscRealPart(ua[m->dofs[(k * m->nn + j) * dim + d]]);
+      }
+      double g = indenter_gap(&ct->shape, X, x, m->ur, n);
+      if (-n[dim - 1] > 1e-3) *dmin = PetscMin(*dmin, g / -n[dim - 1]);
+    }
+  PetscCall(VecRestoreArrayRead(m->Uloc, &ua));
   PetscFunctionReturn(0);
 }

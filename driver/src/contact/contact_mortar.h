@@ -27,5 +27,8 @@ PetscErrorCode contact_mortar_gaps(Contact *ct, Vec U, PetscReal ur);
 PetscErrorCode contact_mortar_forces(Contact *ct, Vec lam, Vec Ru);
 /* Bt = dR_u/dlambda = -int psi_j N_k n dA, all multipliers; B = its transpose on the active rows. */
 PetscErrorCode contact_mortar_coupling(Contact *ct);
+/* The indenter's travel to its first touch of the surface at the last gaps, pointwise: the smallest
+   g / (n . d) over the Gauss points and the P2 nodes of the facets (this rank). */
+PetscErrorCode contact_mortar_first_touch(Contact *ct, PetscReal *dmin);
 
 #endif

@@ -230,13 +230,9 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
 /* After a converged step at zero load with nothing in contact, the indenter rests on the surface: move
  * it down to the first touch (the depth then read is the residual depth). */
 PetscErrorCode semismooth_rest_on_surface(Semismooth *in) {
-  PetscReal dmin = PETSC_MAX_REAL, all;
+  PetscReal all;
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < in->ct.n; i++) {
-    PetscReal nd = contact_ndotd(&in->ct, i);
-    if (nd > 1e-3) dmin = PetscMin(dmin, in->ct.g[i] / nd);
-  }
-  PetscCall(MPIU_Allreduce(&dmin, &all, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)in->U)));
+  PetscCall(contact_first_touch(&in->ct, &all)); /* P1: at the nodes; P2: at the facets' Gauss points */
   if (all < PETSC_MAX_REAL) { /* down onto the surface, or up out of it */
     in->ur += all;
     PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));
