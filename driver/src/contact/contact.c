@@ -47,7 +47,7 @@ static PetscErrorCode contact_facet_counts(DM dm, DMLabel label, PetscReal **nfa
 /* Whether vertex v (global rows row, of which negative ones are fixed) is on the rim of the contact surface: an end
    of the contact edges (2D), on an edge with one contact face (3D); a node with a fixed component (a mirror plane,
    the axis) is a rim of the model, not of the surface. */
-PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart,
+static PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart,
                                          PetscBool *rim) {
   PetscBool fixed = PETSC_FALSE;
   PetscFunctionBeginUser;
@@ -65,8 +65,10 @@ PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscIn
 }
 
 /* The contact nodes: owned vertices with a weight (coordinates, weights, global rows, rim); two passes, count then
-   fill; wsum: this rank's sum of the weights. */
-static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, const PetscReal nfacet[], Contact *ct, PetscReal *wsum) {
+   fill; wsum: this rank's sum of the weights. P2 (ct->mortar, mark given): the marked vertices (the contact facets'),
+   with their plex points; their weights come later (contact_mortar_setup). */
+static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, const PetscInt mark[], const PetscReal nfacet[], Contact *ct,
+                                    PetscReal *wsum) {
   DM                 dm = p->dm;
   PetscInt           pStart, pEnd, vStart, vEnd;
   PetscSection       cs, ls, gs;
@@ -78,7 +80,7 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &coords));
   PetscCall(VecGetArrayRead(coords, &ca));
-  PetscCall(VecGetArrayRead(wvec, &wa));
+  if (wvec) PetscCall(VecGetArrayRead(wvec, &wa));
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMGetGlobalSection(dm, &gs));
   *wsum = 0;
@@ -86,6 +88,7 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
     PetscInt n = 0;
     for (PetscInt v = vStart; v < vEnd; v++) {
       PetscInt goff, off, nidx, *idx = NULL, row[3];
+      if (mark && !mark[v - pStart]) continue;
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       if (goff < 0) continue; /* owned by another rank */
       /* global rows of the vertex's components; constrained ones come back negative */
@@ -94,12 +97,13 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
       for (PetscInt d = 0; d < p->dim; d++) row[d] = idx[d];
       PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
       const PetscInt ra = row[p->dim - 1]; /* the axial row carries the weight (free on a contact node) */
-      if (ra < 0 || !(PetscRealPart(wa[ra - ustart]) > 0)) continue;
+      if (ra < 0 || (wvec && !(PetscRealPart(wa[ra - ustart]) > 0))) continue;
       if (pass == 1) {
         PetscCall(PetscSectionGetOffset(cs, v, &off));
         for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * p->dim + d] = row[d];
-        ct->w[n] = PetscRealPart(wa[ra - ustart]);
+        ct->w[n] = wvec ? PetscRealPart(wa[ra - ustart]) : 0;
         *wsum += ct->w[n];
+        if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, v));
         PetscCall(contact_vertex_rim(dm, p->dim, v, row, nfacet, pStart, &ct->rim[n]));
       }
       n++;
@@ -108,10 +112,11 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
       ct->n = n;
       PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
       PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
+      if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, -1)); /* room for n vertices */
     }
   }
   PetscCall(VecRestoreArrayRead(coords, &ca));
-  PetscCall(VecRestoreArrayRead(wvec, &wa));
+  if (wvec) PetscCall(VecRestoreArrayRead(wvec, &wa));
   PetscFunctionReturn(0);
 }
 
@@ -157,8 +162,13 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
   PetscCall(contact_weights(p, group, &wvec, &ustart));
   PetscCall(contact_facet_counts(dm, label, &nfacet));
-  if (p->order == 1) PetscCall(contact_nodes(p, wvec, ustart, nfacet, ct, &wsum));
-  else PetscCall(contact_mortar_nodes(p, label, nfacet, ct)); /* P2: the facets' vertices, weights below */
+  if (p->order == 1) PetscCall(contact_nodes(p, wvec, ustart, NULL, nfacet, ct, &wsum));
+  else { /* P2: the facets' vertices, their weights below */
+    PetscInt *mark;
+    PetscCall(contact_mortar_mark(p, label, ct, &mark));
+    PetscCall(contact_nodes(p, NULL, 0, mark, nfacet, ct, &wsum));
+    PetscCall(PetscFree(mark));
+  }
   PetscCall(PetscFree(nfacet));
   /* the numbering of the contact nodes over the ranks */
   PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));

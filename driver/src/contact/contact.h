@@ -68,12 +68,10 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
 PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal *penetration, PetscReal *min_lambda);
 /* Active nodes on the rim of the potential contact surface (all ranks): the contact has outgrown it. */
 PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count);
-/* Whether vertex v (global rows row, < 0 fixed) is on the rim of the contact surface (nfacet: the group's
- * facets at each vertex in 2D, at each edge in 3D; rim must come in false). */
-PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const PetscInt row[], const PetscReal nfacet[], PetscInt pStart, PetscBool *rim);
 /* The indenter's travel along d to its first touch of the surface at the last gaps, over all ranks
  * (PETSC_MAX_REAL if no point faces it): P1: the smallest g_i / (n_i . d) over the nodes; P2: over the Gauss
- * points of the contact facets (the mean gaps g_j would set the tip into the surface by part of an element). */
+ * points and nodes of the contact facets (the mean gaps g_j would set the tip into the surface by part of an
+ * element). */
 PetscErrorCode contact_first_touch(Contact *ct, PetscReal *dmin);
 /* The largest diagonal entry of the stiffness on the contact nodes (a one-node stiffness). */
 PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k);

@@ -52,65 +52,35 @@ static PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscIn
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode contact_mortar_nodes(FeProblem *p, DMLabel label, const PetscReal nfacet[], Contact *ct) {
-  DM                 dm = p->dm;
-  PetscInt           pStart, pEnd, vStart, vEnd, nf, *facets, *mark;
-  PetscSection       cs, ls, gs;
-  PetscSF            sf;
-  Vec                coords;
-  const PetscScalar *ca;
+PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, PetscInt **mark) {
+  DM       dm = p->dm;
+  PetscInt pStart, pEnd, vStart, vEnd, nf, *facets;
+  PetscSF  sf;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&ct->mortar));
   ct->mortar->dm = dm;
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(PetscCalloc1(pEnd - pStart, &mark));
+  PetscCall(PetscCalloc1(pEnd - pStart, mark));
   PetscCall(contact_facets(dm, label, &nf, &facets));
   for (PetscInt k = 0; k < nf; k++) { /* the facets' vertices, marked here ... */
     PetscInt *cl = NULL, ncl;
     PetscCall(DMPlexGetTransitiveClosure(dm, facets[k], PETSC_TRUE, &ncl, &cl));
     for (PetscInt j = 0; j < ncl; j++)
-      if (cl[2 * j] >= vStart && cl[2 * j] < vEnd) mark[cl[2 * j] - pStart] = 1;
+      if (cl[2 * j] >= vStart && cl[2 * j] < vEnd) (*mark)[cl[2 * j] - pStart] = 1;
     PetscCall(DMPlexRestoreTransitiveClosure(dm, facets[k], PETSC_TRUE, &ncl, &cl));
   }
   PetscCall(PetscFree(facets));
   PetscCall(DMGetPointSF(dm, &sf)); /* ... and on their owners */
-  PetscCall(PetscSFReduceBegin(sf, MPIU_INT, mark, mark, MPI_MAX));
-  PetscCall(PetscSFReduceEnd(sf, MPIU_INT, mark, mark, MPI_MAX));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &coords));
-  PetscCall(VecGetArrayRead(coords, &ca));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMGetGlobalSection(dm, &gs));
-  for (int pass = 0; pass < 2; pass++) {
-    PetscInt n = 0;
-    for (PetscInt v = vStart; v < vEnd; v++) {
-      PetscInt goff, off, nidx, *idx = NULL, row[3];
-      if (!mark[v - pStart]) continue;
-      PetscCall(PetscSectionGetOffset(gs, v, &goff));
-      if (goff < 0) continue; /* owned by another rank */
-      PetscCall(DMPlexGetClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-      for (PetscInt d = 0; d < p->dim; d++) row[d] = idx[d];
-      PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-      if (row[p->dim - 1] < 0) continue; /* the axial component fixed: no contact there */
-      if (pass == 1) {
-        PetscCall(PetscSectionGetOffset(cs, v, &off));
-        for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * p->dim + d] = row[d];
-        ct->mortar->vpt[n] = v;
-        ct->rim[n]         = PETSC_FALSE;
-        PetscCall(contact_vertex_rim(dm, p->dim, v, row, nfacet, pStart, &ct->rim[n]));
-      }
-      n++;
-    }
-    if (pass == 0) {
-      ct->n = n;
-      PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
-      PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
-      PetscCall(PetscMalloc1(PetscMax(n, 1), &ct->mortar->vpt));
-    }
-  }
-  PetscCall(VecRestoreArrayRead(coords, &ca));
-  PetscCall(PetscFree(mark));
+  PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, *mark, MPI_MAX));
+  PetscCall(PetscSFReduceEnd(sf, MPIU_INT, *mark, *mark, MPI_MAX));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode contact_mortar_set_vertex(Contact *ct, PetscInt i, PetscInt v) {
+  PetscFunctionBeginUser;
+  if (v < 0) PetscCall(PetscMalloc1(PetscMax(i, 1), &ct->mortar->vpt));
+  else ct->mortar->vpt[i] = v;
   PetscFunctionReturn(0);
 }
 

@@ -14,9 +14,11 @@
 
 #include "contact.h"
 
-/* The multiplier nodes: the vertices of the group's boundary facets owned here, with a free axial
-   component; their coordinates, displacement rows and rim flags (ct->n, X, row, rim; allocates as P1). */
-PetscErrorCode contact_mortar_nodes(FeProblem *p, DMLabel label, const PetscReal nfacet[], Contact *ct);
+/* Starts ct->mortar; mark (over the chart): 1 at the vertices of the group's boundary facets, on their owners too
+   (the multiplier nodes are the marked owned vertices with a free axial component: contact.c's contact_nodes). */
+PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, PetscInt **mark);
+/* The plex vertex of multiplier i (v < 0: room for i multipliers). */
+PetscErrorCode contact_mortar_set_vertex(Contact *ct, PetscInt i, PetscInt v);
 /* After the multipliers are numbered (ct->N, ct->rstart): the facets here, their quadrature, the weights
    w_j (wsum: their sum here) and the coupling blocks Bt and B with their fixed nonzero pattern. */
 PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, PetscReal *wsum);
