@@ -159,3 +159,13 @@ def test_p2_tangent_against_finite_differences(tmp_path):
     checks = [float(m) for m in re.findall(r"whole system\): \|J d - FD\| / \|J d\| = ([0-9.eE+-]+)", proc.stdout)]
     print(f"P2 tangent: {len(checks)} iterates, |J d - FD| / |J d| up to {max(checks):.1e}")
     assert len(checks) >= 3 and max(checks) < 1e-8
+
+
+def test_p2_contact_outgrows_its_surface(tmp_path):
+    """The rim check on P2 (the multipliers' vertices on the edge of the potential contact surface): the run
+    stops with the error naming the surface and the scene, and keeps the history."""
+    scene = axi("{shape: cone, half_angle: 70.3, contact: contact}", LHU, W=20, H=10, h_tip=0.02, h_far=1, r_contact=0.12)
+    proc = run(scene, tmp_path / "small", check=False)
+    msg = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and "edge of the potential contact surface 'contact'" in msg and "small.yaml" in msg, msg
+    assert (tmp_path / "small" / "history.csv").read_text().count("\n") >= 2
