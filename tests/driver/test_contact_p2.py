@@ -7,23 +7,13 @@ import math
 
 import numpy as np
 
-from test_contact import ELASTIC, ESTAR, NU, PSI, ROLLERS, check_invariants, run, sneddon
+from test_contact import ELASTIC, ESTAR, NU, PSI, axi_scene, check_invariants, run, sneddon
 
 
 def axi(indenter, stages, order=2, W=40, H=20, h_tip=0.02, h_far=2, r_fine=0.5, r_contact=1.0):
-    return f"""scene: fe
-mesh:
-  geometry: meshes/indent_block2d.geo
-  parameters: {{W: {W}, H: {H}, half: 1, h_tip: {h_tip}, h_far: {h_far}, r_fine: {r_fine}, r_contact: {r_contact}}}
-  kinematics: axisymmetric
-  order: {order}
-material: {ELASTIC}
-boundary:
-  fixed: {ROLLERS}
-indenter: {indenter}
-stages:
-{stages}
-"""
+    """test_contact's axisymmetric block, with the element order."""
+    text = axi_scene(indenter, stages, W=W, H=H, h_tip=h_tip, h_far=h_far, r_fine=r_fine, r_contact=r_contact)
+    return text.replace("  kinematics: axisymmetric\n", f"  kinematics: axisymmetric\n  order: {order}\n")
 
 
 def cube(indenter, stages, order=2, L=4, h_tip=0.06, h_far=0.8, r_fine=0.4, r_contact=0.6):
