@@ -228,8 +228,11 @@ def run_ccx(bindir, workdir, name, threads=1, trace=None):
         raise RuntimeError(f"CalculiX failed on {workdir}/{name}.inp: {r.stdout[-3000:]}{r.stderr[-1000:]}")
     with open(os.path.join(workdir, name + ".sta")) as f:
         rows = [line.split() for line in f.readlines()[2:] if line.strip()]
-    return dict(steps=len(rows), its=sum(int(w[3]) for w in rows), wall=wall, cpu=cpu,
-                sta=[(int(w[0]), int(w[1]), float(w[4]), float(w[6])) for w in rows])
+    # An attempt that did not converge, or that the UMAT's PNEWDT cut, is listed with "U" after its
+    # attempt number; its iterations were spent all the same.
+    done = [w for w in rows if not w[2].endswith("U")]
+    return dict(steps=len(done), its=sum(int(w[3]) for w in rows), cutbacks=len(rows) - len(done), wall=wall, cpu=cpu,
+                sta=[(int(w[0]), int(w[1]), float(w[4]), float(w[6])) for w in done])
 
 
 def read_trace(path, nstatv=36):
