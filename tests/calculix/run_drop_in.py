@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""CTest entry calculix.drop_in: exit 77 (CTest: skipped) only when tools/calculix/build_ccx.sh says
-CalculiX cannot be had here (its exit 77); otherwise run the CalculiX cases of test_calculix.py with
-CAMCLAY9_REQUIRE_CCX=1, so that none of them can turn into a skip, and return pytest's exit code."""
+"""CTest entries calculix.drop_in and calculix.same_mesh: exit 77 (CTest: skipped) only when
+tools/calculix/build_ccx.sh says CalculiX cannot be had here (its exit 77); otherwise run the CalculiX cases
+of test_calculix.py (or of the test file given as the first argument) with CAMCLAY9_REQUIRE_CCX=1, so that
+none of them can turn into a skip, and return pytest's exit code."""
 import os
 import subprocess
 import sys
@@ -19,6 +20,7 @@ if r.returncode != 0:
     print(f"calculix.drop_in: build_ccx.sh failed (exit {r.returncode}):\n{r.stderr}")
     sys.exit(1)
 env = dict(os.environ, CAMCLAY9_REQUIRE_CCX="1", CAMCLAY9_BUILD=BUILD)
-sys.exit(subprocess.run([sys.executable, "-m", "pytest", "-q", "-s", "-p", "no:cacheprovider",
-                         os.path.join(HERE, "test_calculix.py"), "-k", "not test_inputs_are_generated"],
+tests = [os.path.join(HERE, sys.argv[1])] if len(sys.argv) > 1 else \
+    [os.path.join(HERE, "test_calculix.py"), "-k", "not test_inputs_are_generated"]
+sys.exit(subprocess.run([sys.executable, "-m", "pytest", "-q", "-s", "-p", "no:cacheprovider", *tests],
                         env=env).returncode)

@@ -299,3 +299,20 @@ segments:
         assert len(again) == len(full) and len(full) > 8
         for c in cols:
             assert np.array_equal(again[c], full[c]), (name, c)
+
+
+def test_newton_stops_at_a_fraction_of_the_step_tolerance(tmp_path):
+    """With an error measure, Newton stops once its estimated remaining error is 1 % of the step tolerance
+    (NEWTON_KAPPA, Hairer & Wanner §IV.8) instead of iterating to a residual of 1e-10: fewer iterations, and the
+    creep depth and load differ from the fully converged run by far less than the time-step error the tolerance
+    allows (asserted: below tol/10 relative)."""
+    tol = 0.02
+    scene = camclay_cone(load_hold(tol))
+    early = run(scene, tmp_path / "early")
+    full = run(scene, tmp_path / "full", args=["-indent_newton_estimate", "0"])
+    d_creep = abs(creep_of(early) / creep_of(full) - 1)
+    d_load = abs(early["load"][early["stage_name"] == "load"][-1] / full["load"][full["stage_name"] == "load"][-1] - 1)
+    d_res = abs(early["depth"][-1] - full["depth"][-1]) / full["depth"].max()
+    print(f"Newton its {early['newton_its'].sum()} against {full['newton_its'].sum()}; creep {d_creep:.1e}, load {d_load:.1e}, residual depth {d_res:.1e}")
+    assert early["newton_its"].sum() < 0.9 * full["newton_its"].sum()
+    assert max(d_creep, d_load, d_res) < tol / 10

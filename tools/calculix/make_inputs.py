@@ -11,6 +11,7 @@ Units mm, N, MPa, s.
 """
 import math
 import os
+import re
 import sys
 
 PROPS = """*USER MATERIAL, CONSTANTS=20, UNSYMM
@@ -64,10 +65,48 @@ def probe_axes():
     return a, (n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0])  # b = n x a
 
 
-def fmt(v):
-    """CalculiX reads a number from at most 20 characters (f20.0): 15 significant digits fit."""
-    text = f"{v:.15g}"
-    return text if any(c in text for c in ".en") else text + "."
+# CalculiX removes the blanks of a data line, splits it at the commas and reads each real from the first
+# FIELD characters of its field with the Fortran edit descriptor f20.0 (nodes.f, e.g. `read(textpart(2)
+# (1:20),'(f20.0)') co(1,i)`); the rest of a longer field is dropped without a word. 15 significant digits
+# do not always fit: -3.11060286983428e-15 has 21 characters and was read as -0.311 (issue 13).
+FIELD = 20
+_FORTRAN_REAL = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))(?:[eEdDqQ]([+-]?\d+)|([+-]\d+))?$")
+
+
+def fortran_real(text, width=FIELD):
+    """The value an f<width>.0 read of `text` gives, as CalculiX reads a field: its first `width`
+    characters, blanks removed; an empty field reads as 0 (Fortran 2008, 13.7.2.3.2: F editing)."""
+    field = text[:width].replace(" ", "")
+    if not field:
+        return 0.0
+    m = _FORTRAN_REAL.match(field)
+    if not m:
+        raise ValueError(f"'{field}' is not a Fortran real (F editing)")
+    return float(m.group(1) + "e" + (m.group(2) or m.group(3) or "0"))
+
+
+def fmt(v, width=FIELD, digits=15):
+    """`v` with the most significant digits, up to `digits`, whose text fits a `width`-character field,
+    checked to read back (fortran_real) to `v` within the rounding of the digits written. Raises
+    ValueError naming the value and the field where no text fits or the read-back differs."""
+    v = float(v)
+    if not math.isfinite(v):
+        raise ValueError(f"make_inputs: cannot write {v!r} into an Abaqus/CalculiX input: expected a finite number")
+    for n in range(digits, 0, -1):
+        text = f"{v:.{n}g}"
+        text = text if any(c in text for c in ".e") else text + "."
+        if len(text) <= width:
+            break
+    else:
+        raise ValueError(f"make_inputs: {v!r} does not fit a {width}-character field (CalculiX reads f{width}.0) "
+                         f"even with 1 significant digit ('{text}')")
+    back = fortran_real(text, width)
+    # Rounding to n significant digits moves v by at most half a unit of its n-th digit, 0.5 10^(1-n) |v|;
+    # the decimal-to-binary conversion adds at most one rounding of a double.
+    if not abs(back - v) <= (0.5 * 10.0 ** (1 - n) + 2.0 ** -52) * abs(v):
+        raise ValueError(f"make_inputs: {v!r} written as '{text}' reads back as {back!r} from a {width}-character "
+                         f"field (CalculiX reads f{width}.0): expected {v!r} to {n} significant digits")
+    return text
 
 
 def orientation(a, b):

@@ -134,12 +134,32 @@ static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
   PetscFunctionReturn(0);
 }
 
+/* The Newton stopping rule of implicit ODE solvers (Hairer & Wanner, Solving ODEs II, §IV.8): with the
+ * contraction theta of the iteration, the error left in the iterate is about theta/(1 - theta) times the last
+ * correction; stop once that is below etol (a fraction of the time-step tolerance) times the step's increment,
+ * in the displacements and in the indenter's position. theta is the residual's contraction (for Newton with
+ * exact solves, the corrections contract as the residuals do). The residual must also be below
+ * sqrt(rtol) of the force scale, so that a slow first iterate cannot stop the step. */
+static PetscErrorCode error_small(Semismooth *in, PetscReal theta, PetscBool *small) {
+  PetscReal dU, eta = theta / (1 - theta);
+  PetscFunctionBeginUser;
+  *small = PETSC_FALSE;
+  if (!in->newton_estimate || in->etol <= 0 || !(theta < 0.5)) PetscFunctionReturn(0);
+  PetscReal merit = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + PetscSqr(in->depth_control ? in->Rr * in->kshift : in->Rr)) / in->fref;
+  if (merit > PetscSqrtReal(in->rtol)) PetscFunctionReturn(0);
+  PetscCall(VecWAXPY(in->Uk, -1.0, in->U0, in->U)); /* the step's increment (Uk is free between iterations) */
+  PetscCall(VecNorm(in->Uk, NORM_INFINITY, &dU));
+  *small = eta * in->du_norm <= in->etol * dU && eta * PetscAbsReal(in->dur_last) <= in->etol * PetscAbsReal(in->ur - in->ur0) ? PETSC_TRUE : PETSC_FALSE;
+  if (*small) in->early++;
+  PetscFunctionReturn(0);
+}
+
 /* One step by the semismooth Newton method of Box 1: the active set from eq. 14 at every iterate, the
  * system of eq. 15 solved for the set, a backtracking line search on the merit, converged when the
  * residual is small and the set did not change. */
 PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out) {
   unsigned long long sig[64];
-  PetscReal          merit;
+  PetscReal          merit, merit_prev = 0;
   PetscInt           k, changes, damp = 0;
   PetscFunctionBeginUser;
   *status     = STEP_DIVERGED;
@@ -170,6 +190,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     PetscCall(active_signature(in, &sig[k % 64]));
     PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
                       PetscAbsReal(in->depth_control ? in->Rr * in->kshift : in->Rr) <= in->rtol * in->fref;
+    if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit / merit_prev, &small));
     if (in->monitor)
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n",
                             (int)k, (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes,
@@ -221,7 +242,9 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
       if (!search || trial <= (1 - 1e-4 * alpha) * merit || ls == 5 || trial < in->rtol) break;
       alpha *= 0.5;
     }
-    merit = trial;
+    merit_prev = merit, merit = trial;
+    PetscCall(VecNorm(in->du, NORM_INFINITY, &in->du_norm));
+    in->du_norm *= alpha, in->dur_last = alpha * dur;
   }
   *its_out = k;
   PetscFunctionReturn(0);
@@ -287,13 +310,15 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecZeroEntries(*all[k]));
   PetscCall(indent_solver_create(&in->ct, in->K, &in->sol));
-  in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE;
+  in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE, in->newton_estimate = PETSC_TRUE;
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1)", NULL);
   PetscCall(PetscOptionsReal("-indent_rtol", "residual tolerance relative to the load", NULL, in->rtol, &in->rtol, NULL));
   PetscCall(PetscOptionsInt("-indent_max_it", "Newton iterations per step", NULL, in->max_it, &in->max_it, NULL));
   PetscCall(PetscOptionsBool("-indent_predictor", "start each step from the extrapolated last increment", NULL, in->predictor, &in->predictor, NULL));
   PetscCall(PetscOptionsBool("-indent_monitor", "print every Newton iteration", NULL, in->monitor, &in->monitor, NULL));
   PetscCall(PetscOptionsBool("-indent_line_search", "Armijo line search once the active set is fixed", NULL, in->line_search, &in->line_search, NULL));
+  PetscCall(PetscOptionsBool("-indent_newton_estimate", "with an error measure, stop Newton once its estimated error is a small fraction of the step's tolerance",
+                             NULL, in->newton_estimate, &in->newton_estimate, NULL));
   PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the tangent with finite differences", NULL, in->fd_check, &in->fd_check, NULL));
   PetscOptionsEnd();
   in->max_it = PetscMin(in->max_it, 63);

@@ -23,15 +23,18 @@ typedef struct {
   Vec          Uk, lamk;                         /* the iterate before a line search */
   Vec          U0, lam0, rateU, ratelam;         /* committed; last converged increment */
   PetscReal    ur, ur0, rateur, dt_prev;
-  PetscBool    have_rate, predictor, monitor, line_search, fd_check;
+  PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate;
   PetscReal    rtol, kshift, fref;
   PetscInt     max_it;
   /* the step being solved */
   PetscBool    depth_control;
   PetscReal    target;                           /* load or depth at the step's end */
+  PetscReal    etol;                             /* > 0: also stop on the estimated remaining error (see
+                                                    semismooth_step); 0: on the residual only */
   PetscReal    Rr, ncp, ru;                      /* residual parts at the last evaluation */
+  PetscReal    du_norm, dur_last;                /* the last correction: |alpha du|_inf, alpha dur */
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
-  PetscInt     its_total, cycles;
+  PetscInt     its_total, cycles, early;         /* early: steps stopped by the error estimate */
 } Semismooth;
 
 enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };

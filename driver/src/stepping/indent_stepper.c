@@ -60,6 +60,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   int      status;
   PetscInt its = 0;
   p->umat_tol  = 0; /* Newton iterates without the UMAT's error control */
+  in->etol     = rq->newton_etol;
   PetscErrorCode ierr = semismooth_step(in, rq->h, &status, &its);
   if (ierr) {
     err[0] = '\0'; /* main prints PETSc's message */

@@ -184,19 +184,24 @@ static void plan_step(Run *r, StepRequest *rq, int *at_output) {
   rq->umat_tol          = sc->adaptive && sc->measure == MEASURE_WORST_POINT ? (sc->tol > 0 ? sc->tol : -1) : 0;
   if (!sc->adaptive) rq->umat_tol = -1; /* fixed steps: the material as given */
   rq->want_volume_error = sc->adaptive && sc->measure == MEASURE_VOLUME;
+  rq->newton_etol       = sc->adaptive && sc->measure != MEASURE_WORST_POINT && sc->tol > 0 ? NEWTON_KAPPA * sc->tol : 0;
 }
 
 enum { STEP_ACCEPTED, STEP_RETRY, STEP_FAILED };
 
 /* Judge a solved step: cut back (failure, the UMAT's PNEWDT, the error measure), land on an event, or
  * accept. */
-static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ratio, int *landed, char *err, size_t errlen) {
+static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ratio, double *kink_ratio, int *landed, char *err,
+                 size_t errlen) {
   RunState          *st = &r->st;
   const StepControl *sc = r->view.steps;
-  *landed = 0, *ratio = -1;
+  *landed = 0, *ratio = -1, *kink_ratio = -1;
   /* A step whose Newton method made no iteration (the predictor met the tolerance) is the extrapolation
-     itself: its estimate would be zero whatever the error, so it gets none. */
+     itself: its estimate would be zero whatever the error, so it gets none. A step across a kink (a contact
+     node came or went) mixes the jump of the rate into its estimate: it is not rejected on it, but the estimate
+     may hold the next step's length (after_accept). */
   if (o->converged && !o->kink && o->its > 0) *ratio = error_ratio(r, o, rq);
+  if (o->converged && o->kink && o->its > 0) *kink_ratio = error_ratio(r, o, rq);
   if (o->converged && o->kink) st->kink = 1;
   if (*ratio > 1 && st->reject_ratio > 0 && *ratio > 0.5 * st->reject_ratio) {
     /* A shorter step did not lower the estimate as O(dt) would: the previous increment belongs to another
@@ -232,10 +237,13 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
 }
 
 /* After an accepted step: the next length, and a landing on the event if it falls within it. */
-static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, double ratio) {
+static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, double ratio, double kink_ratio) {
   RunState *st = &r->st;
   if (st->pending_instant) st->pending_instant = 0, st->dt = step_control_planned(r->view.steps, r->view.duration, 0);
   else st->dt = next_length(r, rq, o, ratio);
+  /* After a kink the estimate may hold the step, not shorten it: a jump of the rate would otherwise cut every
+     step where nodes keep entering contact (3D), and without it the steps there would grow unchecked. */
+  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(next_length(r, rq, o, kink_ratio), rq->h));
   st->landing = 0;
   int dir = event_direction(r->view.until.kind);
   if (dir && rq->h > 0) {
@@ -282,8 +290,8 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     memset(&o, 0, sizeof o);
     o.pnewdt = 1e300, o.progress = -1, o.vol_err = -1;
     if (sv->solve(sv->ctx, &rq, &o, err, errlen)) return 1;
-    double ratio;
-    int    verdict = judge(r, &rq, &o, &ratio, &landed, err, errlen);
+    double ratio, kink_ratio;
+    int    verdict = judge(r, &rq, &o, &ratio, &kink_ratio, &landed, err, errlen);
     if (verdict == STEP_FAILED) {
       if (sv->replay && opt->outdir && opt->outdir[0]) sv->replay(sv->ctx, opt->outdir, err, errlen);
       return 1;
@@ -292,7 +300,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     int was_instant = st->pending_instant, cut = st->cut_in_step;
     if (sv->accept(sv->ctx, &rq, err, errlen)) return 1;
     st->t += rq.h, st->t_stage += rq.h, st->step++, st->its += o.its;
-    after_accept(r, &rq, &o, ratio);
+    after_accept(r, &rq, &o, ratio, kink_ratio);
     if (promote(r)) {
       snprintf(err, errlen, "%s: cannot rename the new output files into place", opt->outdir);
       return 1;

@@ -41,7 +41,14 @@ typedef struct {
   double h_prev;   /* the last accepted step's length (0: none yet) */
   double umat_tol; /* >= 0: evaluate the converged state with the UMAT's own control at this tol (worst_point) */
   int    want_volume_error;
+  double newton_etol; /* > 0: Newton may stop once its estimated remaining error is below this fraction of the
+                         step's increment (NEWTON_KAPPA x the error measure's tol); 0: the residual test only */
 } StepRequest;
+
+/* The Newton error allowed per step, as a fraction of the time-step error tolerance: small enough that the
+   iteration error stays two orders below the discretisation error the measure controls (Hairer & Wanner,
+   Solving ODEs II, §IV.8, stop Newton at a fraction kappa of the local error tolerance; they take 0.01-0.1). */
+#define NEWTON_KAPPA 0.01
 
 #define STEP_MAX_OUT 12
 typedef struct {
