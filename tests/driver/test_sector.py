@@ -10,6 +10,7 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
   of the material (BP)."""
 import math
 import os
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -27,11 +28,13 @@ NA = (0.5, -S3, 0.0)   # outward normal of the sector's plane at azimuth 30 degr
 NS = (0.5, S3, 0.0)    # outward normal of the hexagon's face of the sector (side1)
 
 
-def run(text, out, exe="driver_elastic", check=True):
+def run(text, out, exe="driver_elastic", check=True, np_=1):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    proc = subprocess.run([str(BIN / exe), "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True,
-                          cwd=ROOT)
+    cmd = [str(BIN / exe), "-input", str(scene), "-output_dir", str(out)]
+    if np_ > 1:
+        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(np_), *cmd]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
     if not check:
         return proc
     assert proc.returncode == 0, proc.stdout + proc.stderr
@@ -54,7 +57,8 @@ def gmsh(out, **par):
     return out
 
 
-def test_inclined_mirror_uniform_stress(tmp_path):
+@pytest.mark.parametrize("order", [1, 2])
+def test_inclined_mirror_uniform_stress(tmp_path, order):
     """The sector prism (L = 2): mirror planes at azimuth 30 degrees (inclined) and x = 0, the bottom on rollers
     (z fixed), a pressure p on the hexagon's face and a traction s e_z on the top. The closed form is the uniform
     stress sigma = diag(-p, -p, s) (both mirrors carry no shear: their normals are principal), the strain
@@ -62,11 +66,12 @@ def test_inclined_mirror_uniform_stress(tmp_path):
     tetrahedra represent it exactly (patch test). The reaction is the internal force on the constrained
     components (docs/driver.md): sum over the supported faces of sigma n A (outward n), plus the pressure's nodal
     forces (-p n A/3 per triangle corner) on the nodes that the hexagon's face shares with the mirror planes,
-    projected on their normals (those components are carried by the supports directly)."""
+    projected on their normals (those components are carried by the supports directly); P1 only. P2 (the frames
+    on edge nodes too): displacements and stresses."""
     p, s, L = 3.0, 5.0, 2.0
     msh = gmsh(tmp_path / "m.msh", L=L, span=60, h_tip=0.3, h_far=0.6, r_fine=0.3, r_contact=0.5)
     text = f"""scene: fe
-mesh: {{file: {msh}}}
+mesh: {{file: {msh}, order: {order}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [z]}}]
@@ -87,6 +92,8 @@ stages:
     on = np.abs(x @ np.array(NA)) < 1e-9                                   # the nodes of the inclined plane
     assert np.abs(u[on] @ np.array(NA)).max() < 1e-12 * scale            # ... do not leave it
     assert np.linalg.norm(u[on][:, :2], axis=1).max() > 0.05 * scale     # ... but slide along it
+    if order == 2:
+        return
     R = L / 2 / S3                                                        # the hexagon's corner radius
     Aa = Ab = R * L                                                       # the mirror faces, the bottom
     Abot = 0.5 * R * R * math.sin(math.pi / 3)
@@ -260,7 +267,7 @@ def test_sector_equals_mirrored_half_model(tmp_path):
     """Elastic Berkovich to h = 0.1 (2 steps, depth control) on the 60-degree sector and on the half model built
     from three mirror images of the sector's mesh (h_tip 0.04 within 0.4 of the tip, as test_contact's half-cube
     check). The sector is exact where the model is symmetric about its planes, so the half model's load is 3 times
-    the sector's at every step (to the Newton tolerance). Two things make the half model symmetric too: the
+    the sector's at every step (to the Newton tolerance); the sector on 2 ranks gives its load on 1. Two things make the half model symmetric too: the
     Berkovich's normal on its edges is the mean of the two faces' (indenter_shape.c; nodes on the planes at +-30
     degrees lie under its edges), and the tip node, on the axis, is held there (x and y fixed, as the sector's
     two mirror planes hold it): free, it slides off the apex along one face (by 0.014 at h = 0.1 here), a
@@ -283,6 +290,9 @@ boundary:
   mirror: [{{group: x0, normal: [1, 0, 0]}}, {{group: side_m60, normal: [0.5, {-S3}, 0]}}, {{group: side_0, normal: [1, 0, 0]}},
            {{group: side_60, normal: [0.5, {S3}, 0]}}]
 {BERKOVICH_PUSH}""", tmp_path / "h")
+    s2 = run((tmp_path / "s.yaml").read_text(), tmp_path / "s2", np_=2)   # frames on ghost nodes too
+    print(f"sector on 2 ranks against 1: {np.abs(s2['load'][1:] / s['load'][1:] - 1).max():.1e}")
+    assert np.abs(s2["load"][1:] / s["load"][1:] - 1).max() < 1e-10
     rel = np.abs(3 * s["load"][1:] / h["load"][1:] - 1)
     print(f"sector x 3 against the mirrored half model: P = {3 * s['load'][-1]:.10g} vs {h['load'][-1]:.10g} at h = 0.1, "
           f"relative differences {rel}")
