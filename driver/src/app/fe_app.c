@@ -49,6 +49,26 @@ PetscErrorCode app_runner_options(RunnerOptions *o) {
   PetscFunctionReturn(0);
 }
 
+static int petsc_failure(PetscErrorCode ierr, char *err);
+
+/* Every mirror group must lie in a plane with the normal given: x . n the same at all its nodes (to 1e-6 of the
+   mesh's size). */
+static int check_mirror_planes(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen) {
+  for (int k = 0; k < sc->nfixed; k++) {
+    const FeFixed *m = &sc->fixed[k];
+    PetscReal      spread, size;
+    if (!m->mirror) continue;
+    if (fe_constraint_plane_spread(dm, m->group, m->normal, &spread, &size)) return petsc_failure(1, err);
+    if (spread > 1e-6 * size) {
+      snprintf(err, errlen, "%s:%d: key 'boundary.mirror[%d].normal': the group '%s' is not a plane normal to [%.6g, %.6g, %.6g]: "
+               "x . normal varies by %.3g over its nodes (the mesh %s is %.3g across; expected at most 1e-6 of that)", doc->file, m->line,
+               m->index, m->group, m->normal[0], m->normal[1], m->normal[2], spread, sc->msh, size);
+      return 2;
+    }
+  }
+  return 0;
+}
+
 /* Every group the scene names must be a physical group of the mesh. */
 static int check_groups(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen) {
   const char *missing = NULL;
@@ -62,7 +82,7 @@ static int check_groups(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen
     if (len > 2 && base[len - 2] == '.' && strchr("xyz", base[len - 1])) base[len - 2] = '\0';
     if (!DMHasLabel(dm, base, &has) && !has) missing = base;
   }
-  if (!missing) return 0;
+  if (!missing) return check_mirror_planes(doc, sc, dm, err, errlen);
   char     groups[512] = "";
   PetscInt nl;
   DMGetNumLabels(dm, &nl);

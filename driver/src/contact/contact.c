@@ -87,7 +87,7 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
   for (int pass = 0; pass < 2; pass++) {
     PetscInt n = 0;
     for (PetscInt v = vStart; v < vEnd; v++) {
-      PetscInt goff, off, nidx, *idx = NULL, row[3];
+      PetscInt goff, off, loff, nidx, *idx = NULL, row[3];
       if (mark && !mark[v - pStart]) continue;
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       if (goff < 0) continue; /* owned by another rank */
@@ -102,6 +102,8 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
         PetscCall(PetscSectionGetOffset(cs, v, &off));
         for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * p->dim + d] = row[d];
         ct->w[n] = wvec ? PetscRealPart(wa[ra - ustart]) : 0;
+        PetscCall(PetscSectionGetOffset(ls, v, &loff)); /* a node on an inclined mirror plane has a frame of its own */
+        PetscCall(fe_constraint_node_frame(&p->con, loff, &ct->R[n * p->dim * p->dim]));
         *wsum += ct->w[n];
         if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, v));
         PetscCall(contact_vertex_rim(dm, p->dim, v, row, nfacet, pStart, &ct->rim[n]));
@@ -113,6 +115,7 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
       PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
       PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
       if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, -1)); /* room for n vertices */
+      PetscCall(PetscMalloc1(n * p->dim * p->dim, &ct->R));
     }
   }
   PetscCall(VecRestoreArrayRead(coords, &ca));
@@ -162,6 +165,12 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
   PetscCall(contact_weights(p, group, &wvec, &ustart));
   PetscCall(contact_facet_counts(dm, label, &nfacet));
+  { /* the mortar integrals (contact_mortar.c) work in global axes: no nodal frames under P2 contact yet */
+    PetscInt nf = p->order == 2 ? p->con.nframe : 0, nfall;
+    PetscCall(MPIU_Allreduce(&nf, &nfall, 1, MPIU_INT, MPI_MAX, comm));
+    PetscCheck(nfall == 0, comm, PETSC_ERR_SUP, "contact on P2 elements (mesh.order: 2) together with an inclined mirror plane "
+               "(boundary.mirror) is not supported: use mesh.order 1 for the sector, or the half model (axis-aligned mirrors)");
+  }
   if (p->order == 1) PetscCall(contact_nodes(p, wvec, ustart, NULL, nfacet, ct, &wsum));
   else { /* P2: the facets' vertices, their weights below */
     PetscInt *mark;
@@ -188,6 +197,7 @@ PetscErrorCode contact_destroy(Contact *ct) {
   PetscCall(PetscFree5(ct->X, ct->w, ct->row, ct->g, ct->nrm));
   PetscCall(PetscFree2(ct->active, ct->rim));
   PetscCall(contact_mortar_destroy(ct));
+  PetscCall(PetscFree(ct->R));
   Mat *all[6] = {&ct->Bt, &ct->B, &ct->Ct, &ct->C, &ct->D, &ct->Kr};
   for (int k = 0; k < 6; k++) PetscCall(MatDestroy(all[k]));
   PetscFunctionReturn(0);
@@ -205,10 +215,14 @@ PetscErrorCode contact_update_gaps(Contact *ct, Vec U, PetscReal ur) {
   PetscCall(VecGetOwnershipRange(U, &ustart, NULL));
   PetscCall(VecGetArrayRead(U, &ua));
   for (PetscInt i = 0; i < ct->n; i++) {
-    double x[3];
+    double x[3], u[3];
     for (PetscInt d = 0; d < dim; d++) {
       PetscInt r = ct->row[i * dim + d];
-      x[d]       = ct->X[i * dim + d] + (r >= 0 ? PetscRealPart(ua[r - ustart]) : 0.0); /* fixed components are zero */
+      u[d]       = r >= 0 ? PetscRealPart(ua[r - ustart]) : 0.0; /* fixed components are zero */
+    }
+    for (PetscInt d = 0; d < dim; d++) { /* the node's rows in its frame: to global axes */
+      x[d] = ct->X[i * dim + d];
+      for (PetscInt j = 0; j < dim; j++) x[d] += ct->R[(i * dim + d) * dim + j] * u[j];
     }
     double nv[3];
     ct->g[i] = indenter_gap(&ct->shape, &ct->X[i * dim], x, ur, nv);
@@ -237,6 +251,15 @@ PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscReal lambda_ref,
 }
 
 
+/* Node i's normal in its rows' frame, R^T n. */
+static void frame_normal(const Contact *ct, PetscInt i, PetscReal nf[]) {
+  const PetscInt dim = ct->dim;
+  for (PetscInt j = 0; j < dim; j++) {
+    nf[j] = 0;
+    for (PetscInt d = 0; d < dim; d++) nf[j] += ct->R[(i * dim + d) * dim + j] * ct->nrm[i * dim + d];
+  }
+}
+
 PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool depth_control, PetscReal target,
                                 Vec Ru, PetscReal *Rr, PetscReal *ncp_norm) {
   const PetscScalar *la;
@@ -249,9 +272,10 @@ PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool de
   PetscCall(VecGetArray(Ru, &ra)); /* a contact node's rows are owned where the node is */
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) {
-    PetscReal l = PetscRealPart(la[i]);
+    PetscReal l = PetscRealPart(la[i]), nf[3];
+    frame_normal(ct, i, nf);
     for (PetscInt d = 0; d < dim && !ct->mortar; d++) /* R_u -= lambda w n (eq. 10's last term, nodal quadrature) */
-      if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * ct->nrm[i * dim + d];
+      if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * nf[d];
     loc[0] += l * ct->w[i] * contact_ndotd(ct, i);                           /* eq. 19: P = 1^T M lambda */
     loc[1] += PetscSqr(ct->w[i] * (l - PetscMax(0, l - ct->c * ct->g[i]))); /* eq. 13, g >= 0 open */
   }
@@ -284,7 +308,8 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  li = ct->rstart + i, zero = 0;
     PetscReal wn[3], c = ct->w[i] * contact_ndotd(ct, i), one = 1.0, z = 0.0;
-    for (PetscInt d = 0; d < dim; d++) wn[d] = -ct->w[i] * ct->nrm[i * dim + d];
+    frame_normal(ct, i, wn);
+    for (PetscInt d = 0; d < dim; d++) wn[d] *= -ct->w[i];
     for (PetscInt d = 0; d < dim && !ct->mortar; d++) { /* dR_u/dlambda = -w n, all nodes (exact) */
       PetscInt r = ct->row[i * dim + d];
       if (r < 0) continue;

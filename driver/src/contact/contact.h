@@ -26,6 +26,7 @@ typedef struct {
   PetscInt      dim, n, N, rstart; /* nodes here, on all ranks, first global multiplier index here */
   PetscReal    *X, *w;             /* reference coordinates (dim per node), weights int N_i dGamma (eq. 18) */
   PetscInt     *row;               /* dim per node: global displacement row of each component, < 0 if fixed */
+  PetscReal    *R;                 /* dim x dim per node: its nodal frame (fe_constraint.h), u = R u_rows */
   PetscReal    *g, *nrm;           /* gap and normal (dim) of each node at the last evaluation */
   PetscBool    *active;
   PetscBool    *rim;               /* on the edge of the potential contact surface (not on a mirror plane) */

@@ -62,13 +62,23 @@ double indenter_gap(const IndenterShape *s, const double X[], const double x[], 
   case SHAPE_CONE:
   case SHAPE_WEDGE: g = cone_gap(s->half_angle, l, nl, z, gl, &gz); break;
   case SHAPE_BERKOVICH: { /* three planes; the gap to the pyramid is the largest plane distance, exact
-                             wherever the closest point lies on a face (the contact zone) */
+                             wherever the closest point lies on a face (the contact zone). On an edge or at the
+                             tip (faces tied to roundoff) the normal is the mean of the tied faces' gradients, a
+                             subgradient of the max (Clarke 1983, Prop. 2.3.12) that keeps the pyramid's mirror
+                             symmetry: the same force whether or not a mirror plane of the model holds the edge */
+    double gf[3], tol = 1e-12 * (fabs(l[0]) + fabs(l[1]) + fabs(z)), cnt = 0;
     g = -INFINITY;
     for (int f = 0; f < 3; f++) {
-      double a = s->rotation + M_PI / 2 + f * 2 * M_PI / 3, e[2] = {cos(a), sin(a)};
-      double gf = cos(s->half_angle) * (l[0] * e[0] + l[1] * e[1]) - sin(s->half_angle) * z;
-      if (gf > g) g = gf, gl[0] = cos(s->half_angle) * e[0], gl[1] = cos(s->half_angle) * e[1], gz = -sin(s->half_angle);
+      double a = s->rotation + M_PI / 2 + f * 2 * M_PI / 3;
+      gf[f]    = cos(s->half_angle) * (l[0] * cos(a) + l[1] * sin(a)) - sin(s->half_angle) * z;
+      g        = fmax(g, gf[f]);
     }
+    for (int f = 0; f < 3; f++) {
+      double a = s->rotation + M_PI / 2 + f * 2 * M_PI / 3;
+      if (gf[f] < g - tol) continue;
+      gl[0] += cos(s->half_angle) * cos(a), gl[1] += cos(s->half_angle) * sin(a), cnt++;
+    }
+    gl[0] /= cnt, gl[1] /= cnt, gz = -sin(s->half_angle);
     break;
   }
   case SHAPE_SPHERE: { /* centre one radius above the tip */

@@ -223,15 +223,15 @@ PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append
 static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, Vec *D) {
   Vec                Uloc;
   PetscSection       s;
-  const PetscScalar *u;
+  PetscScalar       *u;
   PetscScalar       *d;
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalVector(p->dm, &Uloc));
   PetscCall(DMGlobalToLocal(p->dm, U, INSERT_VALUES, Uloc));
-  PetscCall(DMPlexInsertBoundaryValues(p->dm, PETSC_TRUE, Uloc, p->time, NULL, NULL, NULL));
   PetscCall(DMGetLocalSection(p->dm, &s));
   PetscCall(block_vec(PetscObjectComm((PetscObject)p->dm), o->nvloc, 3, "displacement", D));
-  PetscCall(VecGetArrayRead(Uloc, &u));
+  PetscCall(VecGetArray(Uloc, &u));
+  PetscCall(fe_constraint_to_global(&p->con, u)); /* the fixed components' zeros; nodal frames to global axes */
   PetscCall(VecGetArray(*D, &d));
   for (PetscInt k = 0; k < o->nvloc; k++) {
     PetscInt off, ndof;
@@ -241,7 +241,7 @@ static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, Vec *D)
     for (PetscInt c = 0; c < 3; c++) d[3 * k + c] = c < p->dim ? u[off + c] : 0;
   }
   PetscCall(VecRestoreArray(*D, &d));
-  PetscCall(VecRestoreArrayRead(Uloc, &u));
+  PetscCall(VecRestoreArray(Uloc, &u));
   PetscCall(DMRestoreLocalVector(p->dm, &Uloc));
   PetscFunctionReturn(0);
 }

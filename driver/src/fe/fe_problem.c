@@ -15,12 +15,6 @@
 /* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
 static const PetscInt vi[6] = {0, 1, 2, 0, 0, 1}, vj[6] = {0, 1, 2, 1, 2, 2};
 
-static PetscErrorCode zero_bc(PetscInt dim, PetscReal time, const PetscReal x[], PetscInt Nc, PetscScalar *u,
-                              void *ctx) {
-  for (PetscInt c = 0; c < Nc; c++) u[c] = 0;
-  return 0;
-}
-
 /* The area of a boundary face and the direction n of its load: the outward normal (a pressure, t = -p n), or for a
  * traction along axis (>= 0) -e_axis (the force is +t, written as -(-e_axis)). */
 static PetscErrorCode face_load_direction(FeProblem *p, PetscInt face, PetscInt axis, PetscReal *area, PetscReal n[3]) {
@@ -150,24 +144,12 @@ PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
   }
   PetscCall(ISRestoreIndices(valueIS, &values));
   PetscCall(ISDestroy(&valueIS));
+  PetscCall(fe_constraint_to_frame(&p->con, a, NULL));
   PetscCall(VecRestoreArray(floc, &a));
   PetscCall(DMCreateGlobalVector(dm, f));
   PetscCall(VecZeroEntries(*f));
   PetscCall(DMLocalToGlobal(dm, floc, ADD_VALUES, *f));
   PetscCall(DMRestoreLocalVector(dm, &floc));
-  PetscFunctionReturn(0);
-}
-
-/* The local indices of the fixed components (their values are zero): set directly on every residual
-   instead of DMPlexInsertBoundaryValues. */
-static PetscErrorCode fixed_local_dofs(FeProblem *p) {
-  PetscInt nall = (p->cEnd - p->cStart) * p->nb, n = 0;
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(nall + 1, &p->bc_local));
-  for (PetscInt k = 0; k < nall; k++)
-    if (p->cell_rows[k] < 0) p->bc_local[n++] = p->cell_dofs[k];
-  PetscCall(PetscSortRemoveDupsInt(&n, p->bc_local));
-  p->nbc_local = n;
   PetscFunctionReturn(0);
 }
 
@@ -196,23 +178,8 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
     PetscCall(PetscQuadratureDestroy(&q));
   }
   PetscCall(DMSetField(dm, 0, NULL, (PetscObject)p->fe));
-  PetscCall(DMCreateDS(dm)); /* before the boundary conditions, which the section then constrains */
-  for (PetscInt k = 0; k < nfixed; k++) {
-    DMLabel label;
-    PetscCall(DMGetLabel(dm, fixed[k].group, &label));
-    PetscCheck(label, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
-               "boundary condition: the mesh has no physical group '%s'", fixed[k].group);
-    IS              valueIS;
-    const PetscInt *values;
-    PetscInt        nvalues;
-    PetscCall(DMLabelGetValueIS(label, &valueIS));
-    PetscCall(ISGetLocalSize(valueIS, &nvalues));
-    PetscCall(ISGetIndices(valueIS, &values));
-    PetscCall(DMAddBoundary(dm, DM_BC_ESSENTIAL, fixed[k].group, label, nvalues, values, 0, fixed[k].ncomp,
-                            fixed[k].comp, (void (*)(void))zero_bc, NULL, NULL, NULL));
-    PetscCall(ISRestoreIndices(valueIS, &values));
-    PetscCall(ISDestroy(&valueIS));
-  }
+  PetscCall(DMCreateDS(dm));
+  PetscCall(fe_constraint_setup(&p->con, dm, p->fe, fixed, nfixed)); /* the section with its constrained components */
   PetscCall(PetscFEGetQuadrature(p->fe, &p->quad));
   PetscCall(PetscQuadratureGetData(p->quad, NULL, NULL, &p->nq, NULL, &p->qweights));
   PetscCall(PetscFEGetCellTabulation(p->fe, 1, &p->tab));
@@ -238,7 +205,6 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
       for (PetscInt b = 0; b < n; b++) p->cell_rows[(c - p->cStart) * p->nb + b] = idx[b];
       PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
     }
-    PetscCall(fixed_local_dofs(p));
   }
   {
     PetscReal v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64];
@@ -282,7 +248,7 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(PetscFree(p->phi));
   PetscCall(PetscFree3(p->invJ, p->wdetJ, p->radius));
   PetscCall(PetscFree2(p->cell_dofs, p->cell_rows));
-  PetscCall(PetscFree(p->bc_local));
+  PetscCall(fe_constraint_destroy(&p->con));
   PetscCall(PetscFree(p->devp_prev));
   PetscCall(VecDestroy(&p->ddsdde_u));
   PetscCall(PetscFEDestroy(&p->fe));
@@ -418,7 +384,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   p->have_failed_call = 0;
   PetscCall(VecGetArray(Uloc, &ua));
   PetscCall(VecGetArray(Floc, &fa));
-  for (PetscInt k = 0; k < p->nbc_local; k++) ua[p->bc_local[k]] = 0; /* the fixed components (zero values) */
+  PetscCall(fe_constraint_to_global(&p->con, ua)); /* the fixed components (zero values); nodal frames to global axes */
   const PetscInt ntens = p->mat.ntens;
   /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
      p->umat_tol) and, per cell, its phi; p->mat itself is never written. */
@@ -467,12 +433,9 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
         re[b] += w * sum;
       }
     }
-    const PetscInt *rows = &p->cell_rows[(c - p->cStart) * p->nb];
-    for (PetscInt b = 0; b < p->nb; b++) {
-      fa[dofs[b]] += re[b];
-      if (rows[b] < 0) reaction[b % p->dim] += re[b]; /* internal force on a fixed component */
-    }
+    for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
   }
+  PetscCall(fe_constraint_to_frame(&p->con, fa, reaction)); /* internal force on the fixed components; into the frames */
   PetscCall(VecRestoreArray(Uloc, &ua));
   PetscCall(VecRestoreArray(Floc, &fa));
   PetscCall(VecZeroEntries(F));
@@ -528,6 +491,7 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
           Ke[a * nb + b] += w * sum;
         }
     }
+    PetscCall(fe_constraint_rotate_cell(&p->con, &p->cell_dofs[(c - p->cStart) * nb], nb, Ke)); /* nodal frames */
     /* constrained dofs have negative rows: MatSetValues skips them */
     const PetscInt *rows = &p->cell_rows[(c - p->cStart) * nb];
     PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));

@@ -10,6 +10,7 @@
 #include <petscsnes.h>
 
 #include "../material/umat_call.h"
+#include "fe_constraint.h"
 
 /* The state of a quadrature point: stress (6), total strain (6), then the UMAT's STATEV. */
 enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
@@ -17,11 +18,6 @@ enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
 #define SV(p, c, q) (((c) - (p)->cStart) * (p)->nq + (q))
 
 #define FE_MAX_GROUPS 24 /* loads: pressures on groups, and traction components 'GROUP.x' etc. */
-
-typedef struct {
-  char     group[64];      /* a physical group of the mesh (a DMPlex label) */
-  PetscInt ncomp, comp[3]; /* fixed components */
-} FeFixed;
 
 /* 3D (NTENS 6), plane strain (NTENS 4: 11 22 33 12, eps_33 = 0, per unit... thickness) or
  * axisymmetric (NTENS 4: rr zz thetatheta rz with x1 = r, x2 = z, as Abaqus; eps_33 = u_r / r). */
@@ -55,7 +51,7 @@ typedef struct FeProblem {
                                            Newton iterates it is off: a point whose step the UMAT would
                                            reject keeps its old stress with a new tangent, which no
                                            iteration can converge; the stepper judges the converged state */
-  PetscInt       *bc_local, nbc_local;  /* local indices of the fixed components */
+  FeConstraint    con;                  /* fixed components and mirror planes (nodal frames) */
   PetscReal       reaction_local[3];    /* the supports' force from this rank's cells at the last residual */
   PetscReal       reaction[3];          /* ... summed over the ranks by fe_problem_reactions */
   PetscReal      *devp_prev;            /* per point: the viscoplastic strain increment of the last step */
@@ -77,7 +73,8 @@ typedef struct FeProblem {
 
 /* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */
 PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm);
-/* Field, boundary conditions, quadrature, state. fixed: essential conditions (zero values). */
+/* Field, boundary conditions, quadrature, state. fixed: essential conditions (zero values): fixed components
+ * and mirror planes (fe_constraint.h). */
 PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure);

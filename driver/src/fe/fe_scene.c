@@ -243,7 +243,7 @@ static int read_initial(YdDoc *doc, YdNode *root, FeScene *sc, YdNode **initial_
 static int read_fixed(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t errlen) {
   const char *s;
   if (yd_expect(doc, x, YD_SEQUENCE, "boundary.fixed", err, errlen)) return 1;
-  if (x->n > 8) FAIL("%s:%d: key 'boundary.fixed': at most 8 entries, got %zu", doc->file, x->line, x->n);
+  if (x->n > FE_MAX_FIXED) FAIL("%s:%d: key 'boundary.fixed': at most %d entries, got %zu", doc->file, x->line, FE_MAX_FIXED, x->n);
   for (size_t k = 0; k < x->n; k++) {
     YdNode *f = x->items[k], *comps;
     char    path[64], sub[96];
@@ -269,6 +269,66 @@ static int read_fixed(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t errl
   return 0;
 }
 
+/* boundary.mirror: mirror (symmetry) planes, u . n = 0 on a group, {group, normal}; the normal is normalised. */
+static int read_mirror(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t errlen) {
+  const char *s;
+  const int   dim = sc->kin == KIN_3D ? 3 : 2;
+  if (yd_expect(doc, x, YD_SEQUENCE, "boundary.mirror", err, errlen)) return 1;
+  if (sc->nfixed + (int)x->n > FE_MAX_FIXED)
+    FAIL("%s:%d: key 'boundary.mirror': at most %d fixed and mirror entries together, got %d", doc->file, x->line, FE_MAX_FIXED,
+         sc->nfixed + (int)x->n);
+  for (size_t k = 0; k < x->n; k++) {
+    YdNode  *f = x->items[k];
+    FeFixed *m = &sc->fixed[sc->nfixed];
+    char     path[64], sub[96];
+    double   n[3] = {0, 0, 0}, norm = 0;
+    snprintf(path, sizeof path, "boundary.mirror[%zu]", k);
+    if (yd_expect(doc, f, YD_MAPPING, path, err, errlen)) return 1;
+    snprintf(sub, sizeof sub, "%s.group", path);
+    if (yd_string(doc, yd_get(f, "group"), sub, &s, err, errlen)) return 1;
+    memset(m, 0, sizeof *m);
+    snprintf(m->group, sizeof m->group, "%s", s);
+    snprintf(sub, sizeof sub, "%s.normal", path);
+    if (yd_doubles(doc, yd_get(f, "normal"), sub, n, dim, NULL, err, errlen)) return 1;
+    for (int d = 0; d < dim; d++) norm += n[d] * n[d];
+    if (!(norm > 0) || !isfinite(norm))
+      FAIL("%s:%d: key '%s': expected the plane's normal, %d finite numbers not all zero, got [%g, %g, %g]", doc->file,
+           yd_key_line(f, "normal"), sub, dim, n[0], n[1], n[2]);
+    for (int d = 0; d < dim; d++) m->normal[d] = n[d] / sqrt(norm);
+    m->mirror = PETSC_TRUE, m->index = (int)k, m->line = yd_key_line(f, "normal");
+    if (yd_check_unused(doc, f, path, "group, normal", err, errlen)) return 1;
+    sc->nfixed++;
+  }
+  return 0;
+}
+
+/* A mirror plane of the model must be one of the material: Cam-Clay IX's hard frame (phi > 0) is transversely
+   isotropic about the bedding normal b (docs/umat.md), and the reflection x -> x - 2 (x . m) m maps b to itself
+   or to -b (the same b b) only if b lies in the plane (b . m = 0) or is normal to it (|b . m| = 1). The soft
+   frame is isotropic. Other UMATs are not checked. */
+static int check_mirror_symmetry(YdDoc *doc, const FeScene *sc, char *err, size_t errlen) {
+  const UmatMaterial *mat = &sc->mat;
+  if (mat->phi_slot < 0 || !(sc->phi_mean > 0 || (sc->phi_std > 0 && sc->phi_hi > 0))) return 0;
+  double b[3] = {0, 0, 1}, nb = 0;
+  if (mat->nprops >= 23)
+    for (int d = 0; d < 3; d++) b[d] = mat->props[20 + d];
+  for (int d = 0; d < 3; d++) nb += b[d] * b[d];
+  for (int d = 0; d < 3; d++) b[d] /= sqrt(nb);
+  for (int k = 0; k < sc->nfixed; k++) {
+    const FeFixed *m = &sc->fixed[k];
+    double         c = 0;
+    if (!m->mirror) continue;
+    for (int d = 0; d < 3; d++) c += b[d] * m->normal[d];
+    if (fabs(c) > 1e-9 && fabs(fabs(c) - 1) > 1e-9)
+      FAIL("%s:%d: key 'boundary.mirror[%d].normal': [%.6g, %.6g, %.6g] is not a mirror plane of the material: its bedding "
+           "normal [%.6g, %.6g, %.6g] is neither in the plane nor normal to it (their dot product is %.6g), so the hard frame "
+           "(phi > 0, transversely isotropic) is not symmetric about it. A 60-degree sector needs the load along the bedding "
+           "normal (BN) or phi = 0; model a BP indentation on the half model (input/microindent_BP.yaml)",
+           doc->file, m->line, m->index, m->normal[0], m->normal[1], m->normal[2], b[0], b[1], b[2], c);
+  }
+  return 0;
+}
+
 /* boundary: fixed groups, pressure groups and traction groups (loads GROUP.x, GROUP.y (, GROUP.z)). */
 static int read_boundary(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
   YdNode     *x;
@@ -276,6 +336,7 @@ static int read_boundary(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_
   YdNode     *bc = yd_require(doc, root, "boundary", YD_MAPPING, "boundary", err, errlen);
   if (!bc) return 1;
   if ((x = yd_get(bc, "fixed")) && read_fixed(doc, x, sc, err, errlen)) return 1;
+  if ((x = yd_get(bc, "mirror")) && read_mirror(doc, x, sc, err, errlen)) return 1;
   if ((x = yd_get(bc, "pressure"))) {
     if (yd_expect(doc, x, YD_SEQUENCE, "boundary.pressure", err, errlen)) return 1;
     if (x->n > FE_MAX_GROUPS) FAIL("%s:%d: key 'boundary.pressure': at most %d groups, got %zu", doc->file, x->line, FE_MAX_GROUPS, x->n);
@@ -297,7 +358,7 @@ static int read_boundary(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_
       for (int d = 0; d < dim; d++) snprintf(sc->pressure_group[sc->npressure++], 64, "%s.%c", s, 'x' + d);
     }
   }
-  return yd_check_unused(doc, bc, "boundary", "fixed, pressure, traction", err, errlen);
+  return yd_check_unused(doc, bc, "boundary", "fixed, mirror, pressure, traction", err, errlen);
 }
 
 /* initial.pressure: the starting pressure of each loaded group named in it (0 otherwise). */
@@ -420,7 +481,7 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   yd_get(root, "scene");
   if (read_output(doc, root, sc, err, errlen) || read_mesh(doc, root, sc, err, errlen) || read_material_phi(doc, root, sc, err, errlen) ||
       read_initial(doc, root, sc, &initial_pressure, err, errlen) || read_boundary(doc, root, sc, err, errlen) ||
-      read_initial_pressure(doc, initial_pressure, sc, err, errlen))
+      read_initial_pressure(doc, initial_pressure, sc, err, errlen) || check_mirror_symmetry(doc, sc, err, errlen))
     return 1;
   YdNode *stages = yd_require(doc, root, "stages", YD_SEQUENCE, "stages", err, errlen);
   if (!stages) return 1;

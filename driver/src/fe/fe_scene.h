@@ -10,6 +10,7 @@
 
 #define MAXSTAGES 16
 #define FE_MAX_OUT_TIMES 64
+#define FE_MAX_FIXED 16 /* boundary.fixed and boundary.mirror entries together */
 
 enum { FN_RAMP, FN_EXP, FN_TABLE };
 
@@ -44,7 +45,7 @@ typedef struct {
   int          phi_seed;
   double       stress0[6], pressure0[FE_MAX_GROUPS];
   int          nfixed;
-  FeFixed      fixed[8];
+  FeFixed      fixed[FE_MAX_FIXED];   /* boundary.fixed, then boundary.mirror (mirror set) */
   int          npressure;
   char         pressure_group[FE_MAX_GROUPS][64];
   int          nstage;

@@ -1,0 +1,331 @@
+"""Mirror planes of any orientation (boundary.mirror, nodal frames) and the 60-degree sector model of the Berkovich
+indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
+- a prism with an inclined mirror plane under a uniform stress: displacements, stresses and the supports'
+  reactions against the closed form (to 1e-10), the nodes of the inclined plane sliding along it;
+- a rotated copy of a problem with an axis-aligned mirror plane (the mirror and the loads rotated with the mesh)
+  against the unrotated one (to 1e-10): nodal frames against plain fixed components;
+- the sector against the half model made of three mirror images of the sector's mesh (the same mesh density,
+  the same elements): the Berkovich's P-h agrees (the Done-when of issue 12 asks <= 0.5 %; exact symmetry);
+- bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
+  of the material (BP)."""
+import math
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
+GEO = ROOT / "meshes" / "indent_sector.geo"
+E, NU = 1000.0, 0.3
+ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
+S3 = math.sqrt(3) / 2
+NA = (0.5, -S3, 0.0)   # outward normal of the sector's plane at azimuth 30 degrees (mirror_a)
+NS = (0.5, S3, 0.0)    # outward normal of the hexagon's face of the sector (side1)
+
+
+def run(text, out, exe="driver_elastic", check=True, np_=1):
+    scene = out.parent / (out.name + ".yaml")
+    scene.write_text(text)
+    cmd = [str(BIN / exe), "-input", str(scene), "-output_dir", str(out)]
+    if np_ > 1:
+        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(np_), *cmd]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    if not check:
+        return proc
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+
+
+def fields(out, k=-1):
+    with h5py.File(out / "fields.h5", "r") as f:
+        keys = sorted(f["fields/displacement"].keys())
+        return (f["mesh/coordinates"][:], f["fields/displacement"][keys[k]][:], f["fields/stress"][keys[k]][:],
+                f["mesh/cells"][:])
+
+
+def gmsh(out, **par):
+    """The sector geometry meshed as a gmsh 2.2 file (read by read_msh below)."""
+    args = ["gmsh", "-3", str(GEO), "-format", "msh22", "-o", str(out)]
+    for k, v in par.items():
+        args += ["-setnumber", k, str(v)]
+    subprocess.run(args, check=True, capture_output=True)
+    return out
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_inclined_mirror_uniform_stress(tmp_path, order):
+    """The sector prism (L = 2): mirror planes at azimuth 30 degrees (inclined) and x = 0, the bottom on rollers
+    (z fixed), a pressure p on the hexagon's face and a traction s e_z on the top. The closed form is the uniform
+    stress sigma = diag(-p, -p, s) (both mirrors carry no shear: their normals are principal), the strain
+    eps_h = (-p (1 - nu) - nu s) / E, eps_zz = (s + 2 nu p) / E, u = (eps_h x, eps_h y, eps_zz (z + L)); P1
+    tetrahedra represent it exactly (patch test). The reaction is the internal force on the constrained
+    components (docs/driver.md): sum over the supported faces of sigma n A (outward n), plus the pressure's nodal
+    forces (-p n A/3 per triangle corner) on the nodes that the hexagon's face shares with the mirror planes,
+    projected on their normals (those components are carried by the supports directly); P1 only. P2 (the frames
+    on edge nodes too): displacements and stresses."""
+    p, s, L = 3.0, 5.0, 2.0
+    msh = gmsh(tmp_path / "m.msh", L=L, span=60, h_tip=0.3, h_far=0.6, r_fine=0.3, r_contact=0.5)
+    text = f"""scene: fe
+mesh: {{file: {msh}, order: {order}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [z]}}]
+  mirror: [{{group: mirror_a, normal: [{NA[0]}, {NA[1]}, 0]}}, {{group: mirror_b, normal: [-1, 0, 0]}}]
+  pressure: [side1]
+  traction: [top]
+stages:
+  - {{name: load, duration: 1, pressure: {{side1: {p}}}, traction: {{top: [0, 0, {s}]}}, steps: {{count: 1}}}}
+"""
+    h = run(text, tmp_path / "block")
+    x, u, sig, _ = fields(tmp_path / "block")
+    eh, ez = (-p * (1 - NU) - NU * s) / E, (s + 2 * NU * p) / E
+    exact = np.column_stack([eh * x[:, 0], eh * x[:, 1], ez * (x[:, 2] + L)])
+    scale = np.abs(exact).max()
+    print(f"inclined mirror, uniform stress: |u - exact| / max|u| = {np.abs(u - exact).max() / scale:.2e}")
+    assert np.abs(u - exact).max() < 1e-10 * scale
+    assert np.abs(sig - [-p, -p, s, 0, 0, 0]).max() < 1e-10 * max(p, s)
+    on = np.abs(x @ np.array(NA)) < 1e-9                                   # the nodes of the inclined plane
+    assert np.abs(u[on] @ np.array(NA)).max() < 1e-12 * scale            # ... do not leave it
+    assert np.linalg.norm(u[on][:, :2], axis=1).max() > 0.05 * scale     # ... but slide along it
+    if order == 2:
+        return
+    R = L / 2 / S3                                                        # the hexagon's corner radius
+    Aa = Ab = R * L                                                       # the mirror faces, the bottom
+    Abot = 0.5 * R * R * math.sin(math.pi / 3)
+    expected = -p * Aa * np.array(NA) - p * Ab * np.array([-1.0, 0, 0]) + np.array([0, 0, -s * Abot])
+    names, row, xm, elems = read_msh(msh)
+    side = [t for t, (d, n) in names.items() if n == "side1"][0]
+    for t, g, nodes in elems:
+        if t != 2 or g != side:
+            continue
+        q = xm[[row[i] for i in nodes]]
+        f = -p * np.array(NS) * np.linalg.norm(np.cross(q[1] - q[0], q[2] - q[0])) / 2 / 3
+        for xi in q:
+            for n in (np.array(NA), np.array([1.0, 0, 0])):
+                if abs(xi @ n) < 1e-9:
+                    expected += n * (n @ f)
+    got = np.array([h["reaction_x"][-1], h["reaction_y"][-1], h["reaction_z"][-1]])
+    print(f"reactions {got}, expected {expected}")
+    assert np.abs(got - expected).max() < 1e-10 * p * Aa
+
+
+def rotation(axis, deg):
+    """Rodrigues: the rotation by deg about axis."""
+    k = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    a = math.radians(deg)
+    return np.eye(3) + math.sin(a) * K + (1 - math.cos(a)) * K @ K
+
+
+def voigt_matrix(v):
+    return np.array([[v[0], v[3], v[4]], [v[3], v[1], v[5]], [v[4], v[5], v[2]]])
+
+
+def test_rotated_copy_equals_axis_aligned(tmp_path):
+    """The sector prism, bottom fixed, mirror plane x = 0 (normal e_x: plain fixed x components), a pressure on
+    the plane at 30 degrees and on the top, a traction t on the hexagon's face: a non-uniform elastic state. The
+    same mesh rotated by Q (40 degrees about (1, 2, 3)), with the mirror's normal Q e_x (every node of it in a frame
+    of its own) and the traction Q t: the displacements are Q u, the stresses Q sigma Q^T and the reactions Q R,
+    to 1e-10."""
+    msh = gmsh(tmp_path / "m.msh", L=2, span=60, h_tip=0.15, h_far=0.5, r_fine=0.3, r_contact=0.5)
+    Q = rotation((1, 2, 3), 40)
+    names, row, x, elems = read_msh(msh)
+    lines = msh.read_text().split("\n")
+    i0 = lines.index("$Nodes") + 2
+    for k in range(len(x)):
+        w = lines[i0 + k].split()
+        lines[i0 + k] = w[0] + " " + " ".join(f"{v:.17g}" for v in Q @ np.array([float(c) for c in w[1:4]]))
+    rot = tmp_path / "r.msh"
+    rot.write_text("\n".join(lines))
+    t = np.array([1.0, -2.0, 0.5])
+
+    def scene(mesh, n, tr):
+        return f"""scene: fe
+mesh: {{file: {mesh}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}]
+  mirror: [{{group: mirror_b, normal: [{float(n[0])!r}, {float(n[1])!r}, {float(n[2])!r}]}}]
+  pressure: [mirror_a, top]
+  traction: [side1]
+stages:
+  - {{name: load, duration: 1, pressure: {{mirror_a: 2.0, top: 3.0}}, traction: {{side1: [{float(tr[0])!r}, {float(tr[1])!r}, {float(tr[2])!r}]}},
+     steps: {{count: 1}}}}
+"""
+    h0 = run(scene(msh, [1.0, 0.0, 0.0], t), tmp_path / "a")
+    h1 = run(scene(rot, Q @ [1.0, 0.0, 0.0], Q @ t), tmp_path / "b")
+    _, u0, s0, _ = fields(tmp_path / "a")
+    _, u1, s1, _ = fields(tmp_path / "b")
+    du = np.abs(u1 - u0 @ Q.T).max() / np.abs(u0).max()
+    ds = max(np.abs(voigt_matrix(b) - Q @ voigt_matrix(a) @ Q.T).max() for a, b in zip(s0, s1)) / np.abs(s0).max()
+    R0 = np.array([h0[f"reaction_{c}"][-1] for c in "xyz"])
+    R1 = np.array([h1[f"reaction_{c}"][-1] for c in "xyz"])
+    dr = np.abs(R1 - Q @ R0).max() / np.abs(R0).max()
+    print(f"rotated copy: displacements {du:.2e}, stresses {ds:.2e}, reactions {dr:.2e} (relative)")
+    assert np.abs(u0[:, 0][np.abs(x[:, 0]) < 1e-12]).max() == 0 and np.abs(u0).max() > 1e-4
+    assert du < 1e-10 and ds < 1e-10 and dr < 1e-10
+
+
+def read_msh(path):
+    """gmsh 2.2 (ASCII): physical names, nodes (id -> row), elements (type, physical tag, node ids)."""
+    lines = Path(path).read_text().split("\n")
+    i, names, ids, xyz, elems = 0, {}, [], [], []
+    while i < len(lines):
+        if lines[i] == "$PhysicalNames":
+            for j in range(int(lines[i + 1])):
+                d, t, n = lines[i + 2 + j].split(maxsplit=2)
+                names[int(t)] = (int(d), n.strip('"'))
+        elif lines[i] == "$Nodes":
+            for j in range(int(lines[i + 1])):
+                w = lines[i + 2 + j].split()
+                ids.append(int(w[0]))
+                xyz.append([float(v) for v in w[1:4]])
+        elif lines[i] == "$Elements":
+            for j in range(int(lines[i + 1])):
+                w = [int(v) for v in lines[i + 2 + j].split()]
+                elems.append((w[1], w[3], w[3 + w[2]:]))
+        i += 1
+    return names, dict(zip(ids, range(len(ids)))), np.array(xyz), elems
+
+
+def write_msh(path, groups, x, elems):
+    """gmsh 2.2: groups {name: (dim, tag)}, x (nodes 1..n), elems [(type, tag, nodes)]."""
+    out = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", str(len(groups))]
+    out += [f'{d} {t} "{n}"' for n, (d, t) in groups.items()] + ["$EndPhysicalNames", "$Nodes", str(len(x))]
+    out += [f"{k + 1} {a:.17g} {b:.17g} {c:.17g}" for k, (a, b, c) in enumerate(x)] + ["$EndNodes", "$Elements", str(len(elems))]
+    out += [f"{k + 1} {t} 2 {g} {g} " + " ".join(map(str, n)) for k, (t, g, n) in enumerate(elems)] + ["$EndElements", ""]
+    Path(path).write_text("\n".join(out))
+
+
+def mirrored_half(sector_msh, out):
+    """The half x >= 0 of the hexagonal prism as three mirror images of the sector's mesh [30, 90] degrees: its
+    reflection about the plane at 30 degrees ([-30, 30]), and that one's about the plane at -30 degrees ([-90, -30]).
+    Nodes on a reflecting plane are shared; reflected elements are reordered to keep their orientation. The faces
+    on the two inner planes are dropped; the vertical outer faces are grouped by plane: x0 and side_m60, side_0,
+    side_60 (by the azimuth of their outward normal)."""
+    names, row, x0, elems0 = read_msh(sector_msh)
+    byname = {n: t for t, (d, n) in names.items()}
+    x = [tuple(v) for v in x0]
+    copies = [[(t, names[g][1], [row[i] for i in n]) for t, g, n in elems0]]
+    for phi in (30.0, -30.0):
+        m = np.array([math.sin(math.radians(phi)), -math.cos(math.radians(phi)), 0.0])  # the plane's normal
+        image = {}
+        new = []
+        for t, g, nodes in copies[-1]:
+            for i in nodes:
+                if i not in image:
+                    xi = np.array(x[i])
+                    if abs(xi @ m) < 1e-12:
+                        image[i] = i
+                    else:
+                        x.append(tuple(xi - 2 * (xi @ m) * m))
+                        image[i] = len(x) - 1
+            nn = [image[i] for i in nodes]
+            if len(nn) >= 3:
+                nn[0], nn[1] = nn[1], nn[0]
+            new.append((t, g, nn))
+        copies.append(new)
+    x = np.array(x)
+    groups = {"block": (3, 1), "bottom": (2, 2), "top": (2, 3), "contact": (2, 4), "x0": (2, 5), "side_m60": (2, 6),
+              "side_0": (2, 7), "side_60": (2, 8), "tip": (0, 9)}
+    elems = []
+    for c, copy in enumerate(copies):
+        for t, g, nodes in copy:
+            if t == 15 and c > 0:
+                continue
+            if t == 2 and g in ("mirror_a", "mirror_b", "side1"):
+                p = x[nodes]
+                n = np.cross(p[1] - p[0], p[2] - p[0])
+                n /= np.linalg.norm(n)
+                d = p.mean(axis=0) @ n
+                if d < 0:
+                    n, d = -n, -d
+                if d < 1e-9:
+                    if abs(p[:, 0]).max() > 1e-12:
+                        continue   # an inner plane
+                    g = "x0"
+                else:
+                    g = {-60: "side_m60", 0: "side_0", 60: "side_60"}[round(math.degrees(math.atan2(n[1], n[0])))]
+            elems.append((t, groups[g][1], [i + 1 for i in nodes]))
+    assert "side1" in byname
+    write_msh(out, groups, x, elems)
+    return out
+
+
+BERKOVICH_PUSH = """indenter: {shape: berkovich, half_angle: 65.27, contact: contact}
+stages:
+  - {name: push, duration: 1, indenter: {depth: 0.1}, steps: {count: 2}}
+"""
+
+
+def test_sector_equals_mirrored_half_model(tmp_path):
+    """Elastic Berkovich to h = 0.1 (2 steps, depth control) on the 60-degree sector and on the half model built
+    from three mirror images of the sector's mesh (h_tip 0.04 within 0.4 of the tip, as test_contact's half-cube
+    check). The sector is exact where the model is symmetric about its planes, so the half model's load is 3 times
+    the sector's at every step (to the Newton tolerance); the sector on 2 ranks gives its load on 1. Two things make the half model symmetric too: the
+    Berkovich's normal on its edges is the mean of the two faces' (indenter_shape.c; nodes on the planes at +-30
+    degrees lie under its edges), and the tip node, on the axis, is held there (x and y fixed, as the sector's
+    two mirror planes hold it): free, it slides off the apex along one face (by 0.014 at h = 0.1 here), a
+    branch that breaks the symmetry and lowers P by 1.3 %."""
+    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
+    half = mirrored_half(sector, tmp_path / "half.msh")
+    s = run(f"""scene: fe
+mesh: {{file: {sector}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}]
+  mirror: [{{group: mirror_a, normal: [{NA[0]}, {NA[1]}, 0]}}, {{group: mirror_b, normal: [1, 0, 0]}},
+           {{group: side1, normal: [{NS[0]}, {NS[1]}, 0]}}]
+{BERKOVICH_PUSH}""", tmp_path / "s")
+    h = run(f"""scene: fe
+mesh: {{file: {half}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}, {{group: tip, components: [x, y]}}]
+  mirror: [{{group: x0, normal: [1, 0, 0]}}, {{group: side_m60, normal: [0.5, {-S3}, 0]}}, {{group: side_0, normal: [1, 0, 0]}},
+           {{group: side_60, normal: [0.5, {S3}, 0]}}]
+{BERKOVICH_PUSH}""", tmp_path / "h")
+    s2 = run((tmp_path / "s.yaml").read_text(), tmp_path / "s2", np_=2)   # frames on ghost nodes too
+    print(f"sector on 2 ranks against 1: {np.abs(s2['load'][1:] / s['load'][1:] - 1).max():.1e}")
+    assert np.abs(s2["load"][1:] / s["load"][1:] - 1).max() < 1e-10
+    rel = np.abs(3 * s["load"][1:] / h["load"][1:] - 1)
+    print(f"sector x 3 against the mirrored half model: P = {3 * s['load'][-1]:.10g} vs {h['load'][-1]:.10g} at h = 0.1, "
+          f"relative differences {rel}")
+    assert rel.max() < 1e-8
+
+
+@pytest.mark.parametrize("mirror,word", [
+    ("[{group: mirror_a, normal: [0, 0, 0]}]", "not all zero"),
+    ("[{group: mirror_a, normal: [1, 0]}]", "boundary.mirror[0].normal"),
+    ("[{group: mirror_a, normal: [1, 0, 0]}]", "is not a plane normal to"),
+    ("[{group: mirror_a, normal: [0.5, -0.8660254037844386, 0]}, {group: mirror_b, normal: [1, 0, 0]}, {group: nowhere, normal: [1, 0, 0]}]",
+     "'nowhere' is not a physical group"),
+])
+def test_bad_mirror_input(tmp_path, mirror, word):
+    text = f"""scene: fe
+mesh: {{geometry: {GEO}, parameters: {{L: 2, span: 60, h_tip: 0.5, h_far: 0.8, r_fine: 0.3, r_contact: 0.5}}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}]
+  mirror: {mirror}
+stages:
+  - {{name: load, duration: 1, steps: {{count: 1}}}}
+"""
+    proc = run(text, tmp_path / "bad", check=False)
+    print(proc.stderr.strip())
+    assert proc.returncode == 2 and word in proc.stderr and "bad.yaml" in proc.stderr
+
+
+def test_mirror_not_of_the_material(tmp_path):
+    """BP (bedding normal e_x, phi = 0.5) on the sector: the plane at 30 degrees is no mirror plane of the
+    transversely isotropic hard frame (e_x . normal = 0.5): refused when the scene is read, naming the key."""
+    text = (ROOT / "input" / "microindent_BN_sector.yaml").read_text().replace("bedding_angle: 0", "bedding_angle: 90")
+    text = text.replace("../meshes/", f"{ROOT}/meshes/")
+    proc = run(text, tmp_path / "bp", exe="driver", check=False)
+    print(proc.stderr.strip())
+    assert proc.returncode == 2 and "boundary.mirror[0].normal" in proc.stderr and "not a mirror plane of the material" in proc.stderr
