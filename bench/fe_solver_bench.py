@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""FE linear-solver benchmark (issue 13, items 2 and 3): the triaxial cylinder of input/triaxial.yaml on a short
+history (one 100 s step at the confinement, then creep under the 40 MPa deviator, adaptive steps, PROPS tol
+1e-6) at several mesh sizes, one rank, with each candidate linear solver; time per Newton iteration,
+preconditioner set-ups (factorisations), Krylov iterations, memory, and the largest difference of the axial
+strain history from plain LU (PETSc's own, a new factorisation at every Newton iteration) in the same run.
+Medians of repeats, interleaved. Writes the section "FE solver: defaults by measurement" of
+docs/performance.md.
+
+Usage: bench/fe_solver_bench.py [--sizes 5.3,2.5,1.45] [--repeats 2] [--max-steps 0,0,20] [--ranks 1]
+"""
+import argparse
+import os
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+TITLE = "## FE solver: defaults by measurement"
+PLAIN = "-fe_refactor_its 0 -ksp_type preonly"
+CANDIDATES = {  # name: options (the driver's defaults fill in the rest)
+    "petsc LU (old 1-rank default; its ordering is nested dissection)": PLAIN + " -pc_factor_mat_solver_type petsc",
+    "UMFPACK": PLAIN + " -pc_factor_mat_solver_type umfpack",
+    "MUMPS AMD": PLAIN + " -mat_mumps_icntl_7 0",
+    "MUMPS PORD": PLAIN + " -mat_mumps_icntl_7 4",
+    "MUMPS METIS": PLAIN + " -mat_mumps_icntl_7 5",
+    "MUMPS METIS, BLR 1e-8": PLAIN + " -mat_mumps_icntl_35 1 -mat_mumps_cntl_7 1e-8",
+    "lagged MUMPS METIS (new default)": "",
+    "lagged MUMPS METIS, BLR 1e-8": "-mat_mumps_icntl_35 1 -mat_mumps_cntl_7 1e-8",
+    "GAMG (lagged set-up)": "-pc_type gamg",
+}
+LARGE = ["MUMPS METIS", "lagged MUMPS METIS (new default)", "lagged MUMPS METIS, BLR 1e-8",
+         "GAMG (lagged set-up)"]
+HISTORY = """stages:
+  - {name: hold, duration: 100, pressure: {top: 35, side: 35}, steps: {count: 1}}
+  - name: creep
+    duration: 3600
+    load: instant
+    pressure: {top: 75, side: 35}
+    steps: {adaptive: true, first: 1.0e-2, max: 2000}
+    creep: true
+"""
+
+
+def scene_text(size, history=HISTORY):
+    base = (ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
+    base = base.replace("size: 6.0", f"size: {size}")
+    return base[:base.index("stages:")] + history
+
+
+def run(scene, out, ranks, opts, max_steps=0):
+    cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), str(DRIVER), "-input", str(scene),
+           "-output_dir", str(out), "-progress_every", "1000000"] + opts.split()
+    if max_steps:
+        cmd += ["-max_steps", str(max_steps)]
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode:
+        return dict(failed=(proc.stdout + proc.stderr)[-300:])
+    m = re.search(r"(\d+) cells, .*?(\d+) unknowns", proc.stdout)
+    s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks.*assembly ([0-9.]+) s, wall ([0-9.]+) s", proc.stdout)
+    k = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups, max RSS ([0-9.]+) MB per rank, "
+                  r"([0-9.]+) MB in all", proc.stdout)
+    h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    return dict(cells=int(m.group(1)), unknowns=int(m.group(2)), steps=int(s.group(1)), newton=int(s.group(2)),
+                cutbacks=int(s.group(3)), assembly=float(s.group(4)), solve_wall=float(s.group(5)), wall=wall,
+                cpu=(r1.ru_utime + r1.ru_stime) - (r0.ru_utime + r0.ru_stime), solver=k.group(1), krylov=int(k.group(2)),
+                setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), eps33=h["eps_33"], time=h["time"])
+
+
+def median_run(runs):
+    r = dict(runs[0])
+    for key in ("wall", "cpu", "solve_wall", "assembly"):
+        r[key] = float(np.median([x[key] for x in runs]))
+    return r
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="5.3,2.5,1.45", help="element sizes [mm] (about 1k, 10k, 50k tets)")
+    ap.add_argument("--max-steps", default="0,0,16", help="per size: stop after N steps (0: the whole history)")
+    ap.add_argument("--repeats", type=int, default=2)
+    ap.add_argument("--ranks", type=int, default=1)
+    ap.add_argument("--large-from", type=int, default=2, help="from this size index on, only the shortlist")
+    ap.add_argument("--no-doc", action="store_true")
+    a = ap.parse_args(argv)
+    sizes = [float(x) for x in a.sizes.split(",")]
+    caps = [int(x) for x in a.max_steps.split(",")]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, size in enumerate(sizes):
+            scene = Path(tmp) / f"s{size}.yaml"
+            scene.write_text(scene_text(size))
+            names = list(CANDIDATES) if i < a.large_from else [n for n in CANDIDATES if n in LARGE]
+            res = {n: [] for n in names}
+            for rep in range(a.repeats):  # interleaved: every candidate once per round
+                for n in names:
+                    r = run(scene, Path(tmp) / f"o{i}_{rep}_{abs(hash(n))}", a.ranks, CANDIDATES[n], caps[i])
+                    res[n].append(r)
+                    if "failed" in r:
+                        print(f"size {size} {n}: FAILED {r['failed']}", flush=True)
+            ref = None
+            for n in names:
+                good = [r for r in res[n] if "failed" not in r]
+                if not good:
+                    rows.append((size, n, None, None))
+                    continue
+                r = median_run(good)
+                if ref is None:
+                    ref = r  # the first candidate: plain LU (or, on the shortlist, its first entry)
+                    refname = n
+                err = np.nan
+                if len(r["eps33"]) == len(ref["eps33"]) and np.allclose(r["time"], ref["time"], rtol=1e-12):
+                    d = ref["eps33"] - ref["eps33"][0]
+                    err = float(np.max(np.abs((r["eps33"] - r["eps33"][0]) - d)) / np.max(np.abs(d)))
+                rows.append((size, n, r, (err, refname)))
+                print(f"size {size}: {r['cells']} cells {r['unknowns']} unknowns, {n}: {r['steps']} steps {r['newton']} Newton "
+                      f"{r['krylov']} Krylov {r['setups']} set-ups, solve wall {r['solve_wall']:.2f} s (process wall {r['wall']:.2f} s, "
+                      f"cpu {r['cpu']:.2f} s), {1e3 * r['solve_wall'] / max(r['newton'], 1):.1f} ms/Newton, RSS {r['rss']:.0f} MB, "
+                      f"diff {err:.1e}", flush=True)
+    lines = ["| cells | unknowns | solver | steps | Newton its | Krylov its | set-ups | solve wall [s] | CPU [s] | ms per Newton it. | "
+             "max RSS [MB] | axial strain vs reference |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for size, n, r, e in rows:
+        if r is None:
+            lines.append(f"| | | {n} | failed | | | | | | | | |")
+            continue
+        lines.append(f"| {r['cells']} | {r['unknowns']} | {n} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['setups']} | "
+                     f"{r['solve_wall']:.2f} | {r['cpu']:.2f} | {1e3 * r['solve_wall'] / max(r['newton'], 1):.1f} | {r['rss']:.0f} | "
+                     f"{e[0]:.1e} |")
+    print("\n".join(lines))
+    if not a.no_doc:
+        section = (f"{TITLE}\n\nCommand: `bench/fe_solver_bench.py --sizes {a.sizes} --max-steps {a.max_steps} --repeats {a.repeats}`"
+                   f" ({a.ranks} rank). The triaxial cylinder on a short history (one 100 s step at the confinement, then "
+                   "creep under the deviator, adaptive steps; on the largest mesh only the first steps, `--max-steps`), each "
+                   "candidate run in turn, medians of the repeats. Solve wall: the stage runner's clock (meshing and set-up "
+                   "excluded); CPU: the whole process. The last column: the largest difference of the axial strain history "
+                   "from the first row of the mesh (plain LU; on the largest mesh the first of the shortlist), relative to "
+                   "its creep strain. Measured on a shared 2-core machine with other jobs running: rough numbers.\n\n"
+                   + "\n".join(lines) + "\n")
+        replace_section(TITLE, section)
+        print("written: docs/performance.md")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
