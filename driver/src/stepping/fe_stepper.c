@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include "../fe/fe_state.h"
 
@@ -23,6 +24,7 @@ typedef struct {
   PetscInt  refactor_its;
   PetscBool refactor;
   long      lin_its, setups;
+  clock_t   cpu0; /* the process's CPU clock at the start of the run */
 } FeSolver;
 
 static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
@@ -241,6 +243,9 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   }
   PetscCall(SNESSetFunction(f->snes, f->R, fe_residual, p));
   PetscCall(SNESSetJacobian(f->snes, f->J, f->J, fe_jacobian, p));
+  PetscBool coo = PETSC_TRUE;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_coo", &coo, NULL));
+  if (coo) PetscCall(fe_jacobian_coo_setup(p, f->J)); /* measured: docs/performance.md, "FE element loops" */
   PetscCall(SNESGetKSP(f->snes, &ksp));
   PetscCall(linear_solver_setup(f, ksp));
   PetscReal pmax = 1, fref = 0; /* force scale for the absolute tolerance: the largest load on all loaded faces */
@@ -270,7 +275,7 @@ static void solver_summary(FeSolver *f, MPI_Comm comm) {
   PCType      pt;
   MatSolverType st = NULL;
   struct rusage ru;
-  double      mb[2];
+  double      mb[2], cpu = (double)(clock() - f->cpu0) / CLOCKS_PER_SEC;
   SNESGetKSP(f->snes, &ksp);
   KSPGetType(ksp, &kt);
   KSPGetPC(ksp, &pc);
@@ -280,13 +285,15 @@ static void solver_summary(FeSolver *f, MPI_Comm comm) {
   mb[0] = mb[1] = ru.ru_maxrss / 1024.0; /* kB on Linux */
   MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm);
   MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm);
-  PetscPrintf(comm, "fe solver: %s/%s%s%s, %ld Krylov iterations, %ld preconditioner set-ups, max RSS %.1f MB per rank, %.1f MB in all\n", kt, pt,
-              st ? "/" : "", st ? st : "", f->lin_its, f->setups, mb[0], mb[1]);
+  MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_MAX, comm);
+  PetscPrintf(comm, "fe solver: %s/%s%s%s, %ld Krylov iterations, %ld preconditioner set-ups, max RSS %.1f MB per rank, %.1f MB in all, CPU %.2f s (the slowest rank)\n",
+              kt, pt, st ? "/" : "", st ? st : "", f->lin_its, f->setups, mb[0], mb[1], cpu);
 }
 
 int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
   FeSolver f;
   PetscMemzero(&f, sizeof f);
+  f.cpu0 = clock();
   PetscErrorCode ierr = fe_common_init(&f.c, sc, p, opt);
   if (ierr || (ierr = solver_setup(&f))) {
     err[0] = '\0'; /* main prints PETSc's message */
@@ -308,6 +315,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
               sc->name, sum.steps, sum.its, sum.cutbacks, sum.rejected_error, sum.umat_calls, p->assembly_seconds, sum.wall, opt->outdir);
   VecDestroy(&f.U), VecDestroy(&f.R), VecDestroy(&f.U0), VecDestroy(&f.dU);
   MatDestroy(&f.J);
+  p->coo_mat = NULL;
   SNESDestroy(&f.snes);
   return rc;
 }
