@@ -37,31 +37,31 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
 
 /* One SNES solve of the step from the (extrapolated) committed state. With a lagged preconditioner it is
  * rebuilt once at the first Jacobian of this solve (lag -2) or reused (lag -1); a failed solve on a reused
- * one is retried once on a fresh one, so that lagging never costs a cutback. */
+ * one is retried once rebuilding it at every Newton iteration (lag 1: plain Newton with a direct solve), so
+ * that lagging never costs a cutback that plain LU would not. */
 static PetscErrorCode lagged_solve(FeSolver *f, const StepRequest *rq, SNESConvergedReason *reason, PetscInt *its) {
   PetscInt lag, lits;
   PetscFunctionBeginUser;
   for (int attempt = 0; attempt < 2; attempt++) {
     PetscCall(VecCopy(f->U0, f->U));
     if (f->predictor && f->have_rate && rq->h > 0 && rq->h_prev > 0) PetscCall(VecAXPY(f->U, rq->h / rq->h_prev, f->dU));
-    if (f->refactor_its > 0) PetscCall(SNESSetLagPreconditioner(f->snes, f->refactor ? -2 : -1));
+    if (f->refactor_its > 0) PetscCall(SNESSetLagPreconditioner(f->snes, attempt ? 1 : f->refactor ? -2 : -1));
     PetscCall(SNESSolve(f->snes, NULL, f->U));
     PetscCall(SNESGetConvergedReason(f->snes, reason));
     PetscCall(SNESGetIterationNumber(f->snes, its));
     PetscCall(SNESGetLinearSolveIterations(f->snes, &lits));
     f->lin_its += lits;
-    if (f->refactor_its <= 0) {
-      f->setups += *its;
+    if (f->refactor_its <= 0 || attempt) { /* a set-up at every Newton iteration */
+      f->setups += *its + (*reason <= 0);
+      f->refactor = PETSC_TRUE;
       break;
     }
     PetscCall(SNESGetLagPreconditioner(f->snes, &lag));
     if (lag == -1 && f->refactor) f->setups++, f->refactor = PETSC_FALSE; /* the rebuild happened */
-    if (*reason > 0 || f->refactor || attempt) { /* converged, or failed on a fresh factorisation: the runner's */
+    if (*reason > 0) {
       if (*its > 0 && lits > f->refactor_its * *its) f->refactor = PETSC_TRUE;
-      if (*reason <= 0) f->refactor = PETSC_TRUE;
       break;
     }
-    f->refactor = PETSC_TRUE;
   }
   PetscFunctionReturn(0);
 }
