@@ -80,7 +80,35 @@ def run(scene, out, ranks, opts, max_steps=0):
     return dict(cells=int(m.group(1)), unknowns=int(m.group(2)), steps=int(s.group(1)), newton=int(s.group(2)),
                 cutbacks=int(s.group(3)), assembly=float(s.group(4)), solve_wall=float(s.group(5)), wall=wall,
                 cpu=(r1.ru_utime + r1.ru_stime) - (r0.ru_utime + r0.ru_stime), solver=k.group(1), krylov=int(k.group(2)),
-                setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), solve_cpu=float(k.group(6)), eps33=h["eps_33"], time=h["time"])
+                setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), solve_cpu=float(k.group(6)), eps33=h["eps_33"], time=h["time"],
+                stage=h["stage"])
+
+
+OLD = "-fe_refactor_its 0 -ksp_type preonly -fe_coo false -mat_mumps_icntl_7 7"  # main before issue 13 on 2 ranks
+MAIN_TITLE = "## FE solver: the triaxial main job"
+
+
+def main_job(repeats, tmp):
+    """input/triaxial.yaml as tools/run.sh runs it (2 ranks), the old set-up against the new, interleaved."""
+    scene = Path(tmp) / "main.yaml"
+    scene.write_text((ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/"))
+    res = {"old (MUMPS each Newton iteration, MatSetValues)": [], "new default": []}
+    for k in range(repeats):
+        for name, opts in zip(res, (OLD, "")):
+            res[name].append(run(scene, Path(tmp) / f"main_{k}_{len(res[name])}_{name[:3]}", 2, opts))
+    lines = ["| set-up | steps | Newton its | Krylov its | set-ups | wall [s] | CPU [s] (slowest rank) | creep 1 h | creep 10 h | "
+             "rel. difference 10 h |", "|---|---|---|---|---|---|---|---|---|---|"]
+    ref = None
+    for name, runs in res.items():
+        r = median_run(runs)
+        rows = np.where(r["stage"] == 1)[0]
+        t = r["time"][rows] - r["time"][rows[0]]
+        eps = -(r["eps33"][rows] - r["eps33"][rows[0]])
+        creep = [float(np.interp(x, t, eps)) for x in (3600.0, 36000.0)]
+        ref = ref or creep
+        lines.append(f"| {name} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['setups']} | {r['solve_wall']:.2f} | "
+                     f"{r['solve_cpu']:.2f} | {creep[0]:.10e} | {creep[1]:.10e} | {abs(creep[1] - ref[1]) / ref[1]:.1e} |")
+    return lines
 
 
 def median_run(runs):
@@ -98,7 +126,19 @@ def main(argv=None):
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--large-from", type=int, default=2, help="from this size index on, only the shortlist")
     ap.add_argument("--no-doc", action="store_true")
+    ap.add_argument("--main-job", action="store_true", help="only the main job, old set-up against new (2 ranks)")
     a = ap.parse_args(argv)
+    if a.main_job:
+        with tempfile.TemporaryDirectory() as tmp:
+            lines = main_job(a.repeats, tmp)
+        print("\n".join(lines))
+        if not a.no_doc:
+            replace_section(MAIN_TITLE, f"{MAIN_TITLE}\n\nCommand: `bench/fe_solver_bench.py --main-job --repeats {a.repeats}`. "
+                            "`input/triaxial.yaml` on 2 ranks as `tools/run.sh` runs it (713 tets, tol 1e-6, hold to steady "
+                            "state then 10 h of creep), the set-up before issue 13 (`" + OLD + "`) against the new "
+                            "default, interleaved, medians. Wall and CPU of the stepping. Shared, loaded 2-core machine.\n\n"
+                            + "\n".join(lines) + "\n")
+        return 0
     sizes = [float(x) for x in a.sizes.split(",")]
     caps = [int(x) for x in a.max_steps.split(",")]
     rows = []
