@@ -20,8 +20,10 @@ typedef struct {
   /* the factorisation (or GAMG hierarchy) kept across Newton iterations and steps while the Krylov solver
      around it converges fast: rebuilt when a linear solve took more than refactor_its iterations on average,
      at a stage's start, and before retrying a step whose lagged solve failed (-fe_refactor_its 0: every
-     iteration, as a plain direct solve) */
+     iteration, as a plain direct solve); for an iterative preconditioner (GAMG) whose fresh set-up itself
+     needs many iterations, when they exceed twice those of the first solve on a fresh one (fresh_its) */
   PetscInt  refactor_its;
+  PetscReal fresh_its;
   PetscBool refactor;
   long      lin_its, setups;
   clock_t   cpu0; /* the process's CPU clock at the start of the run */
@@ -57,9 +59,12 @@ static PetscErrorCode lagged_solve(FeSolver *f, const StepRequest *rq, SNESConve
       break;
     }
     PetscCall(SNESGetLagPreconditioner(f->snes, &lag));
-    if (lag == -1 && f->refactor) f->setups++, f->refactor = PETSC_FALSE; /* the rebuild happened */
+    if (lag == -1 && f->refactor) { /* the rebuild happened */
+      f->setups++, f->refactor = PETSC_FALSE;
+      f->fresh_its = (PetscReal)lits / PetscMax(*its, 1);
+    }
     if (*reason > 0) {
-      if (*its > 0 && lits > f->refactor_its * *its) f->refactor = PETSC_TRUE;
+      if (*its > 0 && lits > PetscMax(f->refactor_its, 2 * f->fresh_its) * *its) f->refactor = PETSC_TRUE;
       break;
     }
   }
