@@ -40,7 +40,7 @@ CANDIDATES = {  # name: options (the driver's defaults fill in the rest)
     "lagged MUMPS METIS, BLR 1e-8": "-mat_mumps_icntl_35 1 -mat_mumps_cntl_7 1e-8",
     "GAMG (lagged set-up)": "-pc_type gamg",
 }
-LARGE = ["MUMPS METIS", "the same, MatSetValues instead of COO", "lagged MUMPS METIS (new default)", "lagged MUMPS METIS, BLR 1e-8",
+LARGE = ["MUMPS METIS", "lagged MUMPS METIS (new default)", "lagged MUMPS METIS, BLR 1e-8",
          "GAMG (lagged set-up)"]
 HISTORY = """stages:
   - {name: hold, duration: 100, pressure: {top: 35, side: 35}, steps: {count: 1}}
