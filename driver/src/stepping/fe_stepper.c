@@ -203,7 +203,7 @@ static PetscErrorCode default_option(const char *name, const char *value) {
  * 5e-5 relative on the triaxial cylinder), so LU, not Cholesky, and GMRES, not CG. */
 static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
   PC        pc;
-  PetscInt  n, gamg_above = 300000; /* measured: docs/performance.md, "FE scaling" */
+  PetscInt  n, gamg_above = 100000; /* measured: docs/performance.md, "FE scaling" */
   PetscBool given;
   PetscFunctionBeginUser;
   f->refactor_its = 20;
