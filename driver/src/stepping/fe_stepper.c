@@ -39,7 +39,7 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
 
 /* One SNES solve of the step from the (extrapolated) committed state. With a lagged preconditioner it is
  * rebuilt once at the first Jacobian of this solve (lag -2) or reused (lag -1); a failed solve on a reused
- * one is retried once rebuilding it at every Newton iteration (lag 1: plain Newton with a direct solve), so
+ * one (a linear solve that did not converge) is retried once rebuilding it at every Newton iteration (lag 1: plain Newton with a direct solve), so
  * that lagging never costs a cutback that plain LU would not. */
 static PetscErrorCode lagged_solve(FeSolver *f, const StepRequest *rq, SNESConvergedReason *reason, PetscInt *its) {
   PetscInt lag, lits;
@@ -67,6 +67,9 @@ static PetscErrorCode lagged_solve(FeSolver *f, const StepRequest *rq, SNESConve
       if (*its > 0 && lits > PetscMax(f->refactor_its, 2 * f->fresh_its) * *its) f->refactor = PETSC_TRUE;
       break;
     }
+    f->refactor = PETSC_TRUE;
+    /* the operator is the exact Jacobian whatever the preconditioner: only a failed linear solve is the lag's */
+    if (*reason != SNES_DIVERGED_LINEAR_SOLVE) break;
   }
   PetscFunctionReturn(0);
 }
@@ -267,6 +270,9 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCall(SNESSetTolerances(f->snes, 1e-10 * pmax * PetscMax(fref, 1e-12), 1e-12, 1e-14, 25, 1000));
   PetscCall(SNESSetFromOptions(f->snes));
+  PetscBool preonly;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+  if (preonly) f->refactor_its = 0; /* no Krylov solver to correct a kept factorisation */
   f->predictor = PETSC_TRUE;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_predictor", &f->predictor, NULL));
   PetscFunctionReturn(0);
