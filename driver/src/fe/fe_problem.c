@@ -250,6 +250,7 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(PetscFree2(p->cell_dofs, p->cell_rows));
   PetscCall(fe_constraint_destroy(&p->con));
   PetscCall(PetscFree(p->devp_prev));
+  PetscCall(PetscFree(p->coo_v));
   PetscCall(VecDestroy(&p->ddsdde_u));
   PetscCall(PetscFEDestroy(&p->fe));
   PetscFunctionReturn(0);
@@ -469,11 +470,13 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
     PetscCall(fe_residual(snes, U, F, ctx));
     PetscCall(VecDestroy(&F));
   }
-  PetscCall(MatZeroEntries(P));
+  const PetscBool coo = p->coo_mat == P; /* the values go to the COO array, all set at once at the end */
+  if (!coo) PetscCall(MatZeroEntries(P));
   PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
   const PetscInt n = p->mat.ntens, nb = p->nb;
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    PetscCall(PetscArrayzero(Ke, nb * nb));
+    PetscScalar *K = coo ? &p->coo_v[(c - p->cStart) * nb * nb] : Ke;
+    PetscCall(PetscArrayzero(K, nb * nb));
     for (PetscInt q = 0; q < p->nq; q++) {
       strain_operator(p, c, q, B);
       const PetscReal *D = &p->ddsdde[SV(p, c, q) * 36]; /* column-major n x n */
@@ -488,23 +491,46 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
         for (PetscInt b = 0; b < nb; b++) {
           PetscReal sum = 0;
           for (PetscInt vI = 0; vI < n; vI++) sum += B[vI * nb + a] * DB[vI * nb + b];
-          Ke[a * nb + b] += w * sum;
+          K[a * nb + b] += w * sum;
         }
     }
-    PetscCall(fe_constraint_rotate_cell(&p->con, &p->cell_dofs[(c - p->cStart) * nb], nb, Ke)); /* nodal frames */
+    PetscCall(fe_constraint_rotate_cell(&p->con, &p->cell_dofs[(c - p->cStart) * nb], nb, K)); /* nodal frames */
     /* constrained dofs have negative rows: MatSetValues skips them */
     const PetscInt *rows = &p->cell_rows[(c - p->cStart) * nb];
-    PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));
+    if (!coo) PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));
   }
   PetscCall(PetscFree(Ke));
-  PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  if (coo) PetscCall(MatSetValuesCOO(P, p->coo_v, INSERT_VALUES));
+  else {
+    PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  }
   if (Jac != P) {
     PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
   }
   p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
   PetscCall(PetscLogEventEnd(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* COO assembly of the Jacobian into J (MatSetPreallocationCOO/MatSetValuesCOO): every cell's element
+   matrix in one array, rows and columns from cell_rows (constrained ones negative, which PETSc ignores), set
+   at once; fe_jacobian writes there when it assembles J. */
+PetscErrorCode fe_jacobian_coo_setup(FeProblem *p, Mat J) {
+  const PetscInt nb = p->nb, ncell = p->cEnd - p->cStart;
+  PetscCount     n = (PetscCount)ncell * nb * nb, k = 0;
+  PetscInt      *ci, *cj;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(n, &ci, n, &cj));
+  for (PetscInt c = 0; c < ncell; c++)
+    for (PetscInt a = 0; a < nb; a++)
+      for (PetscInt b = 0; b < nb; b++, k++) ci[k] = p->cell_rows[c * nb + a], cj[k] = p->cell_rows[c * nb + b];
+  PetscCall(MatSetPreallocationCOO(J, n, ci, cj));
+  PetscCall(PetscFree2(ci, cj));
+  PetscCall(PetscFree(p->coo_v));
+  PetscCall(PetscMalloc1(n, &p->coo_v));
+  p->coo_mat = J;
   PetscFunctionReturn(0);
 }
 

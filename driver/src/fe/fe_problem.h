@@ -58,6 +58,8 @@ typedef struct FeProblem {
   PetscBool       have_devp;
   PetscInt        umat_calls, tangent_recomputes;
   double          assembly_seconds;
+  Mat             coo_mat;              /* the Jacobian assembled by COO (fe_jacobian_coo_setup), not owned */
+  PetscScalar    *coo_v;                /* its element matrices, cell by cell */
   /* pressure loads: unit-pressure force vectors per group, and the pressures at the step's end */
   PetscInt        npressure;
   char            pressure_group[FE_MAX_GROUPS][64];
@@ -89,6 +91,8 @@ PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, P
 /* SNES callbacks. */
 PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
+/* Assemble the Jacobian J by COO from now on (the other matrices by MatSetValues). */
+PetscErrorCode fe_jacobian_coo_setup(FeProblem *p, Mat J);
 /* Consistent nodal forces (a global vector) of a unit pressure on the boundary faces of a group, or of a
  * unit traction along an axis for load 'GROUP.x' ('.y', '.z'), with the kinematics' weight (thickness,
  * 2 pi r): the traction along an axis gives each node int N_i dGamma. */

@@ -6,6 +6,8 @@
 #include <petscsnes.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <time.h>
 
 #include "../fe/fe_state.h"
 
@@ -15,13 +17,61 @@ typedef struct {
   Mat       J;
   Vec       U, R, U0, dU; /* iterate, residual, committed, last increment (the predictor) */
   PetscBool have_rate, predictor;
+  /* the factorisation (or GAMG hierarchy) kept across Newton iterations and steps while the Krylov solver
+     around it converges fast: rebuilt when a linear solve took more than refactor_its iterations on average,
+     at a stage's start, and before retrying a step whose lagged solve failed (-fe_refactor_its 0: every
+     iteration, as a plain direct solve); for an iterative preconditioner (GAMG) whose fresh set-up itself
+     needs many iterations, when they exceed twice those of the first solve on a fresh one (fresh_its) */
+  PetscInt  refactor_its;
+  PetscReal fresh_its;
+  PetscBool refactor;
+  long      lin_its, setups;
+  clock_t   cpu0; /* the process's CPU clock at the start of the run */
 } FeSolver;
 
 static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   FeSolver *f = ctx;
   fe_common_stage_begin(&f->c, s, resumed, v);
   if (!resumed) f->have_rate = PETSC_FALSE; /* no extrapolation across a change of loading */
+  f->refactor = PETSC_TRUE;                 /* a new load: a new tangent */
   return 0;
+}
+
+/* One SNES solve of the step from the (extrapolated) committed state. With a lagged preconditioner it is
+ * rebuilt once at the first Jacobian of this solve (lag -2) or reused (lag -1); a failed solve on a reused
+ * one (a linear solve that did not converge) is retried once rebuilding it at every Newton iteration (lag 1: plain Newton with a direct solve), so
+ * that lagging never costs a cutback that plain LU would not. */
+static PetscErrorCode lagged_solve(FeSolver *f, const StepRequest *rq, SNESConvergedReason *reason, PetscInt *its) {
+  PetscInt lag, lits;
+  PetscFunctionBeginUser;
+  for (int attempt = 0; attempt < 2; attempt++) {
+    PetscCall(VecCopy(f->U0, f->U));
+    if (f->predictor && f->have_rate && rq->h > 0 && rq->h_prev > 0) PetscCall(VecAXPY(f->U, rq->h / rq->h_prev, f->dU));
+    if (f->refactor_its > 0) PetscCall(SNESSetLagPreconditioner(f->snes, attempt ? 1 : f->refactor ? -2 : -1));
+    PetscCall(SNESSolve(f->snes, NULL, f->U));
+    PetscCall(SNESGetConvergedReason(f->snes, reason));
+    PetscCall(SNESGetIterationNumber(f->snes, its));
+    PetscCall(SNESGetLinearSolveIterations(f->snes, &lits));
+    f->lin_its += lits;
+    if (f->refactor_its <= 0 || attempt) { /* a set-up at every Newton iteration */
+      f->setups += *its + (*reason <= 0);
+      f->refactor = PETSC_TRUE;
+      break;
+    }
+    PetscCall(SNESGetLagPreconditioner(f->snes, &lag));
+    if (lag == -1 && f->refactor) { /* the rebuild happened */
+      f->setups++, f->refactor = PETSC_FALSE;
+      f->fresh_its = (PetscReal)lits / PetscMax(*its, 1);
+    }
+    if (*reason > 0) {
+      if (*its > 0 && lits > PetscMax(f->refactor_its, 2 * f->fresh_its) * *its) f->refactor = PETSC_TRUE;
+      break;
+    }
+    f->refactor = PETSC_TRUE;
+    /* the operator is the exact Jacobian whatever the preconditioner: only a failed linear solve is the lag's */
+    if (*reason != SNES_DIVERGED_LINEAR_SOLVE) break;
+  }
+  PetscFunctionReturn(0);
 }
 
 static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
@@ -30,11 +80,9 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   SNESConvergedReason reason;
   PetscInt            its;
   if (fe_common_set_loads(&f->c, rq)) return 1;
-  VecCopy(f->U0, f->U);
-  if (f->predictor && f->have_rate && rq->h > 0 && rq->h_prev > 0) VecAXPY(f->U, rq->h / rq->h_prev, f->dU);
   p->umat_tol = 0; /* Newton iterates without the UMAT's error control */
   PetscErrorCode ierr;
-  if ((ierr = SNESSolve(f->snes, NULL, f->U)) || (ierr = SNESGetConvergedReason(f->snes, &reason)) || (ierr = SNESGetIterationNumber(f->snes, &its))) {
+  if ((ierr = lagged_solve(f, rq, &reason, &its))) {
     err[0] = '\0'; /* main prints PETSc's message */
     return (int)ierr;
   }
@@ -140,16 +188,52 @@ static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_
 
 static long umat_calls(void *ctx) { return (long)((FeSolver *)ctx)->c.p->umat_calls; }
 
-/* SNES on the element loop: a direct solver by default (LU; MUMPS on more than one rank), full Newton
- * steps on the consistent tangent (cut back by the runner when they fail), as Abaqus does;
- * -snes_linesearch_type bt restores a backtracking line search. */
+/* A PETSc option's value unless the user gave one (the same rule as contact/indent_solver.c). */
+static PetscErrorCode default_option(const char *name, const char *value) {
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
+  if (!set) PetscCall(PetscOptionsSetValue(NULL, name, value));
+  PetscFunctionReturn(0);
+}
+
+/* The linear solver (docs/performance.md, "FE solver: defaults by measurement"): GMRES (right
+ * preconditioned: the true residual) around MUMPS' LU, kept across iterations and steps
+ * (-fe_refactor_its), on any number of ranks; above -fe_gamg_above unknowns GAMG on the rigid-body near
+ * null space instead. Every choice is a default: -ksp_type, -pc_type, -pc_factor_mat_solver_type,
+ * -mat_mumps_icntl_* given by the user win; -fe_refactor_its 0 -ksp_type preonly is a plain direct solve
+ * at every Newton iteration. The Jacobian is unsymmetric (the viscoplastic consistent tangent: about
+ * 5e-5 relative on the triaxial cylinder), so LU, not Cholesky, and GMRES, not CG. */
+static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
+  PC        pc;
+  PetscInt  n, gamg_above = 100000; /* measured: docs/performance.md, "FE scaling" */
+  PetscBool given;
+  PetscFunctionBeginUser;
+  f->refactor_its = 20;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_refactor_its", &f->refactor_its, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_gamg_above", &gamg_above, NULL));
+  PetscCall(MatGetSize(f->J, &n, NULL));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &given));
+  if (!given && n > gamg_above) PetscCall(default_option("-pc_type", "gamg"));
+  PetscCall(default_option("-ksp_type", f->refactor_its > 0 ? "gmres" : "preonly"));
+  PetscCall(default_option("-ksp_pc_side", "right"));
+  PetscCall(default_option("-ksp_rtol", "1e-10"));
+  PetscCall(default_option("-ksp_max_it", "100"));
+  PetscCall(default_option("-mat_mumps_icntl_7", "5")); /* METIS ordering (measured) */
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  f->refactor = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* SNES on the element loop: full Newton steps on the consistent tangent (cut back by the runner when they
+ * fail), as Abaqus does; -snes_linesearch_type bt restores a backtracking line search. */
 static PetscErrorCode solver_setup(FeSolver *f) {
   FeScene    *sc = f->c.sc;
   FeProblem  *p  = f->c.p;
   MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
   KSP         ksp;
-  PC          pc;
-  PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCall(SNESCreate(comm, &f->snes));
   PetscCall(DMCreateMatrix(p->dm, &f->J));
@@ -167,12 +251,11 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   }
   PetscCall(SNESSetFunction(f->snes, f->R, fe_residual, p));
   PetscCall(SNESSetJacobian(f->snes, f->J, f->J, fe_jacobian, p));
+  PetscBool coo = PETSC_TRUE;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_coo", &coo, NULL));
+  if (coo) PetscCall(fe_jacobian_coo_setup(p, f->J)); /* measured: docs/performance.md, "FE element loops" */
   PetscCall(SNESGetKSP(f->snes, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  MPI_Comm_size(comm, &size);
-  if (size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(linear_solver_setup(f, ksp));
   PetscReal pmax = 1, fref = 0; /* force scale for the absolute tolerance: the largest load on all loaded faces */
   for (int i = 0; i < sc->nstage; i++)
     for (int g = 0; g < sc->npressure; g++)
@@ -187,14 +270,41 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCall(SNESSetTolerances(f->snes, 1e-10 * pmax * PetscMax(fref, 1e-12), 1e-12, 1e-14, 25, 1000));
   PetscCall(SNESSetFromOptions(f->snes));
+  PetscBool preonly;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+  if (preonly) f->refactor_its = 0; /* no Krylov solver to correct a kept factorisation */
   f->predictor = PETSC_TRUE;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_predictor", &f->predictor, NULL));
   PetscFunctionReturn(0);
 }
 
+/* The linear solver's work and the memory high-water mark (largest and summed over the ranks). */
+static void solver_summary(FeSolver *f, MPI_Comm comm) {
+  KSP         ksp;
+  PC          pc;
+  KSPType     kt;
+  PCType      pt;
+  MatSolverType st = NULL;
+  struct rusage ru;
+  double      mb[2], cpu = (double)(clock() - f->cpu0) / CLOCKS_PER_SEC;
+  SNESGetKSP(f->snes, &ksp);
+  KSPGetType(ksp, &kt);
+  KSPGetPC(ksp, &pc);
+  PCGetType(pc, &pt);
+  if (pt && !strcmp(pt, PCLU)) PCFactorGetMatSolverType(pc, &st);
+  getrusage(RUSAGE_SELF, &ru);
+  mb[0] = mb[1] = ru.ru_maxrss / 1024.0; /* kB on Linux */
+  MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_MAX, comm);
+  PetscPrintf(comm, "fe solver: %s/%s%s%s, %ld Krylov iterations, %ld preconditioner set-ups, max RSS %.1f MB per rank, %.1f MB in all, CPU %.2f s (the slowest rank)\n",
+              kt, pt, st ? "/" : "", st ? st : "", f->lin_its, f->setups, mb[0], mb[1], cpu);
+}
+
 int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
   FeSolver f;
   PetscMemzero(&f, sizeof f);
+  f.cpu0 = clock();
   PetscErrorCode ierr = fe_common_init(&f.c, sc, p, opt);
   if (ierr || (ierr = solver_setup(&f))) {
     err[0] = '\0'; /* main prints PETSc's message */
@@ -211,10 +321,12 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&f.c);
+  solver_summary(&f, sv.comm);
   PetscPrintf(sv.comm, "fe scene %s: %d steps, %d Newton iterations, %d cutbacks (%d by the error measure), %ld UMAT calls, assembly %.2f s, wall %.2f s -> %s/history.csv\n",
               sc->name, sum.steps, sum.its, sum.cutbacks, sum.rejected_error, sum.umat_calls, p->assembly_seconds, sum.wall, opt->outdir);
   VecDestroy(&f.U), VecDestroy(&f.R), VecDestroy(&f.U0), VecDestroy(&f.dU);
   MatDestroy(&f.J);
+  p->coo_mat = NULL;
   SNESDestroy(&f.snes);
   return rc;
 }

@@ -1,0 +1,201 @@
+#!/usr/bin/env python3
+"""FE linear-solver benchmark (issue 13, items 2 and 3): the triaxial cylinder of input/triaxial.yaml on a short
+history (one 100 s step at the confinement, then creep under the 40 MPa deviator, adaptive steps, PROPS tol
+1e-6) at several mesh sizes, one rank, with each candidate linear solver; time per Newton iteration,
+preconditioner set-ups (factorisations), Krylov iterations, memory, and the largest difference of the axial
+strain history from plain LU (PETSc's own, a new factorisation at every Newton iteration) in the same run.
+Medians of repeats, interleaved. Writes the section "FE solver: defaults by measurement" of
+docs/performance.md.
+
+Usage: bench/fe_solver_bench.py [--sizes 5.3,2.5,1.45] [--repeats 2] [--max-steps 0,0,20] [--ranks 1]
+"""
+import argparse
+import os
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+TITLE = "## FE solver: defaults by measurement"
+PLAIN = "-fe_refactor_its 0 -ksp_type preonly"
+CANDIDATES = {  # name: options (the driver's defaults fill in the rest)
+    "petsc LU (old 1-rank default; its ordering is nested dissection)": PLAIN + " -pc_factor_mat_solver_type petsc",
+    "UMFPACK": PLAIN + " -pc_factor_mat_solver_type umfpack",
+    "MUMPS AMD": PLAIN + " -mat_mumps_icntl_7 0",
+    "MUMPS PORD": PLAIN + " -mat_mumps_icntl_7 4",
+    "MUMPS METIS": PLAIN + " -mat_mumps_icntl_7 5",
+    "MUMPS METIS, BLR 1e-8": PLAIN + " -mat_mumps_icntl_35 1 -mat_mumps_cntl_7 1e-8",
+    "lagged MUMPS METIS (new default)": "",
+    "the same, MatSetValues instead of COO": "-fe_coo false",
+    "lagged MUMPS METIS, BLR 1e-8": "-mat_mumps_icntl_35 1 -mat_mumps_cntl_7 1e-8",
+    "GAMG (lagged set-up)": "-pc_type gamg",
+}
+LARGE = ["MUMPS METIS", "lagged MUMPS METIS (new default)", "lagged MUMPS METIS, BLR 1e-8",
+         "GAMG (lagged set-up)"]
+HISTORY = """stages:
+  - {name: hold, duration: 100, pressure: {top: 35, side: 35}, steps: {count: 1}}
+  - name: creep
+    duration: 3600
+    load: instant
+    pressure: {top: 75, side: 35}
+    steps: {adaptive: true, first: 1.0e-2, max: 2000}
+    creep: true
+"""
+
+
+def scene_text(size, history=HISTORY):
+    base = (ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
+    base = base.replace("size: 6.0", f"size: {size}")
+    return base[:base.index("stages:")] + history
+
+
+def run(scene, out, ranks, opts, max_steps=0):
+    cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), str(DRIVER), "-input", str(scene),
+           "-output_dir", str(out), "-progress_every", "1000000"] + opts.split()
+    if max_steps:
+        cmd += ["-max_steps", str(max_steps)]
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")  # one core per rank: CPU time = work
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode:
+        return dict(failed=(proc.stdout + proc.stderr)[-300:])
+    m = re.search(r"(\d+) cells, .*?(\d+) unknowns", proc.stdout)
+    s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks.*assembly ([0-9.]+) s, wall ([0-9.]+) s", proc.stdout)
+    k = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups, max RSS ([0-9.]+) MB per rank, "
+                  r"([0-9.]+) MB in all, CPU ([0-9.]+) s", proc.stdout)
+    h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    return dict(cells=int(m.group(1)), unknowns=int(m.group(2)), steps=int(s.group(1)), newton=int(s.group(2)),
+                cutbacks=int(s.group(3)), assembly=float(s.group(4)), solve_wall=float(s.group(5)), wall=wall,
+                cpu=(r1.ru_utime + r1.ru_stime) - (r0.ru_utime + r0.ru_stime), solver=k.group(1), krylov=int(k.group(2)),
+                setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), solve_cpu=float(k.group(6)), eps33=h["eps_33"], time=h["time"],
+                stage=h["stage"])
+
+
+OLD = "-fe_refactor_its 0 -ksp_type preonly -fe_coo false -mat_mumps_icntl_7 7"  # main before issue 13 on 2 ranks
+MAIN_TITLE = "## FE solver: the triaxial main job"
+
+
+def main_job(repeats, tmp):
+    """input/triaxial.yaml as tools/run.sh runs it (2 ranks), the old set-up against the new, interleaved."""
+    scene = Path(tmp) / "main.yaml"
+    scene.write_text((ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/"))
+    res = {"old (MUMPS each Newton iteration, MatSetValues)": [], "new default": []}
+    for k in range(repeats):
+        for name, opts in zip(res, (OLD, "")):
+            res[name].append(run(scene, Path(tmp) / f"main_{k}_{len(res[name])}_{name[:3]}", 2, opts))
+    lines = ["| set-up | steps | Newton its | Krylov its | set-ups | wall [s] | CPU [s] (slowest rank) | creep 1 h | creep 10 h | "
+             "rel. difference 10 h |", "|---|---|---|---|---|---|---|---|---|---|"]
+    ref = None
+    for name, runs in res.items():
+        r = median_run(runs)
+        rows = np.where(r["stage"] == 1)[0]
+        t = r["time"][rows] - r["time"][rows[0]]
+        eps = -(r["eps33"][rows] - r["eps33"][rows[0]])
+        creep = [float(np.interp(x, t, eps)) for x in (3600.0, 36000.0)]
+        ref = ref or creep
+        lines.append(f"| {name} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['setups']} | {r['solve_wall']:.2f} | "
+                     f"{r['solve_cpu']:.2f} | {creep[0]:.10e} | {creep[1]:.10e} | {abs(creep[1] - ref[1]) / ref[1]:.1e} |")
+    return lines
+
+
+def median_run(runs):
+    r = dict(runs[0])
+    for key in ("wall", "cpu", "solve_wall", "solve_cpu", "assembly"):
+        r[key] = float(np.median([x[key] for x in runs]))
+    return r
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="5.3,2.5,1.45", help="element sizes [mm] (about 1k, 10k, 50k tets)")
+    ap.add_argument("--max-steps", default="0,0,16", help="per size: stop after N steps (0: the whole history)")
+    ap.add_argument("--repeats", type=int, default=2)
+    ap.add_argument("--ranks", type=int, default=1)
+    ap.add_argument("--large-from", type=int, default=2, help="from this size index on, only the shortlist")
+    ap.add_argument("--no-doc", action="store_true")
+    ap.add_argument("--main-job", action="store_true", help="only the main job, old set-up against new (2 ranks)")
+    a = ap.parse_args(argv)
+    if a.main_job:
+        with tempfile.TemporaryDirectory() as tmp:
+            lines = main_job(a.repeats, tmp)
+        print("\n".join(lines))
+        if not a.no_doc:
+            replace_section(MAIN_TITLE, f"{MAIN_TITLE}\n\nCommand: `bench/fe_solver_bench.py --main-job --repeats {a.repeats}`. "
+                            "`input/triaxial.yaml` on 2 ranks as `tools/run.sh` runs it (713 tets, tol 1e-6, hold to steady "
+                            "state then 10 h of creep), the set-up before issue 13 (`" + OLD + "`) against the new "
+                            "default, interleaved, medians. Wall and CPU of the stepping. Shared, loaded 2-core machine.\n\n"
+                            + "\n".join(lines) + "\n")
+        return 0
+    sizes = [float(x) for x in a.sizes.split(",")]
+    caps = [int(x) for x in a.max_steps.split(",")]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, size in enumerate(sizes):
+            scene = Path(tmp) / f"s{size}.yaml"
+            scene.write_text(scene_text(size))
+            names = list(CANDIDATES) if i < a.large_from else [n for n in CANDIDATES if n in LARGE]
+            res = {n: [] for n in names}
+            for rep in range(a.repeats):  # interleaved: every candidate once per round
+                for n in names:
+                    r = run(scene, Path(tmp) / f"o{i}_{rep}_{abs(hash(n))}", a.ranks, CANDIDATES[n], caps[i])
+                    res[n].append(r)
+                    if "failed" in r:
+                        print(f"size {size} {n}: FAILED {r['failed']}", flush=True)
+            ref = None
+            for n in names:
+                good = [r for r in res[n] if "failed" not in r]
+                if not good:
+                    rows.append((size, n, None, None))
+                    continue
+                r = median_run(good)
+                if ref is None:
+                    ref = r  # the first candidate: plain LU (or, on the shortlist, its first entry)
+                    refname = n
+                err = np.nan
+                if len(r["eps33"]) == len(ref["eps33"]) and np.allclose(r["time"], ref["time"], rtol=1e-12):
+                    d = ref["eps33"] - ref["eps33"][0]
+                    err = float(np.max(np.abs((r["eps33"] - r["eps33"][0]) - d)) / np.max(np.abs(d)))
+                rows.append((size, n, r, (err, refname)))
+                print(f"size {size}: {r['cells']} cells {r['unknowns']} unknowns, {n}: {r['steps']} steps {r['newton']} Newton "
+                      f"{r['krylov']} Krylov {r['setups']} set-ups, solve wall {r['solve_wall']:.2f} s (process wall {r['wall']:.2f} s, "
+                      f"cpu {r['cpu']:.2f} s), solve CPU {r['solve_cpu']:.2f} s, {1e3 * r['solve_cpu'] / max(r['newton'], 1):.1f} ms CPU/Newton, RSS {r['rss']:.0f} MB, "
+                      f"diff {err:.1e}", flush=True)
+    lines = ["| cells | unknowns | solver | steps | Newton its | Krylov its | set-ups | wall [s] | CPU [s] | CPU ms per Newton it. | "
+             "max RSS [MB] | axial strain vs reference |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for size, n, r, e in rows:
+        if r is None:
+            lines.append(f"| | | {n} | failed | | | | | | | | |")
+            continue
+        lines.append(f"| {r['cells']} | {r['unknowns']} | {n} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['setups']} | "
+                     f"{r['solve_wall']:.2f} | {r['solve_cpu']:.2f} | {1e3 * r['solve_cpu'] / max(r['newton'], 1):.1f} | {r['rss']:.0f} | "
+                     f"{e[0]:.1e} |")
+    print("\n".join(lines))
+    if not a.no_doc:
+        section = (f"{TITLE}\n\nCommand: `bench/fe_solver_bench.py --sizes {a.sizes} --max-steps {a.max_steps} --repeats {a.repeats}`"
+                   f" ({a.ranks} rank, one BLAS thread). The triaxial cylinder on a short history (one 100 s step at the confinement, then "
+                   "creep under the deviator, adaptive steps; on the largest mesh only the first steps, `--max-steps`), each "
+                   "candidate run in turn, medians of the repeats. Wall and CPU: of the stepping (the stage runner's wall clock, "
+                   "the process's CPU clock from the solver set-up on; meshing excluded); the choice is made on CPU time, "
+                   "less disturbed by the other jobs than the wall clock. The last column: the largest difference of the axial strain history "
+                   "from the first row of the mesh (plain LU; on the largest mesh the first of the shortlist), relative to "
+                   "its creep strain. Measured on a shared 2-core machine with other jobs running: rough numbers.\n\n"
+                   + "\n".join(lines) + "\n")
+        replace_section(TITLE, section)
+        print("written: docs/performance.md")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

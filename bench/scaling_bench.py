@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""Scaling study (issue 13, item 4): the triaxial cylinder of input/triaxial.yaml from about 1e4 unknowns to
+the largest mesh this machine runs in reasonable time, on 1 and 2 MPI ranks, with the default direct solver
+(MUMPS in GMRES, factorisation kept) and with GAMG (-pc_type gamg, rigid-body near null space): time per
+Newton iteration, its parts (-log_view: residual with the UMAT, Jacobian, preconditioner set-up, Krylov
+solve), Krylov iterations, memory (largest RSS of a rank and the sum over the ranks). The history: one 100 s
+step at the confinement, then the first steps of the creep under the deviator (--max-steps in all). Each mesh
+is made once by gmsh and read by every run. The axial strain history of each run is compared with the
+direct one-rank run on the same mesh. Writes the section "FE scaling: 1 and 2 ranks, direct and GAMG" of
+docs/performance.md.
+
+Usage: bench/scaling_bench.py [--sizes 2.4,1.13,0.78] [--max-steps 5] [--repeats 1]
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fe_solver_bench import HISTORY  # noqa: E402
+from performance_doc import replace_section  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+TITLE = "## FE scaling: 1 and 2 ranks, direct and GAMG"
+SOLVERS = {"direct (default)": "", "GAMG": "-pc_type gamg"}
+EVENTS = {"residual": "CC9 residual+UMAT", "jacobian": "CC9 Jacobian", "pcsetup": "PCSetUp", "ksp": "KSPSolve"}
+
+
+def make_mesh(size, out):
+    cmd = ["gmsh", "-3", "-format", "msh41", "-v", "2", "-setnumber", "R", "12.7", "-setnumber", "H", "50.8",
+           "-setnumber", "size", str(size), str(ROOT / "meshes" / "cylinder.geo"), "-o", str(out)]
+    t0 = time.perf_counter()
+    subprocess.run(cmd, check=True, capture_output=True)
+    return time.perf_counter() - t0
+
+
+def scene_text(msh):
+    base = (ROOT / "input" / "triaxial.yaml").read_text()
+    head = base[:base.index("mesh:")]
+    rest = base[base.index("material:"):base.index("stages:")]
+    return head + f"mesh:\n  file: {msh}\n  order: 1\n" + rest + HISTORY
+
+
+def run(scene, out, ranks, opts, max_steps):
+    cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), str(DRIVER), "-input", str(scene),
+           "-output_dir", str(out), "-progress_every", "1000000", "-max_steps", str(max_steps), "-log_view"] + opts.split()
+    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env)
+    wall = time.perf_counter() - t0
+    if proc.returncode:
+        return dict(failed=(proc.stdout + proc.stderr)[-400:])
+    m = re.search(r"(\d+) cells, .*?(\d+) unknowns", proc.stdout)
+    s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks.*wall ([0-9.]+) s", proc.stdout)
+    k = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups, max RSS ([0-9.]+) MB per rank, "
+                  r"([0-9.]+) MB in all, CPU ([0-9.]+) s", proc.stdout)
+    ev = {}
+    for key, name in EVENTS.items():  # -log_view: name, count, ratio, max time
+        e = re.search(rf"^{re.escape(name)}\s+(\d+) \S+ (\S+)", proc.stdout, re.M)
+        ev[key] = float(e.group(2)) if e else 0.0
+    h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    return dict(cells=int(m.group(1)), unknowns=int(m.group(2)), steps=int(s.group(1)), newton=int(s.group(2)),
+                cutbacks=int(s.group(3)), solve_wall=float(s.group(4)), wall=wall, solver=k.group(1), krylov=int(k.group(2)),
+                setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), cpu=float(k.group(6)), ev=ev,
+                eps33=h["eps_33"])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="2.4,1.13,0.78", help="element sizes [mm]")
+    ap.add_argument("--max-steps", type=int, default=5, help="steps in all (1 hold, the rest creep)")
+    ap.add_argument("--repeats", type=int, default=1)
+    ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--gamg-only", default="", help="further (larger) sizes run with GAMG only")
+    ap.add_argument("--no-doc", action="store_true")
+    a = ap.parse_args(argv)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        gamg_only = [float(x) for x in a.gamg_only.split(",") if x]
+        for size in [float(x) for x in a.sizes.split(",")] + gamg_only:
+            msh = Path(tmp) / f"cyl{size}.msh"
+            tmesh = make_mesh(size, msh)
+            scene = Path(tmp) / f"s{size}.yaml"
+            scene.write_text(scene_text(msh))
+            ref = None
+            for ranks in [int(x) for x in a.ranks.split(",")]:
+                for name, opts in SOLVERS.items():
+                    if size in gamg_only and name != "GAMG":
+                        continue
+                    runs = [run(scene, Path(tmp) / f"o{size}_{ranks}_{len(rows)}_{k}", ranks, opts, a.max_steps) for k in range(a.repeats)]
+                    good = [r for r in runs if "failed" not in r]
+                    if not good:
+                        print(f"size {size} ranks {ranks} {name}: FAILED {runs[0]['failed']}", flush=True)
+                        continue
+                    r = good[0]
+                    for key in ("wall", "solve_wall", "cpu"):
+                        r[key] = float(np.median([x[key] for x in good]))
+                    if ref is None or size in gamg_only and ranks == 1:
+                        ref = r  # the 1-rank direct run (GAMG-only sizes: the 1-rank GAMG run)
+                    d = ref["eps33"] - ref["eps33"][0]
+                    n = min(len(r["eps33"]), len(ref["eps33"]))
+                    r["diff"] = float(np.max(np.abs(r["eps33"][:n] - ref["eps33"][:n])) / np.max(np.abs(d)))
+                    r["tmesh"] = tmesh
+                    rows.append((ranks, name, r))
+                    per = 1e3 / max(r["newton"], 1)
+                    print(f"size {size}: {r['cells']} cells {r['unknowns']} unknowns (gmsh {tmesh:.1f} s), {ranks} rank(s) {name}: "
+                          f"{r['steps']} steps {r['newton']} Newton {r['krylov']} Krylov {r['setups']} set-ups, wall {r['solve_wall']:.2f} s "
+                          f"CPU {r['cpu']:.2f} s, per Newton {r['solve_wall'] * per:.0f} ms; residual {r['ev']['residual'] * per:.0f} ms, "
+                          f"Jacobian {r['ev']['jacobian'] * per:.0f} ms, PC set-up {r['ev']['pcsetup'] * per:.0f} ms, KSP {r['ev']['ksp'] * per:.0f} ms; "
+                          f"RSS {r['rss']:.0f} MB/rank, {r['rss_all']:.0f} MB in all, diff {r['diff']:.1e}", flush=True)
+    lines = ["| cells | unknowns | ranks | solver | Newton its | Krylov its | set-ups | wall [s] | CPU [s] (slowest rank) | ms per Newton it. | "
+             "residual+UMAT | Jacobian | PC set-up | Krylov solve | max RSS per rank [MB] | RSS all ranks [MB] | kB per unknown | "
+             "axial strain vs 1-rank run |", "|" + "---|" * 18]
+    for ranks, name, r in rows:
+        per = 1e3 / max(r["newton"], 1)
+        lines.append(f"| {r['cells']} | {r['unknowns']} | {ranks} | {name} | {r['newton']} | {r['krylov']} | {r['setups']} | "
+                     f"{r['solve_wall']:.1f} | {r['cpu']:.1f} | {r['solve_wall'] * per:.0f} | {r['ev']['residual'] * per:.0f} | "
+                     f"{r['ev']['jacobian'] * per:.0f} | {r['ev']['pcsetup'] * per:.0f} | {r['ev']['ksp'] * per:.0f} | {r['rss']:.0f} | "
+                     f"{r['rss_all']:.0f} | {1024 * r['rss_all'] / r['unknowns']:.1f} | {r['diff']:.1e} |")
+    print("\n".join(lines))
+    if not a.no_doc:
+        section = (f"{TITLE}\n\nCommand: `bench/scaling_bench.py --sizes {a.sizes} --max-steps {a.max_steps} --repeats {a.repeats}`. "
+                   "The triaxial cylinder, one 100 s step at the confinement and then the first "
+                   f"{a.max_steps - 1} steps of the creep (dt from 0.01 s), one BLAS thread per rank. The parts of a Newton "
+                   "iteration are -log_view's times (largest over the ranks) divided by the Newton iterations; the residual "
+                   "is evaluated about three times per step (start, after each Newton update, and once more with the UMAT's "
+                   "step control on), so it can exceed the iteration. Set-ups: factorisations (or GAMG hierarchies) in the "
+                   "run. Memory: the largest resident set of a rank (getrusage), and the sum over the ranks per unknown. "
+                   "Measured on a shared 2-core machine with other jobs running (wall times are disturbed; the 2-rank runs "
+                   "use both cores and so compete most).\n\n" + "\n".join(lines) + "\n")
+        replace_section(TITLE, section)
+        print("written: docs/performance.md")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
