@@ -71,7 +71,7 @@ def test_inclined_mirror_uniform_stress(tmp_path, order):
     p, s, L = 3.0, 5.0, 2.0
     msh = gmsh(tmp_path / "m.msh", L=L, span=60, h_tip=0.3, h_far=0.6, r_fine=0.3, r_contact=0.5)
     text = f"""scene: fe
-mesh: {{file: {msh}, order: {order}}}
+mesh: {{file: {msh41(msh)}, order: {order}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [z]}}]
@@ -146,7 +146,7 @@ def test_rotated_copy_equals_axis_aligned(tmp_path):
 
     def scene(mesh, n, tr):
         return f"""scene: fe
-mesh: {{file: {mesh}}}
+mesh: {{file: {msh41(mesh)}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}]
@@ -159,7 +159,7 @@ stages:
 """
     h0 = run(scene(msh, [1.0, 0.0, 0.0], t), tmp_path / "a")
     h1 = run(scene(rot, Q @ [1.0, 0.0, 0.0], Q @ t), tmp_path / "b")
-    _, u0, s0, _ = fields(tmp_path / "a")
+    xa, u0, s0, _ = fields(tmp_path / "a")
     _, u1, s1, _ = fields(tmp_path / "b")
     du = np.abs(u1 - u0 @ Q.T).max() / np.abs(u0).max()
     ds = max(np.abs(voigt_matrix(b) - Q @ voigt_matrix(a) @ Q.T).max() for a, b in zip(s0, s1)) / np.abs(s0).max()
@@ -167,8 +167,18 @@ stages:
     R1 = np.array([h1[f"reaction_{c}"][-1] for c in "xyz"])
     dr = np.abs(R1 - Q @ R0).max() / np.abs(R0).max()
     print(f"rotated copy: displacements {du:.2e}, stresses {ds:.2e}, reactions {dr:.2e} (relative)")
-    assert np.abs(u0[:, 0][np.abs(x[:, 0]) < 1e-12]).max() == 0 and np.abs(u0).max() > 1e-4
+    assert np.abs(u0[:, 0][np.abs(xa[:, 0]) < 1e-12]).max() == 0 and np.abs(u0).max() > 1e-4
     assert du < 1e-10 and ds < 1e-10 and dr < 1e-10
+
+
+def msh41(path):
+    """The driver reads gmsh 4.1 only (it refuses 2.2, whose groups PETSc 3.18 can mislabel): the 2.2 file this
+    test reads and writes, converted by gmsh beside it."""
+    path = Path(path)
+    out = path.with_suffix(".41.msh")
+    if not out.exists():
+        subprocess.run(["gmsh", str(path), "-0", "-format", "msh41", "-o", str(out)], check=True, capture_output=True)
+    return out
 
 
 def read_msh(path):
@@ -275,7 +285,7 @@ def test_sector_equals_mirrored_half_model(tmp_path):
     sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
     half = mirrored_half(sector, tmp_path / "half.msh")
     s = run(f"""scene: fe
-mesh: {{file: {sector}}}
+mesh: {{file: {msh41(sector)}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}]
@@ -283,7 +293,7 @@ boundary:
            {{group: side1, normal: [{NS[0]}, {NS[1]}, 0]}}]
 {BERKOVICH_PUSH}""", tmp_path / "s")
     h = run(f"""scene: fe
-mesh: {{file: {half}}}
+mesh: {{file: {msh41(half)}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}, {{group: tip, components: [x, y]}}]
