@@ -31,7 +31,7 @@ def run(scene, out, ranks):
     proc = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=ROOT)
     wall = time.perf_counter() - t0
     cells = int(re.search(r"(\d+) cells", proc.stdout).group(1))
-    m = re.search(r": (\d+) steps, (\d+) cutbacks, (\d+) UMAT calls, assembly ([0-9.]+) s", proc.stdout)
+    m = re.search(r": (\d+) steps, \d+ Newton iterations, (\d+) cutbacks.*?, (\d+) UMAT calls, assembly ([0-9.]+) s", proc.stdout)
     h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
     newton = int(h["newton_its"].sum())
     rows = np.where(h["stage"] == 1)[0]
