@@ -84,7 +84,7 @@ def main(argv=None):
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         gamg_only = [float(x) for x in a.gamg_only.split(",") if x]
-        for size in [float(x) for x in a.sizes.split(",")] + gamg_only:
+        for size in [float(x) for x in a.sizes.split(",") if x] + gamg_only:
             msh = Path(tmp) / f"cyl{size}.msh"
             tmesh = make_mesh(size, msh)
             scene = Path(tmp) / f"s{size}.yaml"
