@@ -57,6 +57,14 @@ def gmsh(out, **par):
     return out
 
 
+def msh41(path):
+    """The driver reads gmsh format 4.1 only (io/gmsh_mesh.c refuses 2.x: PETSc 3.18 mislabels its physical
+    groups); the 2.2 files of this test (read and written by read_msh, write_msh) converted by gmsh."""
+    out = path.with_name(path.stem + "_41.msh")
+    subprocess.run(["gmsh", str(path), "-0", "-format", "msh41", "-o", str(out)], check=True, capture_output=True)
+    return out
+
+
 @pytest.mark.parametrize("order", [1, 2])
 def test_inclined_mirror_uniform_stress(tmp_path, order):
     """The sector prism (L = 2): mirror planes at azimuth 30 degrees (inclined) and x = 0, the bottom on rollers
@@ -71,7 +79,7 @@ def test_inclined_mirror_uniform_stress(tmp_path, order):
     p, s, L = 3.0, 5.0, 2.0
     msh = gmsh(tmp_path / "m.msh", L=L, span=60, h_tip=0.3, h_far=0.6, r_fine=0.3, r_contact=0.5)
     text = f"""scene: fe
-mesh: {{file: {msh}, order: {order}}}
+mesh: {{file: {msh41(msh)}, order: {order}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [z]}}]
@@ -146,7 +154,7 @@ def test_rotated_copy_equals_axis_aligned(tmp_path):
 
     def scene(mesh, n, tr):
         return f"""scene: fe
-mesh: {{file: {mesh}}}
+mesh: {{file: {msh41(mesh)}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}]
@@ -159,7 +167,7 @@ stages:
 """
     h0 = run(scene(msh, [1.0, 0.0, 0.0], t), tmp_path / "a")
     h1 = run(scene(rot, Q @ [1.0, 0.0, 0.0], Q @ t), tmp_path / "b")
-    _, u0, s0, _ = fields(tmp_path / "a")
+    x, u0, s0, _ = fields(tmp_path / "a")
     _, u1, s1, _ = fields(tmp_path / "b")
     du = np.abs(u1 - u0 @ Q.T).max() / np.abs(u0).max()
     ds = max(np.abs(voigt_matrix(b) - Q @ voigt_matrix(a) @ Q.T).max() for a, b in zip(s0, s1)) / np.abs(s0).max()
@@ -275,7 +283,7 @@ def test_sector_equals_mirrored_half_model(tmp_path):
     sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
     half = mirrored_half(sector, tmp_path / "half.msh")
     s = run(f"""scene: fe
-mesh: {{file: {sector}}}
+mesh: {{file: {msh41(sector)}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}]
@@ -283,7 +291,7 @@ boundary:
            {{group: side1, normal: [{NS[0]}, {NS[1]}, 0]}}]
 {BERKOVICH_PUSH}""", tmp_path / "s")
     h = run(f"""scene: fe
-mesh: {{file: {half}}}
+mesh: {{file: {msh41(half)}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: bottom, components: [x, y, z]}}, {{group: tip, components: [x, y]}}]
