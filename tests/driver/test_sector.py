@@ -271,6 +271,31 @@ stages:
 """
 
 
+def sector_scene(msh, order=1, indenter=BERKOVICH_PUSH):
+    """The sector: bottom fixed, mirror planes at 30 degrees (inclined: nodal frames) and x = 0, the hexagon's face
+    a roller (inclined)."""
+    return f"""scene: fe
+mesh: {{file: {msh41(msh)}, order: {order}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}]
+  mirror: [{{group: mirror_a, normal: [{NA[0]}, {NA[1]}, 0]}}, {{group: mirror_b, normal: [1, 0, 0]}},
+           {{group: side1, normal: [{NS[0]}, {NS[1]}, 0]}}]
+{indenter}"""
+
+
+def half_scene(msh, order=1):
+    """The mirrored half model: the tip node held on the axis, the plane x = 0 and the hexagon's faces mirrors."""
+    return f"""scene: fe
+mesh: {{file: {msh41(msh)}, order: {order}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}, {{group: tip, components: [x, y]}}]
+  mirror: [{{group: x0, normal: [1, 0, 0]}}, {{group: side_m60, normal: [0.5, {-S3}, 0]}}, {{group: side_0, normal: [1, 0, 0]}},
+           {{group: side_60, normal: [0.5, {S3}, 0]}}]
+{BERKOVICH_PUSH}"""
+
+
 def test_sector_equals_mirrored_half_model(tmp_path):
     """Elastic Berkovich to h = 0.1 (2 steps, depth control) on the 60-degree sector and on the half model built
     from three mirror images of the sector's mesh (h_tip 0.04 within 0.4 of the tip, as test_contact's half-cube
@@ -282,22 +307,8 @@ def test_sector_equals_mirrored_half_model(tmp_path):
     branch that breaks the symmetry and lowers P by 1.3 %."""
     sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
     half = mirrored_half(sector, tmp_path / "half.msh")
-    s = run(f"""scene: fe
-mesh: {{file: {msh41(sector)}}}
-material: {ELASTIC}
-boundary:
-  fixed: [{{group: bottom, components: [x, y, z]}}]
-  mirror: [{{group: mirror_a, normal: [{NA[0]}, {NA[1]}, 0]}}, {{group: mirror_b, normal: [1, 0, 0]}},
-           {{group: side1, normal: [{NS[0]}, {NS[1]}, 0]}}]
-{BERKOVICH_PUSH}""", tmp_path / "s")
-    h = run(f"""scene: fe
-mesh: {{file: {msh41(half)}}}
-material: {ELASTIC}
-boundary:
-  fixed: [{{group: bottom, components: [x, y, z]}}, {{group: tip, components: [x, y]}}]
-  mirror: [{{group: x0, normal: [1, 0, 0]}}, {{group: side_m60, normal: [0.5, {-S3}, 0]}}, {{group: side_0, normal: [1, 0, 0]}},
-           {{group: side_60, normal: [0.5, {S3}, 0]}}]
-{BERKOVICH_PUSH}""", tmp_path / "h")
+    s = run(sector_scene(sector), tmp_path / "s")
+    h = run(half_scene(half), tmp_path / "h")
     s2 = run((tmp_path / "s.yaml").read_text(), tmp_path / "s2", np_=2)   # frames on ghost nodes too
     print(f"sector on 2 ranks against 1: {np.abs(s2['load'][1:] / s['load'][1:] - 1).max():.1e}")
     assert np.abs(s2["load"][1:] / s["load"][1:] - 1).max() < 1e-10
@@ -305,6 +316,47 @@ boundary:
     print(f"sector x 3 against the mirrored half model: P = {3 * s['load'][-1]:.10g} vs {h['load'][-1]:.10g} at h = 0.1, "
           f"relative differences {rel}")
     assert rel.max() < 1e-8
+
+
+def test_p2_sector_equals_mirrored_half_model(tmp_path):
+    """The same on P2 (the mortar contact of contact_mortar.c) with h_tip 0.08 (P2's element twice P1's): the
+    sector's contact nodes on the plane at 30 degrees, vertices and edge nodes, and the tip have nodal frames,
+    which the mortar integrals take in (gaps from R u_frame, forces and the coupling rows R^T); the half model's
+    contact nodes have none (its plane x = 0 is axis-aligned), so it is an independent reference. 3 x the
+    sector's load equals the half model's to round-off (the mortar integrals in global axes, frames ignored, are
+    0.9 % off, 1.1 % at h = 0.1); the sector on 2 ranks (frames on the nodes of facets across the partition) gives its load on 1."""
+    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
+    half = mirrored_half(sector, tmp_path / "half.msh")
+    s = run(sector_scene(sector, order=2), tmp_path / "s")
+    h = run(half_scene(half, order=2), tmp_path / "h")
+    s2 = run((tmp_path / "s.yaml").read_text(), tmp_path / "s2", np_=2)
+    par = np.abs(s2["load"][1:] / s["load"][1:] - 1).max()
+    rel = np.abs(3 * s["load"][1:] / h["load"][1:] - 1)
+    print(f"P2: sector x 3 against the mirrored half model: P = {3 * s['load'][-1]:.10g} vs {h['load'][-1]:.10g} at "
+          f"h = 0.1, relative differences {rel}; 2 ranks against 1: {par:.1e}")
+    assert s["load"][-1] > 0 and rel.max() < 1e-8 and par < 1e-10
+
+
+def test_p2_sector_tangent_against_finite_differences(tmp_path):
+    """-indent_check_tangent on the P2 sector under force control (load 4, about h = 0.1): the tip (two frame
+    axes constrained) and the contact nodes on the plane at 30 degrees are framed; the mortar blocks with their
+    rows rotated (Bt, B) are the exact derivatives of the residual: below 1e-8 at every iterate checked (with
+    Bt left in global axes: 1.3e-6). The contact must reach past the tip: at least 4 active multipliers."""
+    import re
+    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
+    text = sector_scene(sector, order=2, indenter="""indenter: {shape: berkovich, half_angle: 65.27, contact: contact}
+stages:
+  - {name: push, duration: 1, indenter: {load: 4}, steps: {count: 2}}
+""")
+    scene = tmp_path / "fd.yaml"
+    scene.write_text(text)
+    proc = subprocess.run([str(BIN / "driver_elastic"), "-input", str(scene), "-output_dir", str(tmp_path / "fd"),
+                           "-indent_check_tangent"], capture_output=True, text=True, cwd=ROOT)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    checks = [float(m) for m in re.findall(r"whole system\): \|J d - FD\| / \|J d\| = ([0-9.eE+-]+)", proc.stdout)]
+    active = [int(m) for m in re.findall(r"active +([0-9]+) \(", proc.stdout)]
+    print(f"P2 sector tangent: {len(checks)} iterates, |J d - FD| / |J d| up to {max(checks):.1e}; active {active}")
+    assert len(checks) >= 3 and max(checks) < 1e-8 and active[-1] >= 4
 
 
 @pytest.mark.parametrize("mirror,word", [
