@@ -6,6 +6,7 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
   against the unrotated one (to 1e-10): nodal frames against plain fixed components;
 - the sector against the half model made of three mirror images of the sector's mesh (the same mesh density,
   the same elements): the Berkovich's P-h agrees (the Done-when of issue 12 asks <= 0.5 %; exact symmetry);
+- the same on P2 (mortar contact with framed contact nodes), and its tangent against finite differences;
 - bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
   of the material (BP)."""
 import math
