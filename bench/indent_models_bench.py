@@ -29,7 +29,7 @@ from performance_doc import replace_section  # noqa: E402
 from step_control_bench import absolute, outputs, run  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "driver"))
-from test_sector import gmsh, mirrored_half  # noqa: E402
+from test_sector import gmsh, mirrored_half, msh41  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## Indentation: 3D half model, sector and axisymmetric twin"
@@ -55,7 +55,7 @@ def mirrored(tmp):
     elements."""
     sector = gmsh(tmp / "sector.msh", L=2, span=60, h_tip=0.05, h_far=0.4, r_fine=0.4, r_contact=0.95)
     half = mirrored_half(sector, tmp / "half.msh")
-    t = re.sub(r"  geometry: \S+indent_sector.geo\n  parameters: \{[^}]*\}\n", f"  file: {half}\n",
+    t = re.sub(r"  geometry: \S+indent_sector.geo\n  parameters: \{[^}]*\}\n", f"  file: {msh41(half)}\n",
                scene("nanoindent_kerogen_sector")).replace("P0: 3.6666666666666667", "P0: 11")
     mirrors = (f"  fixed:\n    - {{group: bottom, components: [x, y, z]}}\n    - {{group: tip, components: [x, y]}}\n"
                f"  mirror:\n    - {{group: x0, normal: [1, 0, 0]}}\n    - {{group: side_m60, normal: [0.5, -{S3}, 0]}}\n"

@@ -165,12 +165,6 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
   PetscCall(contact_weights(p, group, &wvec, &ustart));
   PetscCall(contact_facet_counts(dm, label, &nfacet));
-  { /* the mortar integrals (contact_mortar.c) work in global axes: no nodal frames under P2 contact yet */
-    PetscInt nf = p->order == 2 ? p->con.nframe : 0, nfall;
-    PetscCall(MPIU_Allreduce(&nf, &nfall, 1, MPIU_INT, MPI_MAX, comm));
-    PetscCheck(nfall == 0, comm, PETSC_ERR_SUP, "contact on P2 elements (mesh.order: 2) together with an inclined mirror plane "
-               "(boundary.mirror) is not supported: use mesh.order 1 for the sector, or the half model (axis-aligned mirrors)");
-  }
   if (p->order == 1) PetscCall(contact_nodes(p, wvec, ustart, NULL, nfacet, ct, &wsum));
   else { /* P2: the facets' vertices, their weights below */
     PetscInt *mark;

@@ -14,6 +14,7 @@ struct ContactMortar {
   PetscInt  *lmult;           /* nf x nv: its place in the local copy of the multipliers (< 0: none) */
   PetscInt  *rows, *dofs;     /* nf x nn x dim: global rows (< 0: fixed) and local-vector indices */
   PetscInt  *ab;              /* nf x nn x 2: the facet vertices of each node (a = b: a vertex) */
+  PetscReal *R;               /* nf x nn x dim x dim: the nodal frame of each node (fe_constraint.h), u = R u_rows */
   PetscReal *Xv;              /* nf x nv x dim: reference coordinates of the vertices */
   PetscReal *L, *dA;          /* nq x nv barycentric coordinates; nf x nq: weight x measure (x 2 pi r, thickness) */
   PetscReal *nq_, *gq;        /* nf x nq x dim: the normal at the last gaps; nf x nq: the gap */
@@ -28,6 +29,32 @@ struct ContactMortar {
    an edge (the standard Lagrange basis of the facet). */
 static inline PetscReal shape2(const PetscReal L[], const PetscInt ab[]) {
   return ab[0] == ab[1] ? L[ab[0]] * (2 * L[ab[0]] - 1) : 4 * L[ab[0]] * L[ab[1]];
+}
+
+/* The displacement of node j of facet k in global axes from a local vector's values: u = R u_rows, the rows'
+   components in the node's frame (fe_constraint.h; the identity off the inclined mirror planes), a constrained
+   component zero there. */
+static inline void node_disp(const struct ContactMortar *m, PetscInt dim, PetscInt k, PetscInt j, const PetscScalar ua[], double u[]) {
+  const PetscReal *R = &m->R[(k * m->nn + j) * dim * dim];
+  const PetscInt  *o = &m->dofs[(k * m->nn + j) * dim];
+  for (PetscInt d = 0; d < dim; d++) {
+    u[d] = 0;
+    for (PetscInt e = 0; e < dim; e++) u[d] += R[d * dim + e] * PetscRealPart(ua[o[e]]);
+  }
+}
+
+/* Rows of a facet's block (nn x dim rows, ncol columns, row-major) from global axes into the nodes' frames, R^T v
+   per node: the forces on, and the derivatives by, the rows' components (the element loop's T^T, fe_constraint.h). */
+static void rows_to_frames(const struct ContactMortar *m, PetscInt dim, PetscInt k, PetscInt ncol, PetscScalar v[]) {
+  for (PetscInt j = 0; j < m->nn; j++) {
+    const PetscReal *R = &m->R[(k * m->nn + j) * dim * dim];
+    for (PetscInt c = 0; c < ncol; c++) {
+      PetscScalar t[3] = {0, 0, 0};
+      for (PetscInt e = 0; e < dim; e++)
+        for (PetscInt d = 0; d < dim; d++) t[e] += R[d * dim + e] * v[(j * dim + d) * ncol + c];
+      for (PetscInt e = 0; e < dim; e++) v[(j * dim + e) * ncol + c] = t[e];
+    }
+  }
 }
 
 /* The group's boundary facets on this rank (a boundary facet has one cell, so it lives on one rank only). */
@@ -132,6 +159,8 @@ static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt
       m->rows[(k * m->nn + nn) * dim + d] = gi[nn * dim + d];
       m->dofs[(k * m->nn + nn) * dim + d] = li[nn * dim + d] < 0 ? -(li[nn * dim + d] + 1) : li[nn * dim + d];
     }
+    /* vertex or edge node: on an inclined mirror plane its rows are the components in a frame of its own */
+    PetscCall(fe_constraint_node_frame(&p->con, m->dofs[(k * m->nn + nn) * dim], &m->R[(k * m->nn + nn) * dim * dim]));
     nn++;
   }
   PetscCall(DMPlexRestoreClosureIndices(dm, ls, ls, f, PETSC_TRUE, &nl, &li, NULL, NULL));
@@ -243,6 +272,7 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   PetscInt nf = PetscMax(m->nf, 1);
   PetscCall(PetscMalloc5(nf * m->nv, &m->mult, nf * m->nv, &m->lmult, nf * m->nn * dim, &m->rows, nf * m->nn * dim, &m->dofs, nf * m->nn * 2, &m->ab));
   PetscCall(PetscMalloc4(nf * m->nv * dim, &m->Xv, nf * nqp, &m->dA, nf * nqp * dim, &m->nq_, nf * nqp, &m->gq));
+  PetscCall(PetscMalloc1(nf * m->nn * dim * dim, &m->R));
   PetscCall(multiplier_points(ct, &mpt));
   PetscCall(DMGetCoordinateSection(p->dm, &cs));
   PetscCall(DMGetCoordinatesLocal(p->dm, &coords));
@@ -284,6 +314,7 @@ PetscErrorCode contact_mortar_destroy(Contact *ct) {
   PetscCall(PetscFree5(m->mult, m->lmult, m->rows, m->dofs, m->ab));
   PetscCall(PetscFree4(m->Xv, m->dA, m->nq_, m->gq));
   PetscCall(PetscFree(m->L));
+  PetscCall(PetscFree(m->R));
   PetscCall(PetscFree(m->vpt));
   PetscCall(VecDestroy(&m->gn));
   PetscCall(VecDestroy(&m->wv));
@@ -314,9 +345,11 @@ PetscErrorCode contact_mortar_gaps(Contact *ct, Vec U, PetscReal ur) {
       for (PetscInt a = 0; a < nv; a++)
         for (PetscInt d = 0; d < dim; d++) X[d] += L[a] * m->Xv[(k * nv + a) * dim + d];
       for (PetscInt d = 0; d < dim; d++) x[d] = X[d];
-      for (PetscInt j = 0; j < nn; j++) { /* x = X + u_h at the point (P2 interpolation) */
+      for (PetscInt j = 0; j < nn; j++) { /* x = X + u_h at the point (P2 interpolation, nodes in global axes) */
         PetscReal N = shape2(L, &m->ab[(k * nn + j) * 2]);
-        for (PetscInt d = 0; d < dim; d++) x[d] += N * PetscRealPart(ua[m->dofs[(k * nn + j) * dim + d]]);
+        double    u[3];
+        node_disp(m, dim, k, j, ua, u);
+        for (PetscInt d = 0; d < dim; d++) x[d] += N * u[d];
       }
       double g = indenter_gap(&ct->shape, X, x, ur, nv_);
       for (PetscInt d = 0; d < dim; d++) m->nq_[(k * m->nq + q) * dim + d] = nv_[d];
@@ -363,6 +396,7 @@ PetscErrorCode contact_mortar_forces(Contact *ct, Vec lam, Vec Ru) {
         for (PetscInt d = 0; d < dim; d++) f[j * dim + d] -= c * n[d];
       }
     }
+    rows_to_frames(m, dim, k, 1, f); /* a constrained component's row is negative: ignored */
     PetscCall(VecSetValues(Ru, nn * dim, &m->rows[k * nn * dim], f, ADD_VALUES));
   }
   PetscCall(VecRestoreArrayRead(m->lamloc, &la));
@@ -387,6 +421,7 @@ PetscErrorCode contact_mortar_coupling(Contact *ct) {
           for (PetscInt a = 0; a < nv; a++) v[(j * dim + d) * nv + a] -= c * L[a] * n[d];
       }
     }
+    rows_to_frames(m, dim, k, nv, v); /* dR_u/dlambda on the rows' components */
     PetscCall(MatSetValues(ct->Bt, nn * dim, &m->rows[k * nn * dim], nv, &m->mult[k * nv], v, ADD_VALUES));
   }
   PetscCall(MatAssemblyBegin(ct->Bt, MAT_FINAL_ASSEMBLY));
@@ -413,10 +448,11 @@ PetscErrorCode contact_mortar_first_touch(Contact *ct, PetscReal *dmin) {
   for (PetscInt k = 0; k < m->nf; k++) /* and the P2 nodes (a tip over a vertex touches there first) */
     for (PetscInt j = 0; j < m->nn; j++) {
       const PetscInt *ab = &m->ab[(k * m->nn + j) * 2];
-      double          X[3] = {0, 0, 0}, x[3], n[3];
+      double          X[3] = {0, 0, 0}, x[3], n[3], u[3];
+      node_disp(m, dim, k, j, ua, u);
       for (PetscInt d = 0; d < dim; d++) {
         X[d] = (m->Xv[(k * m->nv + ab[0]) * dim + d] + m->Xv[(k * m->nv + ab[1]) * dim + d]) / 2;
-        x[d] = X[d] + PetscRealPart(ua[m->dofs[(k * m->nn + j) * dim + d]]);
+        x[d] = X[d] + u[d];
       }
       double g = indenter_gap(&ct->shape, X, x, m->ur, n);
       if (-n[dim - 1] > 1e-3) *dmin = PetscMin(*dmin, g / -n[dim - 1]);

@@ -8,7 +8,9 @@
  *   w_j = int psi_j dA,   g_j = gt_j / w_j (a mean gap),   n_j = int psi_j n dA / w_j,
  * so that w_j g_j is the weighted gap, w_j (n_j . d) = int psi_j (n . d) dA is the multiplier's share of the
  * indenter force (eq. 19), and the active set, the indenter row and the multiplier rows are those of P1. Only
- * R_u and the coupling block Bt (and B, its transpose on the active rows) are integrals over the facets. */
+ * R_u and the coupling block Bt (and B, its transpose on the active rows) are integrals over the facets.
+ * A facet node on an inclined mirror plane (fe_constraint.h) has its unknowns in a frame of its own: its
+ * displacement is R u_rows in the gaps, its rows of R_u, Bt and B the global ones times R^T. */
 #ifndef CONTACT_MORTAR_H
 #define CONTACT_MORTAR_H
 
