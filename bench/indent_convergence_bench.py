@@ -60,9 +60,11 @@ MODELS = {
 }
 
 
-def scene(model, h_tip):
+def scene(model, h_tip, tol=None):
     _, name, _, order, far, _ = MODELS[model]
     t = absolute((ROOT / "input" / f"{name}.yaml").read_text())
+    if tol:  # the load and hold stages' output tolerance (shipped: 1.5e-2; the unload stage's 0.1 kept)
+        t = t.replace("measure: output, tol: 1.5e-2}", f"measure: output, tol: {tol:g}}}")
     t = re.sub(r"h_tip: [0-9.e-]+", f"h_tip: {h_tip:.6g}", t, count=1)
     t = re.sub(r"h_far: [0-9.e-]+", f"h_far: {far * h_tip:.6g}", t, count=1)
     if order != 1:
@@ -105,17 +107,22 @@ def load(path):
     return json.loads(path.read_text()) if path.exists() else {}
 
 
-def key(model, h):
-    return f"{model}:{h:.6g}"
+def key(model, h, tol=None):
+    return f"{model}{'@' + format(tol, 'g') if tol else ''}:{h:.6g}"
 
 
-def ladder(res, model):
-    rows = sorted((r for r in res.values() if r["model"] == model), key=lambda r: -r["h_tip"])
+def ladder(res, model, tol=None):
+    rows = sorted((r for r in res.values() if r["model"] == model and r.get("tol") == tol), key=lambda r: -r["h_tip"])
     return rows
 
 
-def limits(res, model):
-    rows = ladder(res, model)
+def ladders(res):
+    """(model, tol) of every ladder in res, in MODELS' order, the shipped tolerance first."""
+    return sorted({(r["model"], r.get("tol")) for r in res.values()}, key=lambda mt: (list(MODELS).index(mt[0]), mt[1] or 1))
+
+
+def limits(res, model, tol=None):
+    rows = ladder(res, model, tol)
     hs = [r["h_tip"] for r in rows]
     return {k: richardson(hs, [r["o"][k] for r in rows]) for k in KEYS}
 
@@ -135,11 +142,10 @@ def section(res, command, note):
              "the error against the Richardson limit of the model's own ladder (last three rungs). CPU: user + system of",
              "the driver [s], on a shared, loaded machine (2 cores, other users' jobs running): the wall time is not",
              "comparable, the CPU time roughly.", ""]
-    for model, (label, *_rest) in MODELS.items():
-        rows = ladder(res, model)
-        if not rows:
-            continue
-        lim = limits(res, model)
+    for model, tol in ladders(res):
+        label = MODELS[model][0] + (f", time steps at tol {tol:g}" if tol else "")
+        rows = ladder(res, model, tol)
+        lim = limits(res, model, tol)
         lines += [f"**{label}**", "", "| h_tip [µm] | unknowns | P [µN] | creep [nm] | h_res [nm] | steps | CPU [s] |",
                   "|---|---|---|---|---|---|---|"]
         for r in rows:
@@ -160,6 +166,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--models", default="axi1,axi2,sector1,half2", help=f"comma-separated, of {','.join(MODELS)}")
     ap.add_argument("--rungs", type=int, default=0, help="at most this many rungs per ladder (0: all)")
+    ap.add_argument("--tol", type=float, default=None, help="the load and hold stages' output tolerance (shipped 1.5e-2)")
+    ap.add_argument("--hmin", type=float, default=0, help="only the rungs with h_tip >= this")
     ap.add_argument("--quick", action="store_true", help="a 2-rung smoke run of each model (coarsest rungs), no document")
     ap.add_argument("--results", default=str(ROOT / "out" / "indent_convergence.json"),
                     help="JSON file of the results (written); more files after commas are read too (e.g. parallel runs)")
@@ -174,30 +182,30 @@ def main(argv=None):
     res = load(path)
     others = {} if a.quick else {k: v for f in files[1:] for k, v in load(f).items()}
     # rung by rung across the models, coarsest first: a cut run has every model's coarse rungs
-    todo = [(i, m, h) for m in models for i, h in enumerate(MODELS[m][5][:rungs or None])]
+    todo = [(i, m, h) for m in models for i, h in enumerate(MODELS[m][5][:rungs or None]) if h >= a.hmin * (1 - 1e-9)]
     with tempfile.TemporaryDirectory() as d:
         for i, m, h in sorted(todo):
-            if key(m, h) in res:
+            if key(m, h, a.tol) in res:
                 continue
             try:
-                r = run(scene(m, h), Path(d) / f"{m}_{i}")
+                r = run(scene(m, h, a.tol), Path(d) / f"{m}_{i}")
             except RuntimeError as e:
                 print(e, flush=True)
                 continue
             factor = MODELS[m][2]
             r["o"]["load at end of loading"] *= factor
-            r.update(model=m, h_tip=h)
-            res[key(m, h)] = r
+            r.update(model=m, h_tip=h, tol=a.tol)
+            res[key(m, h, a.tol)] = r
             path.write_text(json.dumps(res, indent=1))
             o = r["o"]
-            print(f"{m} h_tip {h:.4g}: {r['unknowns']} unknowns, P {o['load at end of loading']:.3f} uN, h_max "
+            print(f"{m}{' tol ' + format(a.tol, 'g') if a.tol else ''} h_tip {h:.4g}: {r['unknowns']} unknowns, P {o['load at end of loading']:.3f} uN, h_max "
                   f"{o['depth at end of loading'] * 1e3:.2f} nm, creep {o['creep depth'] * 1e3:.3f} nm, residual "
                   f"{o['residual depth'] * 1e3:.2f} nm, {r['steps']} steps, CPU {r['cpu']:.1f} s, wall {r['wall']:.1f} s",
                   flush=True)
     res = {**others, **res}
-    for m in (m for m in MODELS if ladder(res, m)):
-        lim = limits(res, m)
-        print(m + ": " + ", ".join(f"{SHORT[k]} -> {lim[k][1]:.6g} (p {lim[k][0]:.2f})" if lim[k][1] else
+    for m, tol in ladders(res):
+        lim = limits(res, m, tol)
+        print(m + (f" tol {tol:g}" if tol else "") + ": " + ", ".join(f"{SHORT[k]} -> {lim[k][1]:.6g} (p {lim[k][0]:.2f})" if lim[k][1] else
                                    f"{SHORT[k]}: not monotone" for k in KEYS))
     if a.doc:
         replace_section(TITLE, section(res, "bench/indent_convergence_bench.py " + " ".join(argv or sys.argv[1:]), a.note))
