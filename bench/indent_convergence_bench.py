@@ -20,7 +20,8 @@ ladder's limit.
 
 Results go to a JSON file as they come (--results, default out/indent_convergence.json; rerunning skips the rungs
 already there), so a long ladder can be cut and resumed; --doc writes the section "## 3D indentation: mesh
-convergence and the cheapest model" of docs/performance.md from that file.
+convergence and the cheapest model" of docs/performance.md from that file, followed by the reading of the tables
+written by hand in bench/indent_convergence_conclusions.md (its numbers are those of the run in the section).
 
 Usage: bench/indent_convergence_bench.py [--models sector1,half2,axi1,axi2] [--rungs N] [--quick] [--doc]
 """
@@ -43,6 +44,7 @@ from step_control_bench import absolute, outputs  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+CONCLUSIONS = ROOT / "bench" / "indent_convergence_conclusions.md"  # the section's reading, written by hand
 TITLE = "## 3D indentation: mesh convergence and the cheapest model"
 R2 = math.sqrt(2)
 KEYS = ("load at end of loading", "depth at end of loading", "creep depth", "residual depth")
@@ -103,6 +105,15 @@ def richardson(hs, xs):
     return p, x3 + (x3 - x2) / (r ** p - 1)
 
 
+def bracket(hs, xs):
+    """The limits that the last two rungs give if the order is 1 and if it is 2 (a band for erratic ladders)."""
+    if len(xs) < 2:
+        return None
+    r = hs[-2] / hs[-1]
+    lims = [xs[-1] + (xs[-1] - xs[-2]) / (r ** p - 1) for p in (1, 2)]
+    return min(lims), max(lims)
+
+
 def load(path):
     return json.loads(path.read_text()) if path.exists() else {}
 
@@ -118,7 +129,7 @@ def ladder(res, model, tol=None):
 
 def ladders(res):
     """(model, tol) of every ladder in res, in MODELS' order, the shipped tolerance first."""
-    return sorted({(r["model"], r.get("tol")) for r in res.values()}, key=lambda mt: (list(MODELS).index(mt[0]), mt[1] or 1))
+    return sorted({(r["model"], r.get("tol")) for r in res.values()}, key=lambda mt: (list(MODELS).index(mt[0]), mt[1] is not None, mt[1] or 0))
 
 
 def limits(res, model, tol=None):
@@ -154,11 +165,14 @@ def section(res, command, note):
                 p, x = lim[k]
                 cells.append(fmt(k, r["o"][k]) + (f" ({r['o'][k] / x - 1:+.1%})" if x else ""))
             lines.append(f"| {r['h_tip']:.4g} | {r['unknowns']} | {' | '.join(cells)} | {r['steps']} | {r['cpu']:.0f} |")
-        lim_cells = []
+        lim_cells, band = [], []
         for k in ("load at end of loading", "creep depth", "residual depth"):
             p, x = lim[k]
             lim_cells.append(f"{fmt(k, x)} (p = {p:.2f})" if x else "not monotone")
-        lines += [f"| Richardson limit | | {' | '.join(lim_cells)} | | |", ""]
+            b = bracket([r["h_tip"] for r in rows], [r["o"][k] for r in rows])
+            band.append(f"{fmt(k, b[0])} – {fmt(k, b[1])}" if b else "")
+        lines += [f"| Richardson limit | | {' | '.join(lim_cells)} | | |",
+                  f"| limit if p = 1 … 2 (last two rungs) | | {' | '.join(band)} | | |", ""]
     ref = reference(res)
     if ref:
         out3 = ("load at end of loading", "creep depth", "residual depth")
@@ -172,6 +186,8 @@ def section(res, command, note):
             lines.append(f"| {label} | {r['h_tip']:.4g} | {r['unknowns']} | {r['cpu']:.0f} | "
                          + " | ".join(f"{x:+.1%}" for x in e) + f" | {'✓' if max(map(abs, e)) <= 0.02 else ''} |")
         lines.append("")
+    if CONCLUSIONS.exists():
+        lines += [CONCLUSIONS.read_text()]
     return "\n".join(lines) + "\n"
 
 
