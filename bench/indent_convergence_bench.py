@@ -123,13 +123,14 @@ def key(model, h, tol=None):
 
 
 def ladder(res, model, tol=None):
-    rows = sorted((r for r in res.values() if r["model"] == model and r.get("tol") == tol), key=lambda r: -r["h_tip"])
+    rows = sorted((r for r in res.values() if r["model"] == model and r.get("tol") == tol and "failed" not in r),
+                  key=lambda r: -r["h_tip"])
     return rows
 
 
 def ladders(res):
     """(model, tol) of every ladder in res, in MODELS' order, the shipped tolerance first."""
-    return sorted({(r["model"], r.get("tol")) for r in res.values()}, key=lambda mt: (list(MODELS).index(mt[0]), mt[1] is not None, mt[1] or 0))
+    return sorted({(r["model"], r.get("tol")) for r in res.values() if "failed" not in r}, key=lambda mt: (list(MODELS).index(mt[0]), mt[1] is not None, mt[1] or 0))
 
 
 def limits(res, model, tol=None):
@@ -180,12 +181,16 @@ def section(res, command, note):
                   f"{ref['load at end of loading']:.1f} µN, creep = {ref['creep depth'] * 1e3:.2f} nm, h_res = "
                   f"{ref['residual depth'] * 1e3:.1f} nm), sorted by CPU time; ✓: all three within 2 %", "",
                   "| model | h_tip | unknowns | CPU [s] | P | creep | h_res | ≤ 2 % |", "|---|---|---|---|---|---|---|---|"]
-        for r in sorted(res.values(), key=lambda r: r["cpu"]):
+        for r in sorted((r for r in res.values() if "failed" not in r), key=lambda r: r["cpu"]):
             e = [r["o"][k] / ref[k] - 1 for k in out3]
             label = MODELS[r["model"]][0] + (f", tol {r['tol']:g}" if r.get("tol") else "")
             lines.append(f"| {label} | {r['h_tip']:.4g} | {r['unknowns']} | {r['cpu']:.0f} | "
                          + " | ".join(f"{x:+.1%}" for x in e) + f" | {'✓' if max(map(abs, e)) <= 0.02 else ''} |")
         lines.append("")
+    failed = sorted((r for r in res.values() if "failed" in r), key=lambda r: (r["model"], -r["h_tip"]))
+    if failed:
+        lines += ["Rungs that did not run: " + "; ".join(f"{MODELS[r['model']][0]} at h_tip {r['h_tip']:.4g} ({r['failed']})"
+                                                        for r in failed) + ".", ""]
     if CONCLUSIONS.exists():
         lines += [CONCLUSIONS.read_text()]
     return "\n".join(lines) + "\n"
@@ -228,6 +233,9 @@ def main(argv=None):
                 r = run(scene(m, h, a.tol), Path(d) / f"{m}_{i}")
             except RuntimeError as e:
                 print(e, flush=True)
+                why = [line for line in str(e).splitlines() if line.startswith("driver:")]
+                res[key(m, h, a.tol)] = dict(model=m, h_tip=h, tol=a.tol, failed=why[-1] if why else str(e)[-300:])
+                path.write_text(json.dumps(res, indent=1))
                 continue
             factor = MODELS[m][2]
             r["o"]["load at end of loading"] *= factor
