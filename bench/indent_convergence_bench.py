@@ -54,7 +54,7 @@ SHORT = {"load at end of loading": "P", "depth at end of loading": "h_max", "cre
 LADDER3 = [0.1, 0.1 / R2, 0.05, 0.05 / R2, 0.025, 0.025 / R2]
 MODELS = {
     "sector1": ("60° sector, P1", "nanoindent_kerogen_sector", 6, 1, 8, LADDER3),
-    "half2": ("half model (cube), P2", "nanoindent_kerogen", 2, 2, 8, [0.2, 0.2 / R2, 0.1, 0.1 / R2]),
+    "half2": ("half model (cube), P2", "nanoindent_kerogen", 2, 2, 8, [0.2, 0.2 / R2, 0.1, 0.1 / R2, 0.05]),
     "half1": ("half model (cube), P1", "nanoindent_kerogen", 2, 1, 8, LADDER3[:3]),
     "axi1": ("axisymmetric cone, P1", "nanoindent_kerogen_axi", 1, 1, 7.5,
              [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01, 0.01 / R2, 0.005]),
@@ -210,6 +210,7 @@ def main(argv=None):
     ap.add_argument("--rungs", type=int, default=0, help="at most this many rungs per ladder (0: all)")
     ap.add_argument("--tol", type=float, default=None, help="the load and hold stages' output tolerance (shipped 1.5e-2)")
     ap.add_argument("--hmin", type=float, default=0, help="only the rungs with h_tip >= this")
+    ap.add_argument("--hmax", type=float, default=1e9, help="only the rungs with h_tip <= this")
     ap.add_argument("--quick", action="store_true", help="a 2-rung smoke run of each model (coarsest rungs), no document")
     ap.add_argument("--results", default=str(ROOT / "out" / "indent_convergence.json"),
                     help="JSON file of the results (written); more files after commas are read too (e.g. parallel runs)")
@@ -224,10 +225,11 @@ def main(argv=None):
     res = load(path)
     others = {} if a.quick else {k: v for f in files[1:] for k, v in load(f).items()}
     # rung by rung across the models, coarsest first: a cut run has every model's coarse rungs
-    todo = [(i, m, h) for m in models for i, h in enumerate(MODELS[m][5][:rungs or None]) if h >= a.hmin * (1 - 1e-9)]
+    todo = [(i, m, h) for m in models for i, h in enumerate(MODELS[m][5][:rungs or None]) 
+            if a.hmin * (1 - 1e-9) <= h <= a.hmax * (1 + 1e-9)]
     with tempfile.TemporaryDirectory() as d:
         for i, m, h in sorted(todo):
-            if key(m, h, a.tol) in res:
+            if key(m, h, a.tol) in res or key(m, h, a.tol) in others:
                 continue
             try:
                 r = run(scene(m, h, a.tol), Path(d) / f"{m}_{i}")
