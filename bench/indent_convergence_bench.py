@@ -248,7 +248,8 @@ def main(argv=None):
     models = [m for m in a.models.split(",") if m]
     rungs = 2 if a.quick else a.rungs
     files = [Path(f) for f in a.results.split(",")]
-    path = Path(tempfile.mkdtemp()) / "quick.json" if a.quick else files[0]
+    quick_dir = tempfile.TemporaryDirectory() if a.quick else None
+    path = Path(quick_dir.name) / "quick.json" if a.quick else files[0]
     path.parent.mkdir(parents=True, exist_ok=True)
     res = load(path)
     others = {} if a.quick else {k: v for f in files[1:] for k, v in load(f).items()}
