@@ -159,3 +159,17 @@ def test_p2_contact_outgrows_its_surface(tmp_path):
     msg = proc.stdout + proc.stderr
     assert proc.returncode != 0 and "edge of the potential contact surface 'contact'" in msg and "small.yaml" in msg, msg
     assert (tmp_path / "small" / "history.csv").read_text().count("\n") >= 2
+
+
+def test_p2_force_control_first_touch_on_a_coarse_mesh(tmp_path):
+    """Force control from a load jump (P0 of an exp load) on a coarse P2 mesh: the tip vertex's mean gap is
+    positive while the tip touches, so no multiplier is active at first; the indenter is moved down to the first
+    touch of the mean gaps (semismooth.c, approach) instead of by the indenter row's small shift steps, which
+    needed more than the iteration limit here and cut the first step to nothing. The depth lands on 0.1 and
+    the load there is Sneddon's within 3 % (coarse mesh)."""
+    load = ("  - {name: load, duration: 10, indenter: {load: {exp: {P0: 0.2, k: 0.6}}, until: {depth: 0.1}}, "
+            "steps: {adaptive: true, first: 0.05, max: 1}}")
+    h = run(axi(CONE_V, load, h_tip=0.08, h_far=2), tmp_path / "coarse")
+    e = h["load"][-1] / sneddon(h["depth"][-1]) - 1
+    print(f"P2 coarse, force control from P0: {len(h) - 1} steps, depth {h['depth'][-1]:.6f}, Sneddon {e:+.2%}")
+    assert abs(h["depth"][-1] - 0.1) < 1e-5 and abs(e) < 0.03

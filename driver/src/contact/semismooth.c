@@ -154,6 +154,26 @@ static PetscErrorCode error_small(Semismooth *in, PetscReal theta, PetscBool *sm
   PetscFunctionReturn(0);
 }
 
+/* Force control with nothing in contact: no state carries the load until the indenter touches, so it is moved
+ * down to the first touch of the multipliers' gaps (their mean gaps on P2) instead of by the indenter-row shift's
+ * steps of R_r / kshift. Needed on P2: there the tip vertex's mean gap is positive while the tip touches, and
+ * the shift's steps took more than the iteration limit to close it. No move when a gap is already closed (P1 with
+ * the tip on the surface). */
+static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
+  PetscReal dmin = PETSC_MAX_REAL, all;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < in->ct.n; i++) {
+    PetscReal nd = contact_ndotd(&in->ct, i);
+    if (nd > 1e-3) dmin = PetscMin(dmin, in->ct.g[i] / nd);
+  }
+  PetscCall(MPIU_Allreduce(&dmin, &all, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)in->U)));
+  if (all > 0 && all < PETSC_MAX_REAL) {
+    in->ur += all;
+    PetscCall(semismooth_evaluate(in, merit));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* One step by the semismooth Newton method of Box 1: the active set from eq. 14 at every iterate, the
  * system of eq. 15 solved for the set, a backtracking line search on the merit, converged when the
  * residual is small and the set did not change. */
@@ -187,6 +207,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
       in->nactive = 0;
     } else PetscCall(contact_update_active(&in->ct, in->lam, in->fref / in->ct.weight_sum, &changes, &in->nactive));
     in->changes += changes;
+    if (!in->depth_control && !semismooth_released(in) && in->nactive == 0 && in->target > 0) PetscCall(approach(in, &merit));
     PetscCall(active_signature(in, &sig[k % 64]));
     PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
                       PetscAbsReal(in->depth_control ? in->Rr * in->kshift : in->Rr) <= in->rtol * in->fref;
