@@ -11,13 +11,13 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
   of the material (BP)."""
 import math
 import os
-import shutil
 import subprocess
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+from test_contact import run  # the elastic driver on a scene; its history
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
@@ -27,19 +27,6 @@ ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
 S3 = math.sqrt(3) / 2
 NA = (0.5, -S3, 0.0)   # outward normal of the sector's plane at azimuth 30 degrees (mirror_a)
 NS = (0.5, S3, 0.0)    # outward normal of the hexagon's face of the sector (side1)
-
-
-def run(text, out, exe="driver_elastic", check=True, np_=1):
-    scene = out.parent / (out.name + ".yaml")
-    scene.write_text(text)
-    cmd = [str(BIN / exe), "-input", str(scene), "-output_dir", str(out)]
-    if np_ > 1:
-        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(np_), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
-    if not check:
-        return proc
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
 
 
 def fields(out, k=-1):

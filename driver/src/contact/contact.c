@@ -369,10 +369,10 @@ PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode contact_first_touch(Contact *ct, PetscReal *dmin) {
+PetscErrorCode contact_first_touch(Contact *ct, PetscBool pointwise, PetscReal *dmin) {
   PetscReal loc = PETSC_MAX_REAL;
   PetscFunctionBeginUser;
-  if (ct->mortar) PetscCall(contact_mortar_first_touch(ct, &loc));
+  if (ct->mortar && pointwise) PetscCall(contact_mortar_first_touch(ct, &loc));
   else
     for (PetscInt i = 0; i < ct->n; i++) {
       PetscReal nd = contact_ndotd(ct, i);

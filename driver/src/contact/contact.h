@@ -69,11 +69,11 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
 PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal *penetration, PetscReal *min_lambda);
 /* Active nodes on the rim of the potential contact surface (all ranks): the contact has outgrown it. */
 PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count);
-/* The indenter's travel along d to its first touch of the surface at the last gaps, over all ranks
- * (PETSC_MAX_REAL if no point faces it): P1: the smallest g_i / (n_i . d) over the nodes; P2: over the Gauss
- * points and nodes of the contact facets (the mean gaps g_j would set the tip into the surface by part of an
- * element). */
-PetscErrorCode contact_first_touch(Contact *ct, PetscReal *dmin);
+/* The indenter's travel along d to its first touch at the last gaps, over all ranks (PETSC_MAX_REAL if no point
+ * faces it): the smallest g_i / (n_i . d) over the multipliers (P1: the nodes; P2: their mean gaps, where the
+ * active set turns on), or with pointwise on P2 over the Gauss points and nodes of the contact facets (where the
+ * surface itself touches: the mean gaps would set the tip into the surface by part of an element). */
+PetscErrorCode contact_first_touch(Contact *ct, PetscBool pointwise, PetscReal *dmin);
 /* The largest diagonal entry of the stiffness on the contact nodes (a one-node stiffness). */
 PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k);
 

@@ -1,5 +1,6 @@
 #include "indent_solver.h"
 #include "../io/log_events.h"
+#include "../io/options.h"
 
 #include <string.h>
 #include <time.h>
@@ -8,15 +9,6 @@ static double wall(void) {
   struct timespec t;
   clock_gettime(CLOCK_MONOTONIC, &t);
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* An option's default, unless the command line or the scene already gives it. */
-static PetscErrorCode default_option(const char *name, const char *value) {
-  PetscBool set;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, name, value));
-  PetscFunctionReturn(0);
 }
 
 PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
@@ -54,7 +46,7 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
     PetscCall(KSPSetType(s->ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    PetscCall(default_option("-mat_mumps_icntl_14", "100")); /* room for the delayed pivots (zero diagonal) */
+    PetscCall(options_default("-mat_mumps_icntl_14", "100")); /* room for the delayed pivots (zero diagonal) */
   } else {
     PetscCall(ISGetLocalSize(s->is[1], &nr));
     PetscCall(KSPSetType(s->ksp, KSPFGMRES));
@@ -73,15 +65,15 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
     PetscCall(MatCreateAIJ(comm, nl, nl, ct->N + 1, ct->N + 1, 0, dnz, 0, onz, &s->Sp));
     PetscCall(PetscFree2(dnz, onz));
     PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, s->Sp));
-    PetscCall(default_option("-fieldsplit_u_ksp_type", "gmres"));
-    PetscCall(default_option("-fieldsplit_u_ksp_rtol", "1e-12"));
-    PetscCall(default_option("-fieldsplit_u_pc_type", "gamg"));
-    PetscCall(default_option("-fieldsplit_contact_ksp_type", "gmres"));
-    PetscCall(default_option("-fieldsplit_contact_ksp_rtol", "1e-12"));
-    PetscCall(default_option("-fieldsplit_contact_pc_type", "lu"));
-    PetscCall(default_option("-fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
+    PetscCall(options_default("-fieldsplit_u_ksp_type", "gmres"));
+    PetscCall(options_default("-fieldsplit_u_ksp_rtol", "1e-12"));
+    PetscCall(options_default("-fieldsplit_u_pc_type", "gamg"));
+    PetscCall(options_default("-fieldsplit_contact_ksp_type", "gmres"));
+    PetscCall(options_default("-fieldsplit_contact_ksp_rtol", "1e-12"));
+    PetscCall(options_default("-fieldsplit_contact_pc_type", "lu"));
+    PetscCall(options_default("-fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
     /* MUMPS' workspace estimate does not foresee the delayed pivots of the zero diagonal: relax it */
-    PetscCall(default_option("-fieldsplit_contact_mat_mumps_icntl_14", "200"));
+    PetscCall(options_default("-fieldsplit_contact_mat_mumps_icntl_14", "200"));
   }
   PetscCall(KSPSetFromOptions(s->ksp));
   PetscFunctionReturn(0);

@@ -140,17 +140,14 @@ static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
  * in the displacements and in the indenter's position. theta is the residual's contraction (for Newton with
  * exact solves, the corrections contract as the residuals do). The residual must also be below
  * sqrt(rtol) of the force scale, so that a slow first iterate cannot stop the step. */
-static PetscErrorCode error_small(Semismooth *in, PetscReal theta, PetscBool *small) {
-  PetscReal dU, eta = theta / (1 - theta);
+static PetscErrorCode error_small(Semismooth *in, PetscReal merit, PetscReal merit_prev, PetscBool *small) {
+  PetscReal dU, theta = merit / merit_prev, eta = theta / (1 - theta);
   PetscFunctionBeginUser;
   *small = PETSC_FALSE;
-  if (!in->newton_estimate || in->etol <= 0 || !(theta < 0.5)) PetscFunctionReturn(0);
-  PetscReal merit = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + PetscSqr(in->depth_control ? in->Rr * in->kshift : in->Rr)) / in->fref;
-  if (merit > PetscSqrtReal(in->rtol)) PetscFunctionReturn(0);
+  if (!in->newton_estimate || in->etol <= 0 || !(theta < 0.5) || merit > PetscSqrtReal(in->rtol)) PetscFunctionReturn(0);
   PetscCall(VecWAXPY(in->Uk, -1.0, in->U0, in->U)); /* the step's increment (Uk is free between iterations) */
   PetscCall(VecNorm(in->Uk, NORM_INFINITY, &dU));
   *small = eta * in->du_norm <= in->etol * dU && eta * PetscAbsReal(in->dur_last) <= in->etol * PetscAbsReal(in->ur - in->ur0) ? PETSC_TRUE : PETSC_FALSE;
-  if (*small) in->early++;
   PetscFunctionReturn(0);
 }
 
@@ -160,13 +157,9 @@ static PetscErrorCode error_small(Semismooth *in, PetscReal theta, PetscBool *sm
  * the shift's steps took more than the iteration limit to close it. No move when a gap is already closed (P1 with
  * the tip on the surface). */
 static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
-  PetscReal dmin = PETSC_MAX_REAL, all;
+  PetscReal all;
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < in->ct.n; i++) {
-    PetscReal nd = contact_ndotd(&in->ct, i);
-    if (nd > 1e-3) dmin = PetscMin(dmin, in->ct.g[i] / nd);
-  }
-  PetscCall(MPIU_Allreduce(&dmin, &all, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)in->U)));
+  PetscCall(contact_first_touch(&in->ct, PETSC_FALSE, &all)); /* the multipliers' gaps */
   if (all > 0 && all < PETSC_MAX_REAL) {
     in->ur += all;
     PetscCall(semismooth_evaluate(in, merit));
@@ -211,7 +204,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     PetscCall(active_signature(in, &sig[k % 64]));
     PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
                       PetscAbsReal(in->depth_control ? in->Rr * in->kshift : in->Rr) <= in->rtol * in->fref;
-    if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit / merit_prev, &small));
+    if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, merit_prev, &small));
     if (in->monitor)
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n",
                             (int)k, (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes,
@@ -276,7 +269,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
 PetscErrorCode semismooth_rest_on_surface(Semismooth *in) {
   PetscReal all;
   PetscFunctionBeginUser;
-  PetscCall(contact_first_touch(&in->ct, &all)); /* P1: at the nodes; P2: at the facets' Gauss points */
+  PetscCall(contact_first_touch(&in->ct, PETSC_TRUE, &all)); /* P1: at the nodes; P2: at the facets' Gauss points */
   if (all < PETSC_MAX_REAL) { /* down onto the surface, or up out of it */
     in->ur += all;
     PetscCall(contact_update_gaps(&in->ct, in->U, in->ur));

@@ -34,7 +34,7 @@ typedef struct {
   PetscReal    Rr, ncp, ru;                      /* residual parts at the last evaluation */
   PetscReal    du_norm, dur_last;                /* the last correction: |alpha du|_inf, alpha dur */
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
-  PetscInt     its_total, cycles, early;         /* early: steps stopped by the error estimate */
+  PetscInt     its_total, cycles;
 } Semismooth;
 
 enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };

@@ -75,6 +75,28 @@ static void span_frame(const PointSpan *s, PetscInt dim, PetscReal R[]) {
     for (PetscInt j = 0; j < dim; j++) R[i * dim + j] = ax[j][i];
 }
 
+PetscErrorCode fe_label_points(DMLabel label, IS *points) {
+  IS              valueIS, *parts;
+  const PetscInt *values;
+  PetscInt        nvalues;
+  PetscFunctionBeginUser;
+  PetscCall(DMLabelGetValueIS(label, &valueIS));
+  PetscCall(ISGetLocalSize(valueIS, &nvalues));
+  PetscCall(ISGetIndices(valueIS, &values));
+  PetscCall(PetscMalloc1(PetscMax(nvalues, 1), &parts));
+  for (PetscInt v = 0; v < nvalues; v++) {
+    PetscCall(DMLabelGetStratumIS(label, values[v], &parts[v]));
+    if (!parts[v]) PetscCall(ISCreateGeneral(PETSC_COMM_SELF, 0, NULL, PETSC_OWN_POINTER, &parts[v]));
+  }
+  if (nvalues) PetscCall(ISConcatenate(PETSC_COMM_SELF, nvalues, parts, points));
+  else PetscCall(ISCreateGeneral(PETSC_COMM_SELF, 0, NULL, PETSC_OWN_POINTER, points));
+  for (PetscInt v = 0; v < nvalues; v++) PetscCall(ISDestroy(&parts[v]));
+  PetscCall(PetscFree(parts));
+  PetscCall(ISRestoreIndices(valueIS, &values));
+  PetscCall(ISDestroy(&valueIS));
+  PetscFunctionReturn(0);
+}
+
 /* Every group's points with dofs (their labels completed: closures), their constraint directions. */
 static PetscErrorCode collect_spans(DM dm, const PetscInt nd[], const FeFixed *fixed, PetscInt nfixed, PointSpan *span) {
   PetscInt dim, pStart;
@@ -83,41 +105,30 @@ static PetscErrorCode collect_spans(DM dm, const PetscInt nd[], const FeFixed *f
   PetscCall(DMPlexGetChart(dm, &pStart, NULL));
   for (PetscInt f = 0; f < nfixed; f++) {
     DMLabel         label;
-    IS              valueIS;
-    const PetscInt *values;
-    PetscInt        nvalues;
+    IS              pointIS;
+    const PetscInt *points;
+    PetscInt        npoints;
     PetscCall(DMGetLabel(dm, fixed[f].group, &label));
     PetscCheck(label, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG, "boundary condition: the mesh has no physical group '%s'",
                fixed[f].group);
     PetscCall(DMPlexLabelComplete(dm, label)); /* as PETSc does for DMAddBoundary's essential conditions */
-    PetscCall(DMLabelGetValueIS(label, &valueIS));
-    PetscCall(ISGetLocalSize(valueIS, &nvalues));
-    PetscCall(ISGetIndices(valueIS, &values));
-    for (PetscInt v = 0; v < nvalues; v++) {
-      IS              pointIS;
-      const PetscInt *points;
-      PetscInt        npoints;
-      PetscCall(DMLabelGetStratumIS(label, values[v], &pointIS));
-      if (!pointIS) continue;
-      PetscCall(ISGetLocalSize(pointIS, &npoints));
-      PetscCall(ISGetIndices(pointIS, &points));
-      for (PetscInt k = 0; k < npoints; k++) {
-        PetscInt depth;
-        PetscCall(DMPlexGetPointDepth(dm, points[k], &depth));
-        if (!nd[depth]) continue;
-        PointSpan *s = &span[points[k] - pStart];
-        if (fixed[f].mirror) span_add(s, dim, fixed[f].normal);
-        for (PetscInt c = 0; c < fixed[f].ncomp; c++) {
-          PetscReal e[3] = {0, 0, 0};
-          e[fixed[f].comp[c]] = 1;
-          span_add(s, dim, e);
-        }
+    PetscCall(fe_label_points(label, &pointIS));
+    PetscCall(ISGetLocalSize(pointIS, &npoints));
+    PetscCall(ISGetIndices(pointIS, &points));
+    for (PetscInt k = 0; k < npoints; k++) {
+      PetscInt depth;
+      PetscCall(DMPlexGetPointDepth(dm, points[k], &depth));
+      if (!nd[depth]) continue;
+      PointSpan *s = &span[points[k] - pStart];
+      if (fixed[f].mirror) span_add(s, dim, fixed[f].normal);
+      for (PetscInt c = 0; c < fixed[f].ncomp; c++) {
+        PetscReal e[3] = {0, 0, 0};
+        e[fixed[f].comp[c]] = 1;
+        span_add(s, dim, e);
       }
-      PetscCall(ISRestoreIndices(pointIS, &points));
-      PetscCall(ISDestroy(&pointIS));
     }
-    PetscCall(ISRestoreIndices(valueIS, &values));
-    PetscCall(ISDestroy(&valueIS));
+    PetscCall(ISRestoreIndices(pointIS, &points));
+    PetscCall(ISDestroy(&pointIS));
   }
   PetscFunctionReturn(0);
 }

@@ -115,35 +115,24 @@ PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
   PetscCall(VecGetArray(floc, &a));
   PetscInt fStart, fEnd;
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
-  IS              valueIS;
-  const PetscInt *values;
-  PetscInt        nvalues;
-  PetscCall(DMLabelGetValueIS(label, &valueIS));
-  PetscCall(ISGetLocalSize(valueIS, &nvalues));
-  PetscCall(ISGetIndices(valueIS, &values));
-  for (PetscInt v = 0; v < nvalues; v++) {
-    IS              pointIS;
-    const PetscInt *points;
-    PetscInt        npoints;
-    PetscCall(DMLabelGetStratumIS(label, values[v], &pointIS));
-    if (!pointIS) continue;
-    PetscCall(ISGetLocalSize(pointIS, &npoints));
-    PetscCall(ISGetIndices(pointIS, &points));
-    for (PetscInt k = 0; k < npoints; k++) {
-      PetscInt  face = points[k], nsupport;
-      PetscReal area, n[3];
-      if (face < fStart || face >= fEnd) continue; /* vertices and edges of the group */
-      PetscCall(DMPlexGetSupportSize(dm, face, &nsupport));
-      if (nsupport != 1) continue;                 /* an interior face: no load */
-      PetscCall(face_load_direction(p, face, axis, &area, n));
-      if (p->dim == 2) PetscCall(edge_load(p, s, face, area, n, a));
-      else PetscCall(triangle_load(p, s, face, area, n, a));
-    }
-    PetscCall(ISRestoreIndices(pointIS, &points));
-    PetscCall(ISDestroy(&pointIS));
+  IS              pointIS;
+  const PetscInt *points;
+  PetscInt        npoints;
+  PetscCall(fe_label_points(label, &pointIS));
+  PetscCall(ISGetLocalSize(pointIS, &npoints));
+  PetscCall(ISGetIndices(pointIS, &points));
+  for (PetscInt k = 0; k < npoints; k++) {
+    PetscInt  face = points[k], nsupport;
+    PetscReal area, n[3];
+    if (face < fStart || face >= fEnd) continue; /* vertices and edges of the group */
+    PetscCall(DMPlexGetSupportSize(dm, face, &nsupport));
+    if (nsupport != 1) continue;                 /* an interior face: no load */
+    PetscCall(face_load_direction(p, face, axis, &area, n));
+    if (p->dim == 2) PetscCall(edge_load(p, s, face, area, n, a));
+    else PetscCall(triangle_load(p, s, face, area, n, a));
   }
-  PetscCall(ISRestoreIndices(valueIS, &values));
-  PetscCall(ISDestroy(&valueIS));
+  PetscCall(ISRestoreIndices(pointIS, &points));
+  PetscCall(ISDestroy(&pointIS));
   PetscCall(fe_constraint_to_frame(&p->con, a, NULL));
   PetscCall(VecRestoreArray(floc, &a));
   PetscCall(DMCreateGlobalVector(dm, f));
@@ -457,7 +446,7 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
 PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   FeProblem       *p = (FeProblem *)ctx;
   PetscReal        B[6 * 90], DB[6 * 90];
-  PetscScalar     *Ke;
+  PetscScalar     *Ke = NULL;
   PetscBool        same = PETSC_FALSE;
   clock_t          t0   = clock();
   PetscFunctionBeginUser;
@@ -472,7 +461,7 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   }
   const PetscBool coo = p->coo_mat == P; /* the values go to the COO array, all set at once at the end */
   if (!coo) PetscCall(MatZeroEntries(P));
-  PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
+  if (!coo) PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
   const PetscInt n = p->mat.ntens, nb = p->nb;
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     PetscScalar *K = coo ? &p->coo_v[(c - p->cStart) * nb * nb] : Ke;

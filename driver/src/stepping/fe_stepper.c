@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "../fe/fe_state.h"
+#include "../io/options.h"
 
 typedef struct {
   FeCommon  c;
@@ -188,15 +189,6 @@ static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_
 
 static long umat_calls(void *ctx) { return (long)((FeSolver *)ctx)->c.p->umat_calls; }
 
-/* A PETSc option's value unless the user gave one (the same rule as contact/indent_solver.c). */
-static PetscErrorCode default_option(const char *name, const char *value) {
-  PetscBool set;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, name, value));
-  PetscFunctionReturn(0);
-}
-
 /* The linear solver (docs/performance.md, "FE solver: defaults by measurement"): GMRES (right
  * preconditioned: the true residual) around MUMPS' LU, kept across iterations and steps
  * (-fe_refactor_its), on any number of ranks; above -fe_gamg_above unknowns GAMG on the rigid-body near
@@ -214,12 +206,12 @@ static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_gamg_above", &gamg_above, NULL));
   PetscCall(MatGetSize(f->J, &n, NULL));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &given));
-  if (!given && n > gamg_above) PetscCall(default_option("-pc_type", "gamg"));
-  PetscCall(default_option("-ksp_type", f->refactor_its > 0 ? "gmres" : "preonly"));
-  PetscCall(default_option("-ksp_pc_side", "right"));
-  PetscCall(default_option("-ksp_rtol", "1e-10"));
-  PetscCall(default_option("-ksp_max_it", "100"));
-  PetscCall(default_option("-mat_mumps_icntl_7", "5")); /* METIS ordering (measured) */
+  if (!given && n > gamg_above) PetscCall(options_default("-pc_type", "gamg"));
+  PetscCall(options_default("-ksp_type", f->refactor_its > 0 ? "gmres" : "preonly"));
+  PetscCall(options_default("-ksp_pc_side", "right"));
+  PetscCall(options_default("-ksp_rtol", "1e-10"));
+  PetscCall(options_default("-ksp_max_it", "100"));
+  PetscCall(options_default("-mat_mumps_icntl_7", "5")); /* METIS ordering (measured) */
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));

@@ -243,7 +243,7 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   else st->dt = next_length(r, rq, o, ratio);
   /* After a kink the estimate may hold the step, not shorten it: a jump of the rate would otherwise cut every
      step where nodes keep entering contact (3D), and without it the steps there would grow unchecked. */
-  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(next_length(r, rq, o, kink_ratio), rq->h));
+  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, rq->h, o->pnewdt, kink_ratio), rq->h));
   st->landing = 0;
   int dir = event_direction(r->view.until.kind);
   if (dir && rq->h > 0) {
