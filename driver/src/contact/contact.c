@@ -245,8 +245,7 @@ PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscReal lambda_ref,
 }
 
 
-/* Node i's normal in its rows' frame, R^T n. */
-static void frame_normal(const Contact *ct, PetscInt i, PetscReal nf[]) {
+void contact_frame_normal(const Contact *ct, PetscInt i, PetscReal nf[]) {
   const PetscInt dim = ct->dim;
   for (PetscInt j = 0; j < dim; j++) {
     nf[j] = 0;
@@ -267,7 +266,7 @@ PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool de
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscReal l = PetscRealPart(la[i]), nf[3];
-    frame_normal(ct, i, nf);
+    contact_frame_normal(ct, i, nf);
     for (PetscInt d = 0; d < dim && !ct->mortar; d++) /* R_u -= lambda w n (eq. 10's last term, nodal quadrature) */
       if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * nf[d];
     loc[0] += l * ct->w[i] * contact_ndotd(ct, i);                           /* eq. 19: P = 1^T M lambda */
@@ -302,7 +301,7 @@ PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal 
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  li = ct->rstart + i, zero = 0;
     PetscReal wn[3], c = ct->w[i] * contact_ndotd(ct, i), one = 1.0, z = 0.0;
-    frame_normal(ct, i, wn);
+    contact_frame_normal(ct, i, wn);
     for (PetscInt d = 0; d < dim; d++) wn[d] *= -ct->w[i];
     for (PetscInt d = 0; d < dim && !ct->mortar; d++) { /* dR_u/dlambda = -w n, all nodes (exact) */
       PetscInt r = ct->row[i * dim + d];

@@ -42,6 +42,8 @@ typedef struct {
 /* n_i . d of node i at the last gaps (d = -e_z in 3D, -e_y in 2D): the part of its pressure that bears
  * on the indenter's axis (eq. 19). */
 static inline PetscReal contact_ndotd(const Contact *ct, PetscInt i) { return -ct->nrm[i * ct->dim + ct->dim - 1]; }
+/* Node i's normal in its rows' frame, R^T n (nodes on an inclined mirror plane have a nodal frame). */
+void contact_frame_normal(const Contact *ct, PetscInt i, PetscReal nf[]);
 
 /* The potential contact nodes: the vertices of the faces (3D) or edges (2D) of the group, owned by this
  * rank, with their weights int N_i dGamma (eq. 18; plane strain: times the thickness; axisymmetric: with

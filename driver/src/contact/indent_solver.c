@@ -109,12 +109,13 @@ static PetscErrorCode assemble_schur_pre(IndentSolver *s, Contact *ct) {
   if (!rank) PetscCall(MatSetValue(s->Sp, 0, 0, ct->kr, INSERT_VALUES));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  gi = 1 + ct->rstart + i, zero = 0;
-    PetscReal c = ct->w[i] * contact_ndotd(ct, i), sii = 1;
+    PetscReal c = ct->w[i] * contact_ndotd(ct, i), sii = 1, nf[3];
     if (ct->active[i]) {
       sii = 0;
+      contact_frame_normal(ct, i, nf); /* the node's rows are in its nodal frame (mirror planes) */
       for (PetscInt d = 0; d < dim; d++) {
         PetscInt r = ct->row[i * dim + d];
-        if (r >= 0) sii -= PetscSqr(ct->w[i] * ct->nrm[i * dim + d]) / PetscRealPart(da[r - rstart]);
+        if (r >= 0) sii -= PetscSqr(ct->w[i] * nf[d]) / PetscRealPart(da[r - rstart]);
       }
     }
     PetscCall(MatSetValue(s->Sp, zero, gi, ct->depth_control ? 0.0 : c, INSERT_VALUES));
