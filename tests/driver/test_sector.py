@@ -377,3 +377,39 @@ def test_mirror_not_of_the_material(tmp_path):
     proc = run(text, tmp_path / "bp", exe="driver", check=False)
     print(proc.stderr.strip())
     assert proc.returncode == 2 and "boundary.mirror[0].normal" in proc.stderr and "not a mirror plane of the material" in proc.stderr
+
+
+def test_copies_give_the_whole_indenters_load(tmp_path):
+    """indenter.copies: 6 on the sector: the scene's loads and the history's are the whole indenter's. The same
+    sector under force control to a model load of 2 (an exp load to until.load, a hold, a ramp down) and with
+    copies 6 to 12: the same depths at every step (the model solves the same problem), and the loads and the
+    contact force 6 times the model's (both to round-off)."""
+    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.15, h_far=0.5, r_fine=0.3, r_contact=0.6)
+
+    def push(total, copies):
+        extra = f", copies: {copies}" if copies else ""
+        return f"""indenter: {{shape: berkovich, half_angle: 65.27, contact: contact{extra}}}
+stages:
+  - {{name: load, duration: 1, indenter: {{load: {{exp: {{P0: {total / 20}, k: 4}}}}, until: {{load: {total}}}}}, steps: {{count: 3}}}}
+  - {{name: hold, duration: 1, indenter: {{load: hold}}, steps: {{count: 1}}}}
+  - {{name: unload, duration: 1, indenter: {{load: {total / 2}}}, steps: {{count: 2}}}}
+"""
+    model = run(sector_scene(sector, indenter=push(2.0, None)), tmp_path / "model")
+    whole = run(sector_scene(sector, indenter=push(12.0, 6)), tmp_path / "whole")
+    depth = np.abs(whole["depth"] - model["depth"]).max() / model["depth"].max()
+    load = np.abs(whole["load"] - 6 * model["load"]).max() / whole["load"].max()
+    force = np.abs(whole["contact_force"] - 6 * model["contact_force"]).max() / whole["contact_force"].max()
+    print(f"copies 6: depth {depth:.1e}, load {load:.1e}, contact force {force:.1e} (relative); whole load at the end of "
+          f"loading {whole['load'][3]:.6g}, model {model['load'][3]:.6g}")
+    assert len(model) == len(whole) == 7 and model["depth"][3] > 0
+    assert abs(whole["load"][3] - 12.0) < 1e-9 and depth < 1e-9 and load < 1e-12 and force < 1e-9
+
+
+@pytest.mark.parametrize("copies,kin,word", [(2.5, "3d", "expected a whole number >= 1"), (0, "3d", "expected a whole number >= 1"),
+                                             (2, "axisymmetric", "already carries the whole indenter's load")])
+def test_bad_copies(tmp_path, copies, kin, word):
+    text = (ROOT / "input" / ("nanoindent_kerogen_sector.yaml" if kin == "3d" else "nanoindent_kerogen_axi.yaml")).read_text()
+    text = text.replace("../meshes/", f"{ROOT}/meshes/").replace(", copies: 6}", "}").replace("contact: contact", f"contact: contact, copies: {copies}", 1)
+    proc = run(text, tmp_path / "bad", exe="driver", check=False)
+    print(proc.stderr.strip())
+    assert proc.returncode == 2 and "indenter.copies" in proc.stderr and word in proc.stderr and "bad.yaml" in proc.stderr

@@ -12,7 +12,7 @@
 
 static const double DEG = M_PI / 180;
 
-static int read_stage(YdDoc *doc, YdNode *nd, int i, IndentStage *st, char *err, size_t errlen) {
+static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage *st, char *err, size_t errlen) {
   char    path[96], sub[128];
   YdNode *v, *x;
   snprintf(path, sizeof path, "stages[%d].indenter", i);
@@ -54,6 +54,8 @@ static int read_stage(YdDoc *doc, YdNode *nd, int i, IndentStage *st, char *err,
       FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp or exp)", doc->file, x->line, sub);
     if (yd_check_unused(doc, x, sub, "depth, load", err, errlen)) return 1;
   }
+  if (st->kind == IND_LOAD_RAMP) st->target /= copies; /* the model carries 1/copies of the indenter's load */
+  st->P0 /= copies, st->until_load /= copies;
   return yd_check_unused(doc, nd, path, "load, depth, until", err, errlen);
 }
 
@@ -110,11 +112,21 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   }
   if ((v = yd_get(nd, "complementarity_c")) && (yd_double(doc, v, "indenter.complementarity_c", &is->c, err, errlen) || !(is->c > 0)))
     FAIL("%s:%d: key 'indenter.complementarity_c': expected > 0 (stress per length)", doc->file, v->line);
-  if (yd_check_unused(doc, nd, "indenter", "shape, half_angle, tip_angle, radius, rotation, tip, contact, gap, complementarity_c", err, errlen)) return 1;
+  is->copies = 1;
+  if ((v = yd_get(nd, "copies"))) {
+    if (yd_double(doc, v, "indenter.copies", &is->copies, err, errlen)) return 1;
+    if (!(is->copies >= 1 && is->copies == floor(is->copies)))
+      FAIL("%s:%d: key 'indenter.copies': expected a whole number >= 1 (how many copies of the model make the whole: 2 for a half "
+           "model, 6 for a 60-degree sector), got %g", doc->file, v->line, is->copies);
+    if (sc->kin != KIN_3D && is->copies != 1)
+      FAIL("%s:%d: key 'indenter.copies': a %s model already carries the whole indenter's load (1), got %g", doc->file, v->line,
+           sc->kin == KIN_AXISYMMETRIC ? "axisymmetric" : "plane-strain", is->copies);
+  }
+  if (yd_check_unused(doc, nd, "indenter", "shape, half_angle, tip_angle, radius, rotation, tip, contact, gap, complementarity_c, copies", err, errlen)) return 1;
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))
     FAIL("%s:%d: key 'indenter.tip': axisymmetric: the tip must be on the axis (x = 0)", doc->file, yd_key_line(nd, "tip"));
   for (int i = 0; i < sc->nstage; i++)
-    if (read_stage(doc, sc->stage[i].indenter, i, &is->stage[i], err, errlen)) return 1;
+    if (read_stage(doc, sc->stage[i].indenter, i, is->copies, &is->stage[i], err, errlen)) return 1;
   return 0;
 }
 

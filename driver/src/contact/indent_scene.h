@@ -23,6 +23,9 @@ typedef struct {
   char          contact_group[64];
   char          file[512];      /* the scene file, for messages */
   double        c;              /* complementarity constant (eq. 13); 0: E / (contact-node spacing) */
+  double        copies;         /* the whole indenter's load over the model's (key 'copies': 2 for a half model,
+                                   6 for a 60-degree sector; 1 otherwise). The scene's loads and the history's
+                                   are the whole indenter's; the stages' targets are stored as the model's. */
   IndentStage   stage[MAXSTAGES];
 } IndentScene;
 

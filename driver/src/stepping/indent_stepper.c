@@ -36,8 +36,8 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
     double start = d->stage_start, te = st->kind == IND_LOAD_EXP ? log(st->until_load / st->P0) / st->k
                                                                  : (st->target != start ? g->duration * (st->until_load - start) / (st->target - start) : -1);
     if (!(te >= 0 && te <= g->duration)) {
-      snprintf(err, errlen, "stage '%s': the load never reaches until.load = %g within the stage's duration %g s", g->name, st->until_load,
-               g->duration);
+      snprintf(err, errlen, "stage '%s': the load never reaches until.load = %g within the stage's duration %g s", g->name,
+               st->until_load * d->is->copies, g->duration);
       return 1;
     }
     v->duration = te;
@@ -79,7 +79,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   if (fe_common_observe(&d->c, rq, o)) return 1;
   if (contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
   o->event[EVENT_DEPTH] = in->ur;
-  o->event[EVENT_LOAD]  = in->depth_control ? d->force : in->target;
+  o->event[EVENT_LOAD]  = (in->depth_control ? d->force : in->target) * d->is->copies; /* the whole indenter's */
   o->progress           = st->until_depth > 0 ? in->ur / st->until_depth : -1;
   o->kink               = in->changes > 0; /* a node entered or left contact: the depth rate jumps */
   o->nout = 2, o->out[0] = in->ur, o->group[0] = 0, o->out[1] = d->force, o->group[1] = 1;
@@ -120,14 +120,14 @@ static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   Indent    *d = ctx;
   FeProblem *p = d->c.p;
   fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g,%.6g\n", row->t, row->stage,
-          row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks, d->load,
-          (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, d->force, d->pen, d->lmin, (long)p->umat_calls, row->wall,
+          row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks,
+          d->load * d->is->copies, (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, d->force * d->is->copies, d->pen, d->lmin, (long)p->umat_calls, row->wall,
           p->reaction[0], p->reaction[1], p->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
 }
 
 static void progress(void *ctx, char *buf, size_t n) {
   Indent *d = ctx;
-  snprintf(buf, n, "load %-10.5g depth %-10.5g active %4d (%3d changes) ", d->load, (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes);
+  snprintf(buf, n, "load %-10.5g depth %-10.5g active %4d (%3d changes) ", d->load * d->is->copies, (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes);
 }
 
 static int write_fields(void *ctx, double t, char *err, size_t errlen) {
