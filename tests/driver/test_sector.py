@@ -10,17 +10,15 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
 - bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
   of the material (BP)."""
 import math
-import os
 import subprocess
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
-from test_contact import run  # the elastic driver on a scene; its history
+from test_contact import run, tangent_checks  # the elastic driver on a scene; its history
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
 GEO = ROOT / "meshes" / "indent_sector.geo"
 E, NU = 1000.0, 0.3
 ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
@@ -336,13 +334,8 @@ def test_p2_sector_tangent_against_finite_differences(tmp_path):
 stages:
   - {name: push, duration: 1, indenter: {load: 4}, steps: {count: 2}}
 """)
-    scene = tmp_path / "fd.yaml"
-    scene.write_text(text)
-    proc = subprocess.run([str(BIN / "driver_elastic"), "-input", str(scene), "-output_dir", str(tmp_path / "fd"),
-                           "-indent_check_tangent"], capture_output=True, text=True, cwd=ROOT)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    checks = [float(m) for m in re.findall(r"whole system\): \|J d - FD\| / \|J d\| = ([0-9.eE+-]+)", proc.stdout)]
-    active = [int(m) for m in re.findall(r"active +([0-9]+) \(", proc.stdout)]
+    checks, stdout = tangent_checks(text, tmp_path / "fd")
+    active = [int(m) for m in re.findall(r"active +([0-9]+) \(", stdout)]
     print(f"P2 sector tangent: {len(checks)} iterates, |J d - FD| / |J d| up to {max(checks):.1e}; active {active}")
     assert len(checks) >= 3 and max(checks) < 1e-8 and active[-1] >= 4
 

@@ -266,9 +266,11 @@ PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool de
   PetscCall(VecGetArrayRead(lam, &la));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscReal l = PetscRealPart(la[i]), nf[3];
-    contact_frame_normal(ct, i, nf);
-    for (PetscInt d = 0; d < dim && !ct->mortar; d++) /* R_u -= lambda w n (eq. 10's last term, nodal quadrature) */
-      if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * nf[d];
+    if (!ct->mortar) { /* R_u -= lambda w n (eq. 10's last term, nodal quadrature; P2: contact_mortar_forces) */
+      contact_frame_normal(ct, i, nf);
+      for (PetscInt d = 0; d < dim; d++)
+        if (ct->row[i * dim + d] >= 0) ra[ct->row[i * dim + d] - rstart] -= l * ct->w[i] * nf[d];
+    }
     loc[0] += l * ct->w[i] * contact_ndotd(ct, i);                           /* eq. 19: P = 1^T M lambda */
     loc[1] += PetscSqr(ct->w[i] * (l - PetscMax(0, l - ct->c * ct->g[i]))); /* eq. 13, g >= 0 open */
   }

@@ -21,6 +21,9 @@ static const char *shape_name(const IndentScene *is) {
   return (const char *[]){"berkovich", "cone", "wedge", "sphere", "flat_punch"}[is->shape.kind];
 }
 
+/* A load of the model as the whole indenter's (indenter.copies: the model is one of that many mirror copies). */
+static inline double whole(const Indent *d, double model_load) { return model_load * d->is->copies; }
+
 static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Indent      *d  = ctx;
   IndentStage *st = &d->is->stage[s];
@@ -37,7 +40,7 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
                                                                  : (st->target != start ? g->duration * (st->until_load - start) / (st->target - start) : -1);
     if (!(te >= 0 && te <= g->duration)) {
       snprintf(err, errlen, "stage '%s': the load never reaches until.load = %g within the stage's duration %g s", g->name,
-               st->until_load * d->is->copies, g->duration);
+               whole(d, st->until_load), g->duration);
       return 1;
     }
     v->duration = te;
@@ -79,7 +82,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   if (fe_common_observe(&d->c, rq, o)) return 1;
   if (contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
   o->event[EVENT_DEPTH] = in->ur;
-  o->event[EVENT_LOAD]  = (in->depth_control ? d->force : in->target) * d->is->copies; /* the whole indenter's */
+  o->event[EVENT_LOAD]  = whole(d, in->depth_control ? d->force : in->target);
   o->progress           = st->until_depth > 0 ? in->ur / st->until_depth : -1;
   o->kink               = in->changes > 0; /* a node entered or left contact: the depth rate jumps */
   o->nout = 2, o->out[0] = in->ur, o->group[0] = 0, o->out[1] = d->force, o->group[1] = 1;
@@ -121,13 +124,13 @@ static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   FeProblem *p = d->c.p;
   fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g,%.6g\n", row->t, row->stage,
           row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks,
-          d->load * d->is->copies, (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, d->force * d->is->copies, d->pen, d->lmin, (long)p->umat_calls, row->wall,
+          whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, whole(d, d->force), d->pen, d->lmin, (long)p->umat_calls, row->wall,
           p->reaction[0], p->reaction[1], p->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
 }
 
 static void progress(void *ctx, char *buf, size_t n) {
   Indent *d = ctx;
-  snprintf(buf, n, "load %-10.5g depth %-10.5g active %4d (%3d changes) ", d->load * d->is->copies, (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes);
+  snprintf(buf, n, "load %-10.5g depth %-10.5g active %4d (%3d changes) ", whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes);
 }
 
 static int write_fields(void *ctx, double t, char *err, size_t errlen) {
