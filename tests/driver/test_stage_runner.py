@@ -188,28 +188,30 @@ def test_output_error_measure_is_first_order(tmp_path):
 
 
 def test_restart_is_bit_identical_with_the_controller(tmp_path):
+    """A restart continues bit for bit the run that writes the same checkpoints (the contact solver factors afresh
+    after each checkpoint, as a restarted run does: docs/driver.md, guarantees)."""
     scene = camclay_cone(load_hold(0.03, hold=10, measure="output"))
-    full = run(scene, tmp_path / "full")
+    full = run(scene, tmp_path / "full", args=["-checkpoint_every", "4"])
     part = tmp_path / "part"
     run(scene, part, args=["-checkpoint_every", "4", "-max_steps", "13"])
-    again = run(scene, part, args=["-restart"])
+    again = run(scene, part, args=["-restart", "-checkpoint_every", "4"])
     cols = [c for c in full.dtype.names if c not in ("wall",)]
     assert len(again) == len(full)
     for c in cols:
         assert np.array_equal(again[c], full[c]), c
     # the volume measure too
     vol = camclay_cone(load_hold(0.1, hold=10, measure="volume"))
-    vfull = run(vol, tmp_path / "vfull")
+    vfull = run(vol, tmp_path / "vfull", args=["-checkpoint_every", "3"])
     run(vol, tmp_path / "vpart", args=["-checkpoint_every", "3", "-max_steps", "11"])
-    vagain = run(vol, tmp_path / "vpart", args=["-restart"])
+    vagain = run(vol, tmp_path / "vpart", args=["-restart", "-checkpoint_every", "3"])
     assert len(vagain) == len(vfull) and np.array_equal(vagain["depth"], vfull["depth"])
 
 
 def test_kill_at_any_moment_then_restart(tmp_path):
     """kill -9 at three moments of a run that writes a checkpoint at every step; each time -restart continues
-    from the last complete set, and the end is the uninterrupted run's, bit for bit."""
+    from the last complete set, and the end is the uninterrupted run's (with the same checkpoints), bit for bit."""
     scene = camclay_cone(load_hold(0.03, hold=10))
-    full = run(scene, tmp_path / "full")
+    full = run(scene, tmp_path / "full", args=["-checkpoint_every", "1"])
     out = tmp_path / "killed"
     (tmp_path / "killed.yaml").write_text(scene)
     args = ["-input", str(tmp_path / "killed.yaml"), "-output_dir", str(out), "-checkpoint_every", "1"]

@@ -35,8 +35,7 @@ PetscErrorCode semismooth_evaluate(Semismooth *in, PetscReal *merit) {
     PetscCall(MPIU_Allreduce(&s, &all, 1, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
     in->ncp = PetscSqrtReal(all);
   }
-  PetscReal rr = in->depth_control ? in->Rr * in->kshift : in->Rr; /* depth rows in force units */
-  *merit       = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + rr * rr) / in->fref;
+  *merit = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + in->Rr * in->Rr) / in->fref; /* R_r: a force (contact.h) */
   PetscFunctionReturn(0);
 }
 
@@ -153,7 +152,7 @@ static PetscErrorCode error_small(Semismooth *in, PetscReal merit, PetscReal mer
 
 /* Force control with nothing in contact: no state carries the load until the indenter touches, so it is moved
  * down to the first touch of the multipliers' gaps (their mean gaps on P2) instead of by the indenter-row shift's
- * steps of R_r / kshift. Needed on P2: there the tip vertex's mean gap is positive while the tip touches, and
+ * steps of R_r / k_n. Needed on P2: there the tip vertex's mean gap is positive while the tip touches, and
  * the shift's steps took more than the iteration limit to close it. No move when a gap is already closed (P1 with
  * the tip on the surface). */
 static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
@@ -203,7 +202,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     if (!in->depth_control && !semismooth_released(in) && in->nactive == 0 && in->target > 0) PetscCall(approach(in, &merit));
     PetscCall(active_signature(in, &sig[k % 64]));
     PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
-                      PetscAbsReal(in->depth_control ? in->Rr * in->kshift : in->Rr) <= in->rtol * in->fref;
+                      PetscAbsReal(in->Rr) <= in->rtol * in->fref;
     if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, merit_prev, &small));
     if (in->monitor)
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n",
@@ -228,15 +227,14 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     /* eq. 15 for the current set; a stiffness shift on the indenter row when no node is in contact
        (force control: the row would be empty) */
     PetscBool shift = !in->depth_control && in->nactive == 0;
-    PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
     PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
-    PetscCall(contact_jacobian(&in->ct, in->depth_control, shift ? in->kshift : 0.0));
+    PetscCall(contact_jacobian(&in->ct, in->depth_control, shift));
     PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT), 0, 0, 0, 0));
     PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
     if (in->fd_check && !shift) PetscCall(check_tangent(in, &merit)); /* the shift is in the tangent only */
     PetscReal dur;
     PetscBool ok;
-    PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, in->du, &dur, in->dlam, &ok));
+    PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, changes > 0 ? PETSC_TRUE : PETSC_FALSE, in->du, &dur, in->dlam, &ok));
     if (!ok) {
       *status = STEP_LINEAR;
       break;
@@ -292,6 +290,14 @@ PetscErrorCode semismooth_commit(Semismooth *in, PetscReal h, PetscBool same_sta
 }
 
 
+/* K at the iterate, for the solver when it factors or preconditions (indent_solver.h). */
+static PetscErrorCode assemble_tangent(void *ctx) {
+  Semismooth *in = ctx;
+  PetscFunctionBeginUser;
+  PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
   MPI_Comm comm = PetscObjectComm((PetscObject)p->dm);
   PetscFunctionBeginUser;
@@ -323,7 +329,9 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   for (int k = 0; lv[k]; k++) PetscCall(VecDuplicate(in->lam, lv[k]));
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecZeroEntries(*all[k]));
-  PetscCall(indent_solver_create(&in->ct, in->K, &in->sol));
+  PetscCall(fe_jacobian_coo_setup(p, in->K));
+  PetscCall(fe_tangent_operator(p, in->K, &in->Kmf));
+  PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &in->sol));
   in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE, in->newton_estimate = PETSC_TRUE;
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1)", NULL);
   PetscCall(PetscOptionsReal("-indent_rtol", "residual tolerance relative to the load", NULL, in->rtol, &in->rtol, NULL));
@@ -342,7 +350,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   PetscCall(fe_residual(NULL, in->U, in->Ru, p));
   PetscCall(fe_problem_commit(p));
   PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, p));
-  PetscCall(contact_node_stiffness(&in->ct, in->K, &in->kshift));
+  PetscCall(contact_node_stiffness(&in->ct, in->K));
   {
     PetscReal E = 0, Eall, ell = 0, lall;
     for (PetscInt k = 0; k < p->npoint; k++) E = PetscMax(E, p->ddsdde[k * 36]);
@@ -377,5 +385,6 @@ PetscErrorCode semismooth_destroy(Semismooth *in) {
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecDestroy(all[k]));
   PetscCall(MatDestroy(&in->K));
+  PetscCall(MatDestroy(&in->Kmf));
   PetscFunctionReturn(0);
 }

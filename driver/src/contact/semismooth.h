@@ -18,13 +18,13 @@ typedef struct {
   FeProblem   *p;
   Contact      ct;
   IndentSolver sol;
-  Mat          K;
+  Mat          K, Kmf;                           /* the FE tangent, assembled and matrix-free */
   Vec          U, lam, Ru, Rlam, du, dlam;       /* iterate, residual parts, Newton direction */
   Vec          Uk, lamk;                         /* the iterate before a line search */
   Vec          U0, lam0, rateU, ratelam;         /* committed; last converged increment */
   PetscReal    ur, ur0, rateur, dt_prev;
   PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate;
-  PetscReal    rtol, kshift, fref;
+  PetscReal    rtol, fref;
   PetscInt     max_it;
   /* the step being solved */
   PetscBool    depth_control;

@@ -59,7 +59,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   in->target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
   if (st->until_load > 0 && rq->lambda >= 1) in->target = st->until_load; /* the event time is the stage's end */
   if (!in->depth_control) in->fref = PetscMax(PetscMax(d->load_max, in->target), 1e-300);
-  else in->fref = PetscMax(PetscMax(d->load_max, in->kshift * PetscAbsReal(in->target)), 1e-300);
+  else in->fref = PetscMax(PetscMax(d->load_max, in->ct.kn * PetscAbsReal(in->target)), 1e-300);
   int      status;
   PetscInt its = 0;
   p->umat_tol  = 0; /* Newton iterates without the UMAT's error control */
@@ -171,6 +171,7 @@ static int state_io(Indent *d, BinFile *f, int write) {
 
 static int save(void *ctx, BinFile *f) {
   Indent *d = ctx;
+  indent_solver_refresh(&d->in.sol); /* the next solve factors afresh, as a run restarted from here does */
   return fe_common_save(&d->c, d->in.U0, f) || state_io(d, f, 1);
 }
 
@@ -205,17 +206,17 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
                     "indenter-row shift %.4g\n",
               shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
-              (double)d.in.ct.c, (double)d.in.kshift);
+              (double)d.in.ct.c, (double)d.in.ct.kn);
   StepSolver sv = {&d, "indentation", sc->nstage, comm, stage_begin, solve, accept, check, history_header, history_row, progress,
                    write_fields, promote, save, load, replay, umat_calls, resume};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&d.c);
   PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
-                    "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations), wall %.2f s -> %s/history.csv\n",
+                    "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations, %d factorisations), wall %.2f s -> %s/history.csv\n",
               sc->name, sum.steps, (int)d.in.its_total, d.in.predictor ? "on" : "off", sum.cutbacks, sum.rejected_error, (int)d.in.cycles,
               sum.umat_calls, p->assembly_seconds, d.in.sol.seconds, d.in.sol.fieldsplit ? "fieldsplit" : "direct", (int)d.in.sol.linear_its,
-              sum.wall, opt->outdir);
+              (int)d.in.sol.setups, sum.wall, opt->outdir);
   semismooth_destroy(&d.in);
   return rc;
 }
