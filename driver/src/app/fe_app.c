@@ -37,14 +37,17 @@ PetscErrorCode app_runner_options(RunnerOptions *o) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(o, sizeof *o));
   o->max_steps = -1;
-  PetscBool restart = PETSC_FALSE;
+  PetscBool restart = PETSC_FALSE, elementary = PETSC_FALSE;
   PetscInt  every = 0, max_steps = -1, progress = 0;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Stages and steps (every scene kind)", NULL);
   PetscCall(PetscOptionsInt("-checkpoint_every", "write a checkpoint every N steps (0: none)", NULL, every, &every, NULL));
   PetscCall(PetscOptionsBool("-restart", "continue from the last complete checkpoint in the output directory", NULL, restart, &restart, NULL));
   PetscCall(PetscOptionsInt("-max_steps", "stop after N steps in all (-1: no limit)", NULL, max_steps, &max_steps, NULL));
   PetscCall(PetscOptionsInt("-progress_every", "a progress line every N steps (0: the scene's choice)", NULL, progress, &progress, NULL));
+  PetscCall(PetscOptionsBool("-step_elementary", "the elementary step controller (dt' = dt 0.9 / ratio) instead of the PI controller", NULL,
+                             elementary, &elementary, NULL));
   PetscOptionsEnd();
+  o->elementary = elementary;
   o->checkpoint_every = (int)every, o->restart = restart, o->max_steps = (int)max_steps, o->progress_every = (int)progress;
   PetscFunctionReturn(0);
 }

@@ -64,10 +64,10 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
     if (s->kept) { /* GMRES on the nest, right-preconditioned by the kept factorisation (flexible GMRES: it keeps the
                       preconditioned directions, so the solution costs no further triangular solve) */
       PetscCall(KSPSetType(s->ksp, KSPFGMRES));
-      PetscCall(KSPSetTolerances(s->ksp, 1e-4, 1e-300, PETSC_DEFAULT, 30));
+      PetscCall(KSPSetTolerances(s->ksp, 1e-2, 1e-300, PETSC_DEFAULT, 30));
       PetscCall(KSPGMRESSetRestart(s->ksp, 30));
-      s->rtol_changes = 1e-10;
-      PetscCall(PetscOptionsGetReal(NULL, NULL, "-indent_ksp_rtol_changes", &s->rtol_changes, NULL));
+      s->rtol_tight = 1e-10;
+      PetscCall(PetscOptionsGetReal(NULL, NULL, "-indent_ksp_rtol_tight", &s->rtol_tight, NULL));
     } else PetscCall(KSPSetType(s->ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
@@ -172,10 +172,10 @@ static PetscErrorCode part(Vec flat, IS is, Vec v, PetscBool to_flat) {
  * when due, and once more at once when the solve fails on a kept one; refactor_its 0: LU alone, every time.
  * Due: when the Krylov iterations beyond the first, summed over the solves since the factorisation, exceed
  * refactor_its, the cost of a factorisation counted in Krylov iterations (a fresh one solves in one). */
-static PetscErrorCode solve_kept(IndentSolver *s, PetscBool changes, KSPConvergedReason *reason) {
+static PetscErrorCode solve_kept(IndentSolver *s, PetscBool tight, KSPConvergedReason *reason) {
   PetscInt its = 0;
   PetscFunctionBeginUser;
-  PetscCall(KSPSetTolerances(s->ksp, changes ? PetscMin(s->rtol, s->rtol_changes) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   for (int attempt = 0; attempt < 2; attempt++) {
     PetscBool fresh = s->refactor || !s->Aaij || !s->kept;
     if (fresh) { /* K at this iterate, and the nest's values into the same AIJ matrix: the pattern is fixed, so MUMPS
@@ -200,7 +200,7 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscBool changes, KSPConverge
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool changes, Vec du,
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
                                    PetscReal *dur, Vec dlam, PetscBool *ok) {
   double             t0 = wall();
   KSPConvergedReason reason;
@@ -219,7 +219,7 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCall(VecRestoreSubVector(s->F, s->is[1], &sub));
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
-  if (!s->fieldsplit) PetscCall(solve_kept(s, changes, &reason));
+  if (!s->fieldsplit) PetscCall(solve_kept(s, tight, &reason));
   else {
     PetscCall(s->assemble(s->actx));
     PetscCall(assemble_schur_pre(s, ct));

@@ -8,10 +8,12 @@
  *               factorisation counted in Krylov iterations), when a solve fails (then at once), and after a
  *               checkpoint (so that a restart repeats the run bit for bit). The operator is the matrix-free
  *               tangent (fe_tangent_operator): K is assembled only when it is factored. GMRES solves to
- *               -indent_ksp_rtol (1e-4: the Newton loop's own error control asks no more of a step's
- *               correction), and to -indent_ksp_rtol_changes (1e-10) while the active set changes, where an
- *               inexact direction could flip a node with lambda - c g near zero onto another branch of a
- *               non-unique contact solution (seen on the mirrored half model of test_sector). GMRES is right-
+ *               -indent_ksp_rtol (1e-2) while Newton stops on its error estimate (semismooth.c: a correction
+ *               whose remaining error is theta |du| is accepted once that is below etol |dU|, and an inexact
+ *               solve's theta is about its rtol), and to -indent_ksp_rtol_tight (1e-10) when Newton iterates
+ *               to a small residual and while the active set changes, where an inexact direction could flip
+ *               a node with lambda - c g near zero onto another branch of a non-unique contact solution (seen
+ *               on the mirrored half model of test_sector). GMRES is right-
  *               preconditioned, so its residual is the true one; every row of the system is a force
  *               (contact.h), so its norm weighs the equilibrium, indenter and gap rows alike.
  *               -indent_refactor_its 0: a fresh factorisation at every iteration, LU alone;
@@ -40,7 +42,7 @@ typedef struct {
   KSP       ksp;
   PetscInt  refactor_its; /* direct: the cost of a factorisation in Krylov iterations (solve_kept) */
   PetscInt  extra_its;    /* direct: Krylov iterations beyond the first since the last factorisation */
-  PetscReal rtol, rtol_changes; /* kept: GMRES' relative tolerance, and the one while the active set changes */
+  PetscReal rtol, rtol_tight; /* kept: GMRES' relative tolerances, loose and tight */
   PetscBool refactor;     /* direct: rebuild it at the next solve */
   PetscInt  linear_its;   /* Krylov iterations over the run */
   PetscInt  setups;       /* factorisations (direct) or preconditioner set-ups (fieldsplit) over the run */
@@ -53,9 +55,9 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
 PetscErrorCode indent_solver_destroy(IndentSolver *s);
 /* The next solve factors afresh (a new stage, a checkpoint). */
 static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }
-/* Solve J dx = -F for the current blocks; F is given by its parts (R_r on rank 0), dx returned likewise. changes:
- * the active set changed at this iterate (kept: solve to -indent_ksp_rtol_changes, not -indent_ksp_rtol). */
-PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool changes, Vec du,
+/* Solve J dx = -F for the current blocks; F is given by its parts (R_r on rank 0), dx returned likewise. tight:
+ * solve to -indent_ksp_rtol_tight, not -indent_ksp_rtol (kept factorisation only). */
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
                                    PetscReal *dur, Vec dlam, PetscBool *ok);
 
 /* The product of the current blocks with a direction (du, dur, dlam): (ju, jr, jlam) = J d (for the

@@ -234,7 +234,9 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     if (in->fd_check && !shift) PetscCall(check_tangent(in, &merit)); /* the shift is in the tangent only */
     PetscReal dur;
     PetscBool ok;
-    PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, changes > 0 ? PETSC_TRUE : PETSC_FALSE, in->du, &dur, in->dlam, &ok));
+    /* a loose linear tolerance only while the error estimate stops Newton and the active set is settled */
+    PetscBool tight = changes > 0 || !in->newton_estimate || in->etol <= 0 ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, tight, in->du, &dur, in->dlam, &ok));
     if (!ok) {
       *status = STEP_LINEAR;
       break;

@@ -158,6 +158,7 @@ static int save(void *ctx, BinFile *b) {
   FeSolver          *f = ctx;
   PetscInt           n;
   const PetscScalar *d;
+  f->refactor = PETSC_TRUE; /* the next solve factors afresh, as a run restarted from here does */
   if (fe_common_save(&f->c, f->U0, b)) return 1;
   binfile_write(b, &f->have_rate, sizeof f->have_rate, 1);
   VecGetLocalSize(f->dU, &n);

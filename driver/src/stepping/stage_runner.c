@@ -150,7 +150,7 @@ static double next_length(Run *r, const StepRequest *rq, const StepOutcome *o, d
   const StepControl *sc = r->view.steps;
   RunState          *st = &r->st;
   double             dt;
-  if (sc->adaptive) dt = step_control_next(sc, rq->h, o->pnewdt, ratio);
+  if (sc->adaptive) dt = step_control_next(sc, rq->h, o->pnewdt, ratio, r->opt->elementary ? -1 : st->ratio_prev);
   else if (st->cut_in_plan) {
     double planned_end = 0;
     for (int k = 0; k <= st->k_planned; k++) planned_end += step_control_planned(sc, r->view.duration, k);
@@ -213,6 +213,7 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
     double factor = step_control_cut_factor(!o->converged, o->pnewdt, *ratio);
     st->cutbacks++, st->cut_in_step++;
     if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio;
+    st->ratio_prev = -1;
     if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min)) {
       snprintf(err, errlen, "stage '%s': step failed for good at t = %.6g s (dt = %.3g s): %s", r->view.name, st->t, rq->h,
                !o->converged ? (o->why ? o->why : "not converged")
@@ -243,7 +244,8 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   else st->dt = next_length(r, rq, o, ratio);
   /* After a kink the estimate may hold the step, not shorten it: a jump of the rate would otherwise cut every
      step where nodes keep entering contact (3D), and without it the steps there would grow unchecked. */
-  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, rq->h, o->pnewdt, kink_ratio), rq->h));
+  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, rq->h, o->pnewdt, kink_ratio, -1), rq->h));
+  st->ratio_prev = ratio; /* the PI controller's memory: none across a kink, a rejection or a stage's start */
   st->landing = 0;
   int dir = event_direction(r->view.until.kind);
   if (dir && rq->h > 0) {
@@ -275,6 +277,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
   if (sv->stage_begin(sv->ctx, st->stage, resumed, &r->view, err, errlen)) return 1;
   if (!resumed) {
     st->t_stage = 0, st->k_planned = 0, st->cut_in_plan = 0, st->landing = 0, st->first_in_stage = 1, st->next_stage_time = 0;
+    st->ratio_prev = -1;
     st->pending_instant = r->view.instant || r->view.duration == 0;
     st->dt              = step_control_planned(r->view.steps, r->view.duration, 0);
     st->event_prev      = r->view.event_start;
