@@ -1,5 +1,7 @@
 #include "semismooth.h"
 
+#include "contact_options.h"
+
 #include "../fe/fe_state.h"
 #include "../io/log_events.h"
 
@@ -324,18 +326,10 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecZeroEntries(*all[k]));
   PetscCall(indent_solver_create(&in->ct, in->K, &in->sol));
-  in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE, in->newton_estimate = PETSC_TRUE;
-  PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1)", NULL);
-  PetscCall(PetscOptionsReal("-indent_rtol", "residual tolerance relative to the load", NULL, in->rtol, &in->rtol, NULL));
-  PetscCall(PetscOptionsInt("-indent_max_it", "Newton iterations per step", NULL, in->max_it, &in->max_it, NULL));
-  PetscCall(PetscOptionsBool("-indent_predictor", "start each step from the extrapolated last increment", NULL, in->predictor, &in->predictor, NULL));
-  PetscCall(PetscOptionsBool("-indent_monitor", "print every Newton iteration", NULL, in->monitor, &in->monitor, NULL));
-  PetscCall(PetscOptionsBool("-indent_line_search", "Armijo line search once the active set is fixed", NULL, in->line_search, &in->line_search, NULL));
-  PetscCall(PetscOptionsBool("-indent_newton_estimate", "with an error measure, stop Newton once its estimated error is a small fraction of the step's tolerance",
-                             NULL, in->newton_estimate, &in->newton_estimate, NULL));
-  PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the tangent with finite differences", NULL, in->fd_check, &in->fd_check, NULL));
-  PetscOptionsEnd();
-  in->max_it = PetscMin(in->max_it, 63);
+  IndentOptions o; /* -indent_*: contact_options.c */
+  PetscCall(indent_options(comm, &o));
+  in->rtol = o.rtol, in->max_it = o.max_it, in->predictor = o.predictor, in->monitor = o.monitor, in->line_search = o.line_search;
+  in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent;
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
      indenter row's shift (one contact node's stiffness) and the complementarity constant. */
   p->time = 0, p->dt = 0, p->umat_tol = 0;

@@ -196,14 +196,12 @@ static long umat_calls(void *ctx) { return (long)((FeSolver *)ctx)->c.p->umat_ca
  * -mat_mumps_icntl_* given by the user win; -fe_refactor_its 0 -ksp_type preonly is a plain direct solve
  * at every Newton iteration. The Jacobian is unsymmetric (the viscoplastic consistent tangent: about
  * 5e-5 relative on the triaxial cylinder), so LU, not Cholesky, and GMRES, not CG. */
-static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
+static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp, const FeSolverOptions *o) {
   PC        pc;
-  PetscInt  n, gamg_above = 100000; /* measured: docs/performance.md, "FE scaling" */
+  PetscInt  n, gamg_above = o->gamg_above;
   PetscBool given;
   PetscFunctionBeginUser;
-  f->refactor_its = 20;
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_refactor_its", &f->refactor_its, NULL));
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_gamg_above", &gamg_above, NULL));
+  f->refactor_its = o->refactor_its;
   PetscCall(MatGetSize(f->J, &n, NULL));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &given));
   if (!given && n > gamg_above) PetscCall(options_default("-pc_type", "gamg"));
@@ -219,6 +217,21 @@ static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode fe_solver_options(MPI_Comm comm, FeSolverOptions *o) {
+  PetscFunctionBeginUser;
+  o->refactor_its = 20, o->gamg_above = 100000, o->coo = PETSC_TRUE, o->predictor = PETSC_TRUE;
+  PetscOptionsBegin(comm, NULL, "Finite-element scenes (docs/driver.md, Solvers)", NULL);
+  PetscCall(options_int(PetscOptionsObject, "-fe_refactor_its", "rebuild the kept factorisation when a solve takes more Krylov iterations "
+                        "per Newton iteration (0: every iteration)", o->refactor_its, 0, PETSC_MAX_INT, &o->refactor_its, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-fe_gamg_above", "GAMG instead of LU above this many unknowns (measured: docs/performance.md)",
+                        o->gamg_above, 0, PETSC_MAX_INT, &o->gamg_above, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-fe_coo", "assemble the Jacobian by COO (false: MatSetValues)", o->coo, &o->coo, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-fe_predictor", "start each step's Newton from the extrapolated last increment", o->predictor,
+                         &o->predictor, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 /* SNES on the element loop: full Newton steps on the consistent tangent (cut back by the runner when they
  * fail), as Abaqus does; -snes_linesearch_type bt restores a backtracking line search. */
 static PetscErrorCode solver_setup(FeSolver *f) {
@@ -226,7 +239,9 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   FeProblem  *p  = f->c.p;
   MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
   KSP         ksp;
+  FeSolverOptions o;
   PetscFunctionBeginUser;
+  PetscCall(fe_solver_options(comm, &o));
   PetscCall(SNESCreate(comm, &f->snes));
   PetscCall(DMCreateMatrix(p->dm, &f->J));
   PetscCall(DMCreateGlobalVector(p->dm, &f->U));
@@ -243,11 +258,9 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   }
   PetscCall(SNESSetFunction(f->snes, f->R, fe_residual, p));
   PetscCall(SNESSetJacobian(f->snes, f->J, f->J, fe_jacobian, p));
-  PetscBool coo = PETSC_TRUE;
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_coo", &coo, NULL));
-  if (coo) PetscCall(fe_jacobian_coo_setup(p, f->J)); /* measured: docs/performance.md, "FE element loops" */
+  if (o.coo) PetscCall(fe_jacobian_coo_setup(p, f->J)); /* measured: docs/performance.md, "FE element loops" */
   PetscCall(SNESGetKSP(f->snes, &ksp));
-  PetscCall(linear_solver_setup(f, ksp));
+  PetscCall(linear_solver_setup(f, ksp, &o));
   PetscReal pmax = 1, fref = 0; /* force scale for the absolute tolerance: the largest load on all loaded faces */
   for (int i = 0; i < sc->nstage; i++)
     for (int g = 0; g < sc->npressure; g++)
@@ -265,8 +278,7 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   PetscBool preonly;
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
   if (preonly) f->refactor_its = 0; /* no Krylov solver to correct a kept factorisation */
-  f->predictor = PETSC_TRUE;
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_predictor", &f->predictor, NULL));
+  f->predictor = o.predictor;
   PetscFunctionReturn(0);
 }
 

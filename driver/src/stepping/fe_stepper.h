@@ -24,6 +24,13 @@ typedef struct {
   PetscInt   nsaved;
 } FeCommon;
 
+/* The FE solver's options (-fe_*), declared and read in one place (io/options.h). */
+typedef struct {
+  PetscInt  refactor_its, gamg_above;
+  PetscBool coo, predictor;
+} FeSolverOptions;
+PetscErrorCode fe_solver_options(MPI_Comm comm, FeSolverOptions *o);
+
 /* Run the stages of an FE scene (SNES) or of an indentation scene on the set-up problem p. */
 int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);
 int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);

@@ -15,6 +15,7 @@ typedef struct {
   IndentScene *is;
   Semismooth   in;
   double       load, load_max, stage_start, force, pen, lmin;
+  char         until_key[64];
 } Indent;
 
 static const char *shape_name(const IndentScene *is) {
@@ -32,20 +33,24 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   d->in.depth_control = st->kind == IND_DEPTH_RAMP;
   if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load, d->in.have_rate = PETSC_FALSE;
   if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE) {
-    snprintf(err, errlen, "%s: stage '%s': give one end event: indenter.until or until, not both", d->is->file, g->name);
+    snprintf(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
+             d->is->file, s, g->name);
     return 1;
   }
   if (st->until_load > 0) { /* the time the load reaches the event, known in advance */
     double start = d->stage_start, te = st->kind == IND_LOAD_EXP ? log(st->until_load / st->P0) / st->k
                                                                  : (st->target != start ? g->duration * (st->until_load - start) / (st->target - start) : -1);
     if (!(te >= 0 && te <= g->duration)) {
-      snprintf(err, errlen, "stage '%s': the load never reaches until.load = %g within the stage's duration %g s", g->name,
-               whole(d, st->until_load), g->duration);
+      snprintf(err, errlen, "%s: key 'stages[%d].indenter.until.load': stage '%s': the load never reaches %g within the stage's "
+               "duration %g s", d->is->file, s, g->name, whole(d, st->until_load), g->duration);
       return 1;
     }
     v->duration = te;
   }
-  if (st->until_depth > 0) v->until.kind = EVENT_DEPTH, v->until.value = st->until_depth, v->must_reach = 1, v->event_start = d->in.ur;
+  if (st->until_depth > 0) {
+    snprintf(d->until_key, sizeof d->until_key, "stages[%d].indenter.until.depth", s);
+    v->until.kind = EVENT_DEPTH, v->until.value = st->until_depth, v->must_reach = 1, v->event_start = d->in.ur, v->until_key = d->until_key;
+  }
   return 0;
 }
 

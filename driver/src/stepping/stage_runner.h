@@ -28,6 +28,7 @@ typedef struct {
   const StepControl *steps;
   StageEvent         until;
   int                must_reach; /* the until event must happen within the duration (else the run fails) */
+  const char        *until_key;  /* its key in the scene, for messages (NULL: stages[s].until or segments[s].until) */
   double             event_start; /* the until quantity at the stage's start (for landing) */
   int                nout_times;  /* fields at exactly these stage times (output: {times} of a stage) */
   const double      *out_times;
