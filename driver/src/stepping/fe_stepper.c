@@ -155,29 +155,34 @@ static int write_fields(void *ctx, double t, char *err, size_t errlen) {
 static int promote(void *ctx) { return fe_common_promote(&((FeSolver *)ctx)->c); }
 
 static int save(void *ctx, BinFile *b) {
-  FeSolver          *f = ctx;
-  PetscInt           n;
-  const PetscScalar *d;
-  if (fe_common_save(&f->c, f->U0, b)) return 1;
+  FeSolver *f = ctx;
+  if (fe_common_save(&f->c, b)) return 1;
   binfile_write(b, &f->have_rate, sizeof f->have_rate, 1);
-  VecGetLocalSize(f->dU, &n);
-  VecGetArrayRead(f->dU, &d);
-  binfile_write(b, d, sizeof(PetscScalar), (size_t)n);
-  VecRestoreArrayRead(f->dU, &d);
   return !b->ok;
 }
 
 static int load(void *ctx, BinFile *b) {
-  FeSolver    *f = ctx;
-  PetscInt     n;
-  PetscScalar *d;
-  if (fe_common_load(&f->c, f->U0, b)) return 1;
+  FeSolver *f = ctx;
+  if (fe_common_load(&f->c, b)) return 1;
   binfile_read(b, &f->have_rate, sizeof f->have_rate, 1);
-  VecGetLocalSize(f->dU, &n);
-  VecGetArray(f->dU, &d);
-  binfile_read(b, d, sizeof(PetscScalar), (size_t)n);
-  VecRestoreArray(f->dU, &d);
   return !b->ok;
+}
+
+/* The committed displacement and the predictor's last increment, with the points' state (fe/fe_state.h). */
+static const char *const shared_names[2] = {"displacement", "increment"};
+
+static int save_shared(void *ctx, const char *path) {
+  FeSolver   *f = ctx;
+  PetscViewer v;
+  Vec         vecs[2] = {f->U0, f->dU};
+  return fe_common_shared_open(&f->c, path, PETSC_TRUE, &v) || fe_state_view(f->c.p, v, 2, vecs, shared_names) || PetscViewerDestroy(&v);
+}
+
+static int load_shared(void *ctx, const char *path) {
+  FeSolver   *f = ctx;
+  PetscViewer v;
+  Vec         vecs[2] = {f->U0, f->dU};
+  return fe_common_shared_open(&f->c, path, PETSC_FALSE, &v) || fe_state_read(f->c.p, v, 2, vecs, shared_names) || PetscViewerDestroy(&v);
 }
 
 static int resume(void *ctx) {
@@ -321,7 +326,8 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
       return 1;
   }
   StepSolver sv = {&f, "fe", sc->nstage, PetscObjectComm((PetscObject)p->dm), stage_begin, solve, accept, NULL,
-                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume};
+                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume,
+                   save_shared, load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&f.c);

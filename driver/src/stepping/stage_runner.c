@@ -332,7 +332,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
       st->history_offset = r->hist ? ftell(r->hist) : 0;
       if (checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen)) return 1;
     }
-    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return 3;
+    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return write_fields(r, err, errlen) ? 1 : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
   st->stage++, st->in_stage = 0;
