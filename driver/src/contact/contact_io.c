@@ -94,11 +94,7 @@ PetscErrorCode contact_io_read(Contact *ct, DM dm, PetscViewer v, Vec lam0, Vec 
   PetscInt     missing = 0;
   PetscFunctionBeginUser;
   PetscCall(contact_natural(ct, dm, &m));
-  PetscCall(VecCreate(PetscObjectComm((PetscObject)dm), &x));
-  PetscCall(VecSetSizes(x, m.nroot * NODE_VALUES, m.N * NODE_VALUES));
-  PetscCall(VecSetBlockSize(x, NODE_VALUES));
-  PetscCall(VecSetType(x, VECSTANDARD));
-  PetscCall(PetscObjectSetName((PetscObject)x, "nodes"));
+  PetscCall(fe_natural_vec(&m, NODE_VALUES, "nodes", &x));
   PetscCall(PetscViewerHDF5PushGroup(v, "/contact"));
   PetscCall(VecLoad(x, v));
   PetscCall(PetscViewerHDF5PopGroup(v));

@@ -170,15 +170,21 @@ static PetscErrorCode unit(MPI_Datatype base, PetscInt bs, MPI_Datatype *t) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_natural_gather(const FeNatural *m, PetscInt bs, const PetscScalar leaf[], const char *name, Vec *nat) {
-  MPI_Datatype t;
-  PetscScalar *root;
+PetscErrorCode fe_natural_vec(const FeNatural *m, PetscInt bs, const char *name, Vec *nat) {
   PetscFunctionBeginUser;
   PetscCall(VecCreate(PetscObjectComm((PetscObject)m->sf), nat));
   PetscCall(VecSetSizes(*nat, m->nroot * bs, m->N * bs));
   PetscCall(VecSetBlockSize(*nat, bs));
   PetscCall(VecSetType(*nat, VECSTANDARD));
   PetscCall(PetscObjectSetName((PetscObject)*nat, name));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_natural_gather(const FeNatural *m, PetscInt bs, const PetscScalar leaf[], const char *name, Vec *nat) {
+  MPI_Datatype t;
+  PetscScalar *root;
+  PetscFunctionBeginUser;
+  PetscCall(fe_natural_vec(m, bs, name, nat));
   PetscCall(unit(MPIU_SCALAR, bs, &t));
   PetscCall(VecGetArray(*nat, &root));
   PetscCall(PetscSFReduceBegin(m->sf, t, leaf, root, MPI_REPLACE));

@@ -32,6 +32,9 @@ PetscErrorCode fe_natural_destroy(FeNatural *m);
  * of the k-th depth of m is m->offset[k] + nat[p]. Valid while the DM lives. */
 PetscErrorCode fe_natural_indices(DM dm, const PetscInt **nat);
 
+/* A vector in natural order: nroot x bs values here, N x bs in all (written by PETSc's HDF5 viewer as an (N, bs)
+ * dataset under its name). */
+PetscErrorCode fe_natural_vec(const FeNatural *m, PetscInt bs, const char *name, Vec *nat);
 /* bs values per owned point (leaf order) into a new vector in natural order (nroot x bs here), and back. */
 PetscErrorCode fe_natural_gather(const FeNatural *m, PetscInt bs, const PetscScalar leaf[], const char *name, Vec *nat);
 PetscErrorCode fe_natural_scatter(const FeNatural *m, PetscInt bs, Vec nat, PetscScalar leaf[]);

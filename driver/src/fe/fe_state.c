@@ -46,17 +46,6 @@ static PetscInt node_depths(const FeProblem *p, PetscInt depths[2]) {
   return p->order > 1 ? 2 : 1;
 }
 
-/* A natural vector to read into: the layout of m, nc values per point, under the name given. */
-static PetscErrorCode natural_vec(const FeNatural *m, PetscInt nc, const char *name, Vec *x) {
-  PetscFunctionBeginUser;
-  PetscCall(VecCreate(PetscObjectComm((PetscObject)m->sf), x));
-  PetscCall(VecSetSizes(*x, m->nroot * nc, m->N * nc));
-  PetscCall(VecSetBlockSize(*x, nc));
-  PetscCall(VecSetType(*x, VECSTANDARD));
-  PetscCall(PetscObjectSetName((PetscObject)*x, name));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode view_in(PetscViewer v, const char *group, Vec x) {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5PushGroup(v, group));
@@ -94,7 +83,7 @@ static PetscErrorCode cells_read(FeProblem *p, const FeNatural *m, PetscViewer v
   const PetscInt bs = p->nq * nc;
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(m->n * bs + 1, &leaf));
-  PetscCall(natural_vec(m, bs, name, &x));
+  PetscCall(fe_natural_vec(m, bs, name, &x));
   PetscCall(load_from(v, "/cells", x));
   PetscCall(fe_natural_scatter(m, bs, x, leaf));
   for (PetscInt k = 0; k < m->n; k++) PetscCall(PetscArraycpy(&a[(m->points[k] - p->cStart) * bs], &leaf[k * bs], bs));
@@ -135,7 +124,7 @@ static PetscErrorCode nodes_read(FeProblem *p, const FeNatural *m, PetscViewer v
   PetscSection s;
   PetscScalar *u, *leaf;
   PetscFunctionBeginUser;
-  PetscCall(natural_vec(m, p->dim, name, &x));
+  PetscCall(fe_natural_vec(m, p->dim, name, &x));
   PetscCall(load_from(v, "/nodes", x));
   PetscCall(PetscMalloc1(m->n * p->dim + 1, &leaf));
   PetscCall(fe_natural_scatter(m, p->dim, x, leaf));
