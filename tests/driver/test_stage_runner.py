@@ -269,7 +269,7 @@ def test_failed_run_keeps_earlier_results(tmp_path):
 def test_bad_run_options_and_indenter_below_the_surface(tmp_path):
     out = tmp_path / "neg"
     proc = run(camclay_cone(load_hold(0.1, hold=2)), out, args=["-checkpoint_every", "-3"], check=False)
-    assert proc.returncode == 2 and "-checkpoint_every -3: expected a number of steps >= 0" in proc.stderr.splitlines()[0]
+    assert proc.returncode == 2 and "option -checkpoint_every -3: expected an integer >= 0" in proc.stderr.splitlines()[0]
     below = camclay_cone(load_hold(0.1, hold=2)).replace("contact: contact}", "contact: contact, tip: [0, -0.01]}")
     proc = run(below, tmp_path / "below", check=False)
     print(proc.stderr.strip())

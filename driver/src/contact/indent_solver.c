@@ -20,20 +20,14 @@ static PetscErrorCode nest_of(Contact *ct, Mat K, Mat *A) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, IndentSolver *s) {
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
+                                   IndentSolver *s) {
   MPI_Comm  comm = PetscObjectComm((PetscObject)K);
   PetscInt  m, M, nr;
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(s, sizeof *s));
   s->K = K, s->assemble = assemble, s->actx = actx;
-  {
-    const char *types[2] = {"direct", "fieldsplit"};
-    PetscInt    which    = 0;
-    PetscCall(PetscOptionsGetEList(NULL, NULL, "-indent_solver", types, 2, &which, NULL));
-    s->fieldsplit = which == 1;
-  }
-  s->refactor_its = 20, s->refactor = PETSC_TRUE;
-  if (!s->fieldsplit) PetscCall(PetscOptionsGetInt(NULL, NULL, "-indent_refactor_its", &s->refactor_its, NULL));
+  s->fieldsplit = o->solver == 1, s->refactor_its = o->refactor_its, s->rtol_tight = o->rtol_tight, s->refactor = PETSC_TRUE;
   s->kept = !s->fieldsplit && s->refactor_its > 0;
   /* the operator: with a kept factorisation the matrix-free tangent (K is assembled only to be factored),
      otherwise K itself */
@@ -66,8 +60,6 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
       PetscCall(KSPSetType(s->ksp, KSPFGMRES));
       PetscCall(KSPSetTolerances(s->ksp, 1e-2, 1e-300, PETSC_DEFAULT, 30));
       PetscCall(KSPGMRESSetRestart(s->ksp, 30));
-      s->rtol_tight = 1e-10;
-      PetscCall(PetscOptionsGetReal(NULL, NULL, "-indent_ksp_rtol_tight", &s->rtol_tight, NULL));
     } else PetscCall(KSPSetType(s->ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));

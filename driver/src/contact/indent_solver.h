@@ -28,6 +28,7 @@
 #include <petscksp.h>
 
 #include "contact.h"
+#include "contact_options.h"
 
 typedef struct {
   PetscBool fieldsplit;
@@ -51,7 +52,8 @@ typedef struct {
 
 /* K: the assembled displacement block; Kmf: the same tangent as a matrix-free operator (fe_tangent_operator);
  * assemble(actx) assembles K at the current iterate, called only when K is factored or preconditioned. */
-PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, IndentSolver *s);
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
+                                   IndentSolver *s);
 PetscErrorCode indent_solver_destroy(IndentSolver *s);
 /* The next solve factors afresh (a new stage, a checkpoint). */
 static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }

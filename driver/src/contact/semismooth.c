@@ -1,5 +1,7 @@
 #include "semismooth.h"
 
+#include "contact_options.h"
+
 #include "../fe/fe_state.h"
 #include "../io/log_events.h"
 
@@ -99,14 +101,10 @@ static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
   PetscReal scale = PetscMax(PetscMax(nu, PetscAbsReal(in->ur)), 1e-3 * xall), dur = scale; /* of the solution's size */
   PetscCall(VecScale(du, scale));
   PetscCall(VecScale(dl, in->fref / PetscMax(in->ct.weight_sum, 1e-300)));
-  { /* -indent_check_tangent_part u | r | lambda: only that part of the direction */
-    char      which[16] = "";
-    PetscBool set;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-indent_check_tangent_part", which, sizeof which, &set));
-    if (set && strcmp(which, "u")) PetscCall(VecZeroEntries(du));
-    if (set && strcmp(which, "r")) dur = 0;
-    if (set && strcmp(which, "lambda")) PetscCall(VecZeroEntries(dl));
-  }
+  /* -indent_check_tangent_part u | r | lambda (1, 2, 3): only that part of the direction */
+  if (in->tangent_part && in->tangent_part != 1) PetscCall(VecZeroEntries(du));
+  if (in->tangent_part && in->tangent_part != 2) dur = 0;
+  if (in->tangent_part && in->tangent_part != 3) PetscCall(VecZeroEntries(dl));
   eps = 1e-6;
   PetscCall(indent_solver_apply(&in->sol, du, dur, dl, ju, &jr, jl));
   PetscCall(residual_along(in, eps, du, dur, dl, rp, &rrp, lp));
@@ -331,21 +329,13 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   for (int k = 0; lv[k]; k++) PetscCall(VecDuplicate(in->lam, lv[k]));
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecZeroEntries(*all[k]));
+  IndentOptions o; /* -indent_*: contact_options.c */
+  PetscCall(indent_options(comm, &o));
+  in->rtol = o.rtol, in->max_it = o.max_it, in->predictor = o.predictor, in->monitor = o.monitor, in->line_search = o.line_search;
+  in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent, in->tangent_part = o.tangent_part;
   PetscCall(fe_jacobian_coo_setup(p, in->K));
   PetscCall(fe_tangent_operator(p, in->K, &in->Kmf));
-  PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &in->sol));
-  in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE, in->newton_estimate = PETSC_TRUE;
-  PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1)", NULL);
-  PetscCall(PetscOptionsReal("-indent_rtol", "residual tolerance relative to the load", NULL, in->rtol, &in->rtol, NULL));
-  PetscCall(PetscOptionsInt("-indent_max_it", "Newton iterations per step", NULL, in->max_it, &in->max_it, NULL));
-  PetscCall(PetscOptionsBool("-indent_predictor", "start each step from the extrapolated last increment", NULL, in->predictor, &in->predictor, NULL));
-  PetscCall(PetscOptionsBool("-indent_monitor", "print every Newton iteration", NULL, in->monitor, &in->monitor, NULL));
-  PetscCall(PetscOptionsBool("-indent_line_search", "Armijo line search once the active set is fixed", NULL, in->line_search, &in->line_search, NULL));
-  PetscCall(PetscOptionsBool("-indent_newton_estimate", "with an error measure, stop Newton once its estimated error is a small fraction of the step's tolerance",
-                             NULL, in->newton_estimate, &in->newton_estimate, NULL));
-  PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the tangent with finite differences", NULL, in->fd_check, &in->fd_check, NULL));
-  PetscOptionsEnd();
-  in->max_it = PetscMin(in->max_it, 63);
+  PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
      indenter row's shift (one contact node's stiffness) and the complementarity constant. */
   p->time = 0, p->dt = 0, p->umat_tol = 0;

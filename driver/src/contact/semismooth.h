@@ -25,7 +25,7 @@ typedef struct {
   PetscReal    ur, ur0, rateur, dt_prev;
   PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate;
   PetscReal    rtol, fref;
-  PetscInt     max_it;
+  PetscInt     max_it, tangent_part;              /* tangent_part: -indent_check_tangent_part (contact_options.h) */
   /* the step being solved */
   PetscBool    depth_control;
   PetscReal    target;                           /* load or depth at the step's end */

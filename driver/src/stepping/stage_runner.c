@@ -189,6 +189,10 @@ static void plan_step(Run *r, StepRequest *rq, int *at_output) {
 
 enum { STEP_ACCEPTED, STEP_RETRY, STEP_FAILED };
 
+/* For run-time messages: the scene file and the name of its list of stages. */
+static const char *scene_file(const Run *r) { return r->opt->scene_file ? r->opt->scene_file : "(scene)"; }
+static const char *stage_list(const Run *r) { return r->sv->kind && !strcmp(r->sv->kind, "point") ? "segments" : "stages"; }
+
 /* Judge a solved step: cut back (failure, the UMAT's PNEWDT, the error measure), land on an event, or
  * accept. */
 static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ratio, double *kink_ratio, int *landed, char *err,
@@ -215,7 +219,8 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
     if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio;
     st->ratio_prev = -1;
     if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min)) {
-      snprintf(err, errlen, "stage '%s': step failed for good at t = %.6g s (dt = %.3g s): %s", r->view.name, st->t, rq->h,
+      snprintf(err, errlen, "%s: %s[%d] (stage '%s'): step failed for good at t = %.6g s (dt = %.3g s): %s", scene_file(r),
+               stage_list(r), st->stage, r->view.name, st->t, rq->h,
                !o->converged ? (o->why ? o->why : "not converged")
                : o->pnewdt < 1 ? "the UMAT asked for a smaller step" : "the time-step error stays above its tolerance");
       return STEP_FAILED;
@@ -316,8 +321,12 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     if (at_output || (opt->fields_every > 0 && st->step % opt->fields_every == 0) || stage_done)
       if (write_fields(r, err, errlen)) return 1;
     if (stage_done && !landed && r->view.must_reach && r->view.until.kind != EVENT_NONE) {
-      snprintf(err, errlen, "stage '%s': %s = %g (until) was not reached by the stage's end (t = %g s): lengthen its duration",
-               r->view.name, stage_event_name(r->view.until.kind), r->view.until.value, st->t);
+      char key[128];
+      if (r->view.until_key) snprintf(key, sizeof key, "%s", r->view.until_key);
+      else snprintf(key, sizeof key, "%s[%d].until", stage_list(r), st->stage);
+      snprintf(err, errlen, "%s: key '%s': stage '%s': %s = %g (until) was not reached by the stage's end (t = %g s): lengthen its "
+               "duration (%s[%d].duration = %g s)", scene_file(r), key, r->view.name, stage_event_name(r->view.until.kind),
+               r->view.until.value, st->t, stage_list(r), st->stage, r->view.duration);
       return 1;
     }
     if (stage_done) st->stage++, st->in_stage = 0;
@@ -326,7 +335,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
       st->history_offset = r->hist ? ftell(r->hist) : 0;
       if (checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen)) return 1;
     }
-    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return 3;
+    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return write_fields(r, err, errlen) ? 1 : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
   st->stage++, st->in_stage = 0;
