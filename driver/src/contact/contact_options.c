@@ -13,7 +13,7 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   options_petsc_prefix("indent_"); /* the contact solver's KSP (indent_solver.c) */
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1; docs/contact.md)", NULL);
   PetscCall(options_real(PetscOptionsObject, "-indent_rtol", "residual tolerance relative to the load", o->rtol, &o->rtol, NULL));
-  PetscCall(options_int(PetscOptionsObject, "-indent_max_it", "Newton iterations per step", o->max_it, 1, 63, &o->max_it, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-indent_max_it", "Newton iterations per step", o->max_it, 1, 10000, &o->max_it, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-indent_predictor", "start each step from the extrapolated last increment", o->predictor,
                          &o->predictor, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-indent_monitor", "print every Newton iteration", o->monitor, &o->monitor, NULL));

@@ -12,6 +12,12 @@
 #include "indent_scene.h"
 #include "indent_solver.h"
 
+/* The active sets of a step's iterations, by their signatures (a hash over all ranks), to notice one met again. */
+typedef struct {
+  unsigned long long *sig; /* max_it + 1 */
+  PetscInt            n;
+} ActiveSetHistory;
+
 /* Everything the Newton loop works on: the problem, the contact, the unknowns (u, u_r, lambda) with their
  * committed values and last converged increments (the predictor), residual parts and settings. */
 typedef struct {
@@ -35,6 +41,7 @@ typedef struct {
   PetscReal    du_norm, dur_last;                /* the last correction: |alpha du|_inf, alpha dur */
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
   PetscInt     its_total, cycles;
+  ActiveSetHistory history;
 } Semismooth;
 
 enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };
