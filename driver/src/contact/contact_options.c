@@ -9,7 +9,7 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   PetscFunctionBeginUser;
   o->rtol = 1e-10, o->max_it = 30, o->predictor = PETSC_TRUE, o->monitor = PETSC_FALSE, o->line_search = PETSC_TRUE;
   o->newton_estimate = PETSC_TRUE, o->check_tangent = PETSC_FALSE, o->solver = 0, o->tangent_part = 0;
-  o->refactor_its = 20, o->rtol_tight = 1e-10;
+  o->refactor_its = 20, o->rtol_tight = 1e-10, o->check_solve = PETSC_FALSE;
   options_petsc_prefix("indent_"); /* the contact solver's KSP (indent_solver.c) */
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1; docs/contact.md)", NULL);
   PetscCall(options_real(PetscOptionsObject, "-indent_rtol", "residual tolerance relative to the load", o->rtol, &o->rtol, NULL));
@@ -40,6 +40,9 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   PetscCall(options_real(PetscOptionsObject, "-indent_ksp_rtol_tight",
                          "direct, kept factorisation: GMRES' relative tolerance while the active set changes or Newton iterates to "
                          "a small residual (-indent_ksp_rtol otherwise, 1e-2)", o->rtol_tight, &o->rtol_tight, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-indent_check_solve",
+                         "direct, kept factorisation: compare every solve with a fresh LU solve of the same system (prints the difference)",
+                         o->check_solve, &o->check_solve, NULL));
   PetscCheck(o->rtol_tight > 0 && o->rtol_tight < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "option -indent_ksp_rtol_tight %g: expected 0 < value < 1",
              (double)o->rtol_tight);
   PetscOptionsEnd();

@@ -12,6 +12,7 @@ typedef struct {
   PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit */
   PetscInt  refactor_its;    /* direct: the cost of a factorisation in Krylov iterations; 0: factor at every iteration */
   PetscReal rtol_tight;      /* direct: GMRES' tolerance while the active set changes (indent_solver.h) */
+  PetscBool check_solve;     /* direct, kept: compare every solve with a fresh LU solve of the same system */
   PetscInt  tangent_part;    /* -indent_check_tangent_part: 0 all, 1 u, 2 r, 3 lambda */
 } IndentOptions;
 

@@ -28,6 +28,7 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
   PetscCall(PetscMemzero(s, sizeof *s));
   s->K = K, s->assemble = assemble, s->actx = actx;
   s->fieldsplit = o->solver == 1, s->refactor_its = o->refactor_its, s->rtol_tight = o->rtol_tight, s->refactor = PETSC_TRUE;
+  s->check = o->check_solve;
   s->kept = !s->fieldsplit && s->refactor_its > 0;
   /* the operator: with a kept factorisation the matrix-free tangent (K is assembled only to be factored),
      otherwise K itself */
@@ -160,11 +161,55 @@ static PetscErrorCode part(Vec flat, IS is, Vec v, PetscBool to_flat) {
   PetscFunctionReturn(0);
 }
 
+/* -indent_check_solve: the kept solve's solution X against a fresh LU solve of the same system (K assembled at the
+ * iterate, the nest converted, MUMPS), printed as |X - X_lu| / |X_lu| with the multipliers as lengths (lambda / c). */
+static PetscErrorCode check_against_fresh_lu(IndentSolver *s, PetscReal c) {
+  Mat       A;
+  KSP       ksp;
+  PC        pc;
+  Vec       Y;
+  PetscReal d, n;
+  PetscFunctionBeginUser;
+  PetscCall(s->assemble(s->actx));
+  PetscCall(MatAssemblyBegin(s->Apc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(s->Apc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatConvert(s->Apc, MATAIJ, MAT_INITIAL_MATRIX, &A));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)A), &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetOperators(ksp, A, A));
+  PetscCall(VecDuplicate(s->X, &Y));
+  PetscCall(KSPSolve(ksp, s->F, Y));
+  /* in lengths: the multipliers (pressures) over the complementarity constant c (pressure per length) */
+  Vec X, lam;
+  PetscCall(VecDuplicate(s->X, &X));
+  PetscCall(VecCopy(s->X, X));
+  Vec *both[] = {&X, &Y};
+  for (int k = 0; k < 2; k++) {
+    PetscCall(VecGetSubVector(*both[k], s->is[2], &lam));
+    PetscCall(VecScale(lam, 1 / c));
+    PetscCall(VecRestoreSubVector(*both[k], s->is[2], &lam));
+  }
+  PetscCall(VecNorm(Y, NORM_2, &n));
+  PetscCall(VecAXPY(X, -1.0, Y));
+  PetscCall(VecNorm(X, NORM_2, &d));
+  PetscCall(VecDestroy(&X));
+  s->check_max = PetscMax(s->check_max, d / PetscMax(n, 1e-300));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A), "    solve check: kept factorisation against a fresh LU: |dx - dx_lu| / |dx_lu| = %.3e (lambda / c: all lengths)\n",
+                        (double)(d / PetscMax(n, 1e-300))));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&A));
+  PetscFunctionReturn(0);
+}
+
 /* The direct path: GMRES on the current nest with the kept factorisation (indent_solver.h), refactored first
  * when due, and once more at once when the solve fails on a kept one; refactor_its 0: LU alone, every time.
  * Due: when the Krylov iterations beyond the first, summed over the solves since the factorisation, exceed
  * refactor_its, the cost of a factorisation counted in Krylov iterations (a fresh one solves in one). */
-static PetscErrorCode solve_kept(IndentSolver *s, PetscBool tight, KSPConvergedReason *reason) {
+static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, PetscBool tight, KSPConvergedReason *reason) {
   PetscInt its = 0;
   PetscFunctionBeginUser;
   PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
@@ -187,6 +232,7 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscBool tight, KSPConvergedR
     if (*reason > 0 || fresh) break;
     s->refactor = PETSC_TRUE; /* the kept factorisation no longer serves: a fresh one, now */
   }
+  if (s->check && s->kept) PetscCall(check_against_fresh_lu(s, c));
   s->extra_its += PetscMax(its - 1, 0);
   if (s->kept && s->extra_its > s->refactor_its) s->refactor = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -211,7 +257,7 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCall(VecRestoreSubVector(s->F, s->is[1], &sub));
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
-  if (!s->fieldsplit) PetscCall(solve_kept(s, tight, &reason));
+  if (!s->fieldsplit) PetscCall(solve_kept(s, ct->c, tight, &reason));
   else {
     PetscCall(s->assemble(s->actx));
     PetscCall(assemble_schur_pre(s, ct));

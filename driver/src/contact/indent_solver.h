@@ -44,6 +44,8 @@ typedef struct {
   PetscInt  refactor_its; /* direct: the cost of a factorisation in Krylov iterations (solve_kept) */
   PetscInt  extra_its;    /* direct: Krylov iterations beyond the first since the last factorisation */
   PetscReal rtol, rtol_tight; /* kept: GMRES' relative tolerances, loose and tight */
+  PetscBool check;        /* -indent_check_solve: a fresh LU solve beside every kept one */
+  PetscReal check_max;    /* the largest relative difference seen */
   PetscBool refactor;     /* direct: rebuild it at the next solve */
   PetscInt  linear_its;   /* Krylov iterations over the run */
   PetscInt  setups;       /* factorisations (direct) or preconditioner set-ups (fieldsplit) over the run */
