@@ -35,7 +35,8 @@ assert_nothing_looked_for(${b}/CMakeCache.txt)
 run("build" ${CMAKE_COMMAND} --build ${b} -j 2)
 run("ctest" ${CMAKE_CTEST_COMMAND} --test-dir ${b} --output-on-failure)
 run("install" ${CMAKE_COMMAND} --install ${b} --prefix ${WORK}/prefix)
-foreach(f share/camclay9/camclay9_umat.f90 share/camclay9/camclay9_umat.o include/camclay9/camclay9.h
+foreach(f share/camclay9/camclay9_umat.f90 share/camclay9/camclay9_umat_abaqus.for share/camclay9/camclay9_umat.o
+          include/camclay9/camclay9.h
           include/camclay9/ccix_props.mod lib/libcamclay9.a lib/cmake/CamClay9/CamClay9Config.cmake
           lib/cmake/CamClay9/CamClay9Targets.cmake)
   if(NOT EXISTS ${WORK}/prefix/${f})
