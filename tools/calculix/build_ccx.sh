@@ -87,7 +87,7 @@ if [ ! -f "$cache/archive.ok" ]; then
   cflags="-Wall -I/usr/include/spooles -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
   cflags="$cflags $(dpkg-buildflags --get CFLAGS) $(dpkg-buildflags --get CPPFLAGS) $(dpkg-buildflags --get LDFLAGS)"
   fflags="-fallow-argument-mismatch $(dpkg-buildflags --get FFLAGS)"
-  log "make $ccx.a $ccx.o in $src (measured 1 min 46 s on a quiet 2-core machine, 14 min on a loaded one; log: $cache/make.log)"
+  log "make $ccx.a $ccx.o in $src (2-14 min on 2 cores, 3-4.5 min CPU, docs/calculix.md; log: $cache/make.log)"
   make -C "$src" -j "$(nproc)" CFLAGS="$cflags" FFLAGS="$fflags" $ccx.a $ccx.o >"$cache/make.log" 2>&1 ||
     { echo "build_ccx: make failed, see $cache/make.log" >&2; exit 1; }
   dpkg-buildflags --get LDFLAGS > "$cache/ldflags"
