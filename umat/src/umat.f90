@@ -7,10 +7,13 @@
 !> Re-entrant: every procedure is RECURSIVE, so that its locals are automatic whatever the compiler
 !> flags (gfortran -fno-automatic, ifort's default static local arrays and -save spare RECURSIVE
 !> procedures), and the single-file UMAT keeps no module state (ccix_material_cache).
-recursive subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &
-                stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, &
-                ndi, nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, &
-                celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, jstep, kinc)
+!> (The name has a line of its own, so that a host with a UMAT of its own can rename this one, e.g.
+!> with the C preprocessor: -Dumat=umat_camclay9; docs/umat.md, "Other user subroutines".)
+recursive subroutine umat( &
+    stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &
+    stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, &
+    ndi, nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, &
+    celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, jstep, kinc)
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
                          tangent_to_abaqus, rotate_mandel, mandel_w, is_finite
