@@ -319,7 +319,10 @@ contains
     kronecker = merge(1.0_real64, 0.0_real64, i == j)
   end function kronecker
 
-  elemental function is_finite(x) result(ok)
+  !> True for a finite x (NaN compares false). Scalar and RECURSIVE, not ELEMENTAL: a function result
+  !> is a local, which -fno-automatic (or ifort's -save) makes static in a non-recursive procedure,
+  !> shared by the host's threads; Fortran 2008 does not allow RECURSIVE ELEMENTAL.
+  pure recursive function is_finite(x) result(ok)
     real(real64), intent(in) :: x
     logical :: ok
     ok = (x == x) .and. abs(x) <= huge(x)
