@@ -3,7 +3,7 @@ option, the key path, the value) and the earlier run's results in the output dir
 byte:
 
 - integers that do not fit their key or option are refused, not cut: -max_steps 4294967297 (32-bit wrap: it
-  ran 1 step), steps.count, output.fields_every, -indent_max_it beyond 63;
+  ran 1 step), steps.count, output.fields_every, -indent_max_it outside 1 to 10000;
 - a misspelt option of the driver's stops the run before it starts (-checkpoint_evry), also in a scene's
   solver.options; a bad value of one of its options names the option;
 - key paths name the key whose value is wrong (stages[0].steps.count, not stages[0].steps), an unknown word
@@ -81,7 +81,7 @@ INTEGERS = [
     (("steps: {count: 2}}", "steps: {count: 2}}\noutput: {fields_every: -3}"), [],
      r"bad\.yaml:\d+: key 'output\.fields_every': expected an integer >= 0 \(at most 2147483647\), got '-3'"),
     ((), ["-checkpoint_every", "99999999999"], r"option -checkpoint_every 99999999999: expected an integer >= 0"),
-    ((), ["-indent_max_it", "100"], r"option -indent_max_it 100: expected an integer from 1 to 63"),
+    ((), ["-indent_max_it", "0"], r"option -indent_max_it 0: expected an integer from 1 to 10000"),
 ]
 
 
