@@ -40,7 +40,8 @@ static int apply_scene_options(const char *file, const char *options, char *err,
 PetscErrorCode app_runner_options(RunnerOptions *o) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(o, sizeof *o));
-  PetscBool restart = PETSC_FALSE, elementary = PETSC_FALSE;
+  PetscBool restart = PETSC_FALSE;
+  PetscReal alpha = STEP_GAINS_PI.alpha, beta = STEP_GAINS_PI.beta;
   PetscInt  every = 0, max_steps = -1, progress = 0;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Stages and steps (every scene kind)", NULL);
   PetscCall(options_int(PetscOptionsObject, "-checkpoint_every", "write a checkpoint every N steps (0: none)", every, 0, PETSC_MAX_INT,
@@ -51,10 +52,14 @@ PetscErrorCode app_runner_options(RunnerOptions *o) {
                         &max_steps, NULL));
   PetscCall(options_int(PetscOptionsObject, "-progress_every", "a progress line every N steps (0: the scene's choice)", progress, 0,
                         PETSC_MAX_INT, &progress, NULL));
-  PetscCall(options_bool(PetscOptionsObject, "-step_elementary", "the elementary step controller (dt' = dt 0.9 / ratio) instead of the PI controller",
-                         elementary, &elementary, NULL));
+  PetscCall(options_real(PetscOptionsObject, "-step_alpha", "step controller: dt' = dt 0.9 ratio^-alpha ratio_prev^beta (1, 0: elementary)",
+                         alpha, &alpha, NULL));
+  PetscCall(options_real(PetscOptionsObject, "-step_beta", "step controller: the exponent of the previous step's error ratio", beta, &beta,
+                         NULL));
   PetscOptionsEnd();
-  o->elementary = elementary;
+  PetscCheck(alpha > 0 && alpha <= 2 && beta >= 0 && beta < alpha, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "options -step_alpha %g -step_beta %g: expected 0 < alpha <= 2 and 0 <= beta < alpha", (double)alpha, (double)beta);
+  o->gains.alpha = alpha, o->gains.beta = beta;
   o->checkpoint_every = (int)every, o->restart = restart, o->max_steps = (int)max_steps, o->progress_every = (int)progress;
   PetscFunctionReturn(0);
 }

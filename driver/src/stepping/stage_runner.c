@@ -29,6 +29,7 @@ typedef struct {
   struct timespec      w0;
   double               stage_wall0;
   StageView            view;
+  StepGains            gains; /* the step controller's exponents: the options', or the PI default */
   char                 hist_path[1024];
 } Run;
 
@@ -150,7 +151,7 @@ static double next_length(Run *r, const StepRequest *rq, const StepOutcome *o, d
   const StepControl *sc = r->view.steps;
   RunState          *st = &r->st;
   double             dt;
-  if (sc->adaptive) dt = step_control_next(sc, rq->h, o->pnewdt, ratio, r->opt->elementary ? -1 : st->ratio_prev);
+  if (sc->adaptive) dt = step_control_next(sc, &r->gains, rq->h, o->pnewdt, ratio, st->ratio_prev);
   else if (st->cut_in_plan) {
     double planned_end = 0;
     for (int k = 0; k <= st->k_planned; k++) planned_end += step_control_planned(sc, r->view.duration, k);
@@ -249,7 +250,7 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   else st->dt = next_length(r, rq, o, ratio);
   /* After a kink the estimate may hold the step, not shorten it: a jump of the rate would otherwise cut every
      step where nodes keep entering contact (3D), and without it the steps there would grow unchecked. */
-  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, rq->h, o->pnewdt, kink_ratio, -1), rq->h));
+  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, &r->gains, rq->h, o->pnewdt, kink_ratio, -1), rq->h));
   st->ratio_prev = ratio; /* the PI controller's memory: none across a kink, a rejection or a stage's start */
   st->landing = 0;
   int dir = event_direction(r->view.until.kind);
@@ -347,6 +348,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   memset(&r, 0, sizeof r);
   memset(sum, 0, sizeof *sum);
   r.sv = sv, r.opt = opt, r.last_ckpt = -1;
+  r.gains = opt->gains.alpha > 0 ? opt->gains : STEP_GAINS_PI;
   MPI_Comm_rank(sv->comm, &r.rank);
   if (opt->checkpoint_every < 0) {
     snprintf(err, errlen, "-checkpoint_every %d: expected a number of steps >= 0 (0: no checkpoints)", opt->checkpoint_every);

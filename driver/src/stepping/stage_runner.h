@@ -115,7 +115,7 @@ typedef struct {
   const char        *outdir;      /* "" or NULL: no files at all (the extremes sweep) */
   const char        *scene_file;  /* hashed into checkpoints: a restart needs the same scene */
   int                checkpoint_every, restart, max_steps, progress_every, fields_every, quiet;
-  int                elementary;  /* the elementary step controller instead of the PI controller (step_control.h) */
+  StepGains          gains;       /* the step controller's exponents (step_control.h); alpha 0: the PI default */
   const char        *part_file;   /* another new file of the run, named *.part until its first step (the mesh) */
 } RunnerOptions;
 
