@@ -39,7 +39,7 @@ def test_failed_reference(tmp_path):
     ref.write_text(text.replace("until: {load: 250}", "until: {load: 1.0e9}"))  # never reached: the run fails
     r = run(bad_scene(tmp_path, "reference: none", f"reference: {ref}"), tmp_path / "out")
     assert r.returncode == 1
-    assert re.search(r"bad.yaml:\d+: key 'runs\[0\].reference': the full-model run .*ref.yaml failed \(exit code 1; its log: "
+    assert re.search(r"bad.yaml:\d+: key 'runs\[0\].reference': the full-model run of .*ref.yaml failed \(exit code 1; its log: "
                      r".*full0_nano/forward.log\) \(fit.yaml has the forward model's fit; its bias is not known\)", r.stderr), r.stderr
     fit = yaml.safe_load((tmp_path / "out" / "fit.yaml").read_text())
     assert "the full-model run failed" in fit["quote"]["eta_soft"]["from"]

@@ -234,15 +234,18 @@ static int evaluate(Calib *c, const double *u, double *r, const char *tag, int f
     snprintf(dir, sizeof dir, "%s/forward/%s_%s", c->outdir, tag, run->name);
     int rc = cal_forward(c, run, cal_run_scene(run, ref), p, dir);
     c->nfull += ref;
+    char as[PATH_MAX + 32] = ""; /* drive: data: the scene that followed the data */
+    if (run->drive) snprintf(as, sizeof as, " (following the data: %s)", cal_run_scene(run, ref));
     if (rc)
-      FAIL("%s:%d: key 'runs[%d].%s': the %s run %s failed (exit code %d; its log: %s/forward.log)", run->file, run->line,
-           run->index, ref ? "reference" : "scene", ref ? "full-model" : "forward", cal_run_scene(run, ref), rc, dir);
+      FAIL("%s:%d: key 'runs[%d].%s': the %s run of %s%s failed (exit code %d; its log: %s/forward.log)", run->file,
+           run->line, run->index, ref ? "reference" : "scene", ref ? "full-model" : "forward", ref ? run->reference : run->scene,
+           as, rc, dir);
     if (cal_run_residual(run, dir, r + m, err, errlen)) {
       if (ref) { /* say whose run it was */
         char msg[1024];
         snprintf(msg, sizeof msg, "%s", err);
-        FAIL("%s:%d: key 'runs[%d].reference': the full-model run %s does not cover the data: %s", run->file, run->line,
-             run->index, cal_run_scene(run, 1), msg);
+        FAIL("%s:%d: key 'runs[%d].reference': the full-model run of %s%s does not cover the data: %s", run->file,
+             run->line, run->index, run->reference, as, msg);
       }
       return 1;
     }
@@ -441,7 +444,7 @@ static int start(Calib *c, double *u, char *err, size_t errlen) {
   memcpy(c->best_u, u, sizeof(double) * c->np);
   cache_add(c, u, r); /* TAO's first evaluation is this one */
   free(r);
-  if (m < c->np) FAIL("%s: %d data points for %d parameters: need at least as many points", c->doc->file, m, c->np);
+  if (m < c->np) FAIL("%s: key 'runs': %d data points for %d parameters: need at least as many points", c->doc->file, m, c->np);
   PetscPrintf(PETSC_COMM_SELF, "calibrate %s: %d parameters, %d runs, %d residuals; misfit at the start %.6e\n", c->name,
               c->np, c->nrun, m, f);
   return 0;
