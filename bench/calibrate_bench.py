@@ -69,6 +69,11 @@ def cpu_children():
     return r.ru_utime + r.ru_stime
 
 
+def pct(x, sign="+"):
+    """x as a percentage with two significant digits (0.00041 %, -11 %)."""
+    return f"{100 * x:{sign}.2g} %"
+
+
 def row(name, fit, cpu, wall):
     cost = fit["cost"]
     models = "; ".join(f"{Path(m['scene']).stem} ({m.get('drive', 'scene')})"
@@ -77,12 +82,12 @@ def row(name, fit, cpu, wall):
     fwd, quote, bias = [], [], []
     for k, p in fit["parameters"].items():
         q = fit["quote"][k]
-        fwd.append(f"{k} {p['value']:.5g} ({p['value'] / TRUE[k] - 1:+.2%})")
-        quote.append(f"{k} {q['value']:.6g} ({q['value'] / TRUE[k] - 1:+.3%} ± {q['relative_std_error']:.2%})")
+        fwd.append(f"{k} {p['value']:.5g} ({pct(p['value'] / TRUE[k] - 1)}, s.e. {pct(p['relative_std_error'], '')})")
+        quote.append(f"{k} {q['value']:.7g} ({pct(q['value'] / TRUE[k] - 1)} ± {pct(q['relative_std_error'], '')})")
         b = fit.get("bias", {}).get(k)
         if b:
-            measured = f", measured {b['value'] / p['value']:+.2%}" if "value" in b else ""
-            bias.append(f"first {b['relative']:+.2%}{measured}")
+            measured = f", measured {pct(b['value'] / p['value'])}" if "value" in b else ""
+            bias.append(f"first {pct(b['relative'])}{measured}")
     refined = fit.get("refinement", {}).get("refined")
     print(f"{name}: {cost['iterations']} TAO its, {cost['forward_runs']} forward + {cost['full_model_runs']} full-model "
           f"runs, CPU {cpu:.1f} s, wall {wall:.1f} s; {'; '.join(fwd)}; quote {'; '.join(quote)}", flush=True)
@@ -97,7 +102,7 @@ def main(argv=None):
     ap.add_argument("--make-data", action="store_true", help="make the records an example needs that are not shipped")
     a = ap.parse_args(argv)
     lines = ["| example | forward model (drive), full model | TAO its | forward runs | full-model runs | CPU [s] | wall [s] "
-             "| forward fit (error) | quoted (error ± s.e.) | bias: first estimate, measured |",
+             "| forward fit (error, s.e.) | quoted (error ± s.e.) | bias: first estimate, measured |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     skipped = []
     with tempfile.TemporaryDirectory() as tmp:

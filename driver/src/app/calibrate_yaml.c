@@ -102,10 +102,10 @@ void cal_print_summary(Calib *c, const double *u, const double *se, const CalBia
       PetscPrintf(PETSC_COMM_SELF, "  %-14s   its bias (its fit less the full model's), from one full-model run: %+.4g "
                   "(%+.2g %%, %.3g standard errors)\n", "", b->first[k], 100 * b->first[k] / p, fabs(b->first[k]) / se[k]);
     if (b->refined)
-      PetscPrintf(PETSC_COMM_SELF, "  %-14s   refined on the full model: %.6g +- %.2g; the bias measured: %+.4g +- %.2g "
+      PetscPrintf(PETSC_COMM_SELF, "  %-14s   refined on the full model: %.8g +- %.2g; the bias measured: %+.4g +- %.2g "
                   "(%+.2g %%)\n", "", b->p[k], b->se[k], b->bias[k], b->bias_se[k], 100 * b->bias[k] / p);
     quote(c, u, se, b, k, &v, &s, why, sizeof why);
-    PetscPrintf(PETSC_COMM_SELF, "quote: %s = %.6g +- %.2g (%.2g %%): %s\n", c->p[k].name, v, s, 100 * s / fabs(v), why);
+    PetscPrintf(PETSC_COMM_SELF, "quote: %s = %.8g +- %.2g (%.2g %%): %s\n", c->p[k].name, v, s, 100 * s / fabs(v), why);
   }
   for (int j = 0; j < c->nrun; j++)
     if (b->max_diff[j] >= 0)
