@@ -10,6 +10,11 @@ axial_strain_percent (compression positive); --from-start: time and strain from 
   make_synthetic.py --driver build/bin/driver --scene forward/nano_fast.yaml --set eta_soft=1.3e10 \\
       --out data/nano_synthetic.csv [--noise 0.01 --seed 1] [--points 15]
 Noise: each depth (strain) times (1 + noise * N(0, 1)), a fixed seed.
+
+An instrument's record (--instrument RATE): the indentation history sampled every 1/RATE s from its start, with
+the columns an instrument might write, in its order and units: depth_nm, load_mN, time_s, segment (the stage,
+from 1). --protocol FILE: the forward scene's stages replaced by FILE's (name, duration, indenter; each keeps the
+step control of the scene's stage of the same index), e.g. protocols/ramp600_hold30.yaml.
 """
 import argparse
 import csv
@@ -19,6 +24,7 @@ import sys
 import tempfile
 
 import numpy as np
+import yaml
 
 
 def read_history(path):
@@ -51,6 +57,37 @@ def sample_indentation(h, n):
             out.append((t, load, d))
     out.sort()
     return ["time_s", "load_uN", "depth_um"], out
+
+
+def sample_instrument(h, rate):
+    """The history every 1/rate s from 0 to its end, as an instrument writes it: depth in nm, load in mN, time in
+    s, the segment (stage + 1: the stage of the step that ends at or after the time)."""
+    t = h["time"]
+    times = np.arange(0.0, t[-1] + 0.5 / rate, 1.0 / rate)
+    times = times[times <= t[-1] + 1e-9]
+    seg = h["stage"].astype(int)[np.minimum(np.searchsorted(t, times - 1e-9 * max(t[-1], 1.0)), len(t) - 1)] + 1
+    depth, load = np.interp(times, t, h["depth"]), np.interp(times, t, h["load"])
+    return ["depth_nm", "load_mN", "time_s", "segment"], [(1e3 * d, 1e-3 * p, tt, float(s))
+                                                          for d, p, tt, s in zip(depth, load, times, seg)]
+
+
+def with_protocol(scene, protocol, tmp):
+    """The scene with its stages replaced by the protocol's (each keeps the step control of the scene's stage of
+    the same index); its mesh path made absolute; written into tmp."""
+    with open(scene) as f:
+        doc = yaml.safe_load(f)
+    with open(protocol) as f:
+        stages = yaml.safe_load(f)["stages"]
+    for i, st in enumerate(stages):
+        st.setdefault("steps", doc["stages"][min(i, len(doc["stages"]) - 1)]["steps"])
+    doc["stages"] = stages
+    for key in ("geometry", "file"):
+        if key in doc.get("mesh", {}):
+            doc["mesh"][key] = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(scene)), doc["mesh"][key]))
+    path = os.path.join(tmp, "scene_with_protocol.yaml")
+    with open(path, "w") as f:
+        yaml.safe_dump(doc, f, sort_keys=False)
+    return path
 
 
 TIME_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
@@ -86,22 +123,31 @@ def main():
     ap.add_argument("--time-unit", choices=sorted(TIME_UNITS), default="h", help="point scenes: the time column's unit")
     ap.add_argument("--from-start", action="store_true",
                     help="point scenes: time and strain from the segment's start (a lab creep record)")
+    ap.add_argument("--protocol", help="a YAML file whose stages replace the scene's")
+    ap.add_argument("--instrument", type=float, metavar="RATE",
+                    help="indentation: every 1/RATE s, as an instrument writes (depth_nm, load_mN, time_s, segment)")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
-        r = subprocess.run([a.driver, "-input", a.scene, "-output_dir", tmp, "-material_set", a.set],
+        scene = with_protocol(a.scene, a.protocol, tmp) if a.protocol else a.scene
+        r = subprocess.run([a.driver, "-input", scene, "-output_dir", os.path.join(tmp, "out"), "-material_set", a.set],
                            capture_output=True, text=True)
         if r.returncode:
             sys.exit(f"make_synthetic: the driver failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
-        h = read_history(os.path.join(tmp, "history.csv"))
-    if "depth" in h:
+        h = read_history(os.path.join(tmp, "out", "history.csv"))
+    if a.instrument:
+        header, rows = sample_instrument(h, a.instrument)
+    elif "depth" in h:
         header, rows = sample_indentation(h, a.points)
     else:
         header, rows = sample_point(h, a.points, a.segment, a.column, a.time_unit, a.from_start)
     rng = np.random.default_rng(a.seed)
-    rows = [(r[:-1] + (r[-1] * (1 + a.noise * rng.standard_normal()),)) for r in rows]
+    ydepth = 0 if a.instrument else -1  # the column that carries the noise: the depth (strain)
+    rows = [tuple(v * (1 + a.noise * rng.standard_normal()) if i == (ydepth % len(r)) else v for i, v in enumerate(r))
+            for r in rows]
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out, "w") as f:
-        f.write(f"# synthetic: {os.path.basename(a.scene)} with {a.set}, noise {a.noise} (seed {a.seed}); "
+        protocol = f", protocol {os.path.basename(a.protocol)}" if a.protocol else ""
+        f.write(f"# synthetic: {os.path.basename(a.scene)}{protocol} with {a.set}, noise {a.noise} (seed {a.seed}); "
                 "input/calibrate/make_synthetic.py\n")
         f.write(",".join(header) + "\n")
         for r in rows:

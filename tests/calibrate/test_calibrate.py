@@ -149,18 +149,27 @@ def lab_scene(tmp_path, old, new):
 LAB_BAD = [
     # without time_from the record's times (8 to 240 min) fall in the 2e6 s hold, not in the creep stage
     ("no time_from", ("      time_from: creep\n", ""),
-     r"residual 'series' \(line \d+\): 0 data rows of .*triaxial_creep_synthetic.csv lie in stage 'creep'"),
+     r"bad.yaml:\d+: key 'runs\[0\].residuals\[0\]' \(series in stage 'creep'\): 0 data rows of "
+     r".*triaxial_creep_synthetic.csv lie in that stage"),
     ("unknown time_from stage", ("time_from: creep", "time_from: crepe"),
      r"bad.yaml:\d+: key 'runs\[0\].data.time_from': the forward scene .* has no stage \(segment\) named 'crepe'"),
     ("held PROPS misspelt", ("    data:", "    set: {eta_sfot: 1.0e10}\n    data:"),
-     r"run 'creep': the forward run at the start failed"),
+     r"bad.yaml:\d+: key 'runs\[0\].scene': the forward run at the start failed \(exit code 2; its log: .*forward.log\)"),
+    # issues 22, 23: the checks and messages that name the key
+    ("unknown model column", ("model: eps_33", "model: eps_99"),
+     r"bad.yaml:\d+: key 'runs\[0\].residuals\[0\].model': the forward run's history has no column 'eps_99' \(its columns: "
+     r"time,.*eps_33"),
+    ("value factor zero", ("value: -0.01", "value: 0"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.factors.value': expected a factor other than 0 .*, got 0"),
+    ("drive: data with a point scene", ("    data:", "    drive: data\n    data:"),
+     r"bad.yaml:\d+: key 'runs\[0\].drive': data needs an indentation forward scene"),
 ]
 
 
 @pytest.mark.parametrize("name,edit,message", LAB_BAD, ids=[b[0] for b in LAB_BAD])
 def test_point_bad_input(tmp_path, name, edit, message):
     r = run(lab_scene(tmp_path, *edit), tmp_path / "out")
-    assert r.returncode != 0
+    assert r.returncode == 2
     assert re.search(message, r.stderr), r.stderr
 
 
@@ -190,7 +199,37 @@ BAD = [
     ("missing data column", ("depth: depth_um", "depth: h_nm"), r"bad.yaml:\d+: key 'runs\[0\].data.file'.*has no column 'h_nm'"),
     ("unknown stage", ("stage: hold", "stage: creep"), r"bad.yaml:\d+: key 'runs\[0\].residuals\[1\].stage': the forward scene .* has no stage"),
     ("unknown residual kind", ("kind: hold", "kind: creep"), r"expected loading, hold, unloading or series, got 'creep'"),
-    ("data outside the range", ("columns:", "columns:"), r"the data's load = .* lies outside the forward run's range in stage 'load'"),
+    ("data outside the range", ("columns:", "columns:"),
+     r"bad.yaml:\d+: key 'runs\[0\].residuals\[0\]' \(loading in stage 'load'\): the data's load = .* lies outside the "
+     r"forward run's range in that stage"),
+    # issues 22, 23: the checks that catch a wrong fit at the start, the messages that name the key and value
+    ("rows outside the forward run", ("depth: depth_um}", "depth: depth_um}\n      factors: {time: 2}"),
+     r"bad.yaml:\d+: key 'runs\[0\].data': 36 of the 44 data rows \(times 249.\d+ to 468.\d+ s in the forward run's time\) lie "
+     r"outside the forward run \(0 to 235.\d+ s\): the forward scene's protocol is not the data's: give drive: data"),
+    ("depth in nm without a factor", ("depth: depth_um}", "depth: depth_um}\n      factors: {depth: 1000}"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.factors.depth' \(column 'depth_um', factor 1000\): the data's depths reach 1\d\d.\d "
+     r"where the first forward run's reach 0.1\d+ in stage 'load' \(residuals\[0\]\), 1.0\de\+03 times as much: a unit\?"),
+    ("load in nN without a factor", ("depth: depth_um}", "depth: depth_um}\n      factors: {load: 1000}"),
+     r"key 'runs\[0\].data.factors.load' \(column 'load_uN', factor 1000\): the data's loads reach 2.5e\+05 where the "
+     r"first forward run's reach 250"),
+    ("factor zero", ("depth: depth_um}", "depth: depth_um}\n      factors: {time: 0}"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.factors.time': expected a factor > 0 .*, got 0"),
+    ("factor negative", ("depth: depth_um}", "depth: depth_um}\n      factors: {depth: -0.001}"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.factors.depth': expected a factor > 0 .*, got -0.001"),
+    ("weight zero", ("{kind: hold, stage: hold}", "{kind: hold, stage: hold, weight: 0}"),
+     r"bad.yaml:\d+: key 'runs\[0\].residuals\[1\].weight': expected a weight > 0, got '0'"),
+    ("time column left out, its factor kept", ("columns: {time: time_s, ", "factors: {time: 1}\n      columns: {"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.columns.time' is missing"),
+    ("forward scene is a calibrate scene", ("scene: " + str(CAL / "forward" / "nano_fast.yaml"), "scene: " + str(CAL / "nano_eta_soft.yaml")),
+     r"bad.yaml:\d+: key 'runs\[0\].scene': the forward scene .*nano_eta_soft.yaml is a scene of kind 'calibrate': expected "
+     r"a point or fe scene"),
+    ("data stage unknown with drive: data", ("drive: scene", "drive: data"),
+     r"bad.yaml:\d+: key 'runs\[0\].residuals\[0\].stage': the data have no stage named 'load' \(drive: data: the stages are "
+     r"the data's: loading \(loading\), hold \(hold\), unloading \(unloading\)\)"),
+    ("refine without a full model", ("output:", "refine: yes\noutput:"),
+     r"bad.yaml:\d+: key 'refine': yes needs a full model: no run has a reference"),
+    ("accept an unknown check", ("output:", "accept: [rows, units]\noutput:"),
+     r"bad.yaml:\d+: key 'accept\[1\]': expected rows, scale or bound, got 'units'"),
 ]
 
 
@@ -198,7 +237,7 @@ BAD = [
 def test_bad_input(tmp_path, name, edit, message):
     data = shifted_loads(tmp_path) if name == "data outside the range" else None
     r = run(bad_scene(tmp_path, *edit, data=data), tmp_path / "out")
-    assert r.returncode != 0
+    assert r.returncode == 2
     assert re.search(message, r.stderr), r.stderr
 
 

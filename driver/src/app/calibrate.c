@@ -38,6 +38,7 @@ static int read_param(const YdDoc *doc, YdNode *nd, int k, CalParam *p, char *er
   YdNode     *v;
   snprintf(path, sizeof path, "parameters[%d]", k);
   if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
+  p->line = nd->line;
   snprintf(sub, sizeof sub, "%s.name", path);
   if (!(v = yd_require(doc, nd, "name", YD_SCALAR, sub, err, errlen)) || yd_string(doc, v, sub, &s, err, errlen)) return 1;
   snprintf(p->name, sizeof p->name, "%s", s);
@@ -71,6 +72,44 @@ static int read_param(const YdDoc *doc, YdNode *nd, int k, CalParam *p, char *er
   return yd_check_unused(doc, nd, path, "name, start, min, max, scale", err, errlen);
 }
 
+/* accept: [rows, scale, bound]: checks whose finding the user means (a warning, not an error). */
+static int read_accept(YdDoc *doc, Calib *c, char *err, size_t errlen) {
+  static const char *names[3] = {"rows", "scale", "bound"};
+  YdNode            *v        = yd_get(doc->root, "accept");
+  if (!v) return 0;
+  if (yd_expect(doc, v, YD_SEQUENCE, "accept", err, errlen)) return 1;
+  for (size_t i = 0; i < v->n; i++) {
+    const char *s;
+    char        sub[32];
+    int         bit = 0;
+    snprintf(sub, sizeof sub, "accept[%zu]", i);
+    if (yd_string(doc, v->items[i], sub, &s, err, errlen)) return 1;
+    for (int k = 0; k < 3; k++)
+      if (!strcmp(s, names[k])) bit = 1 << k;
+    if (!bit) FAIL("%s:%d: key '%s': expected rows, scale or bound, got '%s'", doc->file, v->items[i]->line, sub, s);
+    c->accept |= bit;
+  }
+  return 0;
+}
+
+/* refine: auto (default: when the forward model's bias exceeds the standard error) | yes | no. */
+static int read_refine(YdDoc *doc, Calib *c, char *err, size_t errlen) {
+  const char *s;
+  YdNode     *v = yd_get(doc->root, "refine");
+  int         refs = 0;
+  c->refine       = 1;
+  for (int j = 0; j < c->nrun; j++) refs += c->run[j].reference[0] != 0;
+  if (!v) return 0;
+  if (yd_string(doc, v, "refine", &s, err, errlen)) return 1;
+  if (strcmp(s, "auto") && strcmp(s, "yes") && strcmp(s, "no"))
+    FAIL("%s:%d: key 'refine': expected auto (on the full model when the forward model's bias exceeds the standard "
+         "error), yes or no, got '%s'", doc->file, v->line, s);
+  c->refine = !strcmp(s, "no") ? 0 : !strcmp(s, "yes") ? 2 : 1;
+  if (c->refine == 2 && !refs)
+    FAIL("%s:%d: key 'refine': yes needs a full model: no run has a reference (runs[k].reference)", doc->file, v->line);
+  return 0;
+}
+
 static int read_scene(YdDoc *doc, Calib *c, const char *outdir, char *err, size_t errlen) {
   const char *s;
   YdNode     *v;
@@ -102,7 +141,8 @@ static int read_scene(YdDoc *doc, Calib *c, const char *outdir, char *err, size_
     return 1;
   if (out && yd_get(out, "directory")) snprintf(c->outdir, sizeof c->outdir, "%s", s);
   if (outdir && outdir[0]) snprintf(c->outdir, sizeof c->outdir, "%s", outdir);
-  return yd_check_unused(doc, doc->root, "", "scene, name, parameters, runs, output", err, errlen);
+  if (read_accept(doc, c, err, errlen) || read_refine(doc, c, err, errlen)) return 1;
+  return yd_check_unused(doc, doc->root, "", "scene, name, parameters, runs, refine, accept, output", err, errlen);
 }
 
 /* The environment without the MPI launcher's variables: a forward run is its own singleton. */
@@ -151,20 +191,78 @@ int cal_forward(Calib *c, const CalRun *run, const char *scene, const double *p,
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
-int cal_evaluate(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen) {
+/* The evaluated points: u, the residuals and every block's model curve. A point evaluated before costs no run. */
+static double *cache_entry(Calib *c, int i) { return c->cache + (size_t)i * (c->np + 2 * c->m); }
+void cal_models(Calib *c, double *models, int save) {
+  for (int j = 0, off = 0; j < c->nrun; j++)
+    for (int k = 0; k < c->run[j].ncurve; k++) {
+      CalCurve *cv = &c->run[j].curve[k];
+      if (save) memcpy(models + off, cv->model, sizeof(double) * cv->n);
+      else memcpy(cv->model, models + off, sizeof(double) * cv->n);
+      off += cv->n;
+    }
+}
+static int cache_find(Calib *c, const double *u, double *r) {
+  for (int i = 0; i < c->ncache; i++) {
+    double *e = cache_entry(c, i);
+    if (memcmp(e, u, sizeof(double) * c->np)) continue;
+    memcpy(r, e + c->np, sizeof(double) * c->m);
+    cal_models(c, e + c->np + c->m, 0);
+    return 1;
+  }
+  return 0;
+}
+static void cache_add(Calib *c, const double *u, const double *r) {
+  if (c->ncache == c->cache_cap) {
+    c->cache_cap = c->cache_cap ? 2 * c->cache_cap : 64;
+    c->cache     = realloc(c->cache, sizeof(double) * (size_t)c->cache_cap * (c->np + 2 * c->m));
+  }
+  double *e = cache_entry(c, c->ncache++);
+  memcpy(e, u, sizeof(double) * c->np), memcpy(e + c->np, r, sizeof(double) * c->m);
+  cal_models(c, e + c->np + c->m, 1);
+}
+
+/* Every run at u into r; full: a run with a reference on its full model. */
+static int evaluate(Calib *c, const double *u, double *r, const char *tag, int full, char *err, size_t errlen) {
   double p[CAL_MAX_PARAMS];
   int    m = 0;
   for (int k = 0; k < c->np; k++) p[k] = cal_param(&c->p[k], u[k]);
   for (int j = 0; j < c->nrun; j++) {
-    char dir[PATH_MAX + 200];
-    snprintf(dir, sizeof dir, "%s/forward/%s_%s", c->outdir, tag, c->run[j].name);
-    int rc = cal_forward(c, &c->run[j], c->run[j].scene, p, dir);
-    if (rc) FAIL("run '%s': the forward run failed (exit code %d; its log: %s/forward.log)", c->run[j].name, rc, dir);
-    if (!c->m && cal_run_setup(&c->run[j], dir, err, errlen)) return 1;
-    if (cal_run_residual(&c->run[j], dir, r + m, err, errlen)) return 1;
-    m += cal_run_size(&c->run[j]);
+    CalRun *run = &c->run[j];
+    char    dir[PATH_MAX + 200];
+    int     ref = full && run->reference[0];
+    snprintf(dir, sizeof dir, "%s/forward/%s_%s", c->outdir, tag, run->name);
+    int rc = cal_forward(c, run, cal_run_scene(run, ref), p, dir);
+    c->nfull += ref;
+    char as[PATH_MAX + 32] = ""; /* drive: data: the scene that followed the data */
+    if (run->drive) snprintf(as, sizeof as, " (following the data: %s)", cal_run_scene(run, ref));
+    if (rc)
+      FAIL("%s:%d: key 'runs[%d].%s': the %s run of %s%s failed (exit code %d; its log: %s/forward.log)", run->file,
+           run->line, run->index, ref ? "reference" : "scene", ref ? "full-model" : "forward", ref ? run->reference : run->scene,
+           as, rc, dir);
+    if (cal_run_residual(run, dir, r + m, err, errlen)) {
+      if (ref) { /* say whose run it was */
+        char msg[1024];
+        snprintf(msg, sizeof msg, "%s", err);
+        FAIL("%s:%d: key 'runs[%d].reference': the full-model run of %s%s does not cover the data: %s", run->file,
+             run->line, run->index, run->reference, as, msg);
+      }
+      return 1;
+    }
+    m += cal_run_size(run);
   }
   return 0;
+}
+
+int cal_evaluate(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen) {
+  if (cache_find(c, u, r)) return 0;
+  if (evaluate(c, u, r, tag, 0, err, errlen)) return 1;
+  cache_add(c, u, r);
+  return 0;
+}
+
+int cal_evaluate_full(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen) {
+  return evaluate(c, u, r, tag, 1, err, errlen);
 }
 
 /* TAO's residual routine: a failed evaluation is rejected (a large residual), not fatal. */
@@ -180,7 +278,7 @@ static PetscErrorCode tao_residual(Tao tao, Vec U, Vec R, void *ctx) {
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecGetArray(R, &r));
   snprintf(tag, sizeof tag, "e%04d", ++c->nevals);
-  int bad = cal_evaluate(c, uu, r, tag, err, sizeof err);
+  int runs = c->nforward, bad = cal_evaluate(c, uu, r, tag, err, sizeof err);
   for (int i = 0; i < c->m; i++) {
     if (bad) r[i] = c->penalty;
     f += r[i] * r[i];
@@ -195,7 +293,7 @@ static PetscErrorCode tao_residual(Tao tao, Vec U, Vec R, void *ctx) {
   }
   fprintf(c->evals, "%d,%d", c->nevals, !bad);
   for (int k = 0; k < c->np; k++) fprintf(c->evals, ",%.10g", cal_param(&c->p[k], uu[k]));
-  fprintf(c->evals, ",%.10g,%.3f\n", bad ? NAN : f, MPI_Wtime() - t0);
+  fprintf(c->evals, ",%.10g,%d,%.3f\n", bad ? NAN : f, c->nforward - runs, MPI_Wtime() - t0);
   fflush(c->evals);
   PetscFunctionReturn(0);
 }
@@ -217,6 +315,33 @@ static PetscErrorCode tao_monitor(Tao tao, void *ctx) {
                         c->nrejected, MPI_Wtime() - c->wall0));
   PetscCall(VecRestoreArrayRead(U, &u));
   c->iterations = (int)its;
+  PetscFunctionReturn(0);
+}
+
+/* TAO's own tests, and a stop on no progress: the iterate and the misfit unchanged over two iterations (POUNDERS
+ * went on evaluating the same point after convergence: 3-4 iterations seen; the cache makes those free). */
+static PetscErrorCode converged(Tao tao, void *ctx) {
+  Calib             *c = ctx;
+  TaoConvergedReason why;
+  PetscReal          f;
+  PetscInt           its;
+  Vec                U;
+  const PetscScalar *u;
+  PetscFunctionBeginUser;
+  PetscCall(TaoDefaultConvergenceTest(tao, NULL));
+  PetscCall(TaoGetConvergedReason(tao, &why));
+  PetscCall(TaoGetSolutionStatus(tao, &its, &f, NULL, NULL, NULL, NULL));
+  PetscCall(TaoGetSolution(tao, &U));
+  PetscCall(VecGetArrayRead(U, &u));
+  int same = its > 0 && f >= c->last_f;
+  for (int k = 0; k < c->np; k++) same &= PetscRealPart(u[k]) == c->last_u[k], c->last_u[k] = PetscRealPart(u[k]);
+  PetscCall(VecRestoreArrayRead(U, &u));
+  c->last_f  = f;
+  c->stalled = same ? c->stalled + 1 : 0;
+  if (why == TAO_CONTINUE_ITERATING && c->stalled >= 2) {
+    c->no_progress = 1;
+    PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_USER));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -245,12 +370,14 @@ static PetscErrorCode solve(Calib *c, double *u, PetscInt *its, char *reason, si
   PetscCall(TaoSetTolerances(tao, 1e-9, 0, 1e-4)); /* gatol; gttol: the gradient reduced 1e4 times */
   PetscCall(TaoSetMaximumFunctionEvaluations(tao, 60));
   PetscCall(TaoSetMonitor(tao, tao_monitor, c, NULL));
+  PetscCall(TaoSetConvergenceTest(tao, converged, c));
   PetscCall(TaoSetFromOptions(tao));
   PetscCall(TaoGetType(tao, &type));
   snprintf(c->tao_type, sizeof c->tao_type, "%s", type);
   PetscCall(TaoSolve(tao));
   PetscCall(TaoGetSolutionStatus(tao, its, NULL, NULL, NULL, NULL, &why));
-  snprintf(reason, rlen, "%s", TaoConvergedReasons[why]);
+  snprintf(reason, rlen, "%s", c->no_progress ? "NO_PROGRESS (the iterate and misfit unchanged over 2 iterations)"
+                                                : TaoConvergedReasons[why]);
   PetscCall(VecGetArray(U, &a));
   for (int k = 0; k < c->np; k++) u[k] = PetscRealPart(a[k]);
   PetscCall(VecRestoreArray(U, &a));
@@ -262,25 +389,52 @@ static PetscErrorCode solve(Calib *c, double *u, PetscInt *its, char *reason, si
   PetscFunctionReturn(0);
 }
 
+/* What each run's forward runs follow, and its full model: said in the log. */
+static void describe_run(Calib *c, const CalRun *run) {
+  char buf[4096];
+  if (run->drive) {
+    cal_protocol_describe(run, buf, sizeof buf);
+    PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the data's history (drive: data), %d stages from %s%s%s:\n%s\n"
+                "  forward scene %s: %s's stages replaced by the data's\n", run->name, run->nstage,
+                run->stages_from_column ? "the data's column '" : "the load curve (loading, hold within 1 % of the peak, unloading)",
+                run->stages_from_column ? run->stage_col : "", run->stages_from_column ? "'" : "", buf, run->driven, run->scene);
+  } else
+    PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the stages of %s (drive: scene)\n", run->name, run->scene);
+  if (run->reference[0])
+    PetscPrintf(PETSC_COMM_SELF, "  full model (reference%s): %s, run at the fit for the forward model's bias\n",
+                run->reference_default ? ", the default beside the forward scene" : "", run->reference);
+  else PetscPrintf(PETSC_COMM_SELF, "  no full model (reference): the forward model's bias is not measured\n");
+}
+
 /* The first evaluation, at the start: every error here is the input's (fatal). */
 static int start(Calib *c, double *u, char *err, size_t errlen) {
-  double *r = malloc(sizeof(double) * 1);
+  double *r = malloc(sizeof(double) * 1), p[CAL_MAX_PARAMS];
   int     m = 0;
-  for (int k = 0; k < c->np; k++) u[k] = param_u(&c->p[k], c->p[k].start);
-  double p[CAL_MAX_PARAMS];
-  for (int k = 0; k < c->np; k++) p[k] = c->p[k].start;
+  for (int k = 0; k < c->np; k++) u[k] = param_u(&c->p[k], c->p[k].start), p[k] = c->p[k].start;
   for (int j = 0; j < c->nrun; j++) {
-    char dir[PATH_MAX + 200];
-    snprintf(dir, sizeof dir, "%s/forward/start_%s", c->outdir, c->run[j].name);
-    int rc = cal_forward(c, &c->run[j], c->run[j].scene, p, dir);
+    CalRun *run = &c->run[j];
+    char    dir[PATH_MAX + 200];
+    describe_run(c, run);
+    snprintf(dir, sizeof dir, "%s/forward/start_%s", c->outdir, run->name);
+    int rc = cal_forward(c, run, cal_run_scene(run, 0), p, dir);
     if (rc) {
+      double pmax = 0;
+      for (int i = 0; run->drive && i < run->rows; i++) pmax = fmax(pmax, run->data[i * run->ncol + run->col_load]);
       free(r);
-      FAIL("run '%s': the forward run at the start failed (exit code %d): see %s/forward.log", c->run[j].name, rc, dir);
+      if (run->drive)
+        FAIL("%s:%d: key 'runs[%d].scene': the forward run at the start failed (exit code %d; its log: %s/forward.log), driven "
+             "by the data's loads up to %g (after runs[%d].data.factors.load = %g): are they in the units of %s?", run->file,
+             run->line, run->index, rc, dir, pmax, run->index, run->factor[1], run->scene);
+      FAIL("%s:%d: key 'runs[%d].scene': the forward run at the start failed (exit code %d; its log: %s/forward.log)", run->file,
+           run->line, run->index, rc, dir);
     }
-    if (cal_run_setup(&c->run[j], dir, err, errlen)) return free(r), 1;
-    int n = cal_run_size(&c->run[j]);
+    if (cal_run_setup(run, dir, err, errlen) || cal_check_rows(run, dir, c->accept, err, errlen) ||
+        cal_check_scale(run, dir, c->accept, 0, err, errlen))
+      return free(r), 1;
+    int n = cal_run_size(run);
     r     = realloc(r, sizeof(double) * (size_t)(m + n));
-    if (cal_run_residual(&c->run[j], dir, r + m, err, errlen)) return free(r), 1;
+    if (cal_run_residual(run, dir, r + m, err, errlen) || cal_check_scale(run, dir, c->accept, 1, err, errlen))
+      return free(r), 1;
     m += n;
   }
   c->m = m;
@@ -288,25 +442,44 @@ static int start(Calib *c, double *u, char *err, size_t errlen) {
   for (int i = 0; i < m; i++) f += r[i] * r[i], rmax = fmax(rmax, fabs(r[i]));
   c->penalty = 10 * fmax(1, rmax), c->best_f = f;
   memcpy(c->best_u, u, sizeof(double) * c->np);
+  cache_add(c, u, r); /* TAO's first evaluation is this one */
   free(r);
-  if (m < c->np) FAIL("%s: %d data points for %d parameters: need at least as many points", c->doc->file, m, c->np);
+  if (m < c->np) FAIL("%s: key 'runs': %d data points for %d parameters: need at least as many points", c->doc->file, m, c->np);
   PetscPrintf(PETSC_COMM_SELF, "calibrate %s: %d parameters, %d runs, %d residuals; misfit at the start %.6e\n", c->name,
               c->np, c->nrun, m, f);
   return 0;
+}
+
+/* drive: data: the forward scenes that follow each run's data, written into the output directory. */
+static int write_protocols(Calib *c, char *err, size_t errlen) {
+  for (int j = 0; j < c->nrun; j++)
+    if (c->run[j].drive && cal_protocol_write(&c->run[j], c->outdir, err, errlen)) return 1;
+  return 0;
+}
+
+/* -calibrate_dry_run: say what each run's forward runs follow, write the scenes that follow the data, and stop. */
+static int dry_run(Calib *c) {
+  PetscBool dry = PETSC_FALSE;
+  PetscOptionsGetBool(NULL, NULL, "-calibrate_dry_run", &dry, NULL);
+  for (int j = 0; dry && j < c->nrun; j++) describe_run(c, &c->run[j]);
+  if (dry) PetscPrintf(PETSC_COMM_SELF, "calibrate %s: -calibrate_dry_run: nothing run; the scenes are in %s/protocol\n", c->name, c->outdir);
+  return dry;
 }
 
 int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
   Calib   *c = calloc(1, sizeof *c);
   double   u[CAL_MAX_PARAMS];
   PetscInt its    = 0;
-  char     reason[64], file[PATH_MAX + 32];
+  char     reason[128], file[PATH_MAX + 32];
   int      rc     = 2;
   c->doc          = doc;
   c->wall0        = MPI_Wtime();
   ssize_t len     = readlink("/proc/self/exe", c->exe, sizeof c->exe - 1);
   if (len <= 0) snprintf(err, errlen, "calibrate: cannot find the driver's own executable (/proc/self/exe)");
   else if (read_scene(doc, c, outdir, err, errlen)) {
-  } else if (fs_prepare_output_dir(c->outdir, err, errlen)) {
+  } else if (fs_prepare_output_dir(c->outdir, err, errlen) || write_protocols(c, err, errlen)) {
+  } else if (dry_run(c)) {
+    rc = 0;
   } else if (start(c, u, err, errlen)) {
   } else {
     rc = 1;
@@ -315,12 +488,12 @@ int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
     else {
       fprintf(c->evals, "evaluation,ok");
       for (int k = 0; k < c->np; k++) fprintf(c->evals, ",%s", c->p[k].name);
-      fprintf(c->evals, ",misfit,wall\n");
+      fprintf(c->evals, ",misfit,forward_runs,wall\n");
       if (!solve(c, u, &its, reason, sizeof reason) && !cal_report(c, u, its, reason, err, errlen)) rc = 0;
       fclose(c->evals);
     }
   }
   for (int j = 0; j < c->nrun; j++) cal_run_free(&c->run[j]);
-  free(c);
+  free(c->cache), free(c);
   return rc;
 }

@@ -14,6 +14,7 @@ typedef struct {
   int    slot;           /* PROPS slot (material_slot) */
   double start, lo, hi;  /* bounds; TAO works on u in [0, 1]: linear, or in the logarithm (log: 1) */
   int    log;
+  int    line;           /* its item in 'parameters', for messages */
 } CalParam;
 
 typedef struct {
@@ -23,13 +24,29 @@ typedef struct {
   int          np;
   CalRun       run[CAL_MAX_RUNS];
   int          nrun, m;      /* residual count */
-  int          nevals, nforward, nrejected, iterations;
+  int          nevals, nforward, nrejected, iterations, nfull; /* nfull: full-model (reference) runs among nforward */
   double       penalty;      /* each residual of a rejected evaluation */
   double       wall0, forward_wall;
   double       best_f, best_u[CAL_MAX_PARAMS];
   FILE        *evals;        /* evaluations.csv */
   char         tao_type[64];
+  int          accept;       /* the checks the scene accepts (CAL_ACCEPT_*) */
+  int          refine;       /* the two-fidelity refinement: 0 no, 1 auto (when the bias exceeds the standard error), 2 yes */
+  int          ncache, cache_cap; /* every evaluated point: u (np), residuals and model curves (m each) */
+  double      *cache;
+  double       last_u[CAL_MAX_PARAMS], last_f; /* the previous TAO iterate, for the no-progress stop */
+  int          stalled, no_progress;
 } Calib;
+
+/* The forward model's bias at the fit (a full-model run there) and the two-fidelity refinement. */
+typedef struct {
+  int    have, refined, converged, nfull; /* a reference was run; refined; its steps converged; full-model runs */
+  double first[CAL_MAX_PARAMS];           /* the bias from the first full-model run (linearised) */
+  double p[CAL_MAX_PARAMS], se[CAL_MAX_PARAMS];       /* refined values and standard errors */
+  double bias[CAL_MAX_PARAMS], bias_se[CAL_MAX_PARAMS]; /* the forward fit less the refined one */
+  double max_diff[CAL_MAX_RUNS];          /* each run's largest model difference at the fit / data range; -1: none */
+  char   failed[1024];                    /* a reference run failed: why ("" otherwise) */
+} CalBias;
 
 /* Run the calibrate scene doc; outputs under outdir (or the scene's output.directory). */
 int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen);
@@ -40,11 +57,26 @@ double cal_dparam(const CalParam *p, double u);
 /* One evaluation at u: every run's forward process and residuals into r (c->m). Returns 0, or 1 when an
  * evaluation failed (err says why; r untouched). tag names the evaluation's folder. */
 int cal_evaluate(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen);
+/* Every block's model curve (c->m values) saved into models (save 1) or restored from them (0). */
+void cal_models(Calib *c, double *models, int save);
+/* The same at u, each run with a reference on its full model (the two-fidelity fit's residual). */
+int cal_evaluate_full(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen);
 /* One forward process of a run's scene (or its reference) at parameters p into dir: the exit code. */
 int cal_forward(Calib *c, const CalRun *run, const char *scene, const double *p, const char *dir);
 
 /* The report after TAO: Jacobian at u by finite differences, standard errors, correlations, the fitted
  * curves, the reference runs, fit.yaml. */
 int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char *err, size_t errlen);
+/* Inverse of the n x n matrix a (row-major; overwritten) into b by Gauss-Jordan with partial pivoting; 1 if singular. */
+int cal_invert(int n, double *a, double *b);
+/* The bias of the fit at u (J, the inverse of J^T J, the standard errors se, all of the forward model) from a
+ * full-model run there, and the refinement on the full model (calibrate_refine.c). 1 with err when a reference
+ * run failed (b->failed says so too). */
+int cal_bias(Calib *c, const double *u, const double *J, const double *inv, const double *se, CalBias *b, char *err,
+             size_t errlen);
+/* fit.yaml and the summary on stdout (calibrate_yaml.c). */
+void cal_write_yaml(Calib *c, FILE *fp, const double *u, const double *se, const double *cov, double ssr, PetscInt its,
+                    const char *reason, const CalBias *b);
+void cal_print_summary(Calib *c, const double *u, const double *se, const CalBias *b);
 
 #endif

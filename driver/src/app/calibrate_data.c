@@ -1,9 +1,13 @@
+/* A calibrate scene's runs: the forward scene (and its full model), whose protocol the forward runs follow,
+ * the data (columns, factors), the residual blocks. Every error names the calibrate scene, the line, the key
+ * path and the value (docs/calibrate.md). */
 #include "calibrate_data.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "../io/csv_table.h"
 #include "../io/paths.h"
@@ -17,26 +21,58 @@
 static const char *kind_names[] = {"loading", "hold", "unloading", "series"};
 const char        *cal_kind_name(CalKind k) { return kind_names[k]; }
 
-/* The index of a named stage (segment) of the forward scene, or -1; *point set for a point scene. */
-static int forward_stage(const char *scene, const char *name, int *point, char *err, size_t errlen) {
-  YdDoc       doc;
+const char *cal_run_scene(const CalRun *run, int reference) {
+  if (reference) return run->drive ? run->driven_reference : run->reference;
+  return run->drive ? run->driven : run->scene;
+}
+
+/* The forward scene's kind: 0 point, 1 fe, 2 fe with an indenter; -1 with err naming the key (another kind). */
+static int forward_kind(const YdDoc *doc, const char *key, int line, const char *scene, char *err, size_t errlen) {
+  YdDoc       fwd;
   const char *kind = "";
-  int         idx = -1;
-  if (yd_load(scene, &doc, err, errlen)) return -2;
-  YdNode *k = yd_get(doc.root, "scene");
+  char        msg[1024];
+  if (yd_load(scene, &fwd, msg, sizeof msg)) {
+    snprintf(err, errlen, "%s:%d: key '%s': the forward scene cannot be read: %s", doc->file, line, key, msg);
+    return -1;
+  }
+  YdNode *k = yd_get(fwd.root, "scene");
   if (k && k->kind == YD_SCALAR) kind = k->text;
-  *point         = !strcmp(kind, "point");
-  YdNode *stages = yd_get(doc.root, *point ? "segments" : "stages");
+  int r = !strcmp(kind, "point") ? 0 : !strcmp(kind, "fe") ? (yd_get(fwd.root, "indenter") ? 2 : 1) : -1;
+  if (r < 0)
+    snprintf(err, errlen, "%s:%d: key '%s': the forward scene %s is a scene of kind '%s': expected a point or fe scene "
+             "(one forward run)", doc->file, line, key, scene, kind);
+  yd_free(&fwd);
+  return r;
+}
+
+/* The index of a named stage (segment) of the forward scene, or -1 (-2: unreadable). */
+static int forward_stage(const CalRun *run, const char *name) {
+  YdDoc fwd;
+  char  msg[1024];
+  int   idx = -1;
+  if (yd_load(run->scene, &fwd, msg, sizeof msg)) return -2;
+  YdNode *stages = yd_get(fwd.root, run->point ? "segments" : "stages");
   for (size_t i = 0; stages && stages->kind == YD_SEQUENCE && i < stages->n; i++) {
     YdNode *nm = stages->items[i]->kind == YD_MAPPING ? yd_get(stages->items[i], "name") : NULL;
     if (nm && nm->kind == YD_SCALAR && !strcmp(nm->text, name)) idx = (int)i;
   }
-  if (strcmp(kind, "point") && strcmp(kind, "fe")) {
-    snprintf(err, errlen, "forward scene '%s': expected scene: point or fe, got '%s'", scene, kind);
-    idx = -2;
-  }
-  yd_free(&doc);
+  yd_free(&fwd);
   return idx;
+}
+
+/* The data stage named 'name', or -1. */
+static int data_stage(const CalRun *run, const char *name) {
+  for (int j = 0; j < run->nstage; j++)
+    if (!strcmp(run->stage[j].name, name)) return j;
+  return -1;
+}
+
+static void data_stage_list(const CalRun *run, char *buf, size_t n) {
+  buf[0] = '\0';
+  for (int j = 0; j < run->nstage; j++) {
+    size_t len = strlen(buf);
+    snprintf(buf + len, n - len, "%s%s (%s)", j ? ", " : "", run->stage[j].name, kind_names[run->stage[j].kind]);
+  }
 }
 
 /* data.time_from: STAGE: the data's time 0 is that stage's start in the forward run (a lab creep record's
@@ -49,20 +85,46 @@ static int read_time_from(const YdDoc *doc, YdNode *nd, CalRun *run, const char 
   if (!v) return 0;
   snprintf(sub, sizeof sub, "%s.time_from", path);
   if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+  if (run->drive)
+    FAIL("%s:%d: key '%s': '%s' with drive: data: the forward run's time is the data's own (time_from is for a forward "
+         "scene's own stages, drive: scene)", doc->file, v->line, sub, s);
   snprintf(run->time_from, sizeof run->time_from, "%s", s);
-  run->time_stage = forward_stage(run->scene, s, &run->point, err, errlen);
-  if (run->time_stage == -2) return 1;
-  if (run->time_stage < 0)
+  if ((run->time_stage = forward_stage(run, s)) < 0)
     FAIL("%s:%d: key '%s': the forward scene %s has no stage (segment) named '%s'", doc->file, v->line, sub, run->scene, s);
   return 0;
 }
 
-/* data: {file, columns: {time, load, depth, value}, factors: {time, load, depth, value}, time_from} */
+/* data.factors: each for a column that is given; time, load and depth > 0, value not 0 (negative: a sign convention). */
+static int read_factors(const YdDoc *doc, YdNode *fac, CalRun *run, const char *path, char *err, size_t errlen) {
+  static const char *roles[4] = {"time", "load", "depth", "value"};
+  const int          col[4]   = {run->col_time, run->col_load, run->col_depth, run->col_value};
+  char               sub[256];
+  for (int r = 0; r < 4; r++) run->factor[r] = 1;
+  if (!fac) return 0;
+  snprintf(sub, sizeof sub, "%s.factors", path);
+  if (yd_expect(doc, fac, YD_MAPPING, sub, err, errlen)) return 1;
+  for (int r = 0; r < 4; r++) {
+    YdNode *fr = yd_get(fac, roles[r]);
+    if (!fr) continue;
+    snprintf(sub, sizeof sub, "%s.factors.%s", path, roles[r]);
+    if (col[r] < 0)
+      FAIL("%s:%d: key '%s': a factor for a column that is not given (%s.columns.%s is missing)", doc->file, fr->line, sub,
+           path, roles[r]);
+    if (yd_double(doc, fr, sub, &run->factor[r], err, errlen)) return 1;
+    if (r < 3 ? !(run->factor[r] > 0) : run->factor[r] == 0)
+      FAIL("%s:%d: key '%s': expected a factor %s (the data's unit in the forward scene's units, e.g. 0.001 for nm to "
+           "um%s), got %s", doc->file, fr->line, sub, r < 3 ? "> 0" : "other than 0",
+           r < 3 ? "" : "; negative: the other sign convention, e.g. -0.01 for a compression strain in %", fr->text);
+  }
+  snprintf(sub, sizeof sub, "%s.factors", path);
+  return yd_check_unused(doc, fac, sub, "time, load, depth, value", err, errlen);
+}
+
+/* data: {file, columns: {time, load, depth, value, stage}, factors: {time, load, depth, value}, time_from} */
 static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path, char *err, size_t errlen) {
   static const char *roles[4] = {"time", "load", "depth", "value"};
   const char        *file, *names[4];
-  double             factor[4] = {1, 1, 1, 1};
-  int               *col[4]    = {&run->col_time, &run->col_load, &run->col_depth, &run->col_value};
+  int               *col[4] = {&run->col_time, &run->col_load, &run->col_depth, &run->col_value};
   char               sub[256], where[PATH_MAX + 64];
   if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
   snprintf(sub, sizeof sub, "%s.file", path);
@@ -71,7 +133,7 @@ static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path
   snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, f->line, sub);
   if (path_input(doc->file, where, file, run->data_file, sizeof run->data_file, err, errlen)) return 1;
   snprintf(sub, sizeof sub, "%s.columns", path);
-  YdNode *cols = yd_require(doc, nd, "columns", YD_MAPPING, sub, err, errlen), *fac = yd_get(nd, "factors");
+  YdNode *cols = yd_require(doc, nd, "columns", YD_MAPPING, sub, err, errlen), *v;
   if (!cols) return 1;
   run->ncol = 0;
   for (int r = 0; r < 4; r++) {
@@ -80,34 +142,74 @@ static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path
     if (!c) continue;
     snprintf(sub, sizeof sub, "%s.columns.%s", path, roles[r]);
     if (yd_string(doc, c, sub, &names[run->ncol], err, errlen)) return 1;
+    snprintf(run->col_name[r], sizeof run->col_name[r], "%s", names[run->ncol]);
     *col[r] = run->ncol++;
-    YdNode *fr = fac ? yd_get(fac, roles[r]) : NULL;
-    snprintf(sub, sizeof sub, "%s.factors.%s", path, roles[r]);
-    if (fr && (yd_double(doc, fr, sub, &factor[r], err, errlen))) return 1;
+  }
+  if ((v = yd_get(cols, "stage"))) {
+    const char *s;
+    snprintf(sub, sizeof sub, "%s.columns.stage", path);
+    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+    snprintf(run->stage_col, sizeof run->stage_col, "%s", s);
   }
   snprintf(sub, sizeof sub, "%s.columns", path);
-  if (yd_check_unused(doc, cols, sub, "time, load, depth, value", err, errlen)) return 1;
+  if (yd_check_unused(doc, cols, sub, "time, load, depth, value, stage", err, errlen)) return 1;
+  if (run->col_time < 0)
+    FAIL("%s:%d: key '%s.columns.time' is missing: the data rows are assigned to the forward run's stages by their time",
+         doc->file, cols->line, path);
+  if (read_factors(doc, yd_get(nd, "factors"), run, path, err, errlen)) return 1;
   if (read_time_from(doc, nd, run, path, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.factors", path);
-  if (fac && yd_check_unused(doc, fac, sub, "time, load, depth, value", err, errlen)) return 1;
-  if (run->col_time < 0) FAIL("%s:%d: key '%s.columns.time' is missing: the data rows are assigned to the forward "
-                              "run's stages by their time", doc->file, cols->line, path);
   snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, f->line, path);
   if (csv_read_columns(run->data_file, where, names, run->ncol, run->col_time, &run->data, &run->rows, err, errlen))
     return 1;
   for (int i = 0; i < run->rows; i++)
     for (int r = 0; r < 4; r++)
-      if (*col[r] >= 0) run->data[i * run->ncol + *col[r]] *= factor[r];
+      if (*col[r] >= 0) run->data[i * run->ncol + *col[r]] *= run->factor[r];
   return yd_check_unused(doc, nd, path, "file, columns, factors, time_from", err, errlen);
+}
+
+/* residuals[i].stage: a stage of the forward scene (drive: scene) or of the data (drive: data; when left out,
+ * the data's first stage of the block's kind that no earlier block took). */
+static int read_curve_stage(const YdDoc *doc, YdNode *nd, CalRun *run, CalCurve *c, const char *path, char *err,
+                            size_t errlen) {
+  char        sub[256], list[1024];
+  const char *stage = NULL;
+  YdNode     *st    = yd_get(nd, "stage");
+  snprintf(sub, sizeof sub, "%s.stage", path);
+  if (st && yd_string(doc, st, sub, &stage, err, errlen)) return 1;
+  if (!run->drive) {
+    if (!st && !(st = yd_require(doc, nd, "stage", YD_SCALAR, sub, err, errlen))) return 1;
+    c->stage = forward_stage(run, stage);
+    if (c->stage < 0)
+      FAIL("%s:%d: key '%s': the forward scene %s has no stage (segment) named '%s'", doc->file, st->line, sub, run->scene, stage);
+  } else if (stage) {
+    data_stage_list(run, list, sizeof list);
+    if ((c->stage = data_stage(run, stage)) < 0)
+      FAIL("%s:%d: key '%s': the data have no stage named '%s' (drive: data: the stages are the data's: %s)", doc->file,
+           st->line, sub, stage, list);
+  } else {
+    c->stage = -1;
+    for (int j = 0; j < run->nstage && c->stage < 0; j++) {
+      int taken = 0;
+      for (int b = 0; b < run->ncurve; b++) taken |= run->curve[b].stage == j;
+      if (run->stage[j].kind == c->kind && !taken) c->stage = j;
+    }
+    data_stage_list(run, list, sizeof list);
+    if (c->stage < 0)
+      FAIL("%s:%d: key '%s': the data have no (further) stage of kind %s for this block: give its stage (the data's "
+           "stages: %s)", doc->file, nd->line, path, kind_names[c->kind], list);
+    stage = run->stage[c->stage].name;
+  }
+  snprintf(c->stage_name, sizeof c->stage_name, "%s", stage);
+  return 0;
 }
 
 /* residuals: [{kind: loading | hold | unloading | series, stage, weight, model, relative}] */
 static int read_curve(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path, char *err, size_t errlen) {
   CalCurve   *c = &run->curve[run->ncurve];
-  const char *s, *stage;
+  const char *s;
   char        sub[256];
   memset(c, 0, sizeof *c);
-  c->weight = 1, c->line = nd->line;
+  c->weight = 1, c->line = nd->line, c->index = run->ncurve;
   if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
   snprintf(sub, sizeof sub, "%s.kind", path);
   YdNode *k = yd_require(doc, nd, "kind", YD_SCALAR, sub, err, errlen), *v;
@@ -117,14 +219,7 @@ static int read_curve(const YdDoc *doc, YdNode *nd, CalRun *run, const char *pat
     if (!strcmp(s, kind_names[i])) kind = i;
   if (kind < 0) FAIL("%s:%d: key '%s': expected loading, hold, unloading or series, got '%s'", doc->file, k->line, sub, s);
   c->kind = (CalKind)kind;
-  snprintf(sub, sizeof sub, "%s.stage", path);
-  YdNode *st = yd_require(doc, nd, "stage", YD_SCALAR, sub, err, errlen);
-  if (!st || yd_string(doc, st, sub, &stage, err, errlen)) return 1;
-  snprintf(c->stage_name, sizeof c->stage_name, "%s", stage);
-  c->stage = forward_stage(run->scene, stage, &run->point, err, errlen);
-  if (c->stage == -2) return 1;
-  if (c->stage < 0)
-    FAIL("%s:%d: key '%s': the forward scene %s has no stage (segment) named '%s'", doc->file, st->line, sub, run->scene, stage);
+  if (read_curve_stage(doc, nd, run, c, path, err, errlen)) return 1;
   snprintf(sub, sizeof sub, "%s.weight", path);
   if ((v = yd_get(nd, "weight")) && (yd_double(doc, v, sub, &c->weight, err, errlen) || !(c->weight > 0)))
     FAIL("%s:%d: key '%s': expected a weight > 0, got '%s'", doc->file, v->line, sub, v->text ? v->text : "");
@@ -143,12 +238,45 @@ static int read_curve(const YdDoc *doc, YdNode *nd, CalRun *run, const char *pat
     need[0] = c->kind == CAL_HOLD ? run->col_time : run->col_load, need[1] = run->col_depth;
     if (c->kind == CAL_HOLD) c->relative = 1; /* the creep depth over the hold */
   }
+  /* drive: data: the forward run's load follows the data's in time, so model and data meet at the data's times */
+  snprintf(c->mcol, sizeof c->mcol, "%s", run->drive ? "time" : c->xcol);
   if (need[0] < 0 || need[1] < 0)
     FAIL("%s:%d: key '%s': a %s residual needs the data columns %s and %s (data.columns)", doc->file, nd->line, path,
          kind_names[kind], c->kind == CAL_SERIES ? "time" : c->kind == CAL_HOLD ? "time" : "load",
          c->kind == CAL_SERIES ? "value" : "depth");
   run->ncurve++;
   return yd_check_unused(doc, nd, path, "kind, stage, weight, model, relative", err, errlen);
+}
+
+/* residuals, or (drive: data, none given) a block per data stage of its kind. */
+static int read_residuals(const YdDoc *doc, YdNode *item, CalRun *run, const char *path, char *err, size_t errlen) {
+  char    sub[128];
+  YdNode *res = yd_get(item, "residuals");
+  snprintf(sub, sizeof sub, "%s.residuals", path);
+  if (!res && run->drive) {
+    if (run->nstage > CAL_MAX_CURVES)
+      FAIL("%s:%d: key '%s': the data have %d stages, more than %d residual blocks: give the residuals", doc->file,
+           item->line, sub, run->nstage, CAL_MAX_CURVES);
+    for (int j = 0; j < run->nstage; j++) {
+      CalCurve *c = &run->curve[run->ncurve];
+      memset(c, 0, sizeof *c);
+      c->kind = run->stage[j].kind, c->stage = j, c->weight = 1, c->line = item->line, c->index = run->ncurve;
+      c->relative = c->kind == CAL_HOLD;
+      snprintf(c->stage_name, sizeof c->stage_name, "%s", run->stage[j].name);
+      snprintf(c->xcol, sizeof c->xcol, "%s", c->kind == CAL_HOLD ? "time" : "load");
+      snprintf(c->ycol, sizeof c->ycol, "depth"), snprintf(c->mcol, sizeof c->mcol, "time");
+      run->ncurve++;
+    }
+    return 0;
+  }
+  if (!(res = yd_require(doc, item, "residuals", YD_SEQUENCE, sub, err, errlen))) return 1;
+  if (res->n < 1 || res->n > CAL_MAX_CURVES)
+    FAIL("%s:%d: key '%s': expected 1 to %d residual blocks, got %zu", doc->file, res->line, sub, CAL_MAX_CURVES, res->n);
+  for (size_t i = 0; i < res->n; i++) {
+    snprintf(sub, sizeof sub, "%s.residuals[%zu]", path, i);
+    if (read_curve(doc, res->items[i], run, sub, err, errlen)) return 1;
+  }
+  return 0;
 }
 
 /* set: {NAME: value} as NAME=VALUE,... for -material_set (the forward run checks the names). */
@@ -166,6 +294,53 @@ static int read_set(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path,
   return 0;
 }
 
+/* reference: FILE | none; left out, the full model beside the forward scene: X_fast.yaml, X_mid.yaml -> X_reference.yaml. */
+static int read_reference(const YdDoc *doc, YdNode *item, CalRun *run, const char *path, char *err, size_t errlen) {
+  char        sub[128], where[PATH_MAX + 64];
+  const char *s;
+  YdNode     *v = yd_get(item, "reference");
+  snprintf(sub, sizeof sub, "%s.reference", path);
+  if (v) {
+    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+    if (!strcmp(s, "none")) return 0;
+    snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, v->line, sub);
+    if (path_input(doc->file, where, s, run->reference, sizeof run->reference, err, errlen)) return 1;
+    return forward_kind(doc, sub, v->line, run->reference, err, errlen) < 0;
+  }
+  size_t n = strlen(run->scene);
+  for (int k = 0; k < 2; k++) {
+    const char *tail = k ? "_mid.yaml" : "_fast.yaml";
+    size_t      t    = strlen(tail);
+    if (n > t && !strcmp(run->scene + n - t, tail)) {
+      snprintf(run->reference, sizeof run->reference, "%.*s_reference.yaml", (int)(n - t), run->scene);
+      if (access(run->reference, R_OK)) run->reference[0] = '\0';
+      else run->reference_default = 1;
+    }
+  }
+  return 0;
+}
+
+/* drive: data | scene. Default: data for an indentation forward scene (its load follows the data's), else scene. */
+static int read_drive(const YdDoc *doc, YdNode *item, CalRun *run, int kind, const char *path, char *err, size_t errlen) {
+  char        sub[128];
+  const char *s;
+  YdNode     *v = yd_get(item, "drive");
+  run->drive    = kind == 2;
+  run->point    = kind == 0;
+  if (!v) return 0;
+  snprintf(sub, sizeof sub, "%s.drive", path);
+  if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
+  if (strcmp(s, "data") && strcmp(s, "scene"))
+    FAIL("%s:%d: key '%s': expected data (the forward runs follow the data's history) or scene (the forward scene's own "
+         "stages), got '%s'", doc->file, v->line, sub, s);
+  run->drive = !strcmp(s, "data");
+  if (run->drive && kind != 2)
+    FAIL("%s:%d: key '%s': data needs an indentation forward scene (its load follows the data's); %s is a %s scene: "
+         "give drive: scene and a forward scene whose stages are the data's", doc->file, v->line, sub, run->scene,
+         kind ? "fe scene without an indenter" : "point");
+  return 0;
+}
+
 int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, size_t errlen) {
   char        path[64], sub[128], where[PATH_MAX + 64];
   const char *s;
@@ -173,6 +348,8 @@ int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, 
   memset(run, 0, sizeof *run);
   snprintf(path, sizeof path, "runs[%d]", k);
   if (yd_expect(doc, item, YD_MAPPING, path, err, errlen)) return 1;
+  snprintf(run->file, sizeof run->file, "%s", doc->file);
+  run->index = k, run->line = item->line;
   snprintf(run->name, sizeof run->name, "run%d", k);
   snprintf(sub, sizeof sub, "%s.name", path);
   if ((v = yd_get(item, "name")) && !yd_string(doc, v, sub, &s, err, errlen)) snprintf(run->name, sizeof run->name, "%s", s);
@@ -181,12 +358,9 @@ int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, 
   if (!(v = yd_require(doc, item, "scene", YD_SCALAR, sub, err, errlen)) || yd_string(doc, v, sub, &s, err, errlen)) return 1;
   snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, v->line, sub);
   if (path_input(doc->file, where, s, run->scene, sizeof run->scene, err, errlen)) return 1;
-  if ((v = yd_get(item, "reference"))) {
-    snprintf(sub, sizeof sub, "%s.reference", path);
-    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
-    snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, v->line, sub);
-    if (path_input(doc->file, where, s, run->reference, sizeof run->reference, err, errlen)) return 1;
-  }
+  int kind = forward_kind(doc, sub, v->line, run->scene, err, errlen);
+  if (kind < 0 || read_drive(doc, item, run, kind, path, err, errlen) || read_reference(doc, item, run, path, err, errlen))
+    return 1;
   snprintf(sub, sizeof sub, "%s.options", path);
   if ((v = yd_get(item, "options")) && (yd_string(doc, v, sub, &s, err, errlen) ||
                                         snprintf(run->options, sizeof run->options, "%s", s) < 0))
@@ -196,162 +370,17 @@ int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, 
   snprintf(sub, sizeof sub, "%s.data", path);
   if (!(v = yd_require(doc, item, "data", YD_MAPPING, sub, err, errlen)) || read_data(doc, v, run, sub, err, errlen))
     return 1;
-  snprintf(sub, sizeof sub, "%s.residuals", path);
-  YdNode *res = yd_require(doc, item, "residuals", YD_SEQUENCE, sub, err, errlen);
-  if (!res) return 1;
-  if (res->n < 1 || res->n > CAL_MAX_CURVES)
-    FAIL("%s:%d: key '%s': expected 1 to %d residual blocks, got %zu", doc->file, res->line, sub, CAL_MAX_CURVES, res->n);
-  for (size_t i = 0; i < res->n; i++) {
-    snprintf(sub, sizeof sub, "%s.residuals[%zu]", path, i);
-    if (read_curve(doc, res->items[i], run, sub, err, errlen)) return 1;
-  }
-  return yd_check_unused(doc, item, path, "name, scene, reference, options, set, data, residuals", err, errlen);
+  if (kind == 2 && run->col_load >= 0 && cal_protocol_find(doc, run, err, errlen)) return 1;
+  if (run->drive && (run->col_load < 0 || run->col_depth < 0))
+    FAIL("%s:%d: key '%s.data.columns': drive: data needs the data's load and depth columns (the forward run's load "
+         "follows the data's; its depth is compared)", doc->file, v->line, path);
+  if (read_residuals(doc, item, run, path, err, errlen)) return 1;
+  return yd_check_unused(doc, item, path, "name, scene, drive, reference, options, set, data, residuals", err, errlen);
 }
 
 void cal_run_free(CalRun *run) {
-  free(run->data);
+  free(run->data), free(run->row_stage);
   for (int c = 0; c < run->ncurve; c++) {
     free(run->curve[c].x), free(run->curve[c].y), free(run->curve[c].t), free(run->curve[c].model);
   }
-}
-
-int cal_run_size(const CalRun *run) {
-  int m = 0;
-  for (int c = 0; c < run->ncurve; c++) m += run->curve[c].n;
-  return m;
-}
-
-/* The model's columns (time, stage, x, y) of one history. */
-static int read_history(const CalRun *run, const CalCurve *c, const char *dir, double **h, int *rows, char *err,
-                        size_t errlen) {
-  char        file[PATH_MAX + 16];
-  const char *names[4] = {"time", run->point ? "segment" : "stage", c->xcol, c->ycol};
-  snprintf(file, sizeof file, "%s/history.csv", dir);
-  return csv_read_columns(file, run->name, names, 4, -1, h, rows, err, errlen);
-}
-
-/* Time span (t0, t1] of the stage in a history (its first point: the last row before it). */
-static int stage_span(const double *h, int rows, int stage, int *i0, int *i1) {
-  *i0 = -1, *i1 = -1;
-  for (int i = 0; i < rows; i++)
-    if ((int)h[4 * i + 1] == stage) {
-      if (*i0 < 0) *i0 = i > 0 ? i - 1 : i;
-      *i1 = i;
-    }
-  return *i0 < 0 || *i1 <= *i0;
-}
-
-/* data.time_from: shift the data's times by the named stage's start in the first forward run (once). */
-static int shift_time(CalRun *run, const char *dir, char *err, size_t errlen) {
-  double *h;
-  int     rows, i0, i1;
-  if (run->time_stage < 0 || run->time_shifted) return 0;
-  if (read_history(run, &run->curve[0], dir, &h, &rows, err, errlen)) return 1;
-  int empty = stage_span(h, rows, run->time_stage, &i0, &i1);
-  run->time_shift = empty ? 0 : h[4 * i0];
-  free(h);
-  if (empty) FAIL("run '%s': data.time_from: the forward run %s/history.csv has no steps in stage '%s'", run->name, dir,
-                  run->time_from);
-  for (int i = 0; i < run->rows; i++) run->data[i * run->ncol + run->col_time] += run->time_shift;
-  run->time_shifted = 1;
-  return 0;
-}
-
-int cal_run_setup(CalRun *run, const char *dir, char *err, size_t errlen) {
-  if (shift_time(run, dir, err, errlen)) return 1;
-  for (int k = 0; k < run->ncurve; k++) {
-    CalCurve *c = &run->curve[k];
-    double   *h;
-    int       rows, i0, i1, xc = c->kind == CAL_HOLD || c->kind == CAL_SERIES ? run->col_time
-                                   : run->col_load, yc = c->kind == CAL_SERIES ? run->col_value : run->col_depth;
-    if (read_history(run, c, dir, &h, &rows, err, errlen)) return 1;
-    if (stage_span(h, rows, c->stage, &i0, &i1)) {
-      free(h);
-      FAIL("run '%s': the forward run %s/history.csv has no steps in stage '%s'", run->name, dir, c->stage_name);
-    }
-    double t0 = h[4 * i0], t1 = h[4 * i1];
-    free(h);
-    c->x = malloc(sizeof(double) * run->rows), c->y = malloc(sizeof(double) * run->rows);
-    c->t = malloc(sizeof(double) * run->rows), c->model = malloc(sizeof(double) * run->rows);
-    double lo = INFINITY, hi = -INFINITY;
-    for (int i = 0; i < run->rows; i++) {
-      const double *row = &run->data[i * run->ncol];
-      double        t   = row[run->col_time];
-      if (!(t > t0 || (c->stage == 0 && t >= t0)) || t > t1 + 1e-9 * fabs(t1)) continue;
-      c->t[c->n] = t, c->x[c->n] = row[xc], c->y[c->n++] = row[yc];
-      lo = fmin(lo, row[yc]), hi = fmax(hi, row[yc]);
-    }
-    if (c->n < 2)
-      FAIL("run '%s': residual '%s' (line %d): %d data rows of %s lie in stage '%s' of the forward run (time %g to %g): "
-           "at least 2 needed (data outside the forward run's range?)", run->name, kind_names[c->kind], c->line, c->n,
-           run->data_file, c->stage_name, t0, t1);
-    c->scale = hi - lo > 0 ? hi - lo : fmax(fabs(hi), 1e-300);
-  }
-  return 0;
-}
-
-/* y at x on the polyline (xs, ys) rows i0..i1 (either direction): the first bracketing segment. An x
- * beyond the ends by 1e-7 of the span (data written with 10 digits) is taken at the end. */
-static int interp(const double *h, int i0, int i1, double x, double *y) {
-  double lo = INFINITY, hi = -INFINITY;
-  for (int i = i0; i <= i1; i++) lo = fmin(lo, h[4 * i + 2]), hi = fmax(hi, h[4 * i + 2]);
-  if (x < lo && x >= lo - 1e-7 * (hi - lo)) x = lo;
-  if (x > hi && x <= hi + 1e-7 * (hi - lo)) x = hi;
-  for (int i = i0; i < i1; i++) {
-    double xa = h[4 * i + 2], xb = h[4 * (i + 1) + 2];
-    if ((x - xa) * (x - xb) <= 0 && xa != xb) {
-      double s = (x - xa) / (xb - xa);
-      *y       = h[4 * i + 3] + s * (h[4 * (i + 1) + 3] - h[4 * i + 3]);
-      return 0;
-    } else if (x == xa) {
-      *y = h[4 * i + 3];
-      return 0;
-    }
-  }
-  return 1;
-}
-
-/* A relative block compares shapes: model and data each less their mean over the block (a noisy first
- * point would shift the whole block otherwise). */
-static double block_mean(const double *v, int n) {
-  double s = 0;
-  for (int i = 0; i < n; i++) s += v[i];
-  return s / n;
-}
-
-int cal_run_residual(CalRun *run, const char *dir, double *r, char *err, size_t errlen) {
-  int m = 0;
-  for (int k = 0; k < run->ncurve; k++) {
-    CalCurve *c = &run->curve[k];
-    double   *h, ref = 0, ref_data = 0;
-    int       rows, i0, i1;
-    if (read_history(run, c, dir, &h, &rows, err, errlen)) return 1;
-    if (stage_span(h, rows, c->stage, &i0, &i1)) {
-      free(h);
-      FAIL("run '%s': the forward run has no steps in stage '%s'", run->name, c->stage_name);
-    }
-    for (int i = 0; i < c->n; i++)
-      if (interp(h, i0, i1, c->x[i], &c->model[i])) {
-        double xa = h[4 * i0 + 2], xb = h[4 * i1 + 2];
-        free(h);
-        FAIL("run '%s': residual '%s': the data's %s = %g lies outside the forward run's range in stage '%s' (%g to %g)",
-             run->name, kind_names[c->kind], c->xcol, c->x[i], c->stage_name, xa, xb);
-      }
-    free(h);
-    if (c->relative) ref = block_mean(c->model, c->n), ref_data = block_mean(c->y, c->n);
-    for (int i = 0; i < c->n; i++) r[m++] = c->weight * ((c->model[i] - ref) - (c->y[i] - ref_data)) / c->scale;
-  }
-  return 0;
-}
-
-int cal_run_write_curves(const CalRun *run, FILE *fp) {
-  for (int k = 0; k < run->ncurve; k++) {
-    const CalCurve *c   = &run->curve[k];
-    double          ref = c->relative ? block_mean(c->model, c->n) : 0, ref_data = c->relative ? block_mean(c->y, c->n) : 0;
-    double          x0  = strcmp(c->xcol, "time") ? 0 : run->time_shift; /* times as in the data file */
-    for (int i = 0; i < c->n; i++)
-      fprintf(fp, "%s,%s,%s,%s,%.10g,%.10g,%.10g\n", run->name, kind_names[c->kind], c->xcol, c->ycol, c->x[i] - x0,
-              c->y[i] - ref_data, c->model[i] - ref);
-  }
-  return 0;
 }

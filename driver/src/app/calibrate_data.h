@@ -1,6 +1,7 @@
 /* The forward runs of a calibrate scene and their measured data: which forward scene, which CSV (columns,
- * factors to the forward scene's units), which residuals (loading, hold, unloading, series), and the
- * residual vector of one forward run's history.csv against the data (docs/calibrate.md). */
+ * factors to the forward scene's units), whose protocol the forward runs follow (the data's own history, or
+ * the forward scene's stages), which residuals (loading, hold, unloading, series), and the residual vector
+ * of one forward run's history.csv against the data (docs/calibrate.md). */
 #ifndef CALIBRATE_DATA_H
 #define CALIBRATE_DATA_H
 
@@ -13,6 +14,7 @@
 #define CAL_MAX_PARAMS 8
 #define CAL_MAX_RUNS 8
 #define CAL_MAX_CURVES 6
+#define CAL_MAX_STAGES 16 /* the data's stages (the FE scene's MAXSTAGES) */
 
 typedef enum { CAL_LOADING, CAL_HOLD, CAL_UNLOADING, CAL_SERIES } CalKind;
 
@@ -21,29 +23,48 @@ typedef struct {
   CalKind kind;
   char    stage_name[64];
   int     stage;          /* 0-based index in the forward scene's stages (segments) */
-  char    xcol[64], ycol[64]; /* model columns of history.csv */
+  char    xcol[64], ycol[64]; /* history.csv columns: the data's x (curves.csv) and the model's y */
+  char    mcol[64];       /* the history column the model is interpolated in: xcol, or time (drive: data) */
   int     relative;       /* model and data y each less their mean over the block (hold: the creep depth) */
   double  weight, scale;  /* residual = weight * (model - data) / scale; scale: the data's range of y */
   int     n;              /* data rows in the block (fixed at the first evaluation) */
   double *x, *y, *t;      /* data, in the forward scene's units */
   double *model;          /* model y at the data x, of the last evaluation */
-  int     line;           /* scene line, for messages */
+  int     line, index;    /* scene line and index in runs[k].residuals, for messages */
 } CalCurve;
+
+/* A stage of the data's own protocol: its rows, from the data's stage column or found from the load curve. */
+typedef struct {
+  char    name[64];
+  CalKind kind;           /* loading, hold or unloading: by the load's change over the stage */
+  int     row0, row1;     /* its data rows, inclusive */
+} CalStage;
 
 typedef struct {
   char     name[64];
+  char     file[PATH_MAX];    /* the calibrate scene, and this run's index and line in it: for messages */
+  int      index, line;
   char     scene[PATH_MAX];   /* forward scene, resolved */
   char     set[512];          /* held PROPS for this run: NAME=VALUE,... */
   char     options[512];      /* extra command-line options of the forward run */
-  char     reference[PATH_MAX]; /* the full model, run once at the fit to measure the forward model's error */
+  char     reference[PATH_MAX]; /* the full model, run at the fit to measure the forward model's bias ("": none) */
+  int      reference_default; /* 1: the reference was found beside the forward scene (X_fast, X_mid -> X_reference) */
   int      point;             /* a point scene: 'segment' is the stage column */
+  int      drive;             /* 1: the forward runs follow the data's history (drive: data) */
+  char     driven[PATH_MAX], driven_reference[PATH_MAX]; /* drive: data: the scenes written for it */
   double  *data;              /* CSV columns: time, load, depth, value (those named); ncol of them */
   int      rows, ncol, col_time, col_load, col_depth, col_value;
+  char     col_name[4][64];   /* the data file's column names of time, load, depth, value */
+  double   factor[4];         /* their factors */
+  char     stage_col[64];     /* data.columns.stage ("": none) */
   char     data_file[PATH_MAX];
   char     time_from[64];     /* data.time_from: the data's time counts from this stage's start ("": absolute) */
   int      time_stage;        /* its index, or -1 */
-  double   time_shift;        /* the stage's start in the forward run, added to the data's times at setup */
+  double   time_shift;        /* added to the data's times (time_from: the stage's start; drive: data: -t first) */
   int      time_shifted;
+  CalStage stage[CAL_MAX_STAGES]; /* the data's own stages (indentation data), nstage of them */
+  int      nstage, stages_from_column;
+  int     *row_stage;         /* the data stage of each row, or NULL */
   CalCurve curve[CAL_MAX_CURVES];
   int      ncurve;
 } CalRun;
@@ -51,6 +72,8 @@ typedef struct {
 /* Read runs[k] from a 'runs:' item of the calibrate scene. 0, or 1 with err filled. */
 int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, size_t errlen);
 void cal_run_free(CalRun *run);
+/* The scene a forward run (reference 0) or the full-model run (1) is started with. */
+const char *cal_run_scene(const CalRun *run, int reference);
 
 /* Assign the data rows to the residual blocks by the stage times of a first forward run (dir/history.csv),
  * check that they lie within the run's range; fixes the residual count. 0, or 1 with err filled. */
@@ -63,5 +86,26 @@ int cal_run_residual(CalRun *run, const char *dir, double *r, char *err, size_t 
 /* Write data and model curves of the last evaluation: path (CSV: run,block,x,data,model). */
 int cal_run_write_curves(const CalRun *run, FILE *fp);
 const char *cal_kind_name(CalKind k);
+/* A forward run's history columns (time, stage, x, y of curve c) into h (4 a row). */
+int cal_read_history(const CalRun *run, const char *dir, const char *const names[4], double **h, int *rows, char *err,
+                     size_t errlen);
+/* Time span of a stage in a history read by cal_read_history: rows i0 (the last row before it) to i1. 1 if empty. */
+int cal_stage_span(const double *h, int rows, int stage, int *i0, int *i1);
+
+/* calibrate_protocol.c: the data's own stages (from data.columns.stage, or from the load curve: loading,
+ * hold at the peak, unloading), and the forward scene made to follow them (drive: data). */
+int  cal_protocol_find(const YdDoc *doc, CalRun *run, char *err, size_t errlen);
+/* One line per stage into buf (the log). */
+void cal_protocol_describe(const CalRun *run, char *buf, size_t n);
+/* Write the forward scene (and reference) driven by the data's history into dir: run->driven(_reference). */
+int  cal_protocol_write(CalRun *run, const char *dir, char *err, size_t errlen);
+
+/* calibrate_check.c: checks that catch a wrong fit at the start (accept: the names of those accepted). */
+enum { CAL_ACCEPT_ROWS = 1, CAL_ACCEPT_SCALE = 2, CAL_ACCEPT_BOUND = 4 };
+/* Every data row in a forward stage, every block with the rows of its kind (indentation data). */
+int cal_check_rows(const CalRun *run, const char *dir, int accept, char *err, size_t errlen);
+/* The data's scale against the first forward run's (a factor of 10 apart: a unit): models 0, the loads (from the
+ * history, before the residuals); 1, the depths or values (the models at the data, after them). */
+int cal_check_scale(const CalRun *run, const char *dir, int accept, int models, char *err, size_t errlen);
 
 #endif

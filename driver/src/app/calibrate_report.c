@@ -16,8 +16,7 @@
 
 #define CAL_FD_STEP 0.01 /* in u: 1 % of the bounds' span (of its logarithm on a log scale) */
 
-/* Inverse of the n x n matrix a (row-major) into b by Gauss-Jordan with partial pivoting; 1 if singular. */
-static int invert(int n, double *a, double *b) {
+int cal_invert(int n, double *a, double *b) {
   for (int i = 0; i < n; i++)
     for (int j = 0; j < n; j++) b[i * n + j] = i == j;
   for (int col = 0; col < n; col++) {
@@ -71,105 +70,74 @@ static int write_curves(Calib *c, char *err, size_t errlen) {
   return 0;
 }
 
-/* A run's forward model against its reference at the fit: the largest difference of the model curves
- * relative to each block's data range (-1: no reference; NaN: the reference failed). */
-static double reference_error(Calib *c, CalRun *run, const double *p) {
-  char   dir[PATH_MAX + 200];
-  double worst = 0;
-  if (!run->reference[0]) return -1;
-  snprintf(dir, sizeof dir, "%s/forward/reference_%s", c->outdir, run->name);
-  int     m = cal_run_size(run), off = 0;
-  double *cheap = malloc(sizeof(double) * m), *r = malloc(sizeof(double) * m);
-  for (int k = 0; k < run->ncurve; k++) memcpy(cheap + off, run->curve[k].model, sizeof(double) * run->curve[k].n), off += run->curve[k].n;
-  char err[1024];
-  if (cal_forward(c, run, run->reference, p, dir) || cal_run_residual(run, dir, r, err, sizeof err)) worst = NAN;
-  off = 0;
-  for (int k = 0; k < run->ncurve && !isnan(worst); k++) {
-    CalCurve *cv = &run->curve[k];
-    double    rc = 0, rf = 0;
-    for (int i = 0; cv->relative && i < cv->n; i++) rc += cheap[off + i] / cv->n, rf += cv->model[i] / cv->n;
-    for (int i = 0; i < cv->n; i++) worst = fmax(worst, fabs((cheap[off + i] - rc) - (cv->model[i] - rf)) / cv->scale);
-    off += cv->n;
-  }
-  off = 0; /* the cheap model's curves back, for curves.csv */
-  for (int k = 0; k < run->ncurve; k++) memcpy(run->curve[k].model, cheap + off, sizeof(double) * run->curve[k].n), off += run->curve[k].n;
-  free(cheap), free(r);
-  return worst;
+/* A parameter at one of its bounds (the fit's, or the refined one): the bound's key, or NULL. */
+static const char *at_bound(const CalParam *p, double v) {
+  if (fabs(v - p->lo) <= 1e-6 * fabs(p->hi - p->lo) || (p->log && fabs(log(v / p->lo)) <= 1e-6 * log(p->hi / p->lo))) return "min";
+  if (fabs(v - p->hi) <= 1e-6 * fabs(p->hi - p->lo) || (p->log && fabs(log(v / p->hi)) <= 1e-6 * log(p->hi / p->lo))) return "max";
+  return NULL;
 }
 
-static void write_yaml(Calib *c, FILE *fp, const double *u, const double *se, const double *cov, double ssr, PetscInt its,
-                       const char *reason, const double *referr) {
-  int n = c->np;
-  fprintf(fp, "# calibrate %s: TAO %s, %d iterations (%s), %d evaluations (%d rejected), %d forward runs, wall %.1f s\n",
-          c->name, c->tao_type, (int)its, reason, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0);
-  fprintf(fp, "# standard errors: s^2 (J^T J)^-1, s^2 = SSR/(m - n), J by central differences at the fit\n");
-  fprintf(fp, "parameters:\n");
-  for (int k = 0; k < n; k++) {
-    double v = cal_param(&c->p[k], u[k]);
-    fprintf(fp, "  %s: {value: %.8g, std_error: %.3g, relative_std_error: %.3g, start: %.6g, min: %.6g, max: %.6g, "
-                "scale: %s%s}\n", c->p[k].name, v, se[k], se[k] / fabs(v), c->p[k].start, c->p[k].lo, c->p[k].hi,
-            c->p[k].log ? "log" : "linear", u[k] <= 0 || u[k] >= 1 ? ", at_bound: true" : "");
+/* Bound and reference failures after fit.yaml is written: an error unless accepted (accept: [bound]). */
+static int final_checks(Calib *c, const double *u, const CalBias *b, char *err, size_t errlen) {
+  char file[PATH_MAX + 32];
+  snprintf(file, sizeof file, "%s/fit.yaml", c->outdir);
+  if (b->failed[0])
+    FAIL("%s (fit.yaml has the forward model's fit; its bias is not known): %s", b->failed, file);
+  if (b->refined && !b->converged)
+    FAIL("%s: the refinement on the full model did not converge in %d full-model runs: its last value is in %s (quote), "
+         "with its last step in the standard error", c->doc->file, b->nfull, file);
+  for (int k = 0; k < c->np; k++) {
+    const CalParam *p = &c->p[k];
+    double          v = b->refined ? b->p[k] : cal_param(p, u[k]);
+    const char     *w = at_bound(p, v);
+    if (!w) continue;
+    if (c->accept & CAL_ACCEPT_BOUND) {
+      PetscPrintf(PETSC_COMM_SELF, "warning: %s ended at its bound %s = %g (accepted: accept: [bound])\n", p->name, w, v);
+      continue;
+    }
+    FAIL("%s:%d: key 'parameters[%d].%s': %s ended at its bound %s = %g: the data want a value beyond it. Widen the bounds, "
+         "or check the data's units (runs[k].data.factors) and the forward scene; a fit at a bound is no fit (its standard "
+         "error means nothing). The fit is in %s; accept: [bound] to accept it", c->doc->file, p->line, k, w, p->name, w, v,
+         file);
   }
-  fprintf(fp, "correlation:\n");
-  for (int i = 0; i < n; i++) {
-    fprintf(fp, "  - [");
-    for (int j = 0; j < n; j++) fprintf(fp, "%s%.4f", j ? ", " : "", cov[i * n + j] / sqrt(cov[i * n + i] * cov[j * n + j]));
-    fprintf(fp, "]\n");
-  }
-  fprintf(fp, "misfit: {sum_of_squares: %.6e, residuals: %d, rms: %.4e}\n", ssr, c->m, sqrt(ssr / c->m));
-  fprintf(fp, "cost: {iterations: %d, evaluations: %d, rejected: %d, forward_runs: %d, forward_wall: %.1f, wall: %.1f}\n",
-          (int)its, c->nevals, c->nrejected, c->nforward, c->forward_wall, MPI_Wtime() - c->wall0);
-  fprintf(fp, "forward_models:\n");
-  for (int j = 0; j < c->nrun; j++) {
-    fprintf(fp, "  - {run: %s, scene: %s", c->run[j].name, c->run[j].scene);
-    if (referr[j] >= 0 || isnan(referr[j]))
-      fprintf(fp, ", reference: %s, max_error_vs_reference: %.3g", c->run[j].reference, referr[j]);
-    fprintf(fp, "}\n");
-  }
-  fprintf(fp, "# paste into a scene's material block:\nset: {");
-  for (int k = 0; k < n; k++) fprintf(fp, "%s%s: %.6g", k ? ", " : "", c->p[k].name, cal_param(&c->p[k], u[k]));
-  fprintf(fp, "}\n");
+  return 0;
 }
 
 int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char *err, size_t errlen) {
   int     n = c->np, m = c->m;
   double *J = malloc(sizeof(double) * m * n), *r = malloc(sizeof(double) * m), ssr = 0;
   double  JtJ[CAL_MAX_PARAMS * CAL_MAX_PARAMS], inv[CAL_MAX_PARAMS * CAL_MAX_PARAMS], cov[CAL_MAX_PARAMS * CAL_MAX_PARAMS];
-  double  se[CAL_MAX_PARAMS], p[CAL_MAX_PARAMS], referr[CAL_MAX_RUNS];
+  double  se[CAL_MAX_PARAMS];
+  CalBias b;
+  char    msg[2048] = "";
   PetscPrintf(PETSC_COMM_SELF, "TAO %s: %s after %d iterations; the Jacobian at the fit by central differences (%d runs)\n",
               c->tao_type, reason, (int)its, 2 * n * c->nrun);
   if (jacobian(c, u, J, err, errlen)) return free(J), free(r), 1;
   if (cal_evaluate(c, u, r, "fit", err, errlen)) return free(J), free(r), 1;
   for (int i = 0; i < m; i++) ssr += r[i] * r[i];
   for (int a = 0; a < n; a++)
-    for (int b = 0; b < n; b++) {
-      JtJ[a * n + b] = 0;
-      for (int i = 0; i < m; i++) JtJ[a * n + b] += J[a * m + i] * J[b * m + i];
+    for (int bb = 0; bb < n; bb++) {
+      JtJ[a * n + bb] = 0;
+      for (int i = 0; i < m; i++) JtJ[a * n + bb] += J[a * m + i] * J[bb * m + i];
     }
   double s2 = m > n ? ssr / (m - n) : NAN;
-  if (invert(n, JtJ, inv))
+  if (cal_invert(n, JtJ, inv))
     for (int i = 0; i < n * n; i++) inv[i] = NAN; /* a parameter the data do not see */
   for (int a = 0; a < n; a++) {
-    for (int b = 0; b < n; b++) cov[a * n + b] = s2 * inv[a * n + b];
-    p[a]  = cal_param(&c->p[a], u[a]);
+    for (int bb = 0; bb < n; bb++) cov[a * n + bb] = s2 * inv[a * n + bb];
     se[a] = sqrt(cov[a * n + a]) * cal_dparam(&c->p[a], u[a]);
   }
-  for (int j = 0; j < c->nrun; j++) referr[j] = reference_error(c, &c->run[j], p);
+  cal_bias(c, u, J, inv, se, &b, msg, sizeof msg);
   if (write_curves(c, err, errlen)) return free(J), free(r), 1;
   char file[PATH_MAX + 32];
   snprintf(file, sizeof file, "%s/fit.yaml", c->outdir);
   FILE *fp = fopen(file, "w");
   if (!fp) return free(J), free(r), snprintf(err, errlen, "calibrate: cannot write %s", file), 1;
-  write_yaml(c, fp, u, se, cov, ssr, its, reason, referr);
+  cal_write_yaml(c, fp, u, se, cov, ssr, its, reason, &b);
   fclose(fp);
-  for (int k = 0; k < n; k++)
-    PetscPrintf(PETSC_COMM_SELF, "  %-14s = %.6g +- %.2g (%.2g %%)\n", c->p[k].name, p[k], se[k], 100 * se[k] / fabs(p[k]));
-  for (int j = 0; j < c->nrun; j++)
-    if (referr[j] >= 0 || isnan(referr[j]))
-      PetscPrintf(PETSC_COMM_SELF, "  run %s: forward model %s against the reference %s: largest difference %.3g of the data range\n",
-                  c->run[j].name, c->run[j].scene, c->run[j].reference, referr[j]);
+  cal_print_summary(c, u, se, &b);
   PetscPrintf(PETSC_COMM_SELF, "calibrate %s: misfit %.6e, %d evaluations (%d rejected), %d forward runs, wall %.1f s -> %s/fit.yaml\n",
               c->name, ssr, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0, c->outdir);
   free(J), free(r);
-  return 0;
+  return final_checks(c, u, &b, err, errlen);
 }

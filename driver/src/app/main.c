@@ -44,10 +44,11 @@ static const char help[] =
   "Extremes sweep (scene: sweep): material, matrix: {dt, eta, strain_increment, bedding_angle, phi},\n"
   "  reference_steps, output: {directory}\n"
   "Calibration (scene: calibrate; docs/calibrate.md): parameters: - {name: PROPS name, start, min, max, scale: log},\n"
-  "  runs: - {name, scene: forward.yaml, reference: full.yaml, set: {NAME: v}, options: '-...',\n"
-  "          data: {file, columns: {time, load, depth, value}, factors: {...}},\n"
+  "  runs: - {name, scene: forward.yaml, drive: data | scene, reference: full.yaml | none, set: {NAME: v},\n"
+  "          options: '-...', data: {file, columns: {time, load, depth, value, stage}, factors: {...}, time_from},\n"
   "          residuals: - {kind: loading | hold | unloading | series, stage, weight, model: column, relative}}\n"
-  "  output: {directory}; TAO options -tao_type (pounders), -tao_max_funcs, -tao_pounders_delta, ...\n"
+  "  refine: auto | yes | no, accept: [rows, scale, bound], output: {directory}\n"
+  "  TAO options -tao_type (pounders), -tao_max_funcs, -tao_pounders_delta, ...; -calibrate_dry_run\n"
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
   "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
 
@@ -72,6 +73,9 @@ static PetscErrorCode main_options(MainOptions *m) {
                         0, 0, PETSC_MAX_INT, &m->replay_step, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-error_traceback", "print PETSc's traceback of an error (else only its message)", traceback,
                          &traceback, NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Calibration scenes", NULL);
+  PetscCall(PetscOptionsBool("-calibrate_dry_run", "write the forward scenes that follow the data, say the stages found, run nothing", NULL, b, &b, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

@@ -12,7 +12,32 @@
 
 static const double DEG = M_PI / 180;
 
-static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage *st, char *err, size_t errlen) {
+/* load: {table: ...} or depth: {table: ...}: a history in the stage time that covers the whole stage. */
+static int read_table(YdDoc *doc, YdNode *nd, const char *path, double duration, double copies, IndentStage *st, char *err,
+                      size_t errlen) {
+  char    sub[160];
+  YdNode *x = nd->kind == YD_MAPPING ? yd_get(nd, "table") : NULL;
+  int     load = st->kind == IND_LOAD_TABLE;
+  if (!x)
+    FAIL("%s:%d: key '%s': expected a number, %s{table: {file, time, value, time_factor, factor}}", doc->file, nd->line, path,
+         load ? "'hold', {exp: {P0, k}} or " : "");
+  snprintf(sub, sizeof sub, "%s.table", path);
+  if (stage_table_read(doc, x, sub, &st->tab_t, &st->tab_v, &st->nrow, err, errlen)) return 1;
+  if (yd_check_unused(doc, nd, path, load ? "exp, table" : "table", err, errlen)) return 1;
+  double t_end = st->tab_t[st->nrow - 1];
+  if (t_end < duration * (1 - 1e-9))
+    FAIL("%s:%d: key '%s': the table's times end at %g s (the stage's time, after time_factor), before the stage's end "
+         "(duration %g s): give the history over the whole stage", doc->file, x->line, sub, t_end, duration);
+  for (int r = 0; load && r < st->nrow; r++) {
+    if (st->tab_v[r] < 0)
+      FAIL("%s:%d: key '%s': the load at t = %g s (row %d) is %g: expected loads >= 0 (the indenter pushes; it cannot pull)",
+           doc->file, x->line, sub, st->tab_t[r], r + 1, st->tab_v[r]);
+    st->tab_v[r] /= copies; /* the model's share of the whole indenter's load */
+  }
+  return 0;
+}
+
+static int read_stage(YdDoc *doc, YdNode *nd, int i, double duration, double copies, IndentStage *st, char *err, size_t errlen) {
   char    path[96], sub[128];
   YdNode *x;
   snprintf(path, sizeof path, "stages[%d].indenter", i);
@@ -21,7 +46,11 @@ static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage 
   if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
   YdNode *load = yd_get(nd, "load"), *depth = yd_get(nd, "depth");
   if (!!load + !!depth != 1) FAIL("%s:%d: key '%s': give exactly one of load (force control) or depth (depth control)", doc->file, nd->line, path);
-  if (depth) {
+  if (depth && depth->kind != YD_SCALAR) {
+    st->kind = IND_DEPTH_TABLE;
+    snprintf(sub, sizeof sub, "%s.depth", path);
+    if (read_table(doc, depth, sub, duration, copies, st, err, errlen)) return 1;
+  } else if (depth) {
     st->kind = IND_DEPTH_RAMP;
     snprintf(sub, sizeof sub, "%s.depth", path);
     if (yd_double(doc, depth, sub, &st->target, err, errlen)) return 1;
@@ -32,17 +61,21 @@ static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage 
     snprintf(sub, sizeof sub, "%s.load", path);
     if (yd_double(doc, load, sub, &st->target, err, errlen)) return 1;
     if (st->target < 0) FAIL("%s:%d: key '%s': expected a load >= 0 (the indenter pushes; it cannot pull), got %g", doc->file, load->line, sub, st->target);
+  } else if (load->kind == YD_MAPPING && !yd_get(load, "exp")) {
+    st->kind = IND_LOAD_TABLE;
+    snprintf(sub, sizeof sub, "%s.load", path);
+    if (read_table(doc, load, sub, duration, copies, st, err, errlen)) return 1;
   } else {
     snprintf(sub, sizeof sub, "%s.load", path);
     if (load->kind != YD_MAPPING || !(x = yd_get(load, "exp")))
-      FAIL("%s:%d: key '%s': expected a number, 'hold' or {exp: {P0, k}}", doc->file, load->line, sub);
+      FAIL("%s:%d: key '%s': expected a number, 'hold', {exp: {P0, k}} or {table: {file, time, value, time_factor, factor}}", doc->file, load->line, sub);
     st->kind = IND_LOAD_EXP;
     char p0[160], pk[160];
     snprintf(sub, sizeof sub, "%s.load.exp", path);
     snprintf(p0, sizeof p0, "%s.P0", sub), snprintf(pk, sizeof pk, "%s.k", sub);
     if (yd_double(doc, yd_get(x, "P0"), p0, &st->P0, err, errlen) || yd_double(doc, yd_get(x, "k"), pk, &st->k, err, errlen)) return 1;
     if (!(st->P0 > 0)) FAIL("%s:%d: key '%s': expected > 0, got %g", doc->file, yd_key_line(x, "P0"), p0, st->P0);
-    if (yd_check_unused(doc, x, sub, "P0, k", err, errlen) || yd_check_unused(doc, load, path, "exp", err, errlen)) return 1;
+    if (yd_check_unused(doc, x, sub, "P0, k", err, errlen) || yd_check_unused(doc, load, path, "exp, table", err, errlen)) return 1;
   }
   if ((x = yd_get(nd, "until"))) {
     snprintf(sub, sizeof sub, "%s.until", path);
@@ -54,8 +87,8 @@ static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage 
     if (l && yd_double(doc, l, sub, &st->until_load, err, errlen)) return 1;
     if (d && !(st->until_depth > 0)) FAIL("%s:%d: key '%s.depth': expected a depth > 0, got %g", doc->file, d->line, sub, st->until_depth);
     if (l && !(st->until_load > 0)) FAIL("%s:%d: key '%s.load': expected a load > 0, got %g", doc->file, l->line, sub, st->until_load);
-    if (st->kind == IND_LOAD_HOLD || st->kind == IND_DEPTH_RAMP)
-      FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp or exp), not %s", doc->file, x->line, sub,
+    if (st->kind == IND_LOAD_HOLD || indent_stage_depth_control(st))
+      FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp, exp or table), not %s", doc->file, x->line, sub,
            st->kind == IND_LOAD_HOLD ? "load: hold" : "depth control");
   }
   if (st->kind == IND_LOAD_RAMP) st->target /= copies; /* the model carries 1/copies of the indenter's load */
@@ -132,7 +165,7 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))
     FAIL("%s:%d: key 'indenter.tip': axisymmetric: the tip must be on the axis (x = 0)", doc->file, yd_key_line(nd, "tip"));
   for (int i = 0; i < sc->nstage; i++)
-    if (read_stage(doc, sc->stage[i].indenter, i, is->copies, &is->stage[i], err, errlen)) return 1;
+    if (read_stage(doc, sc->stage[i].indenter, i, sc->stage[i].duration, is->copies, &is->stage[i], err, errlen)) return 1;
   return 0;
 }
 
@@ -140,6 +173,21 @@ double indent_stage_value(const IndentStage *st, double start, double lambda, do
   switch (st->kind) {
   case IND_LOAD_EXP: return st->P0 * exp(st->k * ts);  /* Yin et al. 2021 eqs. 25, 26 (alpha folded into k) */
   case IND_LOAD_HOLD: return start;
+  case IND_LOAD_TABLE:
+  case IND_DEPTH_TABLE: return stage_table_value(st->tab_t, st->tab_v, st->nrow, ts);
   default: return start + lambda * (st->target - start);
   }
+}
+
+double indent_stage_time_of_load(const IndentStage *st, double start, double duration, double P) {
+  double te = -1;
+  if (st->kind == IND_LOAD_EXP) te = log(P / st->P0) / st->k;
+  else if (st->kind == IND_LOAD_RAMP && st->target != start) te = duration * (P - start) / (st->target - start);
+  else if (st->kind == IND_LOAD_TABLE) { /* the first crossing; a table that starts above P: its start */
+    const double *t = st->tab_t, *v = st->tab_v;
+    if (v[0] >= P) te = 0;
+    for (int j = 0; te < 0 && j + 1 < st->nrow; j++)
+      if (v[j + 1] >= P) te = t[j] + (t[j + 1] - t[j]) * (P - v[j]) / (v[j + 1] - v[j]);
+  }
+  return te >= 0 && te <= duration ? te : -1;
 }

@@ -18,6 +18,47 @@
     return 1;                           \
   } while (0)
 
+/* A stage table {file, time, value, time_factor, factor} (node x, key path 'path'): the times (the stage's, in
+ * s after time_factor) and values (after factor), linearly interpolated; outside its times its end values hold. */
+int stage_table_read(YdDoc *doc, YdNode *x, const char *path, double **t, double **v, int *n, char *err, size_t errlen) {
+  const char *file, *tc, *vc;
+  double      tf = 1, vf = 1;
+  YdNode     *y;
+  char        sub[256];
+  if (yd_expect(doc, x, YD_MAPPING, path, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.file", path);
+  if (yd_string(doc, yd_require(doc, x, "file", YD_SCALAR, sub, err, errlen), sub, &file, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.time", path);
+  if (yd_string(doc, yd_require(doc, x, "time", YD_SCALAR, sub, err, errlen), sub, &tc, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.value", path);
+  if (yd_string(doc, yd_require(doc, x, "value", YD_SCALAR, sub, err, errlen), sub, &vc, err, errlen)) return 1;
+  snprintf(sub, sizeof sub, "%s.time_factor", path);
+  if ((y = yd_get(x, "time_factor")) && (yd_double(doc, y, sub, &tf, err, errlen) || !(tf > 0)))
+    FAIL("%s:%d: key '%s': expected a factor > 0 (the table's time unit in s), got '%s'", doc->file, y->line, sub, y->text ? y->text : "");
+  snprintf(sub, sizeof sub, "%s.factor", path);
+  if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
+  if (yd_check_unused(doc, x, path, "file, time, value, time_factor, factor", err, errlen)) return 1;
+  char resolved[1024], where[1200];
+  snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(x, "file"), path);
+  if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
+  snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, x->line, path);
+  const char *want[2] = {tc, vc};
+  double     *data;
+  if (csv_read_columns(resolved, where, want, 2, 0, &data, n, err, errlen)) return 1;
+  *t = malloc(sizeof(double) * *n), *v = malloc(sizeof(double) * *n);
+  for (int r = 0; r < *n; r++) (*t)[r] = data[2 * r] * tf, (*v)[r] = data[2 * r + 1] * vf;
+  free(data);
+  return 0;
+}
+
+double stage_table_value(const double *t, const double *v, int n, double ts) {
+  int j = 0;
+  if (ts <= t[0]) return v[0];
+  if (ts >= t[n - 1]) return v[n - 1];
+  while (t[j + 1] < ts) j++;
+  return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[j]);
+}
+
 /* A pressure of a stage: a number (reached at the stage's end), {exp: {P0, k}} (P0 exp(k t) in the
  * stage time t), or {table: {file, time, value, time_factor, factor}} (linear interpolation). */
 static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int gi, char *err, size_t errlen) {
@@ -34,32 +75,9 @@ static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int
     if (yd_double(doc, yd_get(x, "P0"), p0, &g->P0[gi], err, errlen) || yd_double(doc, yd_get(x, "k"), pk, &g->k[gi], err, errlen)) return 1;
     if (yd_check_unused(doc, x, sub, "P0, k", err, errlen)) return 1;
   } else if ((x = yd_get(nd, "table"))) {
-    const char *file, *tc, *vc;
-    double      tf = 1, vf = 1;
-    YdNode     *y;
     g->fn[gi] = FN_TABLE;
     snprintf(sub, sizeof sub, "%s.table", path);
-    const char *keys[3] = {"file", "time", "value"}, **dst[3] = {&file, &tc, &vc};
-    for (int k = 0; k < 3; k++) {
-      char full[260];
-      snprintf(full, sizeof full, "%s.%s", sub, keys[k]);
-      if (yd_string(doc, yd_get(x, keys[k]), full, dst[k], err, errlen)) return 1;
-    }
-    if ((y = yd_get(x, "time_factor")) && yd_double(doc, y, sub, &tf, err, errlen)) return 1;
-    if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
-    if (yd_check_unused(doc, x, sub, "file, time, value, time_factor, factor", err, errlen)) return 1;
-    char resolved[1024], where[1200];
-    snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(x, "file"), sub);
-    if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
-    snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, x->line, sub);
-    const char *want[2] = {tc, vc};
-    double     *data;
-    int         rows;
-    if (csv_read_columns(resolved, where, want, 2, 0, &data, &rows, err, errlen)) return 1;
-    g->tab_t[gi] = malloc(sizeof(double) * rows), g->tab_v[gi] = malloc(sizeof(double) * rows);
-    for (int r = 0; r < rows; r++) g->tab_t[gi][r] = data[2 * r] * tf, g->tab_v[gi][r] = data[2 * r + 1] * vf;
-    free(data);
-    g->nrow[gi] = rows;
+    if (stage_table_read(doc, x, sub, &g->tab_t[gi], &g->tab_v[gi], &g->nrow[gi], err, errlen)) return 1;
   } else {
     FAIL("%s:%d: key '%s': expected a number, {exp: {P0, k}} or {table: {...}}", doc->file, nd->line, path);
   }
@@ -70,14 +88,7 @@ static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int
 double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts) {
   switch (g->fn[k]) {
   case FN_EXP: return g->P0[k] * exp(g->k[k] * ts);
-  case FN_TABLE: {
-    const double *t = g->tab_t[k], *v = g->tab_v[k];
-    int           n = g->nrow[k], j = 0;
-    if (ts <= t[0]) return v[0];
-    if (ts >= t[n - 1]) return v[n - 1];
-    while (t[j + 1] < ts) j++;
-    return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[j]);
-  }
+  case FN_TABLE: return stage_table_value(g->tab_t[k], g->tab_v[k], g->nrow[k], ts);
   default: return start + lambda * (target - start);
   }
 }

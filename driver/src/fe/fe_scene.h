@@ -61,5 +61,10 @@ typedef struct {
 int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen);
 /* The load of group k at stage time ts (lambda: the fraction of a ramp done then). */
 double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts);
+/* A stage's {table: {file, time, value, time_factor, factor}} at node x (key path 'path', the file relative to
+ * the scene's): times in the stage's time (s) and values, malloc'ed, n rows; 0, or 1 with err filled. */
+int stage_table_read(YdDoc *doc, YdNode *x, const char *path, double **t, double **v, int *n, char *err, size_t errlen);
+/* A table's value at stage time ts: linear between its rows, its end values outside them. */
+double stage_table_value(const double *t, const double *v, int n, double ts);
 
 #endif

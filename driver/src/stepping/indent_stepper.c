@@ -31,7 +31,7 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   IndentStage *st = &d->is->stage[s];
   Stage       *g  = &d->c.sc->stage[s];
   fe_common_stage_begin(&d->c, s, resumed, v);
-  d->in.depth_control = st->kind == IND_DEPTH_RAMP;
+  d->in.depth_control = indent_stage_depth_control(st);
   if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load, d->in.have_rate = PETSC_FALSE;
   if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE) {
     snprintf(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
@@ -39,9 +39,8 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
     return 1;
   }
   if (st->until_load > 0) { /* the time the load reaches the event, known in advance */
-    double start = d->stage_start, te = st->kind == IND_LOAD_EXP ? log(st->until_load / st->P0) / st->k
-                                                                 : (st->target != start ? g->duration * (st->until_load - start) / (st->target - start) : -1);
-    if (!(te >= 0 && te <= g->duration)) {
+    double te = indent_stage_time_of_load(st, d->stage_start, g->duration, st->until_load);
+    if (te < 0) {
       snprintf(err, errlen, "%s: key 'stages[%d].indenter.until.load': stage '%s': the load never reaches %g within the stage's "
                "duration %g s", d->is->file, s, g->name, whole(d, st->until_load), g->duration);
       return 1;
