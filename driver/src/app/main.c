@@ -60,7 +60,7 @@ typedef struct {
 } MainOptions;
 
 static PetscErrorCode main_options(MainOptions *m) {
-  PetscBool traceback = PETSC_FALSE;
+  PetscBool traceback = PETSC_FALSE, dry = PETSC_FALSE; /* dry: read by calibrate.c */
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof *m));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Scene driver", NULL);
@@ -73,9 +73,9 @@ static PetscErrorCode main_options(MainOptions *m) {
                         0, 0, PETSC_MAX_INT, &m->replay_step, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-error_traceback", "print PETSc's traceback of an error (else only its message)", traceback,
                          &traceback, NULL));
-  PetscOptionsEnd();
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Calibration scenes", NULL);
-  PetscCall(PetscOptionsBool("-calibrate_dry_run", "write the forward scenes that follow the data, say the stages found, run nothing", NULL, b, &b, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-calibrate_dry_run",
+                         "calibrate scenes: write the forward scenes that follow the data, say the stages found, run nothing", dry, &dry,
+                         NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

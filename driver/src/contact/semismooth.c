@@ -352,14 +352,20 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     }
   }
   PetscCall(contact_create(p, is->contact_group, &is->shape, &in->ct));
-  PetscCall(DMCreateMatrix(p->dm, &in->K));
-  { /* rigid-body modes for GAMG on the displacement block */
+  PetscCall(DMCreateGlobalVector(p->dm, &in->U));
+  { /* K: AIJ in the displacement layout, its pattern from the cells by COO (fe_jacobian_coo_setup below; DMCreateMatrix's
+       own preallocation was a fifth of a run's set-up), with the rigid-body modes for GAMG on the displacement block */
+    PetscInt     n, N;
     MatNullSpace rbm;
+    PetscCall(VecGetLocalSize(in->U, &n));
+    PetscCall(VecGetSize(in->U, &N));
+    PetscCall(MatCreate(comm, &in->K));
+    PetscCall(MatSetSizes(in->K, n, n, N, N));
+    PetscCall(MatSetType(in->K, MATAIJ));
     PetscCall(DMPlexCreateRigidBody(p->dm, 0, &rbm));
     PetscCall(MatSetNearNullSpace(in->K, rbm));
     PetscCall(MatNullSpaceDestroy(&rbm));
   }
-  PetscCall(DMCreateGlobalVector(p->dm, &in->U));
   Vec *uv[] = {&in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, NULL};
   for (int k = 0; uv[k]; k++) PetscCall(VecDuplicate(in->U, uv[k]));
   PetscCall(VecCreateMPI(comm, in->ct.n, in->ct.N, &in->lam));

@@ -1,0 +1,22 @@
+
+# Consider dependencies only in project.
+set(CMAKE_DEPENDS_IN_PROJECT_ONLY OFF)
+
+# The set of languages for which implicit dependencies are needed:
+set(CMAKE_DEPENDS_LANGUAGES
+  )
+
+# The set of dependency files which are needed:
+set(CMAKE_DEPENDS_DEPENDENCY_FILES
+  "/work/main/driver/src/app/main.c" "driver/CMakeFiles/driver_elastic.dir/src/app/main.c.o" "gcc" "driver/CMakeFiles/driver_elastic.dir/src/app/main.c.o.d"
+  )
+
+# Targets to which this target links.
+set(CMAKE_TARGET_LINKED_INFO_FILES
+  "/work/main/build-dev/driver/CMakeFiles/driver_core.dir/DependInfo.cmake"
+  "/work/main/build-dev/driver/CMakeFiles/elastic_umat.dir/DependInfo.cmake"
+  "/work/main/build-dev/umat/CMakeFiles/camclay9.dir/DependInfo.cmake"
+  )
+
+# Fortran module output directory.
+set(CMAKE_Fortran_TARGET_MODULE_DIR "")

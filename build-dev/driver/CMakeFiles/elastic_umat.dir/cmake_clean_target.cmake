@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "libelastic_umat.a"
+)

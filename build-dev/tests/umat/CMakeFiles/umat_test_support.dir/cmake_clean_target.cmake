@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "libumat_test_support.a"
+)

@@ -1,0 +1,2 @@
+# Empty dependencies file for camclay9.
+# This may be replaced when dependencies are built.
