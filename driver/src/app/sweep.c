@@ -118,11 +118,11 @@ static int sweep_case(const SweepInput *in, int a, int f, int e, int s, int i, c
     sg.eq[k].target       = in->inc.v[i] * dir[k] / sqrt(norm);
     sg.eq[k].table_column = -1;
   }
-  snprintf(sg.name, sizeof sg.name, "step");
-  sg.duration = in->dt.v[t];
-  sg.steps.count = 1;
-  sg.steps.ratio = 1;
-  sg.instant  = in->dt.v[t] == 0;
+  snprintf(sg.stage.name, sizeof sg.stage.name, "step");
+  sg.stage.duration    = in->dt.v[t];
+  sg.stage.steps.count = 1;
+  sg.stage.steps.ratio = 1;
+  sg.stage.instant     = in->dt.v[t] == 0;
   sc.seg      = &sg;
   sc.nseg     = 1;
   sc.outdir[0] = '\0';
@@ -132,7 +132,7 @@ static int sweep_case(const SweepInput *in, int a, int f, int e, int s, int i, c
   int status = rc ? 2 : one->cutbacks ? 1 : 0; /* converged / cut back / failed */
   *error = NAN;
   if (!rc && in->dt.v[t] > 0) {
-    sg.steps.count = in->ref_steps;
+    sg.stage.steps.count = in->ref_steps;
     if (!point_run(&sc, NULL, &fine, e1, sizeof e1)) {
       double num = 0, den = 0;
       for (int k = 0; k < 6; k++) {

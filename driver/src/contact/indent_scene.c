@@ -165,7 +165,7 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))
     FAIL("%s:%d: key 'indenter.tip': axisymmetric: the tip must be on the axis (x = 0)", doc->file, yd_key_line(nd, "tip"));
   for (int i = 0; i < sc->nstage; i++)
-    if (read_stage(doc, sc->stage[i].indenter, i, sc->stage[i].duration, is->copies, &is->stage[i], err, errlen)) return 1;
+    if (read_stage(doc, sc->loads[i].indenter, i, sc->stage[i].duration, is->copies, &is->stage[i], err, errlen)) return 1;
   return 0;
 }
 

@@ -1,7 +1,6 @@
 #include "fe_problem.h"
 #include "../io/log_events.h"
 
-#include "camclay9.h"
 
 #include <float.h>
 #include <math.h>

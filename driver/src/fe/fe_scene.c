@@ -61,7 +61,7 @@ double stage_table_value(const double *t, const double *v, int n, double ts) {
 
 /* A pressure of a stage: a number (reached at the stage's end), {exp: {P0, k}} (P0 exp(k t) in the
  * stage time t), or {table: {file, time, value, time_factor, factor}} (linear interpolation). */
-static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int gi, char *err, size_t errlen) {
+static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, StageLoads *g, int gi, char *err, size_t errlen) {
   YdNode *x;
   g->fn[gi] = FN_RAMP;
   if (nd->kind == YD_SCALAR) return yd_double(doc, nd, path, &g->pressure[gi], err, errlen);
@@ -85,7 +85,7 @@ static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int
 }
 
 /* The pressure of group k at stage time ts (lambda: the ramp's fraction then). */
-double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts) {
+double stage_pressure(const StageLoads *g, int k, double start, double target, double lambda, double ts) {
   switch (g->fn[k]) {
   case FN_EXP: return g->P0[k] * exp(g->k[k] * ts);
   case FN_TABLE: return stage_table_value(g->tab_t[k], g->tab_v[k], g->nrow[k], ts);
@@ -148,23 +148,6 @@ static int component_of(const char *s) {
 }
 
 /* A stage's output: {times: [t1, t2, ...]}: fields at exactly these stage times (the steps land on them). */
-static int read_stage_output(YdDoc *doc, YdNode *v, const char *path, Stage *g, char *err, size_t errlen) {
-  char    sub[300];
-  YdNode *t;
-  snprintf(sub, sizeof sub, "%s.output", path);
-  if (yd_expect(doc, v, YD_MAPPING, sub, err, errlen)) return 1;
-  if ((t = yd_get(v, "times"))) {
-    snprintf(sub, sizeof sub, "%s.output.times", path);
-    if (yd_doubles(doc, t, sub, g->out_times, -FE_MAX_OUT_TIMES, &g->nout_times, err, errlen)) return 1;
-    for (int k = 0; k < g->nout_times; k++)
-      if (!(g->out_times[k] > (k ? g->out_times[k - 1] : 0) && g->out_times[k] <= g->duration))
-        FAIL("%s:%d: key '%s[%d]': expected increasing stage times in (0, %g], got %g", doc->file, t->line, sub, k, g->duration,
-             g->out_times[k]);
-  }
-  snprintf(sub, sizeof sub, "%s.output", path);
-  return yd_check_unused(doc, v, sub, "times", err, errlen);
-}
-
 /* name, units and output (directory, fields_every, times) of the scene. */
 static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
   YdNode     *x, *v;
@@ -396,7 +379,7 @@ static int read_initial_pressure(YdDoc *doc, YdNode *initial_pressure, FeScene *
 }
 
 /* A stage's pressure (a mapping group -> pressure) and traction (group -> vector) blocks. */
-static int read_stage_loads(YdDoc *doc, YdNode *st, const char *path, const FeScene *sc, Stage *g, char *err, size_t errlen) {
+static int read_stage_loads(YdDoc *doc, YdNode *st, const char *path, const FeScene *sc, StageLoads *g, char *err, size_t errlen) {
   YdNode *v;
   char    sub[96];
   for (int k = 0; k < FE_MAX_GROUPS; k++) g->pressure[k] = NAN;
@@ -439,39 +422,14 @@ static int read_stage_loads(YdDoc *doc, YdNode *st, const char *path, const FeSc
 }
 
 /* stages[i]: name, duration, load, pressure, traction, steps, until, creep, output (indenter: the contact module's). */
-static int read_stage(YdDoc *doc, YdNode *st, int i, const FeScene *sc, Stage *g, char *err, size_t errlen) {
-  YdNode     *v;
-  const char *s;
-  char        path[64], sub[96];
+/* Stage i: what every scene kind's stage has (scene/stage.h), then its loads and indenter settings. */
+static int read_stage(YdDoc *doc, YdNode *st, int i, FeScene *sc, char *err, size_t errlen) {
+  char path[64];
   snprintf(path, sizeof path, "stages[%d]", i);
-  if (yd_expect(doc, st, YD_MAPPING, path, err, errlen)) return 1;
-  snprintf(g->name, sizeof g->name, "stage%d", i);
-  if ((v = yd_get(st, "name"))) {
-    snprintf(sub, sizeof sub, "%s.name", path);
-    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
-    snprintf(g->name, sizeof g->name, "%s", s);
-  }
-  snprintf(sub, sizeof sub, "%s.duration", path);
-  if (yd_double(doc, yd_get(st, "duration"), sub, &g->duration, err, errlen)) return 1;
-  if ((v = yd_get(st, "load"))) {
-    snprintf(sub, sizeof sub, "%s.load", path);
-    if (yd_string(doc, v, sub, &s, err, errlen)) return 1;
-    if (strcmp(s, "instant") && strcmp(s, "linear")) FAIL("%s:%d: key '%s': expected instant or linear, got '%s'", doc->file, v->line, sub, s);
-    g->instant = !strcmp(s, "instant");
-  }
-  if (g->duration < 0 || (g->duration == 0 && !g->instant))
-    FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear stage of zero duration "
-         "would never apply its target), got %g", doc->file, yd_key_line(st, "duration"), path, g->duration);
-  if (read_stage_loads(doc, st, path, sc, g, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.steps", path);
-  if (step_control_read(doc, yd_get(st, "steps"), sub, g->duration, &g->steps, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.until", path);
-  if (stage_event_read(doc, yd_get(st, "until"), sub, "evp_rate_below, q_above, q_below, p_above", &g->until, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.creep", path);
-  if ((v = yd_get(st, "creep")) && yd_bool(doc, v, sub, &g->creep, err, errlen)) return 1;
-  if ((v = yd_get(st, "output")) && read_stage_output(doc, v, path, g, err, errlen)) return 1;
-  g->indenter = yd_get(st, "indenter"); /* read by the contact module */
-  return yd_check_unused(doc, st, path, "name, duration, load, pressure, traction, steps, until, creep, indenter, output", err, errlen);
+  if (stage_read(doc, st, path, i, "stage", "evp_rate_below, q_above, q_below, p_above", &sc->stage[i], err, errlen)) return 1;
+  if (read_stage_loads(doc, st, path, sc, &sc->loads[i], err, errlen)) return 1;
+  sc->loads[i].indenter = yd_get(st, "indenter"); /* read by the contact module */
+  return yd_check_unused(doc, st, path, STAGE_KEYS ", pressure, traction, indenter", err, errlen);
 }
 
 /* solver.options: PETSc options (the command line overrides them). */
@@ -503,13 +461,13 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   if (stages->n == 0 || stages->n > MAXSTAGES) FAIL("%s:%d: key 'stages': expected 1 to %d stages", doc->file, stages->line, MAXSTAGES);
   sc->nstage = (int)stages->n;
   for (int i = 0; i < sc->nstage; i++)
-    if (read_stage(doc, stages->items[i], i, sc, &sc->stage[i], err, errlen)) return 1;
+    if (read_stage(doc, stages->items[i], i, sc, err, errlen)) return 1;
   if (read_solver(doc, root, sc, err, errlen)) return 1;
   sc->axis = sc->kin == KIN_3D ? 2 : 1;   /* the loading axis: x3 in 3D, x2 (= z) in 2D */
   sc->indenter = yd_get(root, "indenter");
   for (int i = 0; i < sc->nstage; i++)
-    if (sc->stage[i].indenter && !sc->indenter)
-      FAIL("%s:%d: key 'stages[%d].indenter': the scene has no top-level 'indenter' block", doc->file, sc->stage[i].indenter->line, i);
+    if (sc->loads[i].indenter && !sc->indenter)
+      FAIL("%s:%d: key 'stages[%d].indenter': the scene has no top-level 'indenter' block", doc->file, sc->loads[i].indenter->line, i);
   return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, indenter, stages, output, solver",
                          err, errlen);
 }

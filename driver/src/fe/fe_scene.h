@@ -5,31 +5,25 @@
 
 #include "../io/gmsh_mesh.h"
 #include "../io/yaml_doc.h"
-#include "../stepping/step_control.h"
+#include "../scene/stage.h"
 #include "fe_problem.h"
 
 #define MAXSTAGES 16
-#define FE_MAX_OUT_TIMES 64
 #define FE_MAX_FIXED 16 /* boundary.fixed and boundary.mirror entries together */
 
 enum { FN_RAMP, FN_EXP, FN_TABLE };
 
+/* A stage's loads on the body (the stage itself, scene/stage.h, is every kind's): the pressure or traction of each
+ * group at the stage's end, or a time function of the stage time: P0 exp(k t), or a table; and its indenter
+ * settings (read by the contact module). */
 typedef struct {
-  char      name[64];
-  double    duration;
-  int       instant, creep;
-  StepControl steps;
   double    pressure[FE_MAX_GROUPS]; /* at the end of the stage; NAN: keep */
-  /* or a time function of the stage time: P0 exp(k t), or a table */
   int       fn[FE_MAX_GROUPS];       /* FN_RAMP (the target above), FN_EXP, FN_TABLE */
   double    P0[FE_MAX_GROUPS], k[FE_MAX_GROUPS];
   int       nrow[FE_MAX_GROUPS];
   double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
-  StageEvent until;                  /* an end event (volume-mean p, q, viscoplastic rate); kind NONE: none */
-  int       nout_times;              /* fields at exactly these stage times (output: {times: [...]}) */
-  double    out_times[FE_MAX_OUT_TIMES];
   YdNode   *indenter;                /* the stage's indenter settings (read by the contact module), or NULL */
-} Stage;
+} StageLoads;
 
 typedef struct {
   char         name[128], outdir[512], msh[1024]; /* input paths resolved against the scene's folder */
@@ -50,6 +44,7 @@ typedef struct {
   char         pressure_group[FE_MAX_GROUPS][64];
   int          nstage;
   Stage        stage[MAXSTAGES];
+  StageLoads   loads[MAXSTAGES];
   int          axis;
   int          fields_every;         /* field output every N steps, besides the start and each stage's end */
   char         solver_options[1024]; /* PETSc options from the scene; the command line wins */
@@ -60,7 +55,7 @@ typedef struct {
 /* Read the scene; 0, or 1 with err filled. */
 int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen);
 /* The load of group k at stage time ts (lambda: the fraction of a ramp done then). */
-double stage_pressure(const Stage *g, int k, double start, double target, double lambda, double ts);
+double stage_pressure(const StageLoads *g, int k, double start, double target, double lambda, double ts);
 /* A stage's {table: {file, time, value, time_factor, factor}} at node x (key path 'path', the file relative to
  * the scene's): times in the stage's time (s) and values, malloc'ed, n rows; 0, or 1 with err filled. */
 int stage_table_read(YdDoc *doc, YdNode *x, const char *path, double **t, double **v, int *n, char *err, size_t errlen);

@@ -85,32 +85,6 @@ static int check_equations(YdDoc *doc, YdNode *nd, const char *path, const Segme
   return 0;
 }
 
-/* A segment's name, duration and load (instant or linear). */
-static int read_segment_head(YdDoc *doc, YdNode *nd, const char *path, int index, Segment *sg, char *err, size_t errlen) {
-  char        sub[160];
-  const char *s;
-  YdNode     *x;
-  snprintf(sg->name, sizeof sg->name, "segment%d", index);
-  if ((x = yd_get(nd, "name"))) {
-    snprintf(sub, sizeof sub, "%s.name", path);
-    if (yd_string(doc, x, sub, &s, err, errlen)) return 1;
-    snprintf(sg->name, sizeof sg->name, "%s", s);
-  }
-  snprintf(sub, sizeof sub, "%s.duration", path);
-  if (yd_double(doc, yd_get(nd, "duration"), sub, &sg->duration, err, errlen)) return 1;
-  if ((x = yd_get(nd, "load"))) {
-    snprintf(sub, sizeof sub, "%s.load", path);
-    if (yd_string(doc, x, sub, &s, err, errlen)) return 1;
-    if (!strcmp(s, "instant")) sg->instant = 1;
-    else if (strcmp(s, "linear"))
-      FAIL("%s:%d: key '%s.load': expected 'instant' or 'linear', got '%s'", doc->file, x->line, path, s);
-  }
-  if (sg->duration < 0 || (sg->duration == 0 && !sg->instant))
-    FAIL("%s:%d: key '%s.duration': expected a duration > 0 (or 0 with load: instant; a linear segment of zero duration "
-         "would never apply its targets), got %g", doc->file, yd_key_line(nd, "duration"), path, sg->duration);
-  return 0;
-}
-
 /* A segment's control: the equation of each component (given, or 'others'); table columns go to table_cols. */
 static int read_controls(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char **table_cols, int *ntable,
                          char *err, size_t errlen) {
@@ -199,27 +173,10 @@ static int read_constraints(YdDoc *doc, YdNode *nd, const char *path, int ntens,
   return 0;
 }
 
-/* A segment's end condition (until), creep flag and loading axis. */
-static int read_until_axis(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char *err, size_t errlen) {
-  char        sub[160];
+/* A creep segment's loading axis (for the plots). */
+static int read_axis(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char *err, size_t errlen) {
   const char *s;
   YdNode     *x;
-  if ((x = yd_get(nd, "until"))) {
-    snprintf(sub, sizeof sub, "%s.until", path);
-    if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen) || x->n != 1)
-      FAIL("%s:%d: key '%s': expected one of evp_rate_below, q_above, q_below, p_above", doc->file, x->line, sub);
-    const char *k = x->keys[0];
-    sg->until     = !strcmp(k, "evp_rate_below") ? UNTIL_EVP_RATE_BELOW
-                    : !strcmp(k, "q_above")      ? UNTIL_Q_ABOVE
-                    : !strcmp(k, "q_below")      ? UNTIL_Q_BELOW
-                    : !strcmp(k, "p_above")      ? UNTIL_P_ABOVE
-                                                 : UNTIL_NONE;
-    if (sg->until == UNTIL_NONE)
-      FAIL("%s:%d: unknown key '%s.%s': expected evp_rate_below, q_above, q_below or p_above", doc->file, x->key_lines[0], sub, k);
-    x->used[0] = 1;
-    if (yd_double(doc, x->items[0], sub, &sg->until_value, err, errlen)) return 1;
-  }
-  if ((x = yd_get(nd, "creep")) && yd_bool(doc, x, "creep", &sg->creep, err, errlen)) return 1;
   sg->axis = ntens == 6 ? 2 : 1;
   if ((x = yd_get(nd, "axis"))) {
     if (yd_string(doc, x, "axis", &s, err, errlen)) return 1;
@@ -271,23 +228,17 @@ static int read_segment_table(YdDoc *doc, YdNode *nd, const char *path, Segment 
 }
 
 static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *sg, char *err, size_t errlen) {
-  char path[64], sub[160];
+  char path[64];
   snprintf(path, sizeof path, "segments[%d]", index);
-  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
   memset(sg, 0, sizeof *sg);
   char *table_cols[8];
   int   ntable = 0;
-  if (read_segment_head(doc, nd, path, index, sg, err, errlen) ||
+  if (stage_read(doc, nd, path, index, "segment", "evp_rate_below, q_above, q_below, p_above", &sg->stage, err, errlen) ||
       read_controls(doc, nd, path, ntens, sg, table_cols, &ntable, err, errlen) ||
-      read_constraints(doc, nd, path, ntens, sg, err, errlen) || check_equations(doc, nd, path, sg, ntens, err, errlen))
+      read_constraints(doc, nd, path, ntens, sg, err, errlen) || check_equations(doc, nd, path, sg, ntens, err, errlen) ||
+      read_axis(doc, nd, path, ntens, sg, err, errlen) || read_segment_table(doc, nd, path, sg, table_cols, ntable, err, errlen))
     return 1;
-  snprintf(sub, sizeof sub, "%s.steps", path);
-  if (step_control_read(doc, yd_get(nd, "steps"), sub, sg->duration, &sg->steps, err, errlen)) return 1;
-  if (read_until_axis(doc, nd, path, ntens, sg, err, errlen) ||
-      read_segment_table(doc, nd, path, sg, table_cols, ntable, err, errlen))
-    return 1;
-  return yd_check_unused(doc, nd, path,
-                         "name, duration, load, control, constraints, steps, until, creep, axis, table", err, errlen);
+  return yd_check_unused(doc, nd, path, STAGE_KEYS ", control, constraints, axis, table", err, errlen);
 }
 
 int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {

@@ -5,7 +5,7 @@
 
 #include "../io/yaml_doc.h"
 #include "../material/umat_call.h"
-#include "../stepping/step_control.h"
+#include "../scene/stage.h"
 
 typedef enum { EQ_STRESS, EQ_STRAIN, EQ_LINEAR } EquationKind;
 
@@ -19,17 +19,12 @@ typedef struct {
   double       table_factor;
 } Equation;
 
-typedef enum { UNTIL_NONE, UNTIL_EVP_RATE_BELOW, UNTIL_Q_ABOVE, UNTIL_Q_BELOW, UNTIL_P_ABOVE } UntilKind;
-
+/* A segment: the stage of every scene kind (name, duration, instant, steps, until, creep: scene/stage.h) and how
+ * the point's six components are controlled in it. */
 typedef struct {
-  char      name[64];
-  double    duration;
-  int       instant;         /* targets jump in a first zero-time (elastic) step, then are held */
+  Stage     stage;
   Equation  eq[6];
-  StepControl steps;
-  UntilKind until;
-  double    until_value;
-  int       creep, axis;     /* for the plots: a creep segment and its loading axis (0, 1, 2) */
+  int       axis;            /* for the plots: the loading axis (0, 1, 2) of a creep segment */
   /* table-driven targets (lab data): time and columns */
   int       table_rows, table_cols;
   double   *table_time, *table;  /* table[row * table_cols + col] */

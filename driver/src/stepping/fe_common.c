@@ -34,10 +34,8 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
     for (int k = 0; k < c->sc->npressure; k++) c->start[k] = c->now[k];
   double p, q;
   point_invariants(c->stats.stress_mean, 6, &p, &q);
-  memset(v, 0, sizeof *v);
-  v->name = g->name, v->duration = g->duration, v->instant = g->instant, v->steps = &g->steps, v->until = g->until;
+  stage_view_of(g, v);
   v->event_start = g->until.kind == EVENT_P_ABOVE ? p : q;
-  v->nout_times = g->nout_times, v->out_times = g->out_times;
 }
 
 PetscReal fe_common_umat_tol(const FeCommon *c, const StepRequest *rq) {
@@ -47,7 +45,7 @@ PetscReal fe_common_umat_tol(const FeCommon *c, const StepRequest *rq) {
 }
 
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {
-  Stage *g = &c->sc->stage[rq->s];
+  const StageLoads *g = &c->sc->loads[rq->s];
   PetscFunctionBeginUser;
   for (int k = 0; k < c->sc->npressure; k++) {
     double target   = isnan(g->pressure[k]) ? c->start[k] : g->pressure[k];

@@ -270,7 +270,7 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   PetscReal pmax = 1, fref = 0; /* force scale for the absolute tolerance: the largest load on all loaded faces */
   for (int i = 0; i < sc->nstage; i++)
     for (int g = 0; g < sc->npressure; g++)
-      if (!isnan(sc->stage[i].pressure[g])) pmax = PetscMax(pmax, fabs(sc->stage[i].pressure[g]));
+      if (!isnan(sc->loads[i].pressure[g])) pmax = PetscMax(pmax, fabs(sc->loads[i].pressure[g]));
   for (int g = 0; g < sc->npressure; g++) {
     PetscReal nrm;
     PetscCall(VecNorm(p->unit_force[g], NORM_2, &nrm));

@@ -27,16 +27,6 @@ typedef struct {
 
 static double sv_or_zero(const Point *pt, const UmatCall *c, int slot) { return slot < pt->sc->mat.nstatv ? c->statev[slot] : 0.0; }
 
-static EventKind event_of(UntilKind u) {
-  switch (u) {
-  case UNTIL_EVP_RATE_BELOW: return EVENT_EVP_RATE_BELOW;
-  case UNTIL_Q_ABOVE: return EVENT_Q_ABOVE;
-  case UNTIL_Q_BELOW: return EVENT_Q_BELOW;
-  case UNTIL_P_ABOVE: return EVENT_P_ABOVE;
-  default: return EVENT_NONE;
-  }
-}
-
 static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Point         *pt = ctx;
   const Segment *sg = &pt->sc->seg[s];
@@ -57,9 +47,7 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   }
   double p, q;
   point_invariants(pt->cur.stress, n, &p, &q);
-  memset(v, 0, sizeof *v);
-  v->name = sg->name, v->duration = sg->duration, v->instant = sg->instant, v->steps = &sg->steps;
-  v->until.kind = event_of(sg->until), v->until.value = sg->until_value;
+  stage_view_of(&sg->stage, v);
   v->event_start = v->until.kind == EVENT_P_ABOVE ? p : q;
   return 0;
 }
@@ -189,7 +177,7 @@ static void write_json(const PointScene *sc, const double *t_start, const double
           props[20] / nn, props[21] / nn, props[22] / nn);
   for (int s = 0; s < sc->nseg; s++)
     fprintf(fp, "%s{\"name\": \"%s\", \"t_start\": %.17g, \"t_end\": %.17g, \"creep\": %s, \"axis\": %d}", s ? ", " : "",
-            sc->seg[s].name, t_start[s], t_end[s], sc->seg[s].creep ? "true" : "false", sc->seg[s].axis);
+            sc->seg[s].stage.name, t_start[s], t_end[s], sc->seg[s].stage.creep ? "true" : "false", sc->seg[s].axis);
   fprintf(fp, "]}\n");
   fclose(fp);
 }

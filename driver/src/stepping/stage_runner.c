@@ -33,6 +33,12 @@ typedef struct {
   char                 hist_path[1024];
 } Run;
 
+void stage_view_of(const Stage *g, StageView *v) {
+  memset(v, 0, sizeof *v);
+  v->name = g->name, v->duration = g->duration, v->instant = g->instant, v->steps = &g->steps, v->until = g->until;
+  v->nout_times = g->nout_times, v->out_times = g->out_times;
+}
+
 static double wall_since(const struct timespec *w0) {
   struct timespec w;
   clock_gettime(CLOCK_MONOTONIC, &w);

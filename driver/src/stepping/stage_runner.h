@@ -34,6 +34,9 @@ typedef struct {
   const double      *out_times;
 } StageView;
 
+/* The view of stage g as it comes from the scene (the solver's stage_begin may then change it). */
+void stage_view_of(const Stage *g, StageView *v);
+
 /* The step to solve: from the committed state at total time t0 (stage time ts0) over h (0: an instant jump);
  * lambda is the fraction of the stage's ramp done at the step's end. */
 typedef struct {
