@@ -46,6 +46,8 @@ module ccix_frame
     real(real64) :: p_floor           !< lower bound of pc, sec. 3.6
     logical :: isotropic              !< P = I: skip the projection products
     logical :: isotropic_pencil       !< C isotropic and P = I (the soft frame): ccix_pencil's short form
+    logical :: have_pencil            !< pe is set (frame_prepare); else each yielding step derives it
+    type(pencil_t) :: pe              !< the pencil (H, C^-1) diagonalised, where have_pencil
   end type frame_t
 
   !> Outcome of one frame integration.
@@ -73,7 +75,7 @@ module ccix_frame
     logical :: floor_active
   end type step_t
 
-  public :: frame_new, frame_stiffness, yield_function, flow_direction, frame_integrate
+  public :: frame_new, frame_prepare, frame_stiffness, yield_function, flow_direction, frame_integrate
 
 contains
 
@@ -90,6 +92,7 @@ contains
     fr%pw = ti_projection(c1, c2, c3)
     fr%isotropic = (c1 == 1.0_real64 .and. c2 == 0.0_real64 .and. c3 == 0.0_real64)
     fr%isotropic_pencil = fr%isotropic .and. mu_l == mu_t .and. a == 0.0_real64 .and. b == 0.0_real64
+    fr%have_pencil = .false.
     fr%tr_p1 = 3 * c1 + c2 + c3
     fr%m_slope = m_slope
     fr%lambda_p = lambda_p
@@ -99,6 +102,13 @@ contains
     ! p_floor = max(1e-6 pc0, 1e-4) (theory.md sec. 3.6), never above 1% of pc0 for very small pc0.
     fr%p_floor = min(max(1.0e-6_real64 * pc0, 1.0e-4_real64), 1.0e-2_real64 * pc0)
   end subroutine frame_new
+
+  !> Derive fr's pencil now rather than in each step that yields (a material kept for many calls).
+  pure recursive subroutine frame_prepare(fr)
+    type(frame_t), intent(inout) :: fr
+    call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, fr%pe)
+    fr%have_pencil = .true.
+  end subroutine frame_prepare
 
   !> The stiffness C of the frame as a Mandel matrix (the tangent of an elastic step); q is
   !> walpole_basis(fr%n).
@@ -118,7 +128,7 @@ contains
     if (fr%isotropic) then
       sp = sig
     else
-      sp = ti_apply(fr%pw, fr%n, fr%mh, sig)
+      call ti_apply(fr%pw, fr%n, fr%mh, sig, sp)
     end if
     pp = -(sp(1) + sp(2) + sp(3)) / 3
     s_dev = sp + pp * one6
@@ -147,7 +157,7 @@ contains
     if (fr%isotropic) then
       n_dir = n_fict
     else
-      n_dir = ti_apply(fr%pw, fr%n, fr%mh, n_fict)
+      call ti_apply(fr%pw, fr%n, fr%mh, n_fict, n_dir)
     end if
   end subroutine flow_direction
 
@@ -182,7 +192,8 @@ contains
     devp = 0
     pc = pc_n
     ! Trial step (sec. 3.2). On elastic and failed steps d is not set: the tangent is C.
-    sig_tr = sig_n + ti_apply(fr%cw, fr%n, fr%mh, deps)
+    call ti_apply(fr%cw, fr%n, fr%mh, deps, sig_tr)
+    sig_tr = sig_n + sig_tr
     sig = sig_tr
     if (.not. is_finite(sum(sig_tr))) then
       status = frame_failed
@@ -204,8 +215,12 @@ contains
     st%sg = fr%eta * fr%e_ref / denom
     st%pc_n = pc_n
     st%y_floor = log(fr%p_floor / pc_n)
-    call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, st%pe)
-    st%a = v_inv_times(q, st%pe, sig_tr)
+    if (fr%have_pencil) then
+      st%pe = fr%pe
+    else
+      call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, st%pe)
+    end if
+    call v_inv_times(q, st%pe, sig_tr, st%a)
     st%floor_active = .false.
 
     ! Newton from the elastic predictor (sec. 3.4); pc bounded below by the floor while iterating.
@@ -240,14 +255,14 @@ contains
     end if
 
     pc = ev%pc
-    sig = v_times(q, st%pe, ev%xi)
+    call v_times(q, st%pe, ev%xi, sig)
     f_end = ev%f
     ! N = H:sigma + (pc/3) P:1 (sec. 1.3) from its V-coordinates: V^T N = n_xi, N = V^-T n_xi.
-    n_dir = v_inv_t_times(q, st%pe, ev%n_xi)
+    call v_inv_t_times(q, st%pe, ev%n_xi, n_dir)
     devp = g * n_dir
     if (st%floor_active) flags = ior(flags, flag_floor)
     if (dot_product(st%pe%b, ev%xi) > 0) flags = ior(flags, flag_tension)   ! p' = -b.xi/3 < 0
-    d = consistent_tangent(fr, q, st, g, ev)
+    d = consistent_tangent(q, st, g, ev)
     if (want_error) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
   end subroutine frame_integrate
 
@@ -362,8 +377,7 @@ contains
   !>   D = V diag(d) V^T - u_n (x) dg/deps - (dgamma pc/3) u_b (x) dy/deps,
   !> with u_n = V (n_xi d), u_b = V (b d), and (dg, dy)/deps from the 2 x 2 Jacobian G of (R_y, R_f):
   !>   G (dg, dy)/deps = -(dgamma u_h, sf u_n),  u_h = V (h1 d)  (u_h absent when pc is at the floor).
-  pure recursive function consistent_tangent(fr, q, st, g, ev) result(d)
-    type(frame_t), intent(in) :: fr
+  pure recursive function consistent_tangent(q, st, g, ev) result(d)
     real(real64), intent(in) :: q(6, 6)
     type(step_t), intent(in) :: st
     real(real64), intent(in) :: g
@@ -371,13 +385,13 @@ contains
     real(real64) :: d(6, 6), u_n(6), u_b(6), u_h(6), ry_e(6), rf_e(6), dg_e(6), dy_e(6), det, c3
     real(real64) :: m11, m12, m22, y1(6), y2(6), mk(6)
     integer :: j, k
-    u_n = v_times(q, st%pe, ev%n_xi * ev%d)
-    u_b = v_times(q, st%pe, st%pe%b * ev%d)
+    call v_times(q, st%pe, ev%n_xi * ev%d, u_n)
+    call v_times(q, st%pe, st%pe%b * ev%d, u_b)
     c3 = g * ev%pc / 3
     if (st%floor_active) then
       ry_e = 0
     else
-      u_h = v_times(q, st%pe, st%pe%h1 * ev%d)
+      call v_times(q, st%pe, st%pe%h1 * ev%d, u_h)
       ry_e = g * u_h
     end if
     rf_e = st%sf * u_n

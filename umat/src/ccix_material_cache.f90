@@ -22,7 +22,7 @@
 module ccix_material_cache
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_props, only: check_props, frames_from_props, message_len, nprops_normal, ip_phi
-  use ccix_mixture, only: material_t, hard, soft
+  use ccix_mixture, only: material_t, material_prepare, hard, soft
   implicit none
   private
 
@@ -68,6 +68,8 @@ contains
     if (.not. keep_frames) call frames_from_props(props, nprops, mat%frames(hard), mat%frames(soft), &
                                                   mat%q)
     mat%phi = props(ip_phi)
+    mat%have_ddsdde = .false.
+!$  call material_prepare(mat)
 !$  cache%valid = .true.
 !$  cache%nprops = nprops; cache%ntens = ntens; cache%ndi = ndi; cache%nstatv = nstatv
 !$  cache%props = 0

@@ -4,7 +4,8 @@
 module ccix_mixture
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_walpole, only: ti_mix, ti_inverse, ti_apply, ti_abaqus
-  use ccix_frame, only: frame_t, frame_integrate, frame_stiffness, frame_failed, frame_elastic
+  use ccix_frame, only: frame_t, frame_integrate, frame_prepare, frame_stiffness, frame_failed, &
+                        frame_elastic
   implicit none
   private
 
@@ -18,6 +19,8 @@ module ccix_mixture
     type(frame_t) :: frames(2)
     real(real64) :: phi
     real(real64) :: q(6, 6)   !< walpole_basis of the bedding normal (ccix_props' frames_from_props)
+    logical :: have_ddsdde    !< ddsdde is set (material_prepare); else material_ddsdde derives it
+    real(real64) :: ddsdde(6, 6)   !< Cbar as an Abaqus DDSDDE, where have_ddsdde
   end type material_t
 
   !> What one step did (no default initialisation: this is in the hot path of every call).
@@ -30,7 +33,7 @@ module ccix_mixture
     real(real64) :: f(2)           !< yield function of each frame at the end of the step
   end type step_info_t
 
-  public :: material_ddsdde, mixture_integrate
+  public :: material_ddsdde, material_prepare, mixture_integrate
 
 contains
 
@@ -41,9 +44,26 @@ contains
     type(material_t), intent(in) :: mat
     integer, intent(in) :: ntens
     real(real64), intent(out) :: ddsdde(ntens, ntens)
-    call ti_abaqus(ti_mix(mat%phi, mat%frames(hard)%cw, 1 - mat%phi, mat%frames(soft)%cw), mat%q, &
-                   ntens, ddsdde)
+    if (mat%have_ddsdde) then
+      ddsdde = mat%ddsdde(1:ntens, 1:ntens)   ! the same numbers (ti_abaqus: entry by entry)
+    else
+      call ti_abaqus(ti_mix(mat%phi, mat%frames(hard)%cw, 1 - mat%phi, mat%frames(soft)%cw), mat%q, &
+                     ntens, ddsdde)
+    end if
   end subroutine material_ddsdde
+
+  !> Derive now what a material kept for many calls would otherwise derive in each (the same numbers):
+  !> the pencils of both frames and Cbar's DDSDDE. mat%phi must be set.
+  pure recursive subroutine material_prepare(mat)
+    type(material_t), intent(inout) :: mat
+    if (.not. (mat%frames(hard)%have_pencil .and. mat%frames(soft)%have_pencil)) then
+      call frame_prepare(mat%frames(hard))
+      call frame_prepare(mat%frames(soft))
+    end if
+    mat%have_ddsdde = .false.
+    call material_ddsdde(mat, 6, mat%ddsdde)
+    mat%have_ddsdde = .true.
+  end subroutine material_prepare
 
   !> Integrate both frames over one step (Mandel components). In: the frame stresses and pc at the
   !> start. Out: frame stresses and pc at the end, the frame viscoplastic strain increments and that of
@@ -56,7 +76,7 @@ contains
     logical, intent(in) :: want_error
     real(real64), intent(out) :: sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6), sig(6), d(6, 6)
     type(step_info_t), intent(out) :: info
-    real(real64) :: frac(2), d_frames(6, 6, 2), err(2)
+    real(real64) :: frac(2), d_frames(6, 6, 2), err(2), y(6)
     integer :: k, it, status(2)
 
     frac(hard) = mat%phi
@@ -112,8 +132,9 @@ contains
         ! With phi C_h + (1 - phi) C_s = Cbar: Cbar^-1 (1 - phi) C_s x = x - phi Cbar^-1 C_h x, so
         ! devp_total = devp_s + phi Cbar^-1 C_h (devp_h - devp_s).
         associate (fh => mat%frames(hard), fs => mat%frames(soft))
-          devp_total = devp(:, soft) + mat%phi * ti_apply(ti_inverse(ti_mix(mat%phi, fh%cw, 1 - mat%phi, &
-                         fs%cw)), fh%n, fh%mh, ti_apply(fh%cw, fh%n, fh%mh, devp(:, hard) - devp(:, soft)))
+          call ti_apply(fh%cw, fh%n, fh%mh, devp(:, hard) - devp(:, soft), y)
+          call ti_apply(ti_inverse(ti_mix(mat%phi, fh%cw, 1 - mat%phi, fs%cw)), fh%n, fh%mh, y, devp_total)
+          devp_total = devp(:, soft) + mat%phi * devp_total
         end associate
       end if
     end if

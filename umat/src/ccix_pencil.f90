@@ -164,24 +164,26 @@ contains
     lambda_h(6) = lambda_h(5)
   end subroutine set_shears
 
-  !> V xi = Q (B xi). These three products are written out in full: with helper functions for B and Q
-  !> (two lines each) gfortran -O2 -fPIC, a host's flags, does not inline them and the viscoplastic
-  !> call cost 7 % more instructions (measured).
-  pure recursive function v_times(q, pe, xi) result(x)
+  !> x = V xi = Q (B xi). These three products are subroutines written out in full: array-valued
+  !> functions pass their results through descriptors, and helper functions for B and Q are not inlined
+  !> under gfortran -O2 -fPIC, a host's flags (7 % more instructions per viscoplastic call, measured).
+  pure recursive subroutine v_times(q, pe, xi, x)
     real(real64), intent(in) :: q(6, 6), xi(6)
     type(pencil_t), intent(in) :: pe
-    real(real64) :: x(6), y1, y2
+    real(real64), intent(out) :: x(6)
+    real(real64) :: y1, y2
     y1 = pe%w(1, 1) * xi(1) + pe%w(1, 2) * xi(2)
     y2 = pe%w(2, 1) * xi(1) + pe%w(2, 2) * xi(2)
     x = q(:, 1) * y1 + q(:, 2) * y2 + q(:, 3) * (pe%r(3) * xi(3)) + q(:, 4) * (pe%r(4) * xi(4)) &
         + q(:, 5) * (pe%r(5) * xi(5)) + q(:, 6) * (pe%r(6) * xi(6))
-  end function v_times
+  end subroutine v_times
 
-  !> V^-1 x = B^-1 (Q^T x).
-  pure recursive function v_inv_times(q, pe, x) result(xi)
+  !> xi = V^-1 x = B^-1 (Q^T x).
+  pure recursive subroutine v_inv_times(q, pe, x, xi)
     real(real64), intent(in) :: q(6, 6), x(6)
     type(pencil_t), intent(in) :: pe
-    real(real64) :: xi(6), z(6)
+    real(real64), intent(out) :: xi(6)
+    real(real64) :: z(6)
     integer :: k
     do k = 1, 6
       z(k) = q(1, k) * x(1) + q(2, k) * x(2) + q(3, k) * x(3) + q(4, k) * x(4) &
@@ -190,17 +192,18 @@ contains
     xi(1) = pe%w_inv(1, 1) * z(1) + pe%w_inv(1, 2) * z(2)
     xi(2) = pe%w_inv(2, 1) * z(1) + pe%w_inv(2, 2) * z(2)
     xi(3:6) = pe%r_inv(3:6) * z(3:6)
-  end function v_inv_times
+  end subroutine v_inv_times
 
-  !> V^-T y = Q (B^-T y).
-  pure recursive function v_inv_t_times(q, pe, y) result(x)
+  !> x = V^-T y = Q (B^-T y).
+  pure recursive subroutine v_inv_t_times(q, pe, y, x)
     real(real64), intent(in) :: q(6, 6), y(6)
     type(pencil_t), intent(in) :: pe
-    real(real64) :: x(6), z1, z2
+    real(real64), intent(out) :: x(6)
+    real(real64) :: z1, z2
     z1 = pe%w_inv(1, 1) * y(1) + pe%w_inv(2, 1) * y(2)
     z2 = pe%w_inv(1, 2) * y(1) + pe%w_inv(2, 2) * y(2)
     x = q(:, 1) * z1 + q(:, 2) * z2 + q(:, 3) * (pe%r_inv(3) * y(3)) + q(:, 4) * (pe%r_inv(4) * y(4)) &
         + q(:, 5) * (pe%r_inv(5) * y(5)) + q(:, 6) * (pe%r_inv(6) * y(6))
-  end function v_inv_t_times
+  end subroutine v_inv_t_times
 
 end module ccix_pencil

@@ -198,16 +198,17 @@ contains
     c%a6 = b%a6 * a%a6 * b%a6
   end function ti_sandwich
 
-  !> A:X for a Mandel vector x, without Q: every such A is also
+  !> y = A:X for a Mandel vector x, without Q (a subroutine: an array-valued function passes its result
+  !> through a descriptor, which costs as much as the product here). Every such A is also
   !>   A:X = al1 tr(X) 1 + al2 X + al3 (tr(X) m + (m:X) 1) + al4 (m:X) m + al5 (m X + X m)
   !> (the shape of theory.md sec. 4.2, with al = (lam, 2 mu_T, a, b, 2 (mu_L - mu_T)) for C), and applied
   !> to u1, u2, w, s as in ccix_elasticity this gives a11 = 2 al1 + al2, a12 = sqrt2 (al1 + al3),
   !> a22 = al1 + al2 + 2 al3 + al4 + 2 al5, a5 = al2, a6 = al2 + al5, solved here for al. n is the axis
   !> (unit), mh = m in Mandel form.
-  pure recursive function ti_apply(a, n, mh, x) result(y)
+  pure recursive subroutine ti_apply(a, n, mh, x, y)
     type(ti_t), intent(in) :: a
     real(real64), intent(in) :: n(3), mh(6), x(6)
-    real(real64) :: y(6)
+    real(real64), intent(out) :: y(6)
     real(real64) :: al1, al3, al4, al5, tr, mx, s0, s1, t2, tr2, xn1, xn2, xn3
     real(real64), parameter :: h = 0.7071067811865476_real64   ! 1/sqrt2
     al1 = (a%a11 - a%a5) / 2
@@ -231,7 +232,7 @@ contains
     y(4) = a%a5 * x(4) + s1 * mh(4) + tr2 * (n(1) * xn2 + n(2) * xn1)
     y(5) = a%a5 * x(5) + s1 * mh(5) + tr2 * (n(1) * xn3 + n(3) * xn1)
     y(6) = a%a5 * x(6) + s1 * mh(6) + tr2 * (n(2) * xn3 + n(3) * xn2)
-  end function ti_apply
+  end subroutine ti_apply
 
   !> Trace of the Mandel matrix of A (invariant: Q is orthogonal).
   pure recursive real(real64) function ti_trace(a) result(t)
