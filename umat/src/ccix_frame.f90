@@ -31,7 +31,7 @@ module ccix_frame
 
   !> Material constants of one frame, with what every step needs derived from them: the tensors as
   !> their Walpole coefficients (applied with ccix_walpole's ti_apply, as matrices only where a tangent
-  !> needs them: frame_stiffness). No default initialisation: frame_new sets every component, and a
+  !> needs them: frame_add_stiffness). No default initialisation: frame_new sets every component, and a
   !> local frame_t costs nothing per call.
   type, public :: frame_t
     real(real64) :: n(3), mh(6)       !< bedding normal n and m = n(x)n (Mandel)
@@ -46,8 +46,9 @@ module ccix_frame
     real(real64) :: p_floor           !< lower bound of pc, sec. 3.6
     logical :: isotropic              !< P = I: skip the projection products
     logical :: isotropic_pencil       !< C isotropic and P = I (the soft frame): ccix_pencil's short form
-    logical :: have_pencil            !< pe is set (frame_prepare); else each yielding step derives it
-    type(pencil_t) :: pe              !< the pencil (H, C^-1) diagonalised, where have_pencil
+    logical :: prepared               !< pe and c are set (frame_prepare); else derived where needed
+    type(pencil_t) :: pe              !< the pencil (H, C^-1) diagonalised, where prepared
+    real(real64) :: c(6, 6)           !< C as a Mandel matrix, where prepared
   end type frame_t
 
   !> Outcome of one frame integration.
@@ -75,7 +76,7 @@ module ccix_frame
     logical :: floor_active
   end type step_t
 
-  public :: frame_new, frame_prepare, frame_stiffness, yield_function, flow_direction, frame_integrate
+  public :: frame_new, frame_prepare, frame_add_stiffness, yield_function, flow_direction, frame_integrate
 
 contains
 
@@ -92,7 +93,7 @@ contains
     fr%pw = ti_projection(c1, c2, c3)
     fr%isotropic = (c1 == 1.0_real64 .and. c2 == 0.0_real64 .and. c3 == 0.0_real64)
     fr%isotropic_pencil = fr%isotropic .and. mu_l == mu_t .and. a == 0.0_real64 .and. b == 0.0_real64
-    fr%have_pencil = .false.
+    fr%prepared = .false.
     fr%tr_p1 = 3 * c1 + c2 + c3
     fr%m_slope = m_slope
     fr%lambda_p = lambda_p
@@ -103,21 +104,28 @@ contains
     fr%p_floor = min(max(1.0e-6_real64 * pc0, 1.0e-4_real64), 1.0e-2_real64 * pc0)
   end subroutine frame_new
 
-  !> Derive fr's pencil now rather than in each step that yields (a material kept for many calls).
-  pure recursive subroutine frame_prepare(fr)
+  !> Derive now what fr would otherwise derive in each step that needs it (a material kept for many
+  !> calls): the pencil and C as a matrix. q is walpole_basis(fr%n).
+  pure recursive subroutine frame_prepare(fr, q)
     type(frame_t), intent(inout) :: fr
+    real(real64), intent(in) :: q(6, 6)
     call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, fr%pe)
-    fr%have_pencil = .true.
+    fr%c = ti_mandel(fr%cw, q)
+    fr%prepared = .true.
   end subroutine frame_prepare
 
-  !> The stiffness C of the frame as a Mandel matrix (the tangent of an elastic step); q is
+  !> d = d + w C, C the frame's stiffness (the tangent of a frame whose step is elastic); q is
   !> walpole_basis(fr%n).
-  pure recursive function frame_stiffness(fr, q) result(c)
+  pure recursive subroutine frame_add_stiffness(fr, q, w, d)
     type(frame_t), intent(in) :: fr
-    real(real64), intent(in) :: q(6, 6)
-    real(real64) :: c(6, 6)
-    c = ti_mandel(fr%cw, q)
-  end function frame_stiffness
+    real(real64), intent(in) :: q(6, 6), w
+    real(real64), intent(inout) :: d(6, 6)
+    if (fr%prepared) then
+      d = d + w * fr%c
+    else
+      d = d + w * ti_mandel(fr%cw, q)
+    end if
+  end subroutine frame_add_stiffness
 
   !> Fictitious-stress invariants: p' = -tr(sigma')/3 and q'^2 = 3/2 s':s' (theory.md sec. 1.3).
   pure recursive subroutine invariants(fr, sig, pp, q2, s_dev)
@@ -166,7 +174,7 @@ contains
   !> sig_n, pc_n: state at the start of the step; deps: strain increment; dt: time increment.
   !> Returns the stress, pc and viscoplastic strain increment at the end of the step and the
   !> algorithmic tangent d = dsigma/deps (Mandel; only on viscoplastic steps, else it is C,
-  !> frame_stiffness).
+  !> frame_add_stiffness).
   !> If want_error, err_est is the local error estimate
   !> |deps_vp - dt * rate_vp(start of step)| of theory.md sec. 3.6 (zero for eta = 0).
   pure recursive subroutine frame_integrate(fr, q, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
@@ -215,7 +223,7 @@ contains
     st%sg = fr%eta * fr%e_ref / denom
     st%pc_n = pc_n
     st%y_floor = log(fr%p_floor / pc_n)
-    if (fr%have_pencil) then
+    if (fr%prepared) then
       st%pe = fr%pe
     else
       call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, st%pe)

@@ -4,7 +4,7 @@
 module ccix_mixture
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_walpole, only: ti_mix, ti_inverse, ti_apply, ti_abaqus
-  use ccix_frame, only: frame_t, frame_integrate, frame_prepare, frame_stiffness, frame_failed, &
+  use ccix_frame, only: frame_t, frame_integrate, frame_prepare, frame_add_stiffness, frame_failed, &
                         frame_elastic
   implicit none
   private
@@ -53,12 +53,13 @@ contains
   end subroutine material_ddsdde
 
   !> Derive now what a material kept for many calls would otherwise derive in each (the same numbers):
-  !> the pencils of both frames and Cbar's DDSDDE. mat%phi must be set.
+  !> the pencils and stiffness matrices of both frames (frame_prepare) and Cbar's DDSDDE. mat%phi must
+  !> be set.
   pure recursive subroutine material_prepare(mat)
     type(material_t), intent(inout) :: mat
-    if (.not. (mat%frames(hard)%have_pencil .and. mat%frames(soft)%have_pencil)) then
-      call frame_prepare(mat%frames(hard))
-      call frame_prepare(mat%frames(soft))
+    if (.not. (mat%frames(hard)%prepared .and. mat%frames(soft)%prepared)) then
+      call frame_prepare(mat%frames(hard), mat%q)
+      call frame_prepare(mat%frames(soft), mat%q)
     end if
     mat%have_ddsdde = .false.
     call material_ddsdde(mat, 6, mat%ddsdde)
@@ -112,7 +113,7 @@ contains
       do k = 1, 2
         if (frac(k) <= 0) cycle
         if (status(k) == frame_elastic) then
-          d = d + frac(k) * frame_stiffness(mat%frames(k), mat%q)
+          call frame_add_stiffness(mat%frames(k), mat%q, frac(k), d)
         else
           d = d + frac(k) * d_frames(:, :, k)
         end if
