@@ -15,8 +15,10 @@
 !>   threadprivate variable, which gfortran places in thread-local storage (one copy per thread,
 !>   whatever created the thread; no OpenMP runtime call is made). The key is the whole PROPS vector
 !>   and the sizes; PROPS(1) (phi, which a host may vary per element) does not enter the frames, so a
-!>   change of phi alone keeps them. Measured, the cache still saves about 9 % of a viscoplastic and a
-!>   quarter of an elastic library call (docs/performance.md), so it stays.
+!>   change of phi alone keeps them. The kept material is also prepared (material_prepare: both frames'
+!>   pencils and stiffness matrices, Cbar's DDSDDE), which a file derives on demand. Without the cache
+!>   the library would take 13-16 % more per viscoplastic and half again per elastic call
+!>   (docs/performance.md), so it stays.
 !>
 !> Both give the same material bit for bit: the same routines compute it from the same PROPS.
 module ccix_material_cache
