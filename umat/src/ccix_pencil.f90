@@ -95,10 +95,10 @@ contains
         h1(1) = 2 * sk
         return
       end if
-      hw = ti_sandwich(pw, kw)                                    ! H = P:K:P
-      p1_b(1) = sqrt2 * pw%a11 + pw%a12   ! P:1 = P_b (sqrt2, 1)
+      hw = ti_sandwich(pw, kw)                 ! H = P:K:P
+      p1_b(1) = sqrt2 * pw%a11 + pw%a12        ! P:1 = P_b (sqrt2, 1)
       p1_b(2) = sqrt2 * pw%a12 + pw%a22
-      h1_b(1) = sqrt2 * hw%a11 + hw%a12         ! H:1 = H_b (sqrt2, 1)
+      h1_b(1) = sqrt2 * hw%a11 + hw%a12        ! H:1 = H_b (sqrt2, 1)
       h1_b(2) = sqrt2 * hw%a12 + hw%a22
       ! C_b = L L^T, G = H_b L, L^T H_b L = L^T G = R diag(lam2) R^T, W = L R, W^-1 = R^T L^-1.
       ! L = [l11 0; l21 l22] with l11 = sqrt(c11), l21 = c12/l11, l22 = sqrt(det C_b / c11): the two
@@ -140,8 +140,8 @@ contains
     end associate
   end subroutine pencil_diagonalise
 
-  !> The shear pairs of frame_spectral: r = B, r_inv = B^-1 and lambda_h on (3:6); r = r_inv = 1 on the
-  !> block. Component by component: array constructors here cost a store-forwarding stall each.
+  !> The shear pairs of pencil_diagonalise: r = B, r_inv = B^-1 and lambda_h on (3:6); r = r_inv = 1 on
+  !> the block. Component by component: array constructors here cost a store-forwarding stall each.
   pure recursive subroutine set_shears(r5, r6, i5, i6, lam5, lam6, r, r_inv, lambda_h)
     real(real64), intent(in) :: r5, r6, i5, i6, lam5, lam6
     real(real64), intent(out) :: r(6), r_inv(6)

@@ -1,7 +1,7 @@
 !> Transversely isotropic fourth-order tensors about one axis n, in Walpole's basis (Walpole 1984,
-!> Proc. R. Soc. Lond. A 391, 149-179). Every tensor of a frame is of that kind: the
-!> stiffness C (theory.md sec. 4.2), the projection P (sec. 1.2), K = (2/9) 1(x)1 + (3/M^2) I_dev and
-!> H = P:K:P (sec. 1.3); the soft frame's are isotropic, the special case for any n.
+!> Proc. R. Soc. Lond. A 391, 149-179). Every tensor of a frame is of that kind: the stiffness C
+!> (theory.md sec. 4.2), the projection P (sec. 1.2), K = (2/9) 1(x)1 + (3/M^2) I_dev and H = P:K:P
+!> (sec. 1.3); the soft frame's are isotropic, the special case for any n.
 !>
 !> The basis. With m = n(x)n, p = 1 - m and (t1, t2, n) orthonormal, the six Mandel vectors
 !>     u1 = p/sqrt2,            u2 = m,
@@ -23,9 +23,9 @@
 !>      [2, sqrt2; sqrt2, 1], a5 = a6 = 3/M^2.
 !>
 !> t1 is e_k x n normalised, e_k the coordinate axis with the smallest |n_k| (|e_k x n|^2 >= 2/3), and
-!> t2 = n x t1. When n lies in a coordinate plane (n3 = 0 in plane strain, or n = e3) every basis
+!> t2 = n x t1. When n lies in the 1-2 plane (n3 = 0, as plane strain requires) or n = e3, every basis
 !> vector then has either only in-plane (11, 22, 33, 12) or only out-of-plane (13, 23) components, so
-!> the decoupling of theory.md sec. 4.1 holds exactly, not only to round-off.
+!> the decoupling of theory.md sec. 4.1 holds exactly, not only to round-off (umat.test_walpole).
 module ccix_walpole
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_tensor, only: sqrt2, one6
