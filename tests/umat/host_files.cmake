@@ -24,11 +24,15 @@
 #   threads  host_driver threads with host, hazard, abaqus and the installed camclay9_umat.o (whose
 #            per-thread cache is thread-local storage): 8 POSIX threads, 8 materials, every
 #            STRESS/STATEV/DDSDDE/PNEWDT bit for bit the serial run's.
+#   jacobi   tests/umat/test_against_jacobi.f90 linked with host, abaqus and the installed object: the host
+#            file within 1e-12 of the numbers stored from the Jacobi derivation (as umat.test_against_jacobi
+#            for the library), and the three builds' outputs of the 64 calls identical bit for bit (the
+#            object keeps and prepares its material per thread; the files derive it in every call).
 #   errors   bad PROPS: host stops (non-zero exit) with the message on standard error; hook: the host's
 #            routine gets the message and ends the process (exit 3); abaqus: "***ERROR: ..." in job.msg
 #            (unit 7) and XIT (exit 3). DTIME = -1: rejected with a message (standard error; abaqus:
 #            "***WARNING: ..." in job.msg) and the analysis goes on (exit 0).
-# Usage: cmake -DSTEP=compile|threads|errors -DBUILD=<build dir> -DSRC=<project source> -DWORK=<scratch>
+# Usage: cmake -DSTEP=compile|threads|jacobi|errors -DBUILD=<build dir> -DSRC=<project source> -DWORK=<scratch>
 #              -DFC=<Fortran compiler> -DCC=<C compiler> -DNM=<nm> [-DHOST_SOURCE=<free-form file>]
 #              -P host_files.cmake
 # HOST_SOURCE replaces the installed camclay9_umat.f90 (to run the same checks on another version).
@@ -121,10 +125,16 @@ if(STEP STREQUAL "compile")
     endif()
     run("link ${v}" 0 ${FC} -pthread ${WORK}/host_driver.o ${WORK}/${v}/umat.o ${extra}
         -o ${WORK}/host_${v})
+    if(v MATCHES "^(host|abaqus)$")
+      run("link test_against_jacobi with ${v}" 0 ${FC} -O2 ${here}/test_against_jacobi.f90 ${WORK}/${v}/umat.o
+          ${extra} -o ${WORK}/jacobi_${v} -J ${WORK}/${v})
+    endif()
   endforeach()
   # The installed object (the per-thread cache, compiled by the build with OpenMP), linked as it is.
   run("link the installed camclay9_umat.o" 0 ${FC} -pthread ${WORK}/host_driver.o
       ${WORK}/prefix/share/camclay9/camclay9_umat.o -o ${WORK}/host_object)
+  run("link test_against_jacobi with the installed camclay9_umat.o" 0 ${FC} -O2 ${here}/test_against_jacobi.f90
+      ${WORK}/prefix/share/camclay9/camclay9_umat.o -o ${WORK}/jacobi_object -J ${WORK})
   file(MAKE_DIRECTORY ${WORK}/object)
   message(STATUS "host files: ${variants} compiled, preprocessed unchanged, no static data")
 
@@ -134,6 +144,23 @@ elseif(STEP STREQUAL "threads")
     run("${v}: 8 threads" 0 ${WORK}/host_${v} threads)
     expect("${out}" "8 threads, [0-9]+ increments: 0 differ" "${v}: threads")
   endforeach()
+
+elseif(STEP STREQUAL "jacobi")
+  set(cwd ${WORK})
+  run("host file against the Jacobi derivation" 0 ${WORK}/jacobi_host check
+      ${here}/data/jacobi_reference.txt)
+  expect("${out}" "test_against_jacobi: 0 failed" "host: against the Jacobi derivation")
+  foreach(v host abaqus object)
+    run("${v}: the 64 calls" 0 ${WORK}/jacobi_${v} write ${WORK}/calls_${v}.txt)
+  endforeach()
+  foreach(v abaqus object)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/calls_host.txt ${WORK}/calls_${v}.txt
+                    RESULT_VARIABLE differ)
+    if(differ)
+      message(FATAL_ERROR "host files: the outputs of ${v} differ from the host file's")
+    endif()
+  endforeach()
+  message(STATUS "host files: host, abaqus and object give the same 64 calls bit for bit")
 
 elseif(STEP STREQUAL "errors")
   set(props17 "Cam-Clay IX UMAT: PROPS\\(17\\) =  0\\.000000E\\+00: expected lambda_p > 0 \\(soft frame\\); ")
@@ -167,5 +194,5 @@ elseif(STEP STREQUAL "errors")
   expect("${msg}" "\\*\\*\\*WARNING: ${dtime}" "abaqus: the rejection in job.msg")
   expect_not("${err}" "DTIME" "abaqus: nothing on standard error")
 else()
-  message(FATAL_ERROR "host_files.cmake: STEP must be compile, threads or errors")
+  message(FATAL_ERROR "host_files.cmake: STEP must be compile, threads, jacobi or errors")
 endif()

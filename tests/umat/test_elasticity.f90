@@ -1,11 +1,13 @@
-!> Elasticity, projection tensor and yield function of one frame against theory.md §4-5 and
-!> Yin et al. 2021 Table 1.
+!> Elasticity, projection tensor (the UMAT's, in Walpole's basis of n) and yield function of one frame
+!> against theory.md §4-5 and Yin et al. 2021 Table 1.
 program test_elasticity
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: tangent_to_abaqus, invert6, cholesky_is_spd, sqrt2, one6
-  use ccix_elasticity, only: ti_stiffness_mandel
-  use ccix_projection, only: projection_mandel
+  use ccix_tensor, only: tangent_to_abaqus, sqrt2, one6
+  use ccix_walpole, only: walpole_basis, ti_mandel
+  use ccix_elasticity, only: ti_stiffness
+  use ccix_projection, only: ti_projection
   use ccix_frame, only: frame_t, frame_new, flow_direction
+  use reference_algebra, only: invert6, cholesky_is_spd
   use test_support
   implicit none
   real(real64) :: c(6, 6), v(6, 6), s(6, 6), expect(6, 6), p(6, 6), n(3), tr0, tr20, sig(6)
@@ -107,9 +109,7 @@ program test_elasticity
                    0.0_real64, random_unit(7)) - diag([1d0, 1d0, 1d0, 1d0, 1d0, 1d0]))), 0.0_real64, tol)
 
   ! Yield function at sigma = -35 MPa 1, theory.md §5.3 (hard frame, theta = 0; printed to 5 digits).
-  fr = frame_new(2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
-                 1.46_real64, 0.00013_real64, 0.73_real64, -0.20_real64, 0.40_real64, 2.0_real64, &
-                 1.3e13_real64, [0.0_real64, 0.0_real64, 1.0_real64])
+  fr = woodford_hard([0.0_real64, 0.0_real64, 1.0_real64])
   sig = -35 * one6
   call flow_direction(fr, sig, 2.0_real64, f, pp, q2, n_dir)
   call check_close('f hard at -35 MPa', f, 744.70_real64, 0.005_real64)
@@ -120,9 +120,7 @@ program test_elasticity
   call check_close('N33 hard', n_dir(3), -22.776_real64, 0.0005_real64)
   call check_close('rate f/eta', f / 1.3e13_real64, 5.73e-11_real64, 0.005e-11_real64)
   ! The same state seen with theta = 90: f is invariant (§5.3).
-  fr = frame_new(2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
-                 1.46_real64, 0.00013_real64, 0.73_real64, -0.20_real64, 0.40_real64, 2.0_real64, &
-                 1.3e13_real64, [1.0_real64, 0.0_real64, 0.0_real64])
+  fr = woodford_hard([1.0_real64, 0.0_real64, 0.0_real64])
   call flow_direction(fr, sig, 2.0_real64, f, pp, q2, n_dir)
   call check_close('f hard theta=90', f, 744.70_real64, 0.005_real64)
   ! Finite-difference check of N = df/dsigma at a random state and normal.
@@ -131,6 +129,30 @@ program test_elasticity
   call finish('test_elasticity')
 
 contains
+
+  !> The hard frame of Woodford shale (Table 1) for the unit normal n.
+  function woodford_hard(normal) result(frh)
+    real(real64), intent(in) :: normal(3)
+    type(frame_t) :: frh
+    call frame_new(frh, 2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
+                   1.46_real64, 0.00013_real64, 0.73_real64, -0.20_real64, 0.40_real64, 2.0_real64, &
+                   1.3e13_real64, normal)
+  end function woodford_hard
+
+  !> The UMAT's stiffness and projection for the normal n, as Mandel matrices.
+  pure function ti_stiffness_mandel(lam, mu_t, mu_l, a, b, normal) result(cm)
+    real(real64), intent(in) :: lam, mu_t, mu_l, a, b, normal(3)
+    real(real64) :: cm(6, 6), q(6, 6)
+    call walpole_basis(normal, q)
+    cm = ti_mandel(ti_stiffness(lam, mu_t, mu_l, a, b), q)
+  end function ti_stiffness_mandel
+
+  pure function projection_mandel(c1, c2, c3, normal) result(pm)
+    real(real64), intent(in) :: c1, c2, c3, normal(3)
+    real(real64) :: pm(6, 6), q(6, 6)
+    call walpole_basis(normal, q)
+    pm = ti_mandel(ti_projection(c1, c2, c3), q)
+  end function projection_mandel
 
   function hard_voigt(normal) result(vv)
     real(real64), intent(in) :: normal(3)
@@ -175,9 +197,7 @@ contains
   subroutine check_gradient()
     real(real64) :: s0(6), ds(6), fp, fm, h, nd(6), g
     integer :: i
-    fr = frame_new(2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
-                   1.46_real64, 0.00013_real64, 0.73_real64, -0.20_real64, 0.40_real64, 2.0_real64, &
-                   1.3e13_real64, random_unit(3))
+    fr = woodford_hard(random_unit(3))
     s0 = [-30.0_real64, -12.0_real64, -41.0_real64, 5.0_real64, -3.0_real64, 7.0_real64]
     call flow_direction(fr, s0, 20.0_real64, f, pp, q2, nd)
     h = 1e-4_real64

@@ -1,9 +1,11 @@
 !> No floating-point exception on the first call after new PROPS (issue 11): a host that traps
 !> overflow, invalid or divide-by-zero (gfortran -ffpe-trap, feenableexcept) would die with SIGFPE.
 !> The IEEE flags are cleared before each call and read after it; none may be raised.
-!> 1. jacobi_eigen on matrices whose off-diagonal entries are tiny against the diagonal gap (the
-!>    overflow of theta^2 found by fuzzing) and on a matrix of huge entries: no flag, and the result is
-!>    an eigen-decomposition (A q_i = w_i q_i, Q^T Q = I, to round-off; an independent property).
+!> 1. The 2 x 2 Jacobi rotation of the closed-form diagonalisation (ccix_walpole's sym_eigen2) on
+!>    matrices whose off-diagonal entry is tiny against the diagonal gap (the overflow of theta^2 that
+!>    fuzzing found in the 6 x 6 Jacobi it replaced) and on a matrix of huge entries: no flag, and the
+!>    result is an eigen-decomposition (A r_i = w_i r_i, R^T R = I, to round-off; an independent
+!>    property).
 !> 2. The UMAT's first call (new PROPS, uninitialised state) for awkward but valid PROPS: isotropic
 !>    hard frames (exactly diagonal pencils), extreme modulus ratios, tiny/huge M, lambda_p, pc0, eta;
 !>    no flag, finite STRESS and DDSDDE.
@@ -12,22 +14,19 @@ program test_fp_exceptions
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_invalid, ieee_divide_by_zero, &
                                            ieee_set_flag, ieee_get_flag, ieee_flag_type
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use ccix_tensor, only: jacobi_eigen
+  use ccix_walpole, only: sym_eigen2
   use test_support, only: props_with, call_umat, check_true, finish, nstatv_test
   implicit none
   type(ieee_flag_type), parameter :: watched(3) = [ieee_overflow, ieee_invalid, ieee_divide_by_zero]
-  real(real64) :: a(3, 3), props(23)
+  real(real64) :: props(23)
   integer :: k
 
-  ! 1. Jacobi: a larger off-diagonal keeps the sweep going while another is ~1e-200 (theta ~ 1e200),
-  !    a subnormal one (the quotient alone overflows), and entries of 1e200 (squares overflow).
-  a = reshape([1.0_real64, 1.0e-3_real64, 1.0e-200_real64, &
-               1.0e-3_real64, 2.0_real64, 0.0_real64, &
-               1.0e-200_real64, 0.0_real64, 3.0_real64], [3, 3])
-  call check_jacobi('off-diagonal 1e-200 next to 1e-3', a)
-  a(1, 3) = 1.0e-310_real64; a(3, 1) = 1.0e-310_real64
-  call check_jacobi('subnormal off-diagonal', a)
-  call check_jacobi('entries of 1e200', 1.0e200_real64 * a)
+  ! 1. The 2 x 2 rotation: an off-diagonal of 1e-200 against a gap of 2 (theta ~ 1e200), a subnormal
+  !    one (the quotient alone overflows), entries of 1e200 (squares overflow), a zero gap.
+  call check_eigen2('off-diagonal 1e-200, gap 2', 1.0_real64, 1.0e-200_real64, 3.0_real64)
+  call check_eigen2('subnormal off-diagonal', 1.0_real64, 1.0e-310_real64, 3.0_real64)
+  call check_eigen2('entries of 1e200', 1.0e200_real64, 1.0e197_real64, 3.0e200_real64)
+  call check_eigen2('equal diagonal', 2.0_real64, 1.0e-3_real64, 2.0_real64)
 
   ! 2. First UMAT calls with awkward PROPS (each one new, so the material is rebuilt every time).
   call first_call('Woodford', props_with(0.5_real64, [0.0_real64, 0.0_real64, 1.0_real64]))
@@ -59,7 +58,7 @@ program test_fp_exceptions
   props(20) = 0
   props(21:23) = [0.0_real64, 1.0_real64, 1.0_real64]
   call first_call('stiffness, pc0 and eta of 1e100', props)
-  ! Three PROPS found by fuzzing (random valid PROPS) that raised overflow in jacobi_eigen.
+  ! Three PROPS found by fuzzing (random valid PROPS) that raised overflow in the 6 x 6 Jacobi of old.
   call first_call('fuzz case 1', [1.1383388249408100e-01_real64, 3.8173227214099686e-02_real64, &
     1.2692416396158089e+02_real64, 5.0102432906389618e+02_real64, 2.1792437551553643e+01_real64, &
     8.3115607795456947e+02_real64, 1.5716051648436420e+00_real64, 3.2084028900898662e-05_real64, &
@@ -101,22 +100,24 @@ contains
     if (.not. no_flags) print '(a,a,3l2)', what, ': flags overflow, invalid, divide-by-zero =', raised
   end function no_flags
 
-  subroutine check_jacobi(name, a)
+  subroutine check_eigen2(name, a11, a12, a22)
     character(len=*), intent(in) :: name
-    real(real64), intent(in) :: a(3, 3)
-    real(real64) :: w(3), q(3, 3), res, orth
+    real(real64), intent(in) :: a11, a12, a22
+    real(real64) :: a(2, 2), w(2), r(2, 2), c, s, res, orth
     integer :: i
     call clear_flags()
-    call jacobi_eigen(3, a, w, q)
-    call check_true('jacobi_eigen raises no FP flag: ' // name, no_flags(name))
+    call sym_eigen2(a11, a12, a22, w, c, s)
+    call check_true('sym_eigen2 raises no FP flag: ' // name, no_flags(name))
+    a = reshape([a11, a12, a12, a22], [2, 2])
+    r = reshape([c, -s, s, c], [2, 2])
     res = 0
-    do i = 1, 3
-      res = max(res, maxval(abs(matmul(a, q(:, i)) - w(i) * q(:, i))))
+    do i = 1, 2
+      res = max(res, maxval(abs(matmul(a, r(:, i)) - w(i) * r(:, i))))
     end do
-    orth = maxval(abs(matmul(transpose(q), q) - reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3])))
-    call check_true('A q = w q to round-off: ' // name, res <= 1.0e-14_real64 * maxval(abs(a)))
-    call check_true('Q orthonormal: ' // name, orth <= 1.0e-14_real64)
-  end subroutine check_jacobi
+    orth = maxval(abs(matmul(transpose(r), r) - reshape([1, 0, 0, 1], [2, 2])))
+    call check_true('A r = w r to round-off: ' // name, res <= 1.0e-15_real64 * maxval(abs(a)))
+    call check_true('R orthonormal: ' // name, orth <= 1.0e-15_real64)
+  end subroutine check_eigen2
 
   !> First call after new PROPS: zero state, a small compressive strain increment, dt = 1.
   subroutine first_call(name, props)

@@ -2,7 +2,7 @@
 !> arguments, assertions that count failures, and a mixed stress/strain controlled step.
 module test_support
   use, intrinsic :: iso_fortran_env, only: real64, output_unit
-  use ccix_tensor, only: lu_factor, lu_solve
+  use reference_algebra, only: lu_factor, lu_solve
   implicit none
   private
 

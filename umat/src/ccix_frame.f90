@@ -9,34 +9,35 @@
 !> How the 8 x 8 local problem of theory.md sec. 3.3 is solved. With N = H:sigma + (pc/3) P:1 linear in
 !> sigma (sec. 1.3), the strain residual R_eps = C^-1:(sigma - sigma_tr) + dgamma N = 0 gives sigma exactly
 !> for given (dgamma, pc):  (C^-1 + dgamma H) sigma = C^-1 sigma_tr - dgamma (pc/3) P:1  (the
-!> observation behind the fallback of sec. 3.4). C^-1 and H are diagonalised together once per material:
+!> observation behind the fallback of sec. 3.4). C^-1 and H are diagonalised together:
 !> V^T C^-1 V = I, V^T H V = Lambda (H is positive semi-definite, Lambda >= 0). In those coordinates,
 !> sigma = V xi with
 !>     xi_i = (a_i - dgamma (pc/3) b_i) / (1 + dgamma Lambda_i),  a = V^-1 sigma_tr,  b = V^T P:1,
 !> and f = 1/2 xi.Lambda.xi + (pc/3) b.xi (f is quadratic in sigma with Hessian H). What remains are the
 !> two scalar equations R_y = 0 and R_f = 0 of sec. 3.3 in (dgamma, y), each evaluation O(6). The
 !> consistent tangent is the same top-left block of J^-1 as in sec. 3.5, written in these coordinates.
+!>
+!> The simultaneous diagonalisation is in closed form (ccix_pencil): C, P and H are transversely
+!> isotropic about the bedding normal. Only a step that leaves the surface needs it.
 module ccix_frame
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: one6, identity6, outer6, is_finite, cholesky_lower, lower_inverse, jacobi_eigen
-  use ccix_elasticity, only: ti_stiffness_mandel
-  use ccix_projection, only: projection_mandel
+  use ccix_tensor, only: sqrt2, one6, is_finite
+  use ccix_walpole, only: ti_t, ti_mandel, ti_apply, ti_trace
+  use ccix_pencil, only: pencil_t, pencil_diagonalise, v_times, v_inv_times, v_inv_t_times
+  use ccix_elasticity, only: ti_stiffness
+  use ccix_projection, only: ti_projection
   implicit none
   private
 
-  !> Material constants of one frame, with everything derived from them that the return map needs. No
-  !> default initialisation: frame_new sets every component, and a local frame_t costs nothing per call.
+  !> Material constants of one frame, with what every step needs derived from them: the tensors as
+  !> their Walpole coefficients (applied with ccix_walpole's ti_apply, as matrices only where a tangent
+  !> needs them: frame_add_stiffness). No default initialisation: frame_new sets every component, and a
+  !> local frame_t costs nothing per call.
   type, public :: frame_t
-    real(real64) :: c(6, 6)           !< elastic stiffness (Mandel)
-    real(real64) :: p(6, 6)           !< projection tensor P (Mandel), theory.md sec. 1.2
-    real(real64) :: h(6, 6)           !< H = dN/dsigma = P:[(2/9) 1(x)1 + (3/M^2) I_dev]:P, sec. 1.3
-    real(real64) :: p1(6)             !< P:1
+    real(real64) :: n(3), mh(6)       !< bedding normal n and m = n(x)n (Mandel)
+    type(ti_t) :: cw                  !< elastic stiffness C, theory.md sec. 4.2
+    type(ti_t) :: pw                  !< projection tensor P, theory.md sec. 1.2
     real(real64) :: tr_p1             !< tr(P:1) = 3 c1 + c2 + c3
-    real(real64) :: v(6, 6)           !< V: V^T C^-1 V = I, V^T H V = diag(lambda_h)
-    real(real64) :: v_inv(6, 6)       !< V^-1 = V^T C^-1
-    real(real64) :: lambda_h(6)       !< generalised eigenvalues of (H, C^-1), >= 0
-    real(real64) :: b(6)              !< V^T P:1
-    real(real64) :: h1(6)             !< V^T H:1, so that tr N = h1.xi + (pc/3) tr(P:1)
     real(real64) :: m_slope           !< M, slope of the critical state line
     real(real64) :: lambda_p          !< plastic compressibility
     real(real64) :: pc0               !< initial preconsolidation pressure
@@ -44,6 +45,10 @@ module ccix_frame
     real(real64) :: e_ref             !< stiffness scale E_r = tr(C)/6, sec. 3.3
     real(real64) :: p_floor           !< lower bound of pc, sec. 3.6
     logical :: isotropic              !< P = I: skip the projection products
+    logical :: isotropic_pencil       !< C isotropic and P = I (the soft frame): ccix_pencil's short form
+    logical :: prepared               !< pe and c are set (frame_prepare); else derived where needed
+    type(pencil_t) :: pe              !< the pencil (H, C^-1) diagonalised, where prepared
+    real(real64) :: c(6, 6)           !< C as a Mandel matrix, where prepared
   end type frame_t
 
   !> Outcome of one frame integration.
@@ -64,48 +69,63 @@ module ccix_frame
     real(real64) :: j_yg, j_yy, j_fg, j_fy      ! d(R_y, R_f)/d(dgamma, y)
   end type local_eval_t
 
-  !> Fixed data of one step.
+  !> Fixed data of one viscoplastic step, with the pencil's eigenvectors (ccix_pencil).
   type :: step_t
+    type(pencil_t) :: pe
     real(real64) :: a(6), pc_n, sf, sg, y_floor
     logical :: floor_active
   end type step_t
 
-  public :: frame_new, yield_function, flow_direction, frame_integrate
+  public :: frame_new, frame_prepare, frame_add_stiffness, yield_function, flow_direction, frame_integrate
 
 contains
 
-  !> Build a frame from its constants and the unit bedding normal n.
-  pure recursive function frame_new(lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n) &
-      result(fr)
+  !> fr: the frame of the constants and the unit bedding normal n.
+  pure recursive subroutine frame_new(fr, lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n)
+    type(frame_t), intent(out) :: fr
     real(real64), intent(in) :: lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n(3)
-    type(frame_t) :: fr
-    real(real64) :: k(6, 6), l(6, 6), q(6, 6)
-    logical :: ok
-    fr%c = ti_stiffness_mandel(lam, mu_t, mu_l, a, b, n)
-    fr%p = projection_mandel(c1, c2, c3, n)
+    fr%n = n
+    fr%mh(1:3) = n**2
+    fr%mh(4) = sqrt2 * n(1) * n(2)
+    fr%mh(5) = sqrt2 * n(1) * n(3)
+    fr%mh(6) = sqrt2 * n(2) * n(3)
+    fr%cw = ti_stiffness(lam, mu_t, mu_l, a, b)
+    fr%pw = ti_projection(c1, c2, c3)
     fr%isotropic = (c1 == 1.0_real64 .and. c2 == 0.0_real64 .and. c3 == 0.0_real64)
-    ! K = d n'/d sigma' = (2/9) 1(x)1 + (3/M^2) I_dev ;  H = P:K:P   (theory.md sec. 1.3)
-    k = (3.0_real64 / m_slope**2) * (identity6() - outer6(one6, one6) / 3.0_real64) &
-        + (2.0_real64 / 9.0_real64) * outer6(one6, one6)
-    fr%h = matmul(fr%p, matmul(k, fr%p))
-    fr%p1 = matmul(fr%p, one6)
-    fr%tr_p1 = sum(fr%p1(1:3))
-    ! Simultaneous diagonalisation: C = L L^T, L^T H L = Q Lambda Q^T, V = L Q, V^-1 = Q^T L^-1.
-    call cholesky_lower(6, fr%c, l, ok)
-    call jacobi_eigen(6, matmul(transpose(l), matmul(fr%h, l)), fr%lambda_h, q)
-    fr%lambda_h = max(fr%lambda_h, 0.0_real64)   ! H is positive semi-definite; drop round-off
-    fr%v = matmul(l, q)
-    fr%v_inv = matmul(transpose(q), lower_inverse(6, l))
-    fr%b = matmul(transpose(fr%v), fr%p1)
-    fr%h1 = matmul(transpose(fr%v), matmul(fr%h, one6))
+    fr%isotropic_pencil = fr%isotropic .and. mu_l == mu_t .and. a == 0.0_real64 .and. b == 0.0_real64
+    fr%prepared = .false.
+    fr%tr_p1 = 3 * c1 + c2 + c3
     fr%m_slope = m_slope
     fr%lambda_p = lambda_p
     fr%pc0 = pc0
     fr%eta = eta
-    fr%e_ref = (fr%c(1, 1) + fr%c(2, 2) + fr%c(3, 3) + fr%c(4, 4) + fr%c(5, 5) + fr%c(6, 6)) / 6
+    fr%e_ref = ti_trace(fr%cw) * (1.0_real64 / 6)
     ! p_floor = max(1e-6 pc0, 1e-4) (theory.md sec. 3.6), never above 1% of pc0 for very small pc0.
     fr%p_floor = min(max(1.0e-6_real64 * pc0, 1.0e-4_real64), 1.0e-2_real64 * pc0)
-  end function frame_new
+  end subroutine frame_new
+
+  !> Derive now what fr would otherwise derive in each step that needs it (a material kept for many
+  !> calls): the pencil and C as a matrix. q is walpole_basis(fr%n).
+  pure recursive subroutine frame_prepare(fr, q)
+    type(frame_t), intent(inout) :: fr
+    real(real64), intent(in) :: q(6, 6)
+    call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, fr%pe)
+    fr%c = ti_mandel(fr%cw, q)
+    fr%prepared = .true.
+  end subroutine frame_prepare
+
+  !> d = d + w C, C the frame's stiffness (the tangent of a frame whose step is elastic); q is
+  !> walpole_basis(fr%n).
+  pure recursive subroutine frame_add_stiffness(fr, q, w, d)
+    type(frame_t), intent(in) :: fr
+    real(real64), intent(in) :: q(6, 6), w
+    real(real64), intent(inout) :: d(6, 6)
+    if (fr%prepared) then
+      d = d + w * fr%c
+    else
+      d = d + w * ti_mandel(fr%cw, q)
+    end if
+  end subroutine frame_add_stiffness
 
   !> Fictitious-stress invariants: p' = -tr(sigma')/3 and q'^2 = 3/2 s':s' (theory.md sec. 1.3).
   pure recursive subroutine invariants(fr, sig, pp, q2, s_dev)
@@ -116,7 +136,7 @@ contains
     if (fr%isotropic) then
       sp = sig
     else
-      sp = matmul(fr%p, sig)
+      call ti_apply(fr%pw, fr%n, fr%mh, sig, sp)
     end if
     pp = -(sp(1) + sp(2) + sp(3)) / 3
     s_dev = sp + pp * one6
@@ -145,7 +165,7 @@ contains
     if (fr%isotropic) then
       n_dir = n_fict
     else
-      n_dir = matmul(fr%p, n_fict)
+      call ti_apply(fr%pw, fr%n, fr%mh, n_fict, n_dir)
     end if
   end subroutine flow_direction
 
@@ -153,12 +173,14 @@ contains
   !>
   !> sig_n, pc_n: state at the start of the step; deps: strain increment; dt: time increment.
   !> Returns the stress, pc and viscoplastic strain increment at the end of the step and the
-  !> algorithmic tangent d = dsigma/deps (Mandel; only on viscoplastic steps, else it is fr%c).
+  !> algorithmic tangent d = dsigma/deps (Mandel; only on viscoplastic steps, else it is C,
+  !> frame_add_stiffness).
   !> If want_error, err_est is the local error estimate
   !> |deps_vp - dt * rate_vp(start of step)| of theory.md sec. 3.6 (zero for eta = 0).
-  pure recursive subroutine frame_integrate(fr, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
-                                  iterations, status, flags, err_est, f_end)
+  pure recursive subroutine frame_integrate(fr, q, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
+                                            iterations, status, flags, err_est, f_end)
     type(frame_t), intent(in) :: fr
+    real(real64), intent(in) :: q(6, 6)   !< walpole_basis(fr%n)
     real(real64), intent(in) :: sig_n(6), pc_n, deps(6), dt
     logical, intent(in) :: want_error
     real(real64), intent(out) :: sig(6), pc, devp(6), d(6, 6)
@@ -177,8 +199,9 @@ contains
     err_est = 0
     devp = 0
     pc = pc_n
-    ! Trial step (sec. 3.2). On elastic and failed steps d is not set: the tangent is fr%c.
-    sig_tr = sig_n + matmul(fr%c, deps)
+    ! Trial step (sec. 3.2). On elastic and failed steps d is not set: the tangent is C.
+    call ti_apply(fr%cw, fr%n, fr%mh, deps, sig_tr)
+    sig_tr = sig_n + sig_tr
     sig = sig_tr
     if (.not. is_finite(sum(sig_tr))) then
       status = frame_failed
@@ -200,7 +223,12 @@ contains
     st%sg = fr%eta * fr%e_ref / denom
     st%pc_n = pc_n
     st%y_floor = log(fr%p_floor / pc_n)
-    st%a = matmul(fr%v_inv, sig_tr)
+    if (fr%prepared) then
+      st%pe = fr%pe
+    else
+      call pencil_diagonalise(fr%cw, fr%pw, fr%m_slope, fr%isotropic_pencil, st%pe)
+    end if
+    call v_inv_times(q, st%pe, sig_tr, st%a)
     st%floor_active = .false.
 
     ! Newton from the elastic predictor (sec. 3.4); pc bounded below by the floor while iterating.
@@ -235,13 +263,14 @@ contains
     end if
 
     pc = ev%pc
-    sig = matmul(fr%v, ev%xi)
+    call v_times(q, st%pe, ev%xi, sig)
     f_end = ev%f
-    n_dir = matmul(fr%h, sig) + (pc / 3) * fr%p1          ! N = H:sigma + (pc/3) P:1, sec. 1.3
+    ! N = H:sigma + (pc/3) P:1 (sec. 1.3) from its V-coordinates: V^T N = n_xi, N = V^-T n_xi.
+    call v_inv_t_times(q, st%pe, ev%n_xi, n_dir)
     devp = g * n_dir
     if (st%floor_active) flags = ior(flags, flag_floor)
-    if (dot_product(fr%b, ev%xi) > 0) flags = ior(flags, flag_tension)   ! p' = -b.xi/3 < 0
-    d = consistent_tangent(fr, st, g, ev)
+    if (dot_product(st%pe%b, ev%xi) > 0) flags = ior(flags, flag_tension)   ! p' = -b.xi/3 < 0
+    d = consistent_tangent(q, st, g, ev)
     if (want_error) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
   end subroutine frame_integrate
 
@@ -269,19 +298,19 @@ contains
     ev%pc = st%pc_n * exp(y)
     pc3 = ev%pc / 3
     c3 = g * pc3
-    ev%d = 1 / (1 + g * fr%lambda_h)
-    ev%xi = (st%a - c3 * fr%b) * ev%d                 ! stress
-    ev%n_xi = fr%lambda_h * ev%xi + pc3 * fr%b        ! flow direction N, V^T N
-    q_terms = 0.5_real64 * dot_product(fr%lambda_h * ev%xi, ev%xi)   ! q'^2/M^2 + p'^2
-    bxi = dot_product(fr%b, ev%xi)                                    ! = -3 p'
+    ev%d = 1 / (1 + g * st%pe%lambda_h)
+    ev%xi = (st%a - c3 * st%pe%b) * ev%d                 ! stress
+    ev%n_xi = st%pe%lambda_h * ev%xi + pc3 * st%pe%b        ! flow direction N, V^T N
+    q_terms = 0.5_real64 * dot_product(st%pe%lambda_h * ev%xi, ev%xi)   ! q'^2/M^2 + p'^2
+    bxi = dot_product(st%pe%b, ev%xi)                                    ! = -3 p'
     ev%f = q_terms + pc3 * bxi
-    ev%trn = dot_product(fr%h1, ev%xi) + pc3 * fr%tr_p1
+    ev%trn = dot_product(st%pe%h1, ev%xi) + pc3 * fr%tr_p1
     ! d xi/d dgamma = -n_xi d ;  d xi/dy = -c3 b d ;  d f/d xi = n_xi ;  d f/d pc = bxi/3
     nd = ev%n_xi * ev%d
     f_g = -dot_product(ev%n_xi, nd)
-    f_y = -c3 * dot_product(fr%b, nd) + pc3 * bxi
-    trn_g = -dot_product(fr%h1, nd)
-    trn_y = -c3 * dot_product(fr%h1, fr%b * ev%d) + pc3 * fr%tr_p1
+    f_y = -c3 * dot_product(st%pe%b, nd) + pc3 * bxi
+    trn_g = -dot_product(st%pe%h1, nd)
+    trn_y = -c3 * dot_product(st%pe%h1, st%pe%b * ev%d) + pc3 * fr%tr_p1
     if (st%floor_active) then
       ! pc held at the floor: R_y = lambda_p (y - y_floor)
       ev%r_y = fr%lambda_p * (y - st%y_floor)
@@ -321,13 +350,16 @@ contains
     ! Newton's dgamma-update is applied to z = 1/(1 + dgamma lam_ref) in (0, 1]: far outside the
     ! surface f falls like (1 + dgamma lam)^-2, on which plain Newton from dgamma = 0 gains only a
     ! factor 1.5 per iteration, while f is close to quadratic in z. Same root, same Jacobian.
-    lam_ref = max(maxval(fr%lambda_h), tiny(1.0_real64))
+    lam_ref = max(maxval(st%pe%lambda_h), tiny(1.0_real64))
     converged = .false.
     ok = .false.
     iterations = 0
     do it = 1, max_newton + 1
       ev = local_eval(fr, st, g, y)
-      if (.not. is_finite(ev%err + ev%j_yg + ev%j_yy + ev%j_fg + ev%j_fy)) return
+      ! is_finite of the sum, written inline in this loop (NaN compares false): a call to the public
+      ! function is not inlined under -fPIC and cost about 2 % of a viscoplastic call (measured).
+      z = ev%err + ev%j_yg + ev%j_yy + ev%j_fg + ev%j_fy
+      if (.not. (abs(z) <= huge(z))) return
       if (converged) then
         ok = ev%err <= 1.0e3_real64 * newton_tol
         return
@@ -353,34 +385,39 @@ contains
   !>   D = V diag(d) V^T - u_n (x) dg/deps - (dgamma pc/3) u_b (x) dy/deps,
   !> with u_n = V (n_xi d), u_b = V (b d), and (dg, dy)/deps from the 2 x 2 Jacobian G of (R_y, R_f):
   !>   G (dg, dy)/deps = -(dgamma u_h, sf u_n),  u_h = V (h1 d)  (u_h absent when pc is at the floor).
-  pure recursive function consistent_tangent(fr, st, g, ev) result(d)
-    type(frame_t), intent(in) :: fr
+  pure recursive function consistent_tangent(q, st, g, ev) result(d)
+    real(real64), intent(in) :: q(6, 6)
     type(step_t), intent(in) :: st
     real(real64), intent(in) :: g
     type(local_eval_t), intent(in) :: ev
-    real(real64) :: d(6, 6), u_n(6), u_b(6), u_h(6), ry_e(6), rf_e(6), dg_e(6), dy_e(6), det, c3, vd(6)
+    real(real64) :: d(6, 6), u_n(6), u_b(6), u_h(6), ry_e(6), rf_e(6), dg_e(6), dy_e(6), det, c3
+    real(real64) :: m11, m12, m22, y1(6), y2(6), mk(6)
     integer :: j, k
-    u_n = matmul(fr%v, ev%n_xi * ev%d)
-    u_b = matmul(fr%v, fr%b * ev%d)
+    call v_times(q, st%pe, ev%n_xi * ev%d, u_n)
+    call v_times(q, st%pe, st%pe%b * ev%d, u_b)
     c3 = g * ev%pc / 3
     if (st%floor_active) then
       ry_e = 0
     else
-      u_h = matmul(fr%v, fr%h1 * ev%d)
+      call v_times(q, st%pe, st%pe%h1 * ev%d, u_h)
       ry_e = g * u_h
     end if
     rf_e = st%sf * u_n
     det = ev%j_yg * ev%j_fy - ev%j_yy * ev%j_fg
     dg_e = -(ev%j_fy * ry_e - ev%j_yy * rf_e) / det
     dy_e = -(ev%j_yg * rf_e - ev%j_fg * ry_e) / det
-    ! D = sum_k d_k V(:,k) V(:,k)^T - u_n dg_e^T - c3 u_b dy_e^T, column by column (contiguous).
+    ! V diag(d) V^T = Q M Q^T with M = B diag(d) B^T = diag(W diag(d1, d2) W^T, r_k^2 d_k):
+    ! D = q1 y1^T + q2 y2^T + sum_k>2 mk q_k q_k^T - u_n dg_e^T - c3 u_b dy_e^T, column by column.
+    m11 = st%pe%w(1, 1)**2 * ev%d(1) + st%pe%w(1, 2)**2 * ev%d(2)
+    m12 = st%pe%w(1, 1) * st%pe%w(2, 1) * ev%d(1) + st%pe%w(1, 2) * st%pe%w(2, 2) * ev%d(2)
+    m22 = st%pe%w(2, 1)**2 * ev%d(1) + st%pe%w(2, 2)**2 * ev%d(2)
+    y1 = m11 * q(:, 1) + m12 * q(:, 2)
+    y2 = m12 * q(:, 1) + m22 * q(:, 2)
+    mk = st%pe%r**2 * ev%d
     do j = 1, 6
-      d(:, j) = -u_n * dg_e(j) - c3 * u_b * dy_e(j)
-    end do
-    do k = 1, 6
-      vd = fr%v(:, k) * ev%d(k)
-      do j = 1, 6
-        d(:, j) = d(:, j) + vd * fr%v(j, k)
+      d(:, j) = -u_n * dg_e(j) - c3 * u_b * dy_e(j) + q(:, 1) * y1(j) + q(:, 2) * y2(j)
+      do k = 3, 6
+        d(:, j) = d(:, j) + (mk(k) * q(j, k)) * q(:, k)
       end do
     end do
   end function consistent_tangent

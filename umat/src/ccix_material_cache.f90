@@ -1,8 +1,9 @@
 !> The checked material of a PROPS vector, for one UMAT call.
 !>
-!> Deriving the two frames from PROPS (stiffness, projection tensor, their simultaneous
-!> diagonalisation: theory.md sec. 3.3) costs about four viscoplastic steps (docs/performance.md,
-!> "UMAT: time per call"). Two builds of this one source therefore differ, and only in speed:
+!> Deriving the material from PROPS is cheap but not free: the checks, the bedding normal and Walpole's
+!> basis of it, the Walpole coefficients of both frames (ccix_walpole); the pencil of a frame that
+!> yields is diagonalised in its step (ccix_pencil). docs/performance.md ("UMAT: time per call")
+!> measures it. Two builds of this one source therefore differ, and only in speed:
 !>
 !> - The single-file UMATs that hosts compile themselves (camclay9_umat.f90, camclay9_umat_abaqus.for)
 !>   are written by the build without the lines that start with the OpenMP sentinel "!$": they keep no
@@ -14,13 +15,16 @@
 !>   threadprivate variable, which gfortran places in thread-local storage (one copy per thread,
 !>   whatever created the thread; no OpenMP runtime call is made). The key is the whole PROPS vector
 !>   and the sizes; PROPS(1) (phi, which a host may vary per element) does not enter the frames, so a
-!>   change of phi alone rebuilds only the mixture (material_set_phi).
+!>   change of phi alone keeps them. The kept material is also prepared (material_prepare: both frames'
+!>   pencils and stiffness matrices, Cbar's DDSDDE), which a file derives on demand. Without the cache
+!>   the library would take 13-16 % more per viscoplastic and half again per elastic call
+!>   (docs/performance.md), so it stays.
 !>
 !> Both give the same material bit for bit: the same routines compute it from the same PROPS.
 module ccix_material_cache
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_props, only: check_props, frames_from_props, message_len, nprops_normal, ip_phi
-  use ccix_mixture, only: material_t, material_set_phi, hard, soft
+  use ccix_mixture, only: material_t, material_prepare, hard, soft
   implicit none
   private
 
@@ -63,8 +67,11 @@ contains
 !$  cache%valid = .false.
     call check_props(props, nprops, nstatv, ntens, ndi, code, message)
     if (code /= 0) return
-    if (.not. keep_frames) call frames_from_props(props, nprops, mat%frames(hard), mat%frames(soft))
-    call material_set_phi(mat, props(ip_phi))
+    if (.not. keep_frames) call frames_from_props(props, nprops, mat%frames(hard), mat%frames(soft), &
+                                                  mat%q)
+    mat%phi = props(ip_phi)
+    mat%have_ddsdde = .false.
+!$  call material_prepare(mat)
 !$  cache%valid = .true.
 !$  cache%nprops = nprops; cache%ntens = ntens; cache%ndi = ndi; cache%nstatv = nstatv
 !$  cache%props = 0

@@ -3,6 +3,7 @@
 module ccix_props
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_tensor, only: is_finite
+  use ccix_walpole, only: walpole_basis
   use ccix_frame, only: frame_t, frame_new
   implicit none
   private
@@ -27,26 +28,38 @@ contains
   pure recursive function bedding_normal(props, nprops) result(n)
     integer, intent(in) :: nprops
     real(real64), intent(in) :: props(nprops)
-    real(real64) :: n(3)
+    real(real64) :: n(3), s
     if (nprops >= nprops_normal) then
-      n = props(ip_normal:ip_normal + 2) / norm2(props(ip_normal:ip_normal + 2))
+      n = props(ip_normal:ip_normal + 2)
+      s = n(1)**2 + n(2)**2 + n(3)**2
+      if (.not. (s > 1.0e-300_real64 .and. s < 1.0e300_real64)) then
+        ! the squares could underflow or overflow: scaled by the largest component first
+        n = n * (1 / maxval(abs(n)))
+        s = n(1)**2 + n(2)**2 + n(3)**2
+      end if
+      n = n * (1 / sqrt(s))
     else
       n = [0.0_real64, 0.0_real64, 1.0_real64]
     end if
   end function bedding_normal
 
-  !> The hard (transversely isotropic) and soft (isotropic) frames of PROPS. Call check_props first.
-  pure recursive subroutine frames_from_props(props, nprops, hard, soft)
+  !> The hard (transversely isotropic) and soft (isotropic) frames of PROPS, and q, Walpole's basis of
+  !> their bedding normal (ccix_walpole), which serves both: the soft frame is isotropic. Call
+  !> check_props first.
+  pure recursive subroutine frames_from_props(props, nprops, hard, soft, q)
     integer, intent(in) :: nprops
     real(real64), intent(in) :: props(nprops)
     type(frame_t), intent(out) :: hard, soft
+    real(real64), intent(out) :: q(6, 6)
     real(real64) :: n(3)
     associate (h => props(ip_hard:ip_hard + 11), s => props(ip_soft:ip_soft + 5))
       n = bedding_normal(props, nprops)
-      !               lambda mu_T  mu_L  a     b     M     lambda_p c1    c2    c3     pc0    eta
-      hard = frame_new(h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8), h(9), h(10), h(11), h(12), n)
-      soft = frame_new(s(1), s(2), s(2), 0.0_real64, 0.0_real64, s(3), s(4), &
-                       1.0_real64, 0.0_real64, 0.0_real64, s(5), s(6), n)
+      call walpole_basis(n, q)
+      !                    lambda mu_T  mu_L  a     b     M     lambda_p c1    c2    c3     pc0    eta
+      call frame_new(hard, h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8), h(9), h(10), h(11), h(12), &
+                     n)
+      call frame_new(soft, s(1), s(2), s(2), 0.0_real64, 0.0_real64, s(3), s(4), &
+                     1.0_real64, 0.0_real64, 0.0_real64, s(5), s(6), n)
     end associate
   end subroutine frames_from_props
 
@@ -58,8 +71,9 @@ contains
     real(real64), intent(in) :: props(*)
     integer, intent(out) :: code
     character(len=message_len), intent(out) :: message
-    real(real64) :: lam, mu_t, mu_l, a, b, c33, nrm
-    integer :: i
+    real(real64) :: lam, mu_t, mu_l, a, b, c33, n3(3)
+    integer :: i, n
+    logical :: finite
 
     code = 0
     message = ''
@@ -89,10 +103,18 @@ contains
         'Cam-Clay IX UMAT: NTENS = ', ntens, ': expected 6 (3D) or 4 (plane strain, axisymmetric)'
       return
     end if
-    do i = 1, min(nprops, nprops_normal)
-      call require(code, message, props, is_finite(props(i)), i, 'a finite number')
+    ! All finite (NaN compares false), in one pass without branches; the slot only when one is not.
+    n = min(nprops, nprops_normal)
+    finite = .true.
+    do i = 1, n
+      finite = finite .and. abs(props(i)) <= huge(1.0_real64)
     end do
-    if (code /= 0) return
+    if (.not. finite) then
+      do i = 1, n
+        call require(code, message, props, is_finite(props(i)), i, 'a finite number')
+      end do
+      return
+    end if
 
     ! Each check acts only while no earlier one has failed, so the first offending slot is reported.
     call require(code, message, props, props(ip_phi) >= 0 .and. props(ip_phi) <= 1, ip_phi, &
@@ -138,12 +160,14 @@ contains
                  'tol >= 0 (0: no step control)')
     if (code /= 0) return
     if (nprops >= nprops_normal) then
-      nrm = norm2(props(ip_normal:ip_normal + 2))
-      call require(code, message, props, nrm > 0, ip_normal, &
+      call require(code, message, props, any(props(ip_normal:ip_normal + 2) /= 0), ip_normal, &
                    'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
-      call require(code, message, props, &
-                   ntens /= 4 .or. abs(props(ip_normal + 2)) <= 1.0e-12_real64 * nrm, ip_normal + 2, &
-                   'n3 = 0: with NTENS = 4 ' // 'the bedding normal must lie in the 1-2 plane')
+      if (code /= 0) return
+      if (ntens == 4) then
+        n3 = bedding_normal(props, nprops)
+        call require(code, message, props, abs(n3(3)) <= 1.0e-12_real64, ip_normal + 2, &
+                     'n3 = 0: with NTENS = 4 ' // 'the bedding normal must lie in the 1-2 plane')
+      end if
     else if (ntens == 4 .and. props(ip_phi) > 0) then
       ! (With phi = 0 the hard frame is not used and its normal does not matter.)
       code = ip_normal

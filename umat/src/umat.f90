@@ -21,7 +21,7 @@ recursive subroutine umat( &
                         is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
                         is_f_hard, is_f_soft, nstatv_diag, nstatv_min, message_len
   use ccix_frame, only: flag_floor, flag_tension, flag_fallback
-  use ccix_mixture, only: material_t, step_info_t, mixture_integrate, hard, soft
+  use ccix_mixture, only: material_t, step_info_t, mixture_integrate, material_ddsdde, hard, soft
   use ccix_material_cache, only: material_for
   use ccix_host, only: host_warning, host_stop
   implicit none
@@ -68,7 +68,7 @@ recursive subroutine umat( &
   ! stored state (docs/umat.md "Rejected calls").
   if (bad_arguments()) then
     call suggest_step(pnewdt, cutback)
-    ddsdde = mat%cbar_abaqus(1:ntens, 1:ntens)
+    call material_ddsdde(mat, ntens, ddsdde)
     return
   end if
 
@@ -107,7 +107,7 @@ recursive subroutine umat( &
   if (info%failed) then
     ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
     call suggest_step(pnewdt, cutback)
-    ddsdde = mat%cbar_abaqus(1:ntens, 1:ntens)
+    call material_ddsdde(mat, ntens, ddsdde)
     return
   end if
   ! Step control on the viscoplastic strain increment (PROPS(20) = tol > 0, theory.md sec. 3.6).
@@ -115,7 +115,7 @@ recursive subroutine umat( &
     ratio = info%err_est / tol
     if (ratio > 1) then
       call suggest_step(pnewdt, max(cutback, 0.8_real64 / sqrt(ratio)))
-      call tangent_to_abaqus(d, ntens, ddsdde)
+      call tangent()
       return
     end if
     if (ratio > 0) then
@@ -137,11 +137,7 @@ recursive subroutine umat( &
 
   sig_full = mandel_to_stress(sig)
   stress = sig_full(1:ntens)
-  if (info%viscoplastic) then
-    call tangent_to_abaqus(d, ntens, ddsdde)
-  else
-    ddsdde = mat%cbar_abaqus(1:ntens, 1:ntens)
-  end if
+  call tangent()
   do k = hard, soft
     sv(sig_slot(k):sig_slot(k) + 5) = sig_frames(:, k) / mandel_w
   end do
@@ -169,6 +165,15 @@ recursive subroutine umat( &
   end if
 
 contains
+
+  !> DDSDDE: the consistent tangent if a frame flowed, else Cbar.
+  recursive subroutine tangent()
+    if (info%viscoplastic) then
+      call tangent_to_abaqus(d, ntens, ddsdde)
+    else
+      call material_ddsdde(mat, ntens, ddsdde)
+    end if
+  end subroutine tangent
 
   !> True, with one line to the host (host_warning) naming the argument, its value and what was
   !> expected, when DTIME is negative or not finite, or the stored state is not usable: a slot 1-32 not
