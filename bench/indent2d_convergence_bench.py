@@ -65,16 +65,22 @@ LADDERS = {
     "lr2r": ("loading rate, P2, h_tip 0.02", "lr", 2, "r_fine", 0.02, [0.4, 0.6, 0.9]),
     "lr1r": ("loading rate, P1, h_tip 0.02", "lr", 1, "r_fine", 0.02, [0.4, 0.6, 0.9]),
     "lr1old": ("loading rate, P1, r_fine 0.4 (as shipped)", "lr", 1, "h_tip", 0.4, [0.02, 0.01, 0.005]),
-    "bed2": ("bedding 45°, P2, r_fine 10", "bed", 2, "h_tip", 0.4, H_LR[:5]),
+    "lr2f": ("loading rate, P2, r_fine 0.9", "lr", 2, "h_tip", 0.9, [0.04, 0.04 / R2, 0.02, 0.02 / R2]),
+    "lr2n": ("loading rate, P2, r_fine 0.9, other meshes near h_tip 0.02 (mesh noise)", "lr", 2, "h_tip", 0.9, [0.0206, 0.0194]),
+    "lr2t": ("loading rate, P2, h_tip 0.02, r_fine 0.9, time-step tol", "lr", 2, "tol", (0.02, 0.9), [5e-3]),
+    "bed2": ("bedding 45°, P2, r_fine 10", "bed", 2, "h_tip", 0.4, H_LR[:6]),
     "bed1": ("bedding 45°, P1, r_fine 10", "bed", 1, "h_tip", 0.4, H_LR[:6]),
     "bed2r": ("bedding 45°, P2, h_tip 0.5", "bed", 2, "r_fine", 0.02, [0.24, 0.4, 0.6]),
 }
 
 
-def scene_text(skey, order, h_tip, r_fine, far=FAR):
-    """The scene as shipped with this mesh, fields at the stages' ends only, and the unload stage."""
+def scene_text(skey, order, h_tip, r_fine, tol=None, far=FAR):
+    """The scene as shipped with this mesh, fields at the stages' ends only, and the unload stage; tol: the load and
+    hold stages' output error tolerance (shipped 1.5e-2)."""
     name, scale, _ = SCENES[skey]
     t = absolute((ROOT / "input" / f"{name}.yaml").read_text())
+    if tol:
+        t = t.replace("measure: output, tol: 1.5e-2}", f"measure: output, tol: {tol:g}}}")
     t = re.sub(r"h_tip: [0-9.e-]+", f"h_tip: {h_tip:.6g}", t, count=1)
     t = re.sub(r"h_far: [0-9.e-]+", f"h_far: {far * h_tip:.6g}", t, count=1)
     t = re.sub(r"r_fine: [0-9.e-]+", f"r_fine: {r_fine:.6g}", t, count=1)
@@ -84,14 +90,17 @@ def scene_text(skey, order, h_tip, r_fine, far=FAR):
 
 
 def rungs(ladder):
-    """[(scene, order, h_tip, r_fine)] of a ladder, in the scene's own units."""
+    """[(scene, order, h_tip, r_fine, tol)] of a ladder, in the scene's own units (tol None: as shipped)."""
     _, skey, order, vary, fixed, values = LADDERS[ladder]
     s = SCENES[skey][1]
-    return [(skey, order, v * s, fixed * s) if vary == "h_tip" else (skey, order, fixed * s, v * s) for v in values]
+    if vary == "tol":
+        return [(skey, order, fixed[0] * s, fixed[1] * s, v) for v in values]
+    return [(skey, order, v * s, fixed * s, None) if vary == "h_tip" else (skey, order, fixed * s, v * s, None)
+            for v in values]
 
 
-def key(skey, order, h_tip, r_fine):
-    return f"{skey}:P{order}:h{h_tip:.4g}:r{r_fine:.4g}"
+def key(skey, order, h_tip, r_fine, tol=None):
+    return f"{skey}:P{order}:h{h_tip:.4g}:r{r_fine:.4g}" + (f"@{tol:g}" if tol else "")
 
 
 def umat_time_per_call():
@@ -127,15 +136,15 @@ def field_numbers(out, region):
                     checker=checkerboard(F, s1, near), vol=float(np.sum(A * np.abs(trace(e))) / np.sum(A * dev_norm(e, True))))
 
 
-def run_rung(skey, order, h_tip, r_fine, tmp, t_call):
-    out = Path(tmp) / key(skey, order, h_tip, r_fine).replace(":", "_")
-    r = run(scene_text(skey, order, h_tip, r_fine), out)
+def run_rung(skey, order, h_tip, r_fine, tol, tmp, t_call):
+    out = Path(tmp) / key(skey, order, h_tip, r_fine, tol).replace(":", "_")
+    r = run(scene_text(skey, order, h_tip, r_fine, tol), out)
     h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
     o = r.pop("o")
     r["o"] = dict(h_max=o["depth at end of loading"], creep=o["creep depth"], h_res=o["residual depth"],
                   **field_numbers(out, SCENES[skey][2]))
     r["checker"], r["vol"] = r["o"].pop("checker"), r["o"].pop("vol")
-    r.update(scene=skey, order=order, h_tip=h_tip, r_fine=r_fine, h_far=FAR * h_tip, umat_calls=int(h["umat_calls"][-1]),
+    r.update(scene=skey, order=order, h_tip=h_tip, r_fine=r_fine, tol=tol, h_far=FAR * h_tip, umat_calls=int(h["umat_calls"][-1]),
              t_call=t_call[0], t_call_min=t_call[1])
     return r
 
@@ -254,7 +263,7 @@ def main(argv=None):
     path.parent.mkdir(parents=True, exist_ok=True)
     res = load(path)
     if a.quick:
-        todo = [("lr", 1, 0.04, 0.4), ("lr", 1, 0.04 / R2, 0.4), ("bed", 1, 1.0, 10.0)]
+        todo = [("lr", 1, 0.04, 0.4, None), ("lr", 1, 0.04 / R2, 0.4, None), ("bed", 1, 1.0, 10.0, None)]
     else:
         todo = []
         for lad in a.ladders.split(","):
@@ -273,7 +282,7 @@ def main(argv=None):
                 r = run_rung(*g, tmp, t_call)
             except RuntimeError as e:
                 why = [ln for ln in str(e).splitlines() if ln.startswith("driver:")]
-                res[k] = dict(scene=g[0], order=g[1], h_tip=g[2], r_fine=g[3], failed=why[-1] if why else str(e)[-300:])
+                res[k] = dict(scene=g[0], order=g[1], h_tip=g[2], r_fine=g[3], tol=g[4], failed=why[-1] if why else str(e)[-300:])
                 path.write_text(json.dumps(res, indent=1))
                 print(f"{k}: failed: {res[k]['failed']}", flush=True)
                 continue
