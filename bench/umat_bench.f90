@@ -1,8 +1,10 @@
 !> Time per UMAT call (benchmark, not a test): elastic, viscoplastic (both frames) and rate-independent
 !> steps, 3D (NTENS 6) and plane strain (NTENS 4). Each case cycles through 64 slightly different
 !> strain increments from one start state, so the local iteration counts vary as in a real mesh.
-!> Prints one Markdown table row per case: median ns per call over the repetitions, the spread, and
-!> the median local Newton iterations.
+!> Prints one Markdown table row per case: median CPU ns per call over the repetitions (cpu_time:
+!> the process's CPU time, which other jobs on a shared machine disturb less than wall time), the
+!> spread, and the median local Newton iterations. Linked with the library or with the single-file UMAT
+!> compiled as a host compiles it (bench/run_umat_bench.sh).
 !> Usage: umat_bench [calls_per_repetition] [repetitions] [elastic|vp|ri]
 !>        umat_bench <calls> 1 fuzz [results_file]: the distribution of single-call times over random
 !>        (seeded, reproducible) materials, states, strain increments and time steps, the kind of input
@@ -51,12 +53,12 @@ contains
     character(len=*), intent(in) :: name, kind
     integer, intent(in) :: ntens
     real(real64) :: props(23), stress0(ntens), statev0(nstatv), stress(ntens), statev(nstatv)
-    real(real64) :: dstran(ntens, nvar), ddsdde(ntens, ntens), pnewdt, dtime, u(6), times(nrep), th
+    real(real64) :: dstran(ntens, nvar), ddsdde(ntens, ntens), pnewdt, dtime, u(6), times(nrep), th, &
+                    c0, c1
     real(real64), parameter :: base(6) = [-1.0_real64, -1.0_real64, -3.0_real64, 0.0_real64, 0.0_real64, 0.0_real64]
     real(real64) :: iters(nvar), sse, spd, scd, rpl, ddsddt(ntens), drplde(ntens), drpldt, stran(ntens), &
                     time(2), temp, dtemp, predef(1), dpred(1), coords(3), drot(3, 3), celent, f0(3, 3), f1(3, 3)
     integer :: i, k, r, jstep(4)
-    integer(int64) :: t0, t1, rate
     character(len=80) :: cmname
     external :: umat
 
@@ -100,7 +102,7 @@ contains
       iters(k) = statev(33)
     end do
     do r = 1, nrep
-      call system_clock(t0, rate)
+      call cpu_time(c0)
       do i = 1, ncalls
         k = 1 + mod(i, nvar)
         stress = stress0; statev = statev0
@@ -108,8 +110,8 @@ contains
                   time, dtime, temp, dtemp, predef, dpred, cmname, 3, ntens - 3, ntens, nstatv, props, 23, &
                   coords, drot, pnewdt, celent, f0, f1, 1, 1, 1, 1, jstep, 1)
       end do
-      call system_clock(t1)
-      times(r) = real(t1 - t0, real64) / rate / ncalls * 1e9_real64
+      call cpu_time(c1)
+      times(r) = (c1 - c0) / ncalls * 1e9_real64
     end do
     write (output_unit, '(a,a,a,i0,a,f9.1,a,f9.1,a,f9.1,a,f5.1,a)') '| ', name, ' | ', ntens, ' | ', median(times), &
       ' | ', minval(times), ' - ', maxval(times), ' | ', median(iters), ' |'

@@ -1,19 +1,25 @@
 """Reader of the FE driver's field output, fields.h5 (driver/src/fe/fe_output.c; docs/driver.md, "Output"):
 
   /time                      (nout, 1)   output times [s]
-  /mesh/coordinates          (nverts, dim)
-  /mesh/cells                (ncells, dim + 1)   vertex numbers of each simplex
-  /fields/displacement/<k>   (nverts, 3)  at output k (six digits); 2D padded with 0; P2: vertex values
-  /fields/<name>/<k>         (ncells, 6) or (ncells,)  cell averages over the quadrature points of stress,
-                             strain, evp_hard, evp_soft, evp (Voigt 11 22 33 12 13 23, strains with
-                             engineering shear; in 2D 33 is the out-of-plane or hoop component), pc_hard,
-                             pc_soft, phi
+  /mesh/coordinates          (nnodes, dim)       the vertices, then (P2) the edge midpoints
+  /mesh/cells                (ncells, n)         node numbers of each simplex: its dim + 1 vertices, then (P2)
+                                                 its mid-side nodes (VTK's quadratic order)
+  /fields/displacement/<k>   (nnodes, 3)  at output k (six digits); 2D padded with 0
+  /fields/<name>/<k>         (ncells, 9) or (ncells,)  cell averages over the quadrature points of stress,
+                             strain, evp_hard, evp_soft, evp (full 3x3 tensors, read through post/fields.py),
+                             pc_hard, pc_soft, phi
 
+Cell fields come back in the UMAT's Voigt order 11 22 33 12 13 23, strains with engineering shear (in 2D 33 is
+the out-of-plane or hoop component); `cells` are the vertices of each cell (the corners of P2 cells).
 Errors are SystemExit messages that name the file and the dataset.
 """
+import sys
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fields import STRAINS, tensor6, voigt  # noqa: E402
 
 
 class _Outputs:
@@ -25,7 +31,7 @@ class _Outputs:
     def __getitem__(self, k):
         k = int(k) % self.F.times.size
         ds = self.F.dataset(f"/fields/{self.name}/{k:06d}")
-        return ds[:, :self.ncols] if self.ncols else ds[()]
+        return ds[:, :self.ncols] if self.ncols else tensor6(self.F.f, self.name, k)
 
 
 class Fields:
@@ -45,12 +51,14 @@ class Fields:
         if self.times.size == 0:
             raise SystemExit(f"{self.h5path}: /time is empty (no output was written)")
         self.x = self.dataset("/mesh/coordinates")[()]
-        self.cells = self.dataset("/mesh/cells")[()].astype(np.int64)
+        nodes = self.dataset("/mesh/cells")[()].astype(np.int64)
         nv, self.dim = self.x.shape
-        if self.cells.ndim != 2 or self.cells.shape[1] != self.dim + 1 or self.cells.min() < 0 or self.cells.max() >= nv:
-            raise SystemExit(f"{self.h5path}: /mesh/cells has shape {self.cells.shape} and vertex numbers "
-                             f"{self.cells.min()}..{self.cells.max()}: expected simplices (n x {self.dim + 1}) "
-                             f"of the {nv} vertices")
+        if nodes.ndim != 2 or nodes.shape[1] not in ((4, 10) if self.dim == 3 else (3, 6)) or nodes.min() < 0 \
+                or nodes.max() >= nv:
+            raise SystemExit(f"{self.h5path}: /mesh/cells has shape {nodes.shape} and node numbers "
+                             f"{nodes.min()}..{nodes.max()}: expected simplices (n x {self.dim + 1}, or with their "
+                             f"mid-side nodes) of the {nv} nodes")
+        self.cells = nodes[:, :self.dim + 1]                  # the corners (a P2 cell's mid-side nodes follow)
         self.u = _Outputs(self, "displacement", self.dim)     # stored with 3 components, 2D padded with 0
         for k in (0, self.times.size - 1):
             if self.u[k].shape != (nv, self.dim):
@@ -92,7 +100,8 @@ class Fields:
     def cell_history(self, name, c):
         """Field `name` of cell c at every output: (ntimes, 6) or (ntimes,)."""
         self.cell_outputs(name)
-        return np.array([self.f[f"/fields/{name}/{k:06d}"][c] for k in range(self.times.size)])
+        rows = np.array([self.f[f"/fields/{name}/{k:06d}"][c] for k in range(self.times.size)])
+        return voigt(rows, name in STRAINS) if rows.ndim == 2 and rows.shape[1] == 9 else rows
 
     def nearest(self, t, lo=-np.inf, hi=np.inf):
         """Index of the output nearest to time t among the outputs in [lo, hi] (a tolerance included)."""

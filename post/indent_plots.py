@@ -34,12 +34,12 @@ Input, written by the driver into RUN:
                contact_force,max_penetration,min_lambda,umat_calls,wall
                (stage: 0-based index; stage_name e.g. load/hold/unload; load P in uN, per unit thickness
                in plane strain; depth h in um; time in s). Only the columns a subcommand uses are required.
-  fields.h5    written by driver/src/fe/fe_output.c (docs/driver.md, "Output"): /time (ntimes, 1),
-               /mesh/coordinates (nverts x dim), /mesh/cells (ncells x dim+1), per output k (six digits)
-               /fields/displacement/<k> (nverts x 3; P2: the vertex values) and /fields/<name>/<k>
-               (ncells x 6, or ncells: averages over a cell's quadrature points) for stress, strain,
-               evp_hard, evp_soft, evp, pc_hard, pc_soft, phi; components 11 22 33 12 13 23, strains
-               with engineering shear.
+  fields.h5    written by driver/src/fe/fe_output.c (docs/driver.md, "Fields"): /time (ntimes, 1),
+               /mesh/coordinates (nnodes x dim), /mesh/cells (ncells x dim+1, P2 with the mid-side nodes
+               after the corners), per output k (six digits) /fields/displacement/<k> (nnodes x 3) and
+               /fields/<name>/<k> (averages over a cell's quadrature points) for stress, strain, evp_hard,
+               evp_soft, evp (full 3x3 tensors, ncells x 9), pc_hard, pc_soft, phi (ncells); read through
+               post/fields.py, which gives the tensors as 11 22 33 12 13 23, strains with engineering shear.
 
 Colour scales of the maps (fields) are robust: they span the --clip .. 100 - --clip percentiles of the
 cells in view (default 1-99 %), so the few singular cells at the tip do not wash the map out; the colour

@@ -1,6 +1,6 @@
 """One material point driven through CalculiX's increments, and readers of what CalculiX wrote.
 
-The point calls the project's UMAT (build/umat/libcamclay9.so, through ctypes) with the bedding normal
+The point calls the project's UMAT (libcamclay9.so of the build, through ctypes) with the bedding normal
 in PROPS 21-23 and the global frame, where CalculiX instead passes the material frame of its
 *ORIENTATION and 20 constants. Both sides are then compared per increment (test_calculix.py).
 """
@@ -14,9 +14,30 @@ c_dbl_p = ctypes.POINTER(ctypes.c_double)
 VOIGT = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]   # Abaqus order 11, 22, 33, 12, 13, 23
 
 
-def load_umat(build):
-    lib = ctypes.CDLL(os.path.join(build, "umat", "libcamclay9.so"))
-    return lib.umat_
+def _built(env, names, what):
+    """The file named by the environment variable env (set by CTest), else the first of names (relative to
+    CAMCLAY9_BUILD, by default build/, then build-umat/) that exists; an error naming them otherwise."""
+    if os.environ.get(env):
+        return os.environ[env]
+    repo = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+    builds = [os.environ["CAMCLAY9_BUILD"]] if os.environ.get("CAMCLAY9_BUILD") else \
+        [os.path.join(repo, "build"), os.path.join(repo, "build-umat")]
+    tried = [os.path.join(b, n) for b in builds for n in names]
+    for path in tried:
+        if os.path.exists(path):
+            return path
+    raise FileNotFoundError(f"{what} not found (set {env}, or build the project): tried " + ", ".join(tried))
+
+
+def umat_object():
+    """camclay9_umat.o of the full build (build/umat/) or of a UMAT-only build (build-umat/)."""
+    return _built("CAMCLAY9_UMAT_OBJECT", ["umat/camclay9_umat.o", "camclay9_umat.o"], "camclay9_umat.o")
+
+
+def load_umat(build=None):
+    """umat_ of libcamclay9.so (CAMCLAY9_UMAT_LIBRARY, or found like umat_object)."""
+    path = _built("CAMCLAY9_UMAT_LIBRARY", ["umat/libcamclay9.so", "libcamclay9.so"], "libcamclay9.so")
+    return ctypes.CDLL(path).umat_
 
 
 def _d(a):

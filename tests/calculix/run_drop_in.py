@@ -9,17 +9,18 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-BUILD = os.path.abspath(os.environ.get("CAMCLAY9_BUILD", os.path.join(REPO, "build")))
+sys.path.insert(0, HERE)
+from replay import umat_object  # noqa: E402  (CAMCLAY9_UMAT_OBJECT, or found in the build folder)
 
-r = subprocess.run(["bash", os.path.join(REPO, "tools", "calculix", "build_ccx.sh"),
-                    os.path.join(BUILD, "umat", "camclay9_umat.o")], capture_output=True, text=True)
+r = subprocess.run(["bash", os.path.join(REPO, "tools", "calculix", "build_ccx.sh"), umat_object()],
+                   capture_output=True, text=True)
 if r.returncode == 77:
     print("calculix.drop_in skipped: " + (r.stderr.strip().splitlines() or ["build_ccx.sh exit 77"])[-1])
     sys.exit(77)
 if r.returncode != 0:
     print(f"calculix.drop_in: build_ccx.sh failed (exit {r.returncode}):\n{r.stderr}")
     sys.exit(1)
-env = dict(os.environ, CAMCLAY9_REQUIRE_CCX="1", CAMCLAY9_BUILD=BUILD)
+env = dict(os.environ, CAMCLAY9_REQUIRE_CCX="1")
 tests = [os.path.join(HERE, sys.argv[1])] if len(sys.argv) > 1 else \
     [os.path.join(HERE, "test_calculix.py"), "-k", "not test_inputs_are_generated"]
 sys.exit(subprocess.run([sys.executable, "-m", "pytest", "-q", "-s", "-p", "no:cacheprovider", *tests],

@@ -34,9 +34,10 @@ GROUPS = {"sigma_h": slice(0, 6), "evp_h": slice(6, 12), "pc_h": slice(12, 13), 
 
 @pytest.fixture(scope="session")
 def ccx():
-    obj = os.path.join(BUILD, "umat", "camclay9_umat.o")
-    if not os.path.exists(obj):
-        pytest.fail(f"{obj} missing: build the project first (CAMCLAY9_BUILD={BUILD})")
+    try:
+        obj = replay.umat_object()
+    except FileNotFoundError as e:
+        pytest.fail(str(e))
     r = subprocess.run(["bash", os.path.join(REPO, "tools", "calculix", "build_ccx.sh"), obj],
                        capture_output=True, text=True)
     if r.returncode == 77:
@@ -49,7 +50,7 @@ def ccx():
 
 @pytest.fixture(scope="session")
 def umat():
-    return replay.load_umat(BUILD)
+    return replay.load_umat()
 
 
 def run(ccx, name, workdir, trace):

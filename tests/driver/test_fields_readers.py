@@ -3,15 +3,17 @@ and P2, plane strain, axisymmetric, an axisymmetric indentation; 1 and 2 ranks) 
 
 - the output times equal to the history times at which fields were written (the initial state and every
   step here), and the same times in fields.h5's /time;
-- the point array displacement (n, 3) and the cell arrays stress, strain (Tensor6), phi (and, with
-  Cam-Clay IX, evp_hard, evp_soft, evp, pc_hard, pc_soft), each with its expected shape;
+- the point array displacement (n, 3) and the cell arrays stress, strain (full 3x3 Tensor, 9 components),
+  phi (and, with Cam-Clay IX, evp_hard, evp_soft, evp, pc_hard, pc_soft), each with its expected shape;
+  P2 meshes as quadratic cells (tetra10, with the displacement at the mid-side nodes);
 - the displacement of a uniaxially loaded linear-elastic bar (driver_elastic, E = 1000, nu = 0.25) at
   its far corner equal to the closed form at every output, and the out-of-plane (plane strain) or hoop
-  (axisymmetric) component, slot 33 of the Tensor6, equal to its closed form;
+  (axisymmetric) component, the 33 entry of the tensor, equal to its closed form;
 
 and fields.xmf readable after each output of a run stopped with -max_steps N (N + 1 outputs), and the
 output-file protocol: a run that ends before its first output after the initial state leaves an earlier
-run's fields.h5 and fields.xmf untouched (its own files stay as .part).
+run's fields.h5 and fields.xmf untouched (its own files stay as .part, and fields.xmf.part names
+fields.h5.part: it shows this run's output, not the earlier run's).
 
 $DRIVER and $DRIVER_ELASTIC are the driver executables (CTest sets them). Exit 77 (CTest: skipped)
 without meshio (post/requirements.txt; tools/setup.sh installs it).
@@ -19,6 +21,7 @@ without meshio (post/requirements.txt; tools/setup.sh installs it).
 import os
 import shutil
 import subprocess
+import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -33,6 +36,8 @@ except ImportError:                       # the CTest entry maps exit 77 to "ski
     os._exit(77)
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "post"))
+from fields import voigt  # noqa: E402
 DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
 DRIVER_ELASTIC = os.environ.get("DRIVER_ELASTIC", str(ROOT / "build" / "bin" / "driver_elastic"))
 E, NU, P = 1000.0, 0.25, 6.0
@@ -111,9 +116,9 @@ def check_series(out, dim, cell_type, names, hist_times):
         assert set(pd) == {"displacement"} and pd["displacement"].shape == (nv, 3)
         assert set(cd) == set(names), (set(cd), names)
         for name, (arr,) in cd.items():
-            assert arr.shape == ((nc, 6) if name in ("stress", "strain", "evp", "evp_hard", "evp_soft") else (nc,)), name
+            assert arr.shape == ((nc, 9) if name in ("stress", "strain", "evp", "evp_hard", "evp_soft") else (nc,)), name
     attr = {a.get("Name"): a.get("AttributeType") for a in ET.parse(out / "fields.xmf").iter("Attribute")}
-    assert attr["displacement"] == "Vector" and attr["stress"] == attr["strain"] == "Tensor6"
+    assert attr["displacement"] == "Vector" and attr["stress"] == attr["strain"] == "Tensor"
     return pts, frames
 
 
@@ -125,7 +130,8 @@ def test_uniaxial_bar(tmp_path, kind, order, ranks):
     run(DRIVER_ELASTIC, bar_3d(order) if kind == "3d" else bar_2d(kind), out, ranks)
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
     assert hist.size == NSTEPS + 1              # the initial state and one row per step; fields: the same
-    pts, frames = check_series(out, dim, "tetra" if dim == 3 else "triangle", {"stress", "strain", "phi"}, hist["time"])
+    cell_type = {(3, 1): "tetra", (3, 2): "tetra10", (2, 1): "triangle", (2, 2): "triangle6"}[dim, order]
+    pts, frames = check_series(out, dim, cell_type, {"stress", "strain", "phi"}, hist["time"])
     corner = int(np.argmin(np.sum((pts - np.array([LX, LY, LZ][:dim])) ** 2, axis=1)))
     assert np.allclose(pts[corner], [LX, LY, LZ][:dim], atol=1e-12)
     for t, pd, cd in frames:
@@ -133,9 +139,14 @@ def test_uniaxial_bar(tmp_path, kind, order, ranks):
         err = np.max(np.abs(pd["displacement"][corner] - u)) / (P * LZ / E)
         print(f"{kind} P{order} {ranks} rank(s) t = {t:.4g}: corner u {pd['displacement'][corner]}, exact {u}, error {err:.1e}")
         assert err < 1e-9
-        assert np.allclose(cd["stress"][0][:, 2], s33, atol=1e-9 * P) and np.allclose(cd["strain"][0][:, 2], e33, atol=1e-9 * P / E)
+        stress, strain = voigt(cd["stress"][0]), voigt(cd["strain"][0], strain=True)
+        assert np.allclose(stress[:, 2], s33, atol=1e-9 * P) and np.allclose(strain[:, 2], e33, atol=1e-9 * P / E)
         if dim == 2:
-            assert not np.any(cd["stress"][0][:, 4:]) and not np.any(pd["displacement"][:, 2])
+            assert not np.any(stress[:, 4:]) and not np.any(pd["displacement"][:, 2])
+        if order == 2:                # every node, mid-side ones included, carries the linear field exactly
+            x = pts
+            uex = np.array([NU * t * P * x[:, 0] / E, NU * t * P * x[:, 1] / E, -t * P * x[:, 2] / E]).T
+            assert np.max(np.abs(pd["displacement"] - uex)) < 1e-9 * P * LZ / E
 
 
 def test_indentation_scene_two_ranks(tmp_path):
@@ -187,6 +198,7 @@ def test_unpromoted_run_keeps_earlier_results(tmp_path):
     assert len(read_series(out / "fields.xmf")[2]) == NSTEPS + 1
     part = ET.parse(out / "fields.xmf.part")
     assert [t.get("Value") for t in part.iter("Time")] == ["0"]
-    assert all(d.text.startswith("fields.h5:") for d in part.iter("DataItem"))   # valid once renamed
+    assert all(d.text.startswith("fields.h5.part:") for d in part.iter("DataItem"))   # this run's data, not the earlier run's
+    assert len(read_series(out / "fields.xmf.part")[2]) == 1
     with h5py.File(out / "fields.h5.part") as f:
         assert f["/time"][:, 0].tolist() == [0.0] and list(f["/fields/displacement"]) == ["000000"]

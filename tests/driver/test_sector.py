@@ -11,6 +11,7 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
   of the material (BP)."""
 import math
 import subprocess
+import sys
 from pathlib import Path
 
 import h5py
@@ -19,6 +20,8 @@ import pytest
 from test_contact import run, tangent_checks  # the elastic driver on a scene; its history
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "post"))
+from fields import voigt  # noqa: E402  (fields.h5 holds full 3x3 tensors)
 GEO = ROOT / "meshes" / "indent_sector.geo"
 E, NU = 1000.0, 0.3
 ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
@@ -30,7 +33,7 @@ NS = (0.5, S3, 0.0)    # outward normal of the hexagon's face of the sector (sid
 def fields(out, k=-1):
     with h5py.File(out / "fields.h5", "r") as f:
         keys = sorted(f["fields/displacement"].keys())
-        return (f["mesh/coordinates"][:], f["fields/displacement"][keys[k]][:], f["fields/stress"][keys[k]][:],
+        return (f["mesh/coordinates"][:], f["fields/displacement"][keys[k]][:], voigt(f["fields/stress"][keys[k]][:]),
                 f["mesh/cells"][:])
 
 

@@ -188,28 +188,30 @@ def test_output_error_measure_is_first_order(tmp_path):
 
 
 def test_restart_is_bit_identical_with_the_controller(tmp_path):
+    """A restart continues bit for bit the run that writes the same checkpoints (the contact solver factors afresh
+    after each checkpoint, as a restarted run does: docs/driver.md, guarantees)."""
     scene = camclay_cone(load_hold(0.03, hold=10, measure="output"))
-    full = run(scene, tmp_path / "full")
+    full = run(scene, tmp_path / "full", args=["-checkpoint_every", "4"])
     part = tmp_path / "part"
     run(scene, part, args=["-checkpoint_every", "4", "-max_steps", "13"])
-    again = run(scene, part, args=["-restart"])
+    again = run(scene, part, args=["-restart", "-checkpoint_every", "4"])
     cols = [c for c in full.dtype.names if c not in ("wall",)]
     assert len(again) == len(full)
     for c in cols:
         assert np.array_equal(again[c], full[c]), c
     # the volume measure too
     vol = camclay_cone(load_hold(0.1, hold=10, measure="volume"))
-    vfull = run(vol, tmp_path / "vfull")
+    vfull = run(vol, tmp_path / "vfull", args=["-checkpoint_every", "3"])
     run(vol, tmp_path / "vpart", args=["-checkpoint_every", "3", "-max_steps", "11"])
-    vagain = run(vol, tmp_path / "vpart", args=["-restart"])
+    vagain = run(vol, tmp_path / "vpart", args=["-restart", "-checkpoint_every", "3"])
     assert len(vagain) == len(vfull) and np.array_equal(vagain["depth"], vfull["depth"])
 
 
 def test_kill_at_any_moment_then_restart(tmp_path):
     """kill -9 at three moments of a run that writes a checkpoint at every step; each time -restart continues
-    from the last complete set, and the end is the uninterrupted run's, bit for bit."""
+    from the last complete set, and the end is the uninterrupted run's (with the same checkpoints), bit for bit."""
     scene = camclay_cone(load_hold(0.03, hold=10))
-    full = run(scene, tmp_path / "full")
+    full = run(scene, tmp_path / "full", args=["-checkpoint_every", "1"])
     out = tmp_path / "killed"
     (tmp_path / "killed.yaml").write_text(scene)
     args = ["-input", str(tmp_path / "killed.yaml"), "-output_dir", str(out), "-checkpoint_every", "1"]
@@ -267,7 +269,7 @@ def test_failed_run_keeps_earlier_results(tmp_path):
 def test_bad_run_options_and_indenter_below_the_surface(tmp_path):
     out = tmp_path / "neg"
     proc = run(camclay_cone(load_hold(0.1, hold=2)), out, args=["-checkpoint_every", "-3"], check=False)
-    assert proc.returncode == 2 and "-checkpoint_every -3: expected a number of steps >= 0" in proc.stderr.splitlines()[0]
+    assert proc.returncode == 2 and "option -checkpoint_every -3: expected an integer >= 0" in proc.stderr.splitlines()[0]
     below = camclay_cone(load_hold(0.1, hold=2)).replace("contact: contact}", "contact: contact, tip: [0, -0.01]}")
     proc = run(below, tmp_path / "below", check=False)
     print(proc.stderr.strip())
@@ -279,7 +281,8 @@ def test_bad_run_options_and_indenter_below_the_surface(tmp_path):
 
 def test_point_and_fe_restarts_are_bit_identical(tmp_path):
     """The same checkpoints serve every scene kind: a point scene (adaptive steps with the output measure) and
-    an FE box stopped after a checkpoint and restarted end exactly where the uninterrupted runs end."""
+    an FE box stopped after a checkpoint and restarted end exactly where the uninterrupted runs that write the same
+    checkpoints end (a checkpoint refreshes the kept factorisation, as a restart does)."""
     point = """scene: point
 material: {props: woodford, set: {phi: 0.5}}
 initial: {stress: [-35, -35, -35, 0, 0, 0]}
@@ -291,9 +294,9 @@ segments:
         "  - {name: ramp, duration: 10, pressure: {z1: 10}, steps: {count: 4}, until: {q_above: 4.3}}",
         "  - {name: ramp, duration: 100, pressure: {z1: 40}, steps: {adaptive: true, first: 1, error: {measure: volume, tol: 0.1}}}")
     for name, text, exe in (("point", point, "driver"), ("box", box, "driver")):
-        full = run(text, tmp_path / f"{name}_full", exe=exe)
+        full = run(text, tmp_path / f"{name}_full", exe=exe, args=["-checkpoint_every", "3"])
         run(text, tmp_path / f"{name}_part", exe=exe, args=["-checkpoint_every", "3", "-max_steps", "7"])
-        again = run(text, tmp_path / f"{name}_part", exe=exe, args=["-restart"])
+        again = run(text, tmp_path / f"{name}_part", exe=exe, args=["-restart", "-checkpoint_every", "3"])
         cols = [c for c in full.dtype.names if c not in ("wall",)]
         print(f"{name}: {len(full) - 1} steps; restarted after step 6")
         assert len(again) == len(full) and len(full) > 8

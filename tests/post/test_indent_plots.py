@@ -22,6 +22,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "post"))
 import indent_plots as ip  # noqa: E402
+from fields import full  # noqa: E402
 
 COLUMNS = ip.HISTORY_COLUMNS
 # history rows: (time, stage, name, load, depth)
@@ -79,8 +80,8 @@ def write_fields(run, x, cells, skip=()):
             f[f"/fields/displacement/{k:06d}"] = np.pad(u[k], ((0, 0), (0, 3 - dim)))
             for name, amp, v in (("evp", A_OUT, E0), ("evp_soft", A_OUT, E0), ("evp_hard", 0 * A_OUT, E0),
                                  ("strain", A_OUT, E0), ("stress", S_OUT, S0)):
-                if name not in skip:
-                    f[f"/fields/{name}/{k:06d}"] = amp[k] * gc[:, None] * v[None, :]
+                if name not in skip:           # full 3x3 tensors, strains as tensors (post/fields.py)
+                    f[f"/fields/{name}/{k:06d}"] = full(amp[k] * gc[:, None] * v[None, :], strain=name != "stress")
             for name in ("pc_hard", "pc_soft", "phi"):
                 f[f"/fields/{name}/{k:06d}"] = np.ones(len(cells))
     return gc

@@ -11,7 +11,8 @@ program test_fp_exceptions
   use, intrinsic :: iso_fortran_env, only: real64
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_invalid, ieee_divide_by_zero, &
                                            ieee_set_flag, ieee_get_flag, ieee_flag_type
-  use ccix_tensor, only: jacobi_eigen, is_finite
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use ccix_tensor, only: jacobi_eigen
   use test_support, only: props_with, call_umat, check_true, finish, nstatv_test
   implicit none
   type(ieee_flag_type), parameter :: watched(3) = [ieee_overflow, ieee_invalid, ieee_divide_by_zero]
@@ -131,7 +132,7 @@ contains
                    0.0_real64, 0.0_real64], dstran, 1.0_real64, ddsdde, pnewdt)
     call check_true('first UMAT call raises no FP flag: ' // name, no_flags(name))
     call check_true('finite STRESS and DDSDDE: ' // name, &
-                    all(is_finite(stress)) .and. all(is_finite(ddsdde)))
+                    all(ieee_is_finite(stress)) .and. all(ieee_is_finite(ddsdde)))
   end subroutine first_call
 
 end program test_fp_exceptions

@@ -10,8 +10,7 @@
 program test_rejected_calls
   use, intrinsic :: iso_fortran_env, only: real64, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
-                                           ieee_negative_inf
-  use ccix_tensor, only: is_finite
+                                           ieee_negative_inf, ieee_is_finite
   use test_support, only: props_with, call_umat, check_true, check_close, finish, nstatv_test
   implicit none
   real(real64), parameter :: zero6(6) = 0, e3(3) = [0.0_real64, 0.0_real64, 1.0_real64]
@@ -91,7 +90,7 @@ program test_rejected_calls
   stress = stress0; statev = bad(1); statev(13) = 0; pnewdt = 1
   call call_umat(props, 6, stress, statev, zero6, zero6, 0.0_real64, ddsdde, pnewdt)
   call check_true('uninitialised state: accepted, STATEV 1-32 finite', &
-                  pnewdt == 1 .and. all(is_finite(statev(1:32))))
+                  pnewdt == 1 .and. all(ieee_is_finite(statev(1:32))))
   call check_close('uninitialised state: hard pc = pc0', statev(13), props(12), 1.0e-15_real64)
   call check_true('uninitialised state: viscoplastic strains zero', &
                   all(statev(7:12) == 0) .and. all(statev(20:25) == 0) .and. all(statev(27:32) == 0))
@@ -118,7 +117,7 @@ contains
                                                            transfer(sv_in, 1_int64, nstatv_test)))
     call check_true(name // ': STRESS bit-identical', all(transfer(st, 1_int64, 6) == &
                                                            transfer(stress0, 1_int64, 6)))
-    call check_true(name // ': DDSDDE finite', all(is_finite(dd)))
+    call check_true(name // ': DDSDDE finite', all(ieee_is_finite(dd)))
   end subroutine expect_rejected
 
   !> Rotation by angle about the unit axis (Rodrigues' formula).

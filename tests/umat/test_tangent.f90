@@ -5,7 +5,7 @@ program test_tangent
   use, intrinsic :: iso_fortran_env, only: real64, output_unit
   use test_support
   implicit none
-  real(real64) :: n30(3), n30_plane(3), deps6(6), deps4(4), s6(6), s4(4), c_voigt(6, 6)
+  real(real64) :: n30(3), n30_plane(3), deps6(6), deps4(4), s6(6), s4(4)
   real(real64), parameter :: th = 30 * pi / 180
 
   n30 = [sin(th), 0.0_real64, cos(th)]

@@ -4,7 +4,9 @@
 # fetched with apt-get and built in a cache outside the source tree, so later runs skip the compile.
 #
 # usage: tools/calculix/build_ccx.sh [UMAT_OBJECT]
-#   UMAT_OBJECT defaults to $CAMCLAY9_BUILD/umat/camclay9_umat.o (CAMCLAY9_BUILD defaults to build/).
+#   UMAT_OBJECT defaults to camclay9_umat.o of a build: $CAMCLAY9_BUILD/umat/ or $CAMCLAY9_BUILD/ when
+#   CAMCLAY9_BUILD is set, else build/umat/ (the whole project) or build-umat/ (the UMAT alone,
+#   cmake -S umat -B build-umat).
 # Prints the directory holding the executables on the last line of stdout:
 #   ccx_camclay9        CalculiX with camclay9_umat.o placed before ccx_2.20.a (replaces the stub umat)
 #   ccx_camclay9_trace  the same, with umat_trace.f90 in front: logs every UMAT call (see that file)
@@ -13,14 +15,24 @@ set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
-umat_obj=${1:-${CAMCLAY9_BUILD:-$repo/build}/umat/camclay9_umat.o}
+if [ $# -ge 1 ]; then
+  candidates=("$1")
+elif [ -n "${CAMCLAY9_BUILD:-}" ]; then
+  candidates=("$CAMCLAY9_BUILD/umat/camclay9_umat.o" "$CAMCLAY9_BUILD/camclay9_umat.o")
+else
+  candidates=("$repo/build/umat/camclay9_umat.o" "$repo/build-umat/camclay9_umat.o")
+fi
+umat_obj=""
+for c in "${candidates[@]}"; do
+  if [ -f "$c" ]; then umat_obj=$c; break; fi
+done
 cache=${XDG_CACHE_HOME:-$HOME/.cache}/camclay9/calculix
 suite=bookworm           # the Debian release that carries calculix-ccx 2.20
 ccx=ccx_2.20
 skip() { echo "build_ccx: cannot build CalculiX: $*" >&2; exit 77; }
 log() { echo "build_ccx: $*" >&2; }
 
-[ -f "$umat_obj" ] || { echo "build_ccx: no UMAT object $umat_obj (build the project first)" >&2; exit 2; }
+[ -n "$umat_obj" ] || { echo "build_ccx: no UMAT object: looked for ${candidates[*]} (build the project, or only the UMAT: cmake -S umat -B build-umat && cmake --build build-umat)" >&2; exit 2; }
 umat_obj=$(realpath "$umat_obj")
 for tool in gfortran gcc make objcopy flock sha256sum; do
   command -v $tool >/dev/null || skip "$tool is not installed"
@@ -75,7 +87,7 @@ if [ ! -f "$cache/archive.ok" ]; then
   cflags="-Wall -I/usr/include/spooles -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
   cflags="$cflags $(dpkg-buildflags --get CFLAGS) $(dpkg-buildflags --get CPPFLAGS) $(dpkg-buildflags --get LDFLAGS)"
   fflags="-fallow-argument-mismatch $(dpkg-buildflags --get FFLAGS)"
-  log "make $ccx.a $ccx.o in $src (about 2 minutes on 2 cores; log: $cache/make.log)"
+  log "make $ccx.a $ccx.o in $src (2-14 min on 2 cores, 3-4.5 min CPU, docs/calculix.md; log: $cache/make.log)"
   make -C "$src" -j "$(nproc)" CFLAGS="$cflags" FFLAGS="$fflags" $ccx.a $ccx.o >"$cache/make.log" 2>&1 ||
     { echo "build_ccx: make failed, see $cache/make.log" >&2; exit 1; }
   dpkg-buildflags --get LDFLAGS > "$cache/ldflags"

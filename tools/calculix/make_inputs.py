@@ -1,13 +1,22 @@
 #!/usr/bin/env python3
-"""Write the Abaqus/CalculiX inputs of input/abaqus/ (issue #6). Run from anywhere:
+"""Write the inputs of input/abaqus/ (issues #6 and 21). Run from anywhere:
 
     python3 tools/calculix/make_inputs.py [OUTDIR]      (default: input/abaqus)
 
-The files are committed; tests/calculix checks that they equal what this script writes. Cards follow
-docs/umat.md: material ABAQUS_WOODFORD, CONSTANTS=20 (CalculiX keeps at most 21), bedding normal
-through *ORIENTATION (local 3-axis), both frames at -35 MPa through *INITIAL CONDITIONS, TYPE=STRESS
-(one line per element and integration point in CalculiX), confinement with a constant amplitude.
-Units mm, N, MPa, s.
+The files are committed; tests/calculix checks that they equal what this script writes. Two dialects of
+the same keyword syntax, one deck per test and host:
+- CalculiX 2.20 (triaxial_*.inp, conventions_c3d8.inp): the decks run and compared by tests/calculix.
+- Abaqus/Standard (*_abaqus.inp): the one-element triaxial creep test and the cylinder in the keyword
+  syntax of the Abaqus Keywords Reference, each keyword checked against its page
+  (input/abaqus/KEYWORDS.md). They differ from the CalculiX decks only where the two codes differ: the
+  initial stress by element set (CalculiX: one line per element and integration point), no GLOBAL
+  parameter on *EL PRINT (CalculiX's own), output to the output database instead of .frd, a data line on
+  *SOLID SECTION, and Abaqus' default convergence controls (the tight *CONTROLS make CalculiX's
+  linearly converging Newton, on a symmetrised tangent, reach 1e-8; Abaqus solves with the unsymmetric
+  tangent of UNSYMM).
+Cards follow docs/umat.md: material ABAQUS_WOODFORD, CONSTANTS=20 (CalculiX keeps at most 21), bedding
+normal through *ORIENTATION (local 3-axis), both frames at -35 MPa through *INITIAL CONDITIONS,
+TYPE=STRESS, confinement with a constant amplitude. Units mm, N, MPa, s.
 """
 import math
 import os
@@ -19,7 +28,7 @@ PROPS = """*USER MATERIAL, CONSTANTS=20, UNSYMM
  0.5, 2900., 18000., 13000., 4100., 6900., 1.46, 0.00013
 ** c1_h, c2_h, c3_h, pc0_h, eta_h, lam_s, mu_s, M_s
  0.73, -0.20, 0.40, 2.0, 1.3E13, 4600., 3100., 1.46
-** lambdap_s, pc0_s, eta_s, tol (0 = no step control: CalculiX ignores this UMAT's PNEWDT, docs/calculix.md)
+** lambdap_s, pc0_s, eta_s, tol (0: no step control; these decks take fixed or host-chosen increments)
  0.0026, 35.0, 1.3E10, 0.
 *DEPVAR
  36
@@ -113,9 +122,10 @@ def orientation(a, b):
     return ("*ORIENTATION, NAME=BEDDING, SYSTEM=RECTANGULAR\n " + ", ".join(fmt(x) for x in a + b) + "\n")
 
 
-def material(axes):
-    return (orientation(*axes) + "*SOLID SECTION, ELSET=EALL, MATERIAL=ABAQUS_WOODFORD, ORIENTATION=BEDDING\n"
-            + "*MATERIAL, NAME=ABAQUS_WOODFORD\n" + PROPS)
+def material(axes, abaqus=False):
+    # Abaqus' *SOLID SECTION takes a data line (empty for solid elements, as Abaqus/CAE writes it).
+    section = "*SOLID SECTION, ELSET=EALL, MATERIAL=ABAQUS_WOODFORD, ORIENTATION=BEDDING\n" + (",\n" if abaqus else "")
+    return orientation(*axes) + section + "*MATERIAL, NAME=ABAQUS_WOODFORD\n" + PROPS
 
 
 def initial_stress(elements, points):
@@ -124,13 +134,22 @@ def initial_stress(elements, points):
            "*INITIAL CONDITIONS, TYPE=STRESS\n" + lines
 
 
-def steps(plan, output):
+# Abaqus reads the initial stress by element set: one line for all elements and points.
+ABAQUS_INITIAL_STRESS = ("** both frames start at -35 MPa: the UMAT copies STRESS into both on its first call\n"
+                         "*INITIAL CONDITIONS, TYPE=STRESS\n EALL, -35., -35., -35., 0., 0., 0.\n")
+# Abaqus output: the .dat (integration points; S and E in the orientation's axes, SDV as stored) and the
+# output database.
+ABAQUS_OUTPUT = ("*EL PRINT, ELSET=EALL\n S, E, SDV\n*NODE PRINT, NSET=NALL\n U\n"
+                 "*OUTPUT, FIELD\n*ELEMENT OUTPUT, ELSET=EALL\n S, E, SDV\n*NODE OUTPUT\n U\n")
+
+
+def steps(plan, output, controls=CONTROLS):
     """One *STEP with fixed increments per (increment, period, loads); *CONTROLS once, in the first."""
-    return "".join(f"*STEP, INC=100000\n*STATIC, DIRECT\n {fmt(dt)}, {fmt(period)}\n" + (CONTROLS if k == 0 else "")
+    return "".join(f"*STEP, INC=100000\n*STATIC, DIRECT\n {fmt(dt)}, {fmt(period)}\n" + (controls if k == 0 else "")
                    + loads + output + "*END STEP\n" for k, (dt, period, loads) in enumerate(plan))
 
 
-def one_element(theta):
+def one_element(theta, abaqus=False):
     nodes = "".join(f" {i}, {SIDE * x}., {SIDE * y}., {SIDE * z}.\n" for i, (x, y, z) in enumerate(CUBE_NODES, 1))
     out = ("*EL PRINT, ELSET=EALL, GLOBAL=YES\n S, E, SDV\n*NODE PRINT, NSET=NALL\n U\n"
            "*NODE FILE\n U\n*EL FILE\n S, E, SDV\n")
@@ -139,11 +158,22 @@ def one_element(theta):
     plan = [(dt, T, conf if k == 0 else "") for k, (dt, T) in enumerate(HOLD)]
     plan += [(dt, T, dev) for dt, T in RAMP]
     plan += [(dt, T, "") for dt, T in CREEP]
-    return f"""** Triaxial creep of one C3D8 element (cube of side {SIDE} mm), theta = {theta} deg: Cam-Clay IX UMAT.
+    if abaqus:
+        head = f"""** Abaqus/Standard: triaxial creep of one C3D8 element (cube of side {SIDE} mm), theta = {theta} deg,
+** Cam-Clay IX UMAT (abaqus job=... user=camclay9_umat_abaqus.for; docs/umat.md).
+** Both frames start at -35 MPa; confinement 35 MPa held 1e6 s; deviator 40 MPa ramped in 1 s; creep 36000 s.
+** Homogeneous: pressure on the faces x = 1, y = 1, z = 1, rollers on x = 0, y = 0, z = 0. Fixed increments.
+** The CalculiX deck of the same test is triaxial_c3d8_theta{theta}.inp; the keywords are checked in KEYWORDS.md.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s."""
+        init, stepping = ABAQUS_INITIAL_STRESS, steps(plan, ABAQUS_OUTPUT, controls="")
+    else:
+        head = f"""** Triaxial creep of one C3D8 element (cube of side {SIDE} mm), theta = {theta} deg: Cam-Clay IX UMAT.
 ** Both frames start at -35 MPa; confinement 35 MPa held 1e6 s; deviator 40 MPa ramped in 1 s; creep 36000 s.
 ** Homogeneous: pressure on the faces x = 1, y = 1, z = 1, rollers on x = 0, y = 0, z = 0.
 ** Fixed increments and tight *CONTROLS so that tests/calculix can replay the same increments at one point.
-** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s."""
+        init, stepping = initial_stress([1], 8), steps(plan, out)
+    return f"""{head}
 *HEADING
 Cam-Clay IX triaxial creep, one C3D8, theta = {theta}
 *NODE, NSET=NALL
@@ -160,13 +190,13 @@ Cam-Clay IX triaxial creep, one C3D8, theta = {theta}
  1, S5
 *SURFACE, NAME=TOP, TYPE=ELEMENT
  1, S2
-{material(ORIENTATION[theta])}*AMPLITUDE, NAME=CONST
+{material(ORIENTATION[theta], abaqus)}*AMPLITUDE, NAME=CONST
  0., 1., 1.E10, 1.
 *BOUNDARY
  X0, 1
  Y0, 2
  Z0, 3
-{initial_stress([1], 8)}{steps(plan, out)}"""
+{init}{stepping}"""
 
 
 def probe():
@@ -230,7 +260,7 @@ def ids_lines(ids, per_line=12):
     return "".join(" " + ", ".join(ids[k:k + per_line]) + "\n" for k in range(0, len(ids), per_line))
 
 
-def cylinder(theta):
+def cylinder(theta, abaqus=False):
     xy, quads, n_core = disk()
     per = len(xy)
     node = lambda k, layer: layer * per + k + 1                       # noqa: E731
@@ -255,16 +285,33 @@ def cylinder(theta):
     conf = "*DSLOAD, AMPLITUDE=CONST\n OUTER, P, 35.\n TOP, P, 35.\n"
     dev = "** the top pressure ramps from 35 to 75 MPa over this step (sigma_d = 40 MPa)\n*DSLOAD\n TOP, P, 75.\n"
     out = "*NODE PRINT, NSET=NTOP\n U\n*EL PRINT, ELSET=EMID, GLOBAL=YES\n S, SDV\n"
+    if abaqus:
+        out = ("*NODE PRINT, NSET=NTOP\n U\n*EL PRINT, ELSET=EMID\n S, SDV\n"
+               "*OUTPUT, FIELD\n*ELEMENT OUTPUT, ELSET=EALL\n S, E, SDV\n*NODE OUTPUT\n U\n")
     text = ""
     for k, ((dt, period, tmin, tmax), loads) in enumerate(zip(CYL_STEPS, [conf, dev, ""])):
         text += (f"*STEP, INC=100000\n*STATIC\n {fmt(dt)}, {fmt(period)}, {fmt(tmin)}, {fmt(tmax)}\n"
-                 + (CONTROLS if k == 0 else "") + loads + out + "*END STEP\n")
-    return f"""** Triaxial creep of a cylinder (diameter {2 * RADIUS} mm, height {HEIGHT} mm), theta = {theta} deg, C3D8,
+                 + (CONTROLS if k == 0 and not abaqus else "") + loads + out + "*END STEP\n")
+    if abaqus:
+        head = f"""** Abaqus/Standard: triaxial creep of a cylinder (diameter {2 * RADIUS} mm, height {HEIGHT} mm), theta = {theta} deg,
+** C3D8, {e} elements, Cam-Clay IX UMAT (abaqus job=... user=camclay9_umat_abaqus.for; docs/umat.md), uniform
+** phi = 0.5 (the scene draws phi per element; uniform here so that the cylinder stays homogeneous and
+** matches one material point). Both frames start at -35 MPa; confinement 35 MPa held 1e6 s; deviator
+** 40 MPa ramped in 1 s; creep 36000 s. Bottom on rollers, centre node pinned, one node on the x axis
+** held in y. Automatic incrementation (Abaqus' default controls).
+** The CalculiX deck of the same test is triaxial_cylinder_theta{theta}.inp; the keywords are checked in KEYWORDS.md.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s."""
+        init = ABAQUS_INITIAL_STRESS
+    else:
+        head = f"""** Triaxial creep of a cylinder (diameter {2 * RADIUS} mm, height {HEIGHT} mm), theta = {theta} deg, C3D8,
 ** {e} elements: Cam-Clay IX UMAT, uniform phi = 0.5 (the scene draws phi per element; uniform here so
 ** that the cylinder stays homogeneous and matches one material point). Both frames start at -35 MPa;
 ** confinement 35 MPa held 1e6 s; deviator 40 MPa ramped in 1 s; creep 36000 s. Bottom on rollers,
 ** centre node pinned, one node on the x axis held in y. Automatic incrementation.
-** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s.
+** Written by tools/calculix/make_inputs.py. Units mm, N, MPa, s."""
+        init = ("** both frames start at -35 MPa (one line per element and integration point, in a file of its own)\n"
+                f"*INITIAL CONDITIONS, TYPE=STRESS\n*INCLUDE, INPUT={CYL_INIT}\n")
+    return f"""{head}
 *HEADING
 Cam-Clay IX triaxial creep, cylinder, theta = {theta}
 *NODE, NSET=NALL
@@ -275,16 +322,18 @@ Cam-Clay IX triaxial creep, cylinder, theta = {theta}
 {bottom}*NSET, NSET=NTOP
 {tops}*SURFACE, NAME=OUTER, TYPE=ELEMENT
 {sides}*SURFACE, NAME=TOP, TYPE=ELEMENT
-{top}{material(ORIENTATION[theta])}*AMPLITUDE, NAME=CONST
+{top}{material(ORIENTATION[theta], abaqus)}*AMPLITUDE, NAME=CONST
  0., 1., 1.E10, 1.
 *BOUNDARY
  NBOTTOM, 3
  {centre}, 1, 2
  {on_x}, 2
-** both frames start at -35 MPa (one line per element and integration point, in a file of its own)
-*INITIAL CONDITIONS, TYPE=STRESS
-*INCLUDE, INPUT={CYL_INIT}
-{text}"""
+{init}{text}"""
+
+
+# The Abaqus/Standard decks (input/abaqus/KEYWORDS.md checks their keywords line by line).
+ABAQUS_DECKS = {f"triaxial_c3d8_theta{t}_abaqus.inp": (one_element, t) for t in (0, 90)}
+ABAQUS_DECKS.update({f"triaxial_cylinder_theta{t}_abaqus.inp": (cylinder, t) for t in (0, 90)})
 
 
 def write(outdir):
@@ -293,6 +342,7 @@ def write(outdir):
              "conventions_c3d8.inp": probe(), "triaxial_cylinder_theta0.inp": cylinder(0),
              "triaxial_cylinder_theta90.inp": cylinder(90),
              CYL_INIT: initial_stress(range(1, LAYERS * len(disk()[1]) + 1), 8).split("TYPE=STRESS\n")[1]}
+    files.update({name: make(theta, abaqus=True) for name, (make, theta) in ABAQUS_DECKS.items()})
     for name, text in files.items():
         with open(os.path.join(outdir, name), "w") as f:
             f.write(text)

@@ -22,6 +22,7 @@ import os
 import re
 import resource
 import subprocess
+import sys
 import time
 
 import numpy as np
@@ -29,6 +30,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 import make_inputs  # noqa: E402  (tools/calculix is on sys.path of the callers)
+
+sys.path.insert(0, os.path.join(REPO, "post"))
+from fields import STRAINS, voigt  # noqa: E402  (fields.h5's 3x3 tensors as Voigt 11 22 33 12 13 23)
 
 GEO = os.path.join(REPO, "meshes", "cylinder.geo")
 R, H = 12.7, 50.8
@@ -317,7 +321,10 @@ def compare(outdir, mesh, trace_path, sta):
                     continue
                 i = int(np.argmin(np.abs(t_ccx - t)))
                 assert abs(t_ccx[i] - t) <= 1e-12 * t, f"no CalculiX increment at the driver's output time {t}"
-                d = f[f"/fields/{name.split()[1]}/{k:06d}"][:][cell_of]
+                field = name.split()[1]
+                d = f[f"/fields/{field}/{k:06d}"][:][cell_of]
+                if d.ndim == 2 and d.shape[1] == 9:           # a tensor: back to the UMAT's Voigt order and shear
+                    d = voigt(d, field in STRAINS)
                 c = th["statev"][i][:, sl] if sl is not None else th["stress"][i]
                 w = max(w, float(rel(d.reshape(len(d), -1), c.reshape(len(c), -1)).max()))
             worst[name] = w

@@ -8,7 +8,7 @@ set(CMAKE_C_STANDARD 11)
 
 option(CAMCLAY9_NATIVE "Optimise for this machine's CPU (-march=native); off for portable binaries" OFF)
 if(CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
-  set(CAMCLAY9_FFLAGS -Wall -Wno-unused-dummy-argument -Wno-maybe-uninitialized)
+  set(CAMCLAY9_FFLAGS -Wall -Wno-unused-dummy-argument)
   set(CMAKE_Fortran_FLAGS_RELEASE "-O3 -funroll-loops")
   set(CMAKE_Fortran_FLAGS_DEBUG "-O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace")
   if(CAMCLAY9_NATIVE)

@@ -11,7 +11,7 @@ contains
   !> Check a PROPS vector and the sizes without integrating anything (umat-interface.md). code = 0 if
   !> valid; else the PROPS slot (or -1 NPROPS, -2 NSTATV, -3 NTENS, -4 NDI) and a NUL-terminated
   !> message of at most message_capacity bytes naming slot, value and allowed range.
-  subroutine camclay9_check_props(props, nprops, nstatv, ntens, ndi, code, message, &
+  recursive subroutine camclay9_check_props(props, nprops, nstatv, ntens, ndi, code, message, &
                                   message_capacity) bind(c, name='camclay9_check_props')
     integer(c_int), intent(in), value :: nprops, nstatv, ntens, ndi, message_capacity
     real(c_double), intent(in) :: props(*)

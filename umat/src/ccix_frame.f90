@@ -1,21 +1,21 @@
 !> One elasto-viscoplastic solid frame of Cam-Clay IX: transversely isotropic elasticity, the modified
 !> Cam-Clay surface in the fictitious stress sigma' = P:sigma, exponential hardening of pc, and Perzyna
-!> overstress flow, integrated by backward Euler (theory.md §1.3, §1.4, §3).
+!> overstress flow, integrated by backward Euler (theory.md sec. 1.3, sec. 1.4, sec. 3).
 !>
 !> Everything here is pure: one call integrates one frame over one step, from its converged state at
 !> the start of the step, and returns the new state and the algorithmic tangent. The soft frame is the
 !> isotropic special case (P = I) of the same frame.
 !>
-!> How the 8 x 8 local problem of theory.md §3.3 is solved. With N = H:sigma + (pc/3) P:1 linear in
-!> sigma (§1.3), the strain residual R_eps = C^-1:(sigma - sigma_tr) + dgamma N = 0 gives sigma exactly
+!> How the 8 x 8 local problem of theory.md sec. 3.3 is solved. With N = H:sigma + (pc/3) P:1 linear in
+!> sigma (sec. 1.3), the strain residual R_eps = C^-1:(sigma - sigma_tr) + dgamma N = 0 gives sigma exactly
 !> for given (dgamma, pc):  (C^-1 + dgamma H) sigma = C^-1 sigma_tr - dgamma (pc/3) P:1  (the
-!> observation behind the fallback of §3.4). C^-1 and H are diagonalised together once per material:
+!> observation behind the fallback of sec. 3.4). C^-1 and H are diagonalised together once per material:
 !> V^T C^-1 V = I, V^T H V = Lambda (H is positive semi-definite, Lambda >= 0). In those coordinates,
 !> sigma = V xi with
 !>     xi_i = (a_i - dgamma (pc/3) b_i) / (1 + dgamma Lambda_i),  a = V^-1 sigma_tr,  b = V^T P:1,
 !> and f = 1/2 xi.Lambda.xi + (pc/3) b.xi (f is quadratic in sigma with Hessian H). What remains are the
-!> two scalar equations R_y = 0 and R_f = 0 of §3.3 in (dgamma, y), each evaluation O(6). The
-!> consistent tangent is the same top-left block of J^-1 as in §3.5, written in these coordinates.
+!> two scalar equations R_y = 0 and R_f = 0 of sec. 3.3 in (dgamma, y), each evaluation O(6). The
+!> consistent tangent is the same top-left block of J^-1 as in sec. 3.5, written in these coordinates.
 module ccix_frame
   use, intrinsic :: iso_fortran_env, only: real64
   use ccix_tensor, only: one6, identity6, outer6, is_finite, cholesky_lower, lower_inverse, jacobi_eigen
@@ -24,25 +24,26 @@ module ccix_frame
   implicit none
   private
 
-  !> Material constants of one frame, with everything derived from them that the return map needs.
+  !> Material constants of one frame, with everything derived from them that the return map needs. No
+  !> default initialisation: frame_new sets every component, and a local frame_t costs nothing per call.
   type, public :: frame_t
-    real(real64) :: c(6, 6) = 0       !< elastic stiffness (Mandel)
-    real(real64) :: p(6, 6) = 0       !< projection tensor P (Mandel), theory.md §1.2
-    real(real64) :: h(6, 6) = 0       !< H = dN/dsigma = P:[(2/9) 1(x)1 + (3/M^2) I_dev]:P, §1.3
-    real(real64) :: p1(6) = 0         !< P:1
-    real(real64) :: tr_p1 = 0         !< tr(P:1) = 3 c1 + c2 + c3
-    real(real64) :: v(6, 6) = 0       !< V: V^T C^-1 V = I, V^T H V = diag(lambda_h)
-    real(real64) :: v_inv(6, 6) = 0   !< V^-1 = V^T C^-1
-    real(real64) :: lambda_h(6) = 0   !< generalised eigenvalues of (H, C^-1), >= 0
-    real(real64) :: b(6) = 0          !< V^T P:1
-    real(real64) :: h1(6) = 0         !< V^T H:1, so that tr N = h1.xi + (pc/3) tr(P:1)
-    real(real64) :: m_slope = 1       !< M, slope of the critical state line
-    real(real64) :: lambda_p = 1      !< plastic compressibility
-    real(real64) :: pc0 = 1           !< initial preconsolidation pressure
-    real(real64) :: eta = 0           !< Perzyna viscosity [stress^3 * time]
-    real(real64) :: e_ref = 1         !< stiffness scale E_r = tr(C)/6, §3.3
-    real(real64) :: p_floor = 0       !< lower bound of pc, §3.6
-    logical :: isotropic = .true.     !< P = I: skip the projection products
+    real(real64) :: c(6, 6)           !< elastic stiffness (Mandel)
+    real(real64) :: p(6, 6)           !< projection tensor P (Mandel), theory.md sec. 1.2
+    real(real64) :: h(6, 6)           !< H = dN/dsigma = P:[(2/9) 1(x)1 + (3/M^2) I_dev]:P, sec. 1.3
+    real(real64) :: p1(6)             !< P:1
+    real(real64) :: tr_p1             !< tr(P:1) = 3 c1 + c2 + c3
+    real(real64) :: v(6, 6)           !< V: V^T C^-1 V = I, V^T H V = diag(lambda_h)
+    real(real64) :: v_inv(6, 6)       !< V^-1 = V^T C^-1
+    real(real64) :: lambda_h(6)       !< generalised eigenvalues of (H, C^-1), >= 0
+    real(real64) :: b(6)              !< V^T P:1
+    real(real64) :: h1(6)             !< V^T H:1, so that tr N = h1.xi + (pc/3) tr(P:1)
+    real(real64) :: m_slope           !< M, slope of the critical state line
+    real(real64) :: lambda_p          !< plastic compressibility
+    real(real64) :: pc0               !< initial preconsolidation pressure
+    real(real64) :: eta               !< Perzyna viscosity [stress^3 * time]
+    real(real64) :: e_ref             !< stiffness scale E_r = tr(C)/6, sec. 3.3
+    real(real64) :: p_floor           !< lower bound of pc, sec. 3.6
+    logical :: isotropic              !< P = I: skip the projection products
   end type frame_t
 
   !> Outcome of one frame integration.
@@ -74,7 +75,7 @@ module ccix_frame
 contains
 
   !> Build a frame from its constants and the unit bedding normal n.
-  pure function frame_new(lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n) &
+  pure recursive function frame_new(lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n) &
       result(fr)
     real(real64), intent(in) :: lam, mu_t, mu_l, a, b, m_slope, lambda_p, c1, c2, c3, pc0, eta, n(3)
     type(frame_t) :: fr
@@ -83,7 +84,7 @@ contains
     fr%c = ti_stiffness_mandel(lam, mu_t, mu_l, a, b, n)
     fr%p = projection_mandel(c1, c2, c3, n)
     fr%isotropic = (c1 == 1.0_real64 .and. c2 == 0.0_real64 .and. c3 == 0.0_real64)
-    ! K = d n'/d sigma' = (2/9) 1(x)1 + (3/M^2) I_dev ;  H = P:K:P   (theory.md §1.3)
+    ! K = d n'/d sigma' = (2/9) 1(x)1 + (3/M^2) I_dev ;  H = P:K:P   (theory.md sec. 1.3)
     k = (3.0_real64 / m_slope**2) * (identity6() - outer6(one6, one6) / 3.0_real64) &
         + (2.0_real64 / 9.0_real64) * outer6(one6, one6)
     fr%h = matmul(fr%p, matmul(k, fr%p))
@@ -102,12 +103,12 @@ contains
     fr%pc0 = pc0
     fr%eta = eta
     fr%e_ref = (fr%c(1, 1) + fr%c(2, 2) + fr%c(3, 3) + fr%c(4, 4) + fr%c(5, 5) + fr%c(6, 6)) / 6
-    ! p_floor = max(1e-6 pc0, 1e-4) (theory.md §3.6), never above 1% of pc0 for very small pc0.
+    ! p_floor = max(1e-6 pc0, 1e-4) (theory.md sec. 3.6), never above 1% of pc0 for very small pc0.
     fr%p_floor = min(max(1.0e-6_real64 * pc0, 1.0e-4_real64), 1.0e-2_real64 * pc0)
   end function frame_new
 
-  !> Fictitious-stress invariants: p' = -tr(sigma')/3 and q'^2 = 3/2 s':s' (theory.md §1.3).
-  pure subroutine invariants(fr, sig, pp, q2, s_dev)
+  !> Fictitious-stress invariants: p' = -tr(sigma')/3 and q'^2 = 3/2 s':s' (theory.md sec. 1.3).
+  pure recursive subroutine invariants(fr, sig, pp, q2, s_dev)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig(6)
     real(real64), intent(out) :: pp, q2, s_dev(6)
@@ -122,8 +123,8 @@ contains
     q2 = 1.5_real64 * dot_product(s_dev, s_dev)
   end subroutine invariants
 
-  !> f(sigma, pc) = q'^2/M^2 + p'(p' - pc), in stress^2 (theory.md §1.3).
-  pure real(real64) function yield_function(fr, sig, pc) result(f)
+  !> f(sigma, pc) = q'^2/M^2 + p'(p' - pc), in stress^2 (theory.md sec. 1.3).
+  pure recursive real(real64) function yield_function(fr, sig, pc) result(f)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig(6), pc
     real(real64) :: pp, q2, s_dev(6)
@@ -131,8 +132,8 @@ contains
     f = q2 / fr%m_slope**2 + pp * (pp - pc)
   end function yield_function
 
-  !> f, p', q'^2 and the flow direction N = df/dsigma = P:n' (theory.md §1.3).
-  pure subroutine flow_direction(fr, sig, pc, f, pp, q2, n_dir)
+  !> f, p', q'^2 and the flow direction N = df/dsigma = P:n' (theory.md sec. 1.3).
+  pure recursive subroutine flow_direction(fr, sig, pc, f, pp, q2, n_dir)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig(6), pc
     real(real64), intent(out) :: f, pp, q2, n_dir(6)
@@ -148,14 +149,14 @@ contains
     end if
   end subroutine flow_direction
 
-  !> Integrate one frame over one step by backward Euler (theory.md §3.2-3.6).
+  !> Integrate one frame over one step by backward Euler (theory.md sec. 3.2-3.6).
   !>
   !> sig_n, pc_n: state at the start of the step; deps: strain increment; dt: time increment.
   !> Returns the stress, pc and viscoplastic strain increment at the end of the step and the
   !> algorithmic tangent d = dsigma/deps (Mandel; only on viscoplastic steps, else it is fr%c).
   !> If want_error, err_est is the local error estimate
-  !> |deps_vp - dt * rate_vp(start of step)| of theory.md §3.6 (zero for eta = 0).
-  pure subroutine frame_integrate(fr, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
+  !> |deps_vp - dt * rate_vp(start of step)| of theory.md sec. 3.6 (zero for eta = 0).
+  pure recursive subroutine frame_integrate(fr, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
                                   iterations, status, flags, err_est, f_end)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig_n(6), pc_n, deps(6), dt
@@ -176,7 +177,7 @@ contains
     err_est = 0
     devp = 0
     pc = pc_n
-    ! Trial step (§3.2). On elastic and failed steps d is not set: the tangent is fr%c.
+    ! Trial step (sec. 3.2). On elastic and failed steps d is not set: the tangent is fr%c.
     sig_tr = sig_n + matmul(fr%c, deps)
     sig = sig_tr
     if (.not. is_finite(sum(sig_tr))) then
@@ -191,7 +192,7 @@ contains
       return
     end if
 
-    ! Scaled consistency residual R_f = sf*f - sg*dgamma (§3.3, division-free form):
+    ! Scaled consistency residual R_f = sf*f - sg*dgamma (sec. 3.3, division-free form):
     ! sf = dt E_r / (dt E_r pc_r^2 + eta), sg = eta E_r / (dt E_r pc_r^2 + eta).
     pc_r = max(pc_n, fr%p_floor)
     denom = dt * fr%e_ref * pc_r**2 + fr%eta
@@ -202,7 +203,7 @@ contains
     st%a = matmul(fr%v_inv, sig_tr)
     st%floor_active = .false.
 
-    ! Newton from the elastic predictor (§3.4); pc bounded below by the floor while iterating.
+    ! Newton from the elastic predictor (sec. 3.4); pc bounded below by the floor while iterating.
     status = frame_newton
     g = 0
     y = 0
@@ -216,7 +217,7 @@ contains
       iterations = iterations + it2
     end if
     if (.not. ok) then
-      ! Bracketed fallback (§3.4), then Newton from its solution for the exact root and the tangent.
+      ! Bracketed fallback (sec. 3.4), then Newton from its solution for the exact root and the tangent.
       status = frame_fallback
       flags = ior(flags, flag_fallback)
       call fallback_solve(fr, st, g, y, ok)
@@ -236,7 +237,7 @@ contains
     pc = ev%pc
     sig = matmul(fr%v, ev%xi)
     f_end = ev%f
-    n_dir = matmul(fr%h, sig) + (pc / 3) * fr%p1          ! N = H:sigma + (pc/3) P:1, §1.3
+    n_dir = matmul(fr%h, sig) + (pc / 3) * fr%p1          ! N = H:sigma + (pc/3) P:1, sec. 1.3
     devp = g * n_dir
     if (st%floor_active) flags = ior(flags, flag_floor)
     if (dot_product(fr%b, ev%xi) > 0) flags = ior(flags, flag_tension)   ! p' = -b.xi/3 < 0
@@ -245,21 +246,21 @@ contains
   end subroutine frame_integrate
 
   !> |deps_vp - dt * rate_vp(sig_n, pc_n)|: backward minus forward Euler increment, the local error
-  !> indicator of theory.md §3.6 (like Abaqus' CETOL for creep). Zero when eta = 0 (no rate exists).
-  pure real(real64) function start_rate_error(fr, sig_n, pc_n, dt, devp) result(err)
+  !> indicator of theory.md sec. 3.6 (like Abaqus' CETOL for creep). Zero when eta = 0 (no rate exists).
+  pure recursive real(real64) function start_rate_error(fr, sig_n, pc_n, dt, devp) result(err)
     type(frame_t), intent(in) :: fr
     real(real64), intent(in) :: sig_n(6), pc_n, dt, devp(6)
     real(real64) :: f, pp, q2, n_dir(6)
     err = 0
     if (fr%eta <= 0) return
     call flow_direction(fr, sig_n, pc_n, f, pp, q2, n_dir)
-    ! Perzyna rate at the start of the step: <f>/eta N (theory.md §3.1, Y21 eq. 27).
+    ! Perzyna rate at the start of the step: <f>/eta N (theory.md sec. 3.1, Y21 eq. 27).
     err = norm2(devp - (dt * max(f, 0.0_real64) / fr%eta) * n_dir)
   end function start_rate_error
 
-  !> R_y and R_f of theory.md §3.3 at (dgamma, y) with sigma eliminated exactly, their Jacobian and
+  !> R_y and R_f of theory.md sec. 3.3 at (dgamma, y) with sigma eliminated exactly, their Jacobian and
   !> the relative size of the residual.
-  pure function local_eval(fr, st, g, y) result(ev)
+  pure recursive function local_eval(fr, st, g, y) result(ev)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(in) :: st
     real(real64), intent(in) :: g, y
@@ -287,7 +288,7 @@ contains
       ev%j_yg = 0
       ev%j_yy = fr%lambda_p
     else
-      ! R_y = lambda_p y + dgamma tr N   (pc_n+1 = pc_n exp(-d eps_v^vp / lambda_p), §1.4)
+      ! R_y = lambda_p y + dgamma tr N   (pc_n+1 = pc_n exp(-d eps_v^vp / lambda_p), sec. 1.4)
       ev%r_y = fr%lambda_p * y + g * ev%trn
       ev%j_yg = ev%trn + g * trn_g
       ev%j_yy = fr%lambda_p + g * trn_y
@@ -303,9 +304,9 @@ contains
                                    tiny(1.0_real64)))
   end function local_eval
 
-  !> Clipped, projected Newton on (dgamma, y) (theory.md §3.4). One more Newton step is taken after
+  !> Clipped, projected Newton on (dgamma, y) (theory.md sec. 3.4). One more Newton step is taken after
   !> the test passes, so that the state is exact to round-off; ev is the evaluation at the result.
-  pure subroutine newton_solve(fr, st, g, y, ev, iterations, ok)
+  pure recursive subroutine newton_solve(fr, st, g, y, ev, iterations, ok)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(in) :: st
     real(real64), intent(inout) :: g, y
@@ -347,12 +348,12 @@ contains
     end do
   end subroutine newton_solve
 
-  !> The consistent tangent dsigma/deps (theory.md §3.5): with sigma = V xi(a, dgamma, y) and
+  !> The consistent tangent dsigma/deps (theory.md sec. 3.5): with sigma = V xi(a, dgamma, y) and
   !> a = V^-1 (sigma_n + C deps), d xi/deps at fixed (dgamma, y) is diag(d) V^T, so
   !>   D = V diag(d) V^T - u_n (x) dg/deps - (dgamma pc/3) u_b (x) dy/deps,
   !> with u_n = V (n_xi d), u_b = V (b d), and (dg, dy)/deps from the 2 x 2 Jacobian G of (R_y, R_f):
   !>   G (dg, dy)/deps = -(dgamma u_h, sf u_n),  u_h = V (h1 d)  (u_h absent when pc is at the floor).
-  pure function consistent_tangent(fr, st, g, ev) result(d)
+  pure recursive function consistent_tangent(fr, st, g, ev) result(d)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(in) :: st
     real(real64), intent(in) :: g
@@ -384,13 +385,13 @@ contains
     end do
   end function consistent_tangent
 
-  !> Fallback of theory.md §3.4 for the states where Newton stalls: for a fixed dgamma the hardening
+  !> Fallback of theory.md sec. 3.4 for the states where Newton stalls: for a fixed dgamma the hardening
   !> equation R_y = 0 is one scalar equation in y, solved by safeguarded Newton in a bracket; the
   !> scaled consistency R_f(dgamma) is then bracketed in dgamma (Illinois regula falsi). The result
   !> only starts the Newton iteration that gives the final state (frame_integrate), so the bracket is
   !> closed to 1e-12 relative, not to round-off: near the root R_f is round-off noise and a tighter
   !> bracket cost up to 300 iterations (ms per call) without changing the answer.
-  pure subroutine fallback_solve(fr, st, g, y, ok)
+  pure recursive subroutine fallback_solve(fr, st, g, y, ok)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(inout) :: st
     real(real64), intent(out) :: g, y
@@ -440,7 +441,7 @@ contains
   end subroutine fallback_solve
 
   !> R_f(dgamma) with the hardening equation solved for y (pc at the floor if it wants to go below).
-  pure subroutine consistency_at(fr, st, gam, rf, y_sol, okc)
+  pure recursive subroutine consistency_at(fr, st, gam, rf, y_sol, okc)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(inout) :: st
     real(real64), intent(in) :: gam

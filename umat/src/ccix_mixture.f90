@@ -1,4 +1,4 @@
-!> The two-frame mixture of Cam-Clay IX (theory.md §2): both frames see the same strain increment,
+!> The two-frame mixture of Cam-Clay IX (theory.md sec. 2): both frames see the same strain increment,
 !> sigma = phi sigma_hard + (1 - phi) sigma_soft and D = phi D_hard + (1 - phi) D_soft. A frame with
 !> zero volume fraction is not integrated and keeps its state.
 module ccix_mixture
@@ -12,12 +12,14 @@ module ccix_mixture
 
   !> The material of one point: both frames, the hard-frame fraction phi and the inverse of the
   !> mixture stiffness Cbar = phi C_hard + (1 - phi) C_soft (for the overall viscoplastic strain).
+  !> No default initialisation (frames_from_props and material_set_phi set every component): a local
+  !> material_t, which the single-file UMAT derives in every call, costs no initialisation.
   type, public :: material_t
     type(frame_t) :: frames(2)
-    real(real64) :: phi = 0
-    real(real64) :: cbar(6, 6) = 0          !< Cbar (Mandel): the tangent when no frame flows
-    real(real64) :: cbar_inv(6, 6) = 0
-    real(real64) :: cbar_abaqus(6, 6) = 0   !< Cbar as an Abaqus DDSDDE (engineering shear)
+    real(real64) :: phi
+    real(real64) :: cbar(6, 6)          !< Cbar (Mandel): the tangent when no frame flows
+    real(real64) :: cbar_inv(6, 6)
+    real(real64) :: cbar_abaqus(6, 6)   !< Cbar as an Abaqus DDSDDE (engineering shear)
   end type material_t
 
   !> What one step did (no default initialisation: this is in the hot path of every call).
@@ -26,32 +28,30 @@ module ccix_mixture
     integer :: flags(2)            !< ccix_frame flag bits per frame
     logical :: viscoplastic        !< some frame flowed
     logical :: failed              !< some frame failed: nothing was updated
-    real(real64) :: err_est        !< worst local error estimate (theory.md §3.6)
+    real(real64) :: err_est        !< worst local error estimate (theory.md sec. 3.6)
     real(real64) :: f(2)           !< yield function of each frame at the end of the step
   end type step_info_t
 
-  public :: material_new, mixture_integrate
+  public :: material_set_phi, mixture_integrate
 
 contains
 
-  !> The material of hard and soft frames with hard-frame fraction phi.
-  pure function material_new(hard_frame, soft_frame, phi) result(mat)
-    type(frame_t), intent(in) :: hard_frame, soft_frame
+  !> Complete mat, whose frames are set, for the hard-frame fraction phi: Cbar, its inverse and its
+  !> Abaqus form.
+  pure recursive subroutine material_set_phi(mat, phi)
+    type(material_t), intent(inout) :: mat
     real(real64), intent(in) :: phi
-    type(material_t) :: mat
     logical :: ok
-    mat%frames(hard) = hard_frame
-    mat%frames(soft) = soft_frame
     mat%phi = phi
-    mat%cbar = phi * hard_frame%c + (1 - phi) * soft_frame%c
+    mat%cbar = phi * mat%frames(hard)%c + (1 - phi) * mat%frames(soft)%c
     call invert6(mat%cbar, mat%cbar_inv, ok)
     call tangent_to_abaqus(mat%cbar, 6, mat%cbar_abaqus)
-  end function material_new
+  end subroutine material_set_phi
 
   !> Integrate both frames over one step (Mandel components). In: the frame stresses and pc at the
   !> start. Out: frame stresses and pc at the end, the frame viscoplastic strain increments and that of
   !> the mixture (Y21 eq. 3), the mixture stress and tangent. If info%failed, nothing is meaningful.
-  pure subroutine mixture_integrate(mat, sig_n, pc_n, deps, dt, want_error, sig_frames, pc, &
+  pure recursive subroutine mixture_integrate(mat, sig_n, pc_n, deps, dt, want_error, sig_frames, pc, &
                                     devp, devp_total, sig, d, info)
     type(material_t), intent(in) :: mat
     real(real64), intent(in) :: sig_n(6, 2), pc_n(2), deps(6), dt

@@ -1,5 +1,5 @@
 !> The rank-four projection tensor that maps the real stress of a frame to its fictitious stress
-!> (theory.md §1.2, Yin et al. 2021 eq. 24):
+!> (theory.md sec. 1.2, Yin et al. 2021 eq. 24):
 !>   P = c1 I + (c2/2)(m(+)m + m(-)m) + (c3/4)(1(+)m + m(+)1 + 1(-)m + m(-)1),   m = n (x) n
 !> so that sigma' = P:sigma = c1 sigma + c2 (n.sigma.n) m + (c3/2)[n (x) sigma n + sigma n (x) n].
 module ccix_projection
@@ -12,7 +12,7 @@ module ccix_projection
 contains
 
   !> Symmetric Mandel 6x6 form of P. c1 = 1, c2 = c3 = 0 gives the identity (the soft frame).
-  pure function projection_mandel(c1, c2, c3, n) result(p6)
+  pure recursive function projection_mandel(c1, c2, c3, n) result(p6)
     real(real64), intent(in) :: c1, c2, c3, n(3)
     real(real64) :: p6(6, 6)
     integer :: p, q, i, j, k, l

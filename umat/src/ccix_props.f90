@@ -24,7 +24,7 @@ module ccix_props
 contains
 
   !> The bedding normal in the UMAT's frame: PROPS(21:23) normalised, or e3 when NPROPS < 23.
-  pure function bedding_normal(props, nprops) result(n)
+  pure recursive function bedding_normal(props, nprops) result(n)
     integer, intent(in) :: nprops
     real(real64), intent(in) :: props(nprops)
     real(real64) :: n(3)
@@ -36,7 +36,7 @@ contains
   end function bedding_normal
 
   !> The hard (transversely isotropic) and soft (isotropic) frames of PROPS. Call check_props first.
-  pure subroutine frames_from_props(props, nprops, hard, soft)
+  pure recursive subroutine frames_from_props(props, nprops, hard, soft)
     integer, intent(in) :: nprops
     real(real64), intent(in) :: props(nprops)
     type(frame_t), intent(out) :: hard, soft
@@ -53,7 +53,7 @@ contains
   !> Check sizes and properties without integrating anything. code = 0 when valid; otherwise code is
   !> the first offending PROPS slot (or -1 NPROPS, -2 NSTATV, -3 NTENS, -4 NDI) and message says the
   !> slot, its value and the allowed range.
-  pure subroutine check_props(props, nprops, nstatv, ntens, ndi, code, message)
+  pure recursive subroutine check_props(props, nprops, nstatv, ntens, ndi, code, message)
     integer, intent(in) :: nprops, nstatv, ntens, ndi
     real(real64), intent(in) :: props(*)
     integer, intent(out) :: code
@@ -66,7 +66,8 @@ contains
     if (nprops < nprops_min .or. nprops == 21 .or. nprops == 22) then
       code = -1
       write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: NPROPS = ', nprops, &
-        ' is not allowed: expected 19 or 20 (normal = material 3-axis) or >= 23 (normal in PROPS 21-23)'
+        ' is not allowed: expected 19 or 20 (normal = material 3-axis) ' // &
+        'or >= 23 (normal in PROPS 21-23)'
       return
     end if
     if (nstatv < nstatv_min) then
@@ -78,7 +79,8 @@ contains
     if (ndi /= 3) then
       code = -4
       write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: NDI = ', ndi, &
-        ': plane stress is not supported; expected NDI = 3 (3D, plane strain, axisymmetric)'
+        ': plane stress is not supported; ' // &
+        'expected NDI = 3 (3D, plane strain, axisymmetric)'
       return
     end if
     if (ntens /= 6 .and. ntens /= 4) then
@@ -97,7 +99,7 @@ contains
                  'phi, the volume fraction of the hard frame, in [0, 1]')
     ! Hard frame: positive-definite TI stiffness. In bedding axes the Mandel stiffness splits into
     ! 2 mu_T, 2 mu_T, 2 mu_L, 2 mu_L and the 2x2 block [[2(lam + mu_T), sqrt2 (lam + a)], [., C33]]
-    ! (theory.md §4.2), so it is positive definite iff these are.
+    ! (theory.md sec. 4.2), so it is positive definite iff these are.
     lam = props(2); mu_t = props(3); mu_l = props(4); a = props(5); b = props(6)
     c33 = lam + 2 * mu_t + 2 * a + b + 4 * (mu_l - mu_t)
     call require(code, message, props, mu_t > 0, 3, &
@@ -108,14 +110,15 @@ contains
                  'lambda > -mu_T (hard frame stiffness positive definite)')
     call require(code, message, props, c33 > 0 .and. 2 * (lam + mu_t) * c33 > 2 * (lam + a)**2, 6, &
                  'b such that the hard-frame stiffness is positive definite: ' // &
-                 'C33 = lambda + 2 mu_T + 2a + b + 4(mu_L - mu_T) > 0 and (lambda + mu_T) C33 > (lambda + a)^2')
+                 'C33 = lambda + 2 mu_T + 2a + b + 4(mu_L - mu_T) > 0 ' // &
+                 'and (lambda + mu_T) C33 > (lambda + a)^2')
     call require(code, message, props, props(7) > 0, 7, 'M > 0 (hard frame)')
     call require(code, message, props, props(8) > 0, 8, 'lambda_p > 0 (hard frame)')
-    ! Projection tensor positive definite: c1 > 0, c1 + c2 + c3 > 0, c1 + c3/2 > 0 (theory.md §1.2).
+    ! Projection tensor positive definite: c1 > 0, c1 + c2 + c3 > 0, c1 + c3/2 > 0 (theory.md sec. 1.2).
     call require(code, message, props, props(9) > 0, 9, &
                  'c1 > 0 (hard frame projection tensor positive definite)')
     call require(code, message, props, props(9) + props(10) + props(11) > 0, 10, &
-                 'c1 + c2 + c3 > 0 (hard frame projection tensor positive definite)')
+                 'c1 + c2 + c3 > 0 ' // '(hard frame projection tensor positive definite)')
     call require(code, message, props, props(9) + props(11) / 2 > 0, 11, &
                  'c1 + c3/2 > 0 (hard frame projection tensor positive definite)')
     call require(code, message, props, props(12) > 0, 12, 'pc0 > 0 (hard frame)')
@@ -140,12 +143,13 @@ contains
                    'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
       call require(code, message, props, &
                    ntens /= 4 .or. abs(props(ip_normal + 2)) <= 1.0e-12_real64 * nrm, ip_normal + 2, &
-                   'n3 = 0: with NTENS = 4 the bedding normal must lie in the 1-2 plane')
+                   'n3 = 0: with NTENS = 4 ' // 'the bedding normal must lie in the 1-2 plane')
     else if (ntens == 4 .and. props(ip_phi) > 0) then
       ! (With phi = 0 the hard frame is not used and its normal does not matter.)
       code = ip_normal
-      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: PROPS(21) to PROPS(23), the bedding normal, are missing (NPROPS = ', &
-        nprops, '): with NTENS = 4 and phi > 0 give NPROPS = 23 with a normal (n1, n2, 0) in the 1-2 plane'
+      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: PROPS(21) to PROPS(23), the bedding normal, ' // &
+        'are missing (NPROPS = ', nprops, '): with NTENS = 4 and phi > 0 give NPROPS = 23 ' // &
+        'with a normal (n1, n2, 0) in the 1-2 plane'
       return
     end if
 
@@ -153,7 +157,7 @@ contains
 
   !> If no check has failed yet (code = 0) and ok is false: code = slot and the message names the
   !> slot, its value and what was expected.
-  pure subroutine require(code, message, props, ok, slot, expected)
+  pure recursive subroutine require(code, message, props, ok, slot, expected)
     integer, intent(inout) :: code
     character(len=message_len), intent(inout) :: message
     real(real64), intent(in) :: props(*)

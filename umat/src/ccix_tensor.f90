@@ -2,7 +2,7 @@
 !>
 !> Mandel vectors are orthonormal: sigma_hat = [s11, s22, s33, r2*s12, r2*s13, r2*s23] with r2 = sqrt(2),
 !> so A:B = dot(A_hat, B_hat) and fourth-order tensors with minor symmetries are 6x6 matrices
-!> (theory.md §1.1). The Abaqus boundary uses Voigt order 11, 22, 33, 12, 13, 23 with engineering
+!> (theory.md sec. 1.1). The Abaqus boundary uses Voigt order 11, 22, 33, 12, 13, 23 with engineering
 !> shear strains; the conversions live here and nowhere else.
 module ccix_tensor
   use, intrinsic :: iso_fortran_env, only: real64
@@ -27,7 +27,7 @@ module ccix_tensor
 
 contains
 
-  pure function identity6() result(eye)
+  pure recursive function identity6() result(eye)
     real(real64) :: eye(6, 6)
     integer :: i
     eye = 0.0_real64
@@ -36,7 +36,7 @@ contains
     end do
   end function identity6
 
-  pure function outer6(a, b) result(ab)
+  pure recursive function outer6(a, b) result(ab)
     real(real64), intent(in) :: a(6), b(6)
     real(real64) :: ab(6, 6)
     integer :: j
@@ -45,34 +45,34 @@ contains
     end do
   end function outer6
 
-  !> Voigt stress (tensor shear components) -> Mandel. theory.md §1.1: sigma_hat = W*STRESS.
-  pure function stress_to_mandel(v) result(m)
+  !> Voigt stress (tensor shear components) -> Mandel. theory.md sec. 1.1: sigma_hat = W*STRESS.
+  pure recursive function stress_to_mandel(v) result(m)
     real(real64), intent(in) :: v(6)
     real(real64) :: m(6)
     m = v * mandel_w
   end function stress_to_mandel
 
-  pure function mandel_to_stress(m) result(v)
+  pure recursive function mandel_to_stress(m) result(v)
     real(real64), intent(in) :: m(6)
     real(real64) :: v(6)
     v = m / mandel_w
   end function mandel_to_stress
 
-  !> Engineering-shear Voigt strain -> Mandel. theory.md §1.1: eps_hat = W^-1*STRAN.
-  pure function strain_to_mandel(v) result(m)
+  !> Engineering-shear Voigt strain -> Mandel. theory.md sec. 1.1: eps_hat = W^-1*STRAN.
+  pure recursive function strain_to_mandel(v) result(m)
     real(real64), intent(in) :: v(6)
     real(real64) :: m(6)
     m = v / mandel_w
   end function strain_to_mandel
 
-  pure function mandel_to_strain(m) result(v)
+  pure recursive function mandel_to_strain(m) result(v)
     real(real64), intent(in) :: m(6)
     real(real64) :: v(6)
     v = m * mandel_w
   end function mandel_to_strain
 
-  !> Mandel tangent -> Abaqus DDSDDE (first n slots). theory.md §1.1: DDSDDE = W^-1 D_hat W^-1.
-  pure subroutine tangent_to_abaqus(d_hat, n, ddsdde)
+  !> Mandel tangent -> Abaqus DDSDDE (first n slots). theory.md sec. 1.1: DDSDDE = W^-1 D_hat W^-1.
+  pure recursive subroutine tangent_to_abaqus(d_hat, n, ddsdde)
     real(real64), intent(in) :: d_hat(6, 6)
     integer, intent(in) :: n
     real(real64), intent(out) :: ddsdde(n, n)
@@ -88,7 +88,7 @@ contains
     ddsdde = d_hat(1:n, 1:n) * winv2(1:n, 1:n)
   end subroutine tangent_to_abaqus
 
-  pure function mandel_to_matrix33(m) result(a)
+  pure recursive function mandel_to_matrix33(m) result(a)
     real(real64), intent(in) :: m(6)
     real(real64) :: a(3, 3)
     integer :: k
@@ -98,7 +98,7 @@ contains
     end do
   end function mandel_to_matrix33
 
-  pure function matrix33_to_mandel(a) result(m)
+  pure recursive function matrix33_to_mandel(a) result(m)
     real(real64), intent(in) :: a(3, 3)
     real(real64) :: m(6)
     integer :: k
@@ -108,15 +108,19 @@ contains
   end function matrix33_to_mandel
 
   !> R . A . R^T for a symmetric tensor A given in Mandel form.
-  pure function rotate_mandel(r, m) result(mr)
+  pure recursive function rotate_mandel(r, m) result(mr)
     real(real64), intent(in) :: r(3, 3), m(6)
-    real(real64) :: mr(6)
-    mr = matrix33_to_mandel(matmul(r, matmul(mandel_to_matrix33(m), transpose(r))))
+    real(real64) :: mr(6), a(3, 3), art(3, 3)
+    ! R (A R^T), each product of named arrays: matmul of a function result, inlined by gfortran, drew
+    ! five false "used uninitialized" warnings (-Wall, and -O3 without it) from the single file.
+    a = mandel_to_matrix33(m)
+    art = matmul(a, transpose(r))
+    mr = matrix33_to_mandel(matmul(r, art))
   end function rotate_mandel
 
   !> LU factorisation with partial pivoting, in place. ok = .false. on an exactly singular pivot.
   !> Written with scalar loops (no array temporaries): it runs in the innermost loop of the UMAT.
-  pure subroutine lu_factor(n, a, piv, ok)
+  pure recursive subroutine lu_factor(n, a, piv, ok)
     integer, intent(in) :: n
     real(real64), intent(inout) :: a(n, n)
     integer, intent(out) :: piv(n)
@@ -157,7 +161,7 @@ contains
   end subroutine lu_factor
 
   !> Solve with the factors of lu_factor; b is overwritten by the solution.
-  pure subroutine lu_solve(n, lu, piv, b)
+  pure recursive subroutine lu_solve(n, lu, piv, b)
     integer, intent(in) :: n
     real(real64), intent(in) :: lu(n, n)
     integer, intent(in) :: piv(n)
@@ -186,7 +190,7 @@ contains
   end subroutine lu_solve
 
   !> Inverse of a 6x6 matrix; ok = .false. if singular.
-  pure subroutine invert6(a, ainv, ok)
+  pure recursive subroutine invert6(a, ainv, ok)
     real(real64), intent(in) :: a(6, 6)
     real(real64), intent(out) :: ainv(6, 6)
     logical, intent(out) :: ok
@@ -202,7 +206,7 @@ contains
   end subroutine invert6
 
   !> True when a symmetric n x n matrix is positive definite (Cholesky succeeds).
-  pure function cholesky_is_spd(n, a) result(spd)
+  pure recursive function cholesky_is_spd(n, a) result(spd)
     integer, intent(in) :: n
     real(real64), intent(in) :: a(n, n)
     logical :: spd
@@ -211,7 +215,7 @@ contains
   end function cholesky_is_spd
 
   !> Lower Cholesky factor L of a symmetric positive definite matrix (A = L L^T); ok = .false. if not SPD.
-  pure subroutine cholesky_lower(n, a, l, ok)
+  pure recursive subroutine cholesky_lower(n, a, l, ok)
     integer, intent(in) :: n
     real(real64), intent(in) :: a(n, n)
     real(real64), intent(out) :: l(n, n)
@@ -232,7 +236,7 @@ contains
   end subroutine cholesky_lower
 
   !> Inverse of a non-singular lower triangular matrix.
-  pure function lower_inverse(n, l) result(li)
+  pure recursive function lower_inverse(n, l) result(li)
     integer, intent(in) :: n
     real(real64), intent(in) :: l(n, n)
     real(real64) :: li(n, n)
@@ -248,7 +252,7 @@ contains
 
   !> Eigenvalues w and orthonormal eigenvectors (columns of q) of a symmetric matrix, by cyclic Jacobi
   !> rotations. Used once per material, never per call.
-  pure subroutine jacobi_eigen(n, a, w, q)
+  pure recursive subroutine jacobi_eigen(n, a, w, q)
     integer, intent(in) :: n
     real(real64), intent(in) :: a(n, n)
     real(real64), intent(out) :: w(n), q(n, n)
@@ -310,12 +314,15 @@ contains
   end subroutine jacobi_eigen
 
   !> Kronecker delta as a real number.
-  pure real(real64) function kronecker(i, j)
+  pure recursive real(real64) function kronecker(i, j)
     integer, intent(in) :: i, j
     kronecker = merge(1.0_real64, 0.0_real64, i == j)
   end function kronecker
 
-  elemental function is_finite(x) result(ok)
+  !> True for a finite x (NaN compares false). Scalar and RECURSIVE, not ELEMENTAL: a function result
+  !> is a local, which -fno-automatic (or ifort's -save) makes static in a non-recursive procedure,
+  !> shared by the host's threads; Fortran 2008 does not allow RECURSIVE ELEMENTAL.
+  pure recursive function is_finite(x) result(ok)
     real(real64), intent(in) :: x
     logical :: ok
     ok = (x == x) .and. abs(x) <= huge(x)

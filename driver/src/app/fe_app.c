@@ -9,71 +9,64 @@
 #include <string.h>
 
 #include "../contact/indent_scene.h"
+#include "../fe/fe_groups.h"
 #include "../fe/fe_problem.h"
 #include "../fe/fe_scene.h"
 #include "../io/fsutil.h"
 #include "../io/gmsh_mesh.h"
+#include "../io/options.h"
 #include "../stepping/fe_stepper.h"
 
-/* The scene's PETSc options, each unless the command line already gives it. */
-static PetscErrorCode apply_scene_options(const char *options) {
-  char buf[1024], *tok, *save = NULL, *keys[64], *vals[64];
+/* The scene's PETSc options, each unless the command line already gives it; one that looks like a driver's option
+   but is none is refused (io/options.h). Returns 0, 1 (PETSc) or 2 (err filled). */
+static int apply_scene_options(const char *file, const char *options, char *err, size_t errlen) {
+  char buf[1024], *tok, *save = NULL, *keys[64], *vals[64], where[1100];
   int  n = 0;
-  PetscFunctionBeginUser;
   snprintf(buf, sizeof buf, "%s", options);
   for (tok = strtok_r(buf, " \t", &save); tok && n < 64; tok = strtok_r(NULL, " \t", &save)) {
     if (tok[0] == '-' && !(tok[1] >= '0' && tok[1] <= '9') && tok[1] != '.') keys[n] = tok, vals[n++] = NULL;
     else if (n > 0 && !vals[n - 1]) vals[n - 1] = tok;
   }
+  snprintf(where, sizeof where, "%s: key 'solver.options'", file);
+  if (options_check_unknown((const char *const *)keys, n, NULL, where, err, errlen)) return 2;
   for (int k = 0; k < n; k++) {
     PetscBool set;
-    PetscCall(PetscOptionsHasName(NULL, NULL, keys[k], &set));
-    if (!set) PetscCall(PetscOptionsSetValue(NULL, keys[k], vals[k]));
+    if (PetscOptionsHasName(NULL, NULL, keys[k], &set)) return 1;
+    if (!set && PetscOptionsSetValue(NULL, keys[k], vals[k])) return 1;
   }
-  PetscFunctionReturn(0);
+  return 0;
 }
 
 PetscErrorCode app_runner_options(RunnerOptions *o) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(o, sizeof *o));
-  o->max_steps = -1;
-  PetscBool restart = PETSC_FALSE;
+  PetscBool restart = PETSC_FALSE, elementary = PETSC_FALSE;
   PetscInt  every = 0, max_steps = -1, progress = 0;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Stages and steps (every scene kind)", NULL);
-  PetscCall(PetscOptionsInt("-checkpoint_every", "write a checkpoint every N steps (0: none)", NULL, every, &every, NULL));
-  PetscCall(PetscOptionsBool("-restart", "continue from the last complete checkpoint in the output directory", NULL, restart, &restart, NULL));
-  PetscCall(PetscOptionsInt("-max_steps", "stop after N steps in all (-1: no limit)", NULL, max_steps, &max_steps, NULL));
-  PetscCall(PetscOptionsInt("-progress_every", "a progress line every N steps (0: the scene's choice)", NULL, progress, &progress, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-checkpoint_every", "write a checkpoint every N steps (0: none)", every, 0, PETSC_MAX_INT,
+                        &every, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-restart", "continue from the last complete checkpoint in the output directory", restart,
+                         &restart, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-max_steps", "stop after N steps in all (-1: no limit)", max_steps, -1, PETSC_MAX_INT,
+                        &max_steps, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-progress_every", "a progress line every N steps (0: the scene's choice)", progress, 0,
+                        PETSC_MAX_INT, &progress, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-step_elementary", "the elementary step controller (dt' = dt 0.9 / ratio) instead of the PI controller",
+                         elementary, &elementary, NULL));
   PetscOptionsEnd();
+  o->elementary = elementary;
   o->checkpoint_every = (int)every, o->restart = restart, o->max_steps = (int)max_steps, o->progress_every = (int)progress;
   PetscFunctionReturn(0);
 }
 
 static int petsc_failure(PetscErrorCode ierr, char *err);
 
-/* Every mirror group must lie in a plane with the normal given: x . n the same at all its nodes (to 1e-6 of the
-   mesh's size). */
-static int check_mirror_planes(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen) {
-  for (int k = 0; k < sc->nfixed; k++) {
-    const FeFixed *m = &sc->fixed[k];
-    PetscReal      spread, size;
-    if (!m->mirror) continue;
-    if (fe_constraint_plane_spread(dm, m->group, m->normal, &spread, &size)) return petsc_failure(1, err);
-    if (spread > 1e-6 * size) {
-      snprintf(err, errlen, "%s:%d: key 'boundary.mirror[%d].normal': the group '%s' is not a plane normal to [%.6g, %.6g, %.6g]: "
-               "x . normal varies by %.3g over its nodes (the mesh %s is %.3g across; expected at most 1e-6 of that)", doc->file, m->line,
-               m->index, m->group, m->normal[0], m->normal[1], m->normal[2], spread, sc->msh, size);
-      return 2;
-    }
-  }
-  return 0;
-}
-
-/* Every group the scene names must be a physical group of the mesh. */
-static int check_groups(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen) {
+/* Every group the scene names must be a physical group of the mesh, of the kind its key needs (fe/fe_groups.h). */
+static int check_groups(YdDoc *doc, FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen) {
   const char *missing = NULL;
   PetscBool   has;
   static char base[64];
+  if (contact_group && !DMHasLabel(dm, contact_group, &has) && !has) missing = contact_group;
   for (int k = 0; k < sc->nfixed && !missing; k++)
     if (!DMHasLabel(dm, sc->fixed[k].group, &has) && !has) missing = sc->fixed[k].group;
   for (int k = 0; k < sc->npressure && !missing; k++) {
@@ -82,7 +75,7 @@ static int check_groups(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen
     if (len > 2 && base[len - 2] == '.' && strchr("xyz", base[len - 1])) base[len - 2] = '\0';
     if (!DMHasLabel(dm, base, &has) && !has) missing = base;
   }
-  if (!missing) return check_mirror_planes(doc, sc, dm, err, errlen);
+  if (!missing) return fe_groups_check(doc, sc, contact_group, dm, err, errlen);
   char     groups[512] = "";
   PetscInt nl;
   DMGetNumLabels(dm, &nl);
@@ -93,8 +86,8 @@ static int check_groups(YdDoc *doc, FeScene *sc, DM dm, char *err, size_t errlen
     size_t len = strlen(groups);
     snprintf(groups + len, sizeof groups - len, "%s%s", len ? ", " : "", ln);
   }
-  snprintf(err, errlen, "%s: key 'boundary': group '%s' is not a physical group of the mesh %s (it has: %s)", doc->file, missing, sc->msh,
-           groups);
+  snprintf(err, errlen, "%s: key '%s': group '%s' is not a physical group of the mesh %s (it has: %s)", doc->file,
+           missing == contact_group ? "indenter.contact" : "boundary", missing, sc->msh, groups);
   return 2;
 }
 
@@ -137,7 +130,7 @@ static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions 
   PetscMemzero(&p, sizeof p);
   PetscErrorCode ierr = fe_mesh_create(PETSC_COMM_WORLD, sc->msh, sc->kin == KIN_3D ? 3 : 2, &dm);
   if (ierr) return petsc_failure(ierr, err);
-  int rc = check_groups(doc, sc, dm, err, errlen);
+  int rc = check_groups(doc, sc, sc->indenter ? isc->contact_group : NULL, dm, err, errlen);
   if (rc) {
     DMDestroy(&dm);
     return rc;
@@ -165,13 +158,13 @@ int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen
   if (sc.indenter && indent_scene_read(doc, &sc, &isc, err, errlen)) return 2;
   if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
   if (app_runner_options(&opt)) return 1;
-  int rank, bad = 0;
+  int rank, bad = apply_scene_options(doc->file, sc.solver_options, err, errlen);
+  if (bad) return bad;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (!rank) bad = fs_prepare_output_dir(sc.outdir, err, errlen);
   MPI_Bcast(&bad, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
   if (bad) return 2;
   if (sc.geometry[0] && mesh_geometry(&sc, &opt, err, errlen)) return 1;
-  if (apply_scene_options(sc.solver_options)) return 1;
   return run_problem(doc, &sc, &isc, &opt, err, errlen);
 }

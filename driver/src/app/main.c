@@ -5,7 +5,11 @@
 #include <petscsys.h>
 #include <string.h>
 
+#include "../contact/contact_options.h"
+#include "../io/options.h"
 #include "../io/yaml_doc.h"
+#include "../material/material_input.h"
+#include "../stepping/fe_stepper.h"
 #include "../stepping/point_stepper.h"
 #include "fe_app.h"
 #include "../point/replay.h"
@@ -47,51 +51,69 @@ static const char help[] =
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
   "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
 
-/* The options read by the run modules (app/fe_app.c, contact/semismooth.c, contact/indent_solver.c,
- * stepping/fe_stepper.c), listed for -help: those modules read them themselves, with these defaults. */
-static PetscErrorCode help_run_options(void) {
-  PetscInt    i = 0;
-  PetscReal   r = 1e-10;
-  PetscBool   b = PETSC_FALSE, t = PETSC_TRUE;
-  const char *solvers[2] = {"direct", "fieldsplit"};
-  RunnerOptions o;
+/* The driver's own options, besides the modules' below. */
+typedef struct {
+  char      input[PETSC_MAX_PATH_LEN], outdir[PETSC_MAX_PATH_LEN];
+  PetscBool given, check;
+  PetscInt  replay_step;
+} MainOptions;
+
+static PetscErrorCode main_options(MainOptions *m) {
+  PetscBool traceback = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscCall(app_runner_options(&o));
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Finite-element scenes", NULL);
-  PetscCall(PetscOptionsBool("-fe_predictor", "start each step's Newton from the extrapolated last increment", NULL, t, &t, NULL));
-  PetscOptionsEnd();
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Rigid-indenter contact scenes", NULL);
-  PetscCall(PetscOptionsReal("-indent_rtol", "relative tolerance of the contact Newton", NULL, r, &r, NULL));
-  PetscCall(PetscOptionsInt("-indent_max_it", "contact Newton iterations per step (at most 63)", NULL, 30, &i, NULL));
-  PetscCall(PetscOptionsBool("-indent_predictor", "extrapolate the last step's rates as the first iterate", NULL, t, &t, NULL));
-  PetscCall(PetscOptionsBool("-indent_monitor", "print the contact Newton iterations", NULL, b, &b, NULL));
-  PetscCall(PetscOptionsBool("-indent_line_search", "backtrack along the Newton direction", NULL, t, &t, NULL));
-  PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the contact tangent with finite differences", NULL, b, &b, NULL));
-  PetscCall(PetscOptionsEList("-indent_solver", "linear solver of the contact system", NULL, solvers, 2, solvers[0], &i, NULL));
+  PetscCall(PetscMemzero(m, sizeof *m));
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Scene driver", NULL);
+  PetscCall(options_string(PetscOptionsObject, "-input", "scene file (YAML)", m->input, m->input, sizeof m->input, &m->given));
+  PetscCall(options_bool(PetscOptionsObject, "-check_tangent", "point scenes: compare DDSDDE with central differences at every step",
+                         m->check, &m->check, NULL));
+  PetscCall(options_string(PetscOptionsObject, "-output_dir", "write the output here instead of the scene's output.directory", m->outdir,
+                           m->outdir, sizeof m->outdir, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-write_replay_at_step", "point scenes: write a replay scene of the UMAT call of this step (0: none)",
+                        0, 0, PETSC_MAX_INT, &m->replay_step, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-error_traceback", "print PETSc's traceback of an error (else only its message)", traceback,
+                         &traceback, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
+
+/* Every module's options block, once before anything is read or run: -help lists them all, a value that does
+ * not parse (an integer out of its range, a word for a number) stops here, and every option of the driver is
+ * known, so that a misspelt one is refused now rather than warned about at the end of a long run. */
+static PetscErrorCode declare_options(MainOptions *m) {
+  RunnerOptions   run;
+  FeSolverOptions fe;
+  IndentOptions   indent;
+  char            set[2048];
+  PetscBool       given;
+  PetscFunctionBeginUser;
+  PetscCall(main_options(m));
+  PetscCall(app_runner_options(&run));
+  PetscCall(fe_solver_options(PETSC_COMM_WORLD, &fe));
+  PetscCall(indent_options(PETSC_COMM_WORLD, &indent));
+  PetscCall(material_options(set, sizeof set, &given));
+  PetscFunctionReturn(0);
+}
+
+/* Prefixes the driver keeps for its modules beyond those of the options declared (calibrate: TAO's own). */
+static const char *const reserved_prefixes[] = {"-calibrate_", NULL};
 
 /* Options given but never read (a misspelling, or one the scene's kind ignores): a warning each, as
  * PETSc's -options_left does. */
-static PetscErrorCode warn_unused_options(void) {
+static void warn_unused_options(void) {
   PetscInt  n;
   char    **names, **values;
   PetscBool left = PETSC_FALSE;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-options_left", &left)); /* PETSc reports them itself then */
-  if (left) PetscFunctionReturn(0);
-  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  PetscOptionsHasName(NULL, NULL, "-options_left", &left); /* PETSc reports them itself then */
+  if (left || PetscOptionsLeftGet(NULL, &n, &names, &values)) return;
   for (PetscInt k = 0; k < n; k++)
-    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR,
-                           "driver: warning: option -%s%s%s was given but never used (misspelt? driver -help lists them)\n",
-                           names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
-  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
-  PetscFunctionReturn(0);
+    PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: warning: option -%s%s%s was given but never used (misspelt, or not read by "
+                 "this kind of scene; driver -help lists them)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : "");
+  PetscOptionsLeftRestore(NULL, &n, &names, &values);
 }
 
-/* The message of a failed run: the module's own, else PETSc's (the innermost error, without a traceback). */
-static void print_failure(int rc, const char *err) {
+/* The message of a failed run: the module's own, else PETSc's (the innermost error, without a traceback;
+ * bad_option: only its specific message, one of the driver's about an option). */
+static void print_failure(int rc, const char *err, PetscBool bad_option) {
   const char *text = NULL;
   char       *specific = NULL;
   if (err[0]) {
@@ -99,6 +121,10 @@ static void print_failure(int rc, const char *err) {
     return;
   }
   PetscErrorMessage(rc, &text, &specific);
+  if (bad_option && specific && specific[0]) {
+    PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s; nothing was run\n", specific);
+    return;
+  }
   PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s%s%s (-error_traceback shows where)\n",
                specific && specific[0] && strcmp(specific, " ") ? specific : "", specific && specific[0] && text ? ": " : "",
                text ? text : "a PETSc error");
@@ -113,7 +139,7 @@ static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
     PointSummary sum;
     if (point_scene_read(doc, &sc, err, errlen)) return 2;
     if (check) sc.check_tangent = 1;
-    if (outdir[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir);
+    if (outdir[0]) PetscStrncpy(sc.outdir, outdir, sizeof sc.outdir);
     sc.replay_step = (int)replay_step;
     RunnerOptions opt;
     if (app_runner_options(&opt)) return 1;
@@ -138,42 +164,35 @@ static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
 }
 
 int main(int argc, char **argv) {
-  char      input[PETSC_MAX_PATH_LEN] = "", err[2048] = "", outdir[PETSC_MAX_PATH_LEN] = "";
-  PetscBool given = PETSC_FALSE, check = PETSC_FALSE, help_asked = PETSC_FALSE, traceback = PETSC_FALSE;
-  PetscInt  replay_step = 0;
+  char        err[2048] = "";
+  PetscBool   help_asked = PETSC_FALSE, traceback = PETSC_FALSE;
+  MainOptions m;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-help", &help_asked));
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Scene driver", NULL);
-  PetscCall(PetscOptionsString("-input", "scene file (YAML)", NULL, input, input, sizeof input, &given));
-  PetscCall(PetscOptionsBool("-check_tangent", "compare DDSDDE with central differences at every step", NULL, check,
-                             &check, NULL));
-  PetscCall(PetscOptionsString("-output_dir", "write the output here instead of the scene's output.directory", NULL,
-                               outdir, outdir, sizeof outdir, NULL));
-  PetscCall(PetscOptionsInt("-write_replay_at_step", "write a replay scene of the UMAT call of this step", NULL,
-                            replay_step, &replay_step, NULL));
-  PetscCall(PetscOptionsBool("-error_traceback", "print PETSc's traceback of an error (else only its message)", NULL,
-                             traceback, &traceback, NULL));
-  PetscOptionsEnd();
-  if (help_asked) PetscCall(help_run_options());
-  if (!given) {
-    if (!help_asked) PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n"));
-    PetscCall(PetscFinalize());
-    return help_asked ? 0 : 2;
-  }
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-error_traceback", &traceback));
   /* Errors come back to here and are reported once, by their message (no traceback of 40 lines). */
   if (!traceback) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  YdDoc doc;
-  int   rc;
-  if (yd_load(input, &doc, err, sizeof err)) rc = 2;
+  PetscErrorCode ierr = declare_options(&m);
+  int            rc   = 0;
+  if (ierr) rc = 2, print_failure((int)ierr, "", PETSC_TRUE);
+  else if (options_check_unknown(NULL, 0, reserved_prefixes, NULL, err, sizeof err)) rc = 2, print_failure(2, err, PETSC_TRUE);
+  else if (!m.given) {
+    if (!help_asked) PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n");
+    rc = help_asked ? 0 : 2;
+  } else if (options_forget_reads() || main_options(&m)) rc = 1; /* main's own are read (the others by the run) */
   else {
-    rc = run_scene(&doc, outdir, check, replay_step, err, sizeof err);
-    yd_free(&doc);
+    YdDoc doc;
+    if (yd_load(m.input, &doc, err, sizeof err)) rc = 2;
+    else {
+      rc = run_scene(&doc, m.outdir, m.check, m.replay_step, err, sizeof err);
+      yd_free(&doc);
+    }
+    if (rc) print_failure(rc, err, PETSC_FALSE);
+    if (rc > 2) rc = 1; /* a PETSc error code: the run failed */
+    if (rc != 2) warn_unused_options(); /* not after a scene error: nothing was run */
   }
-  if (rc) print_failure(rc, err);
-  if (rc > 2) rc = 1; /* a PETSc error code: the run failed */
-  if (rc != 2) PetscCall(warn_unused_options()); /* not after a scene error: nothing was run */
-  if (!traceback) PetscCall(PetscPopErrorHandler());
+  if (!traceback) PetscPopErrorHandler();
   PetscCall(PetscFinalize());
   return rc;
 }

@@ -1,6 +1,7 @@
 #include "sweep.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -85,7 +86,7 @@ static int read_sweep(YdDoc *doc, const char *outdir_override, SweepInput *in, c
     return 1;
   if (yd_check_unused(doc, m, "matrix", "dt, eta, strain_increment, bedding_angle, phi", err, errlen)) return 1;
   in->ref_steps = 400;
-  if ((x = yd_get(root, "reference_steps")) && yd_int(doc, x, "reference_steps", &in->ref_steps, err, errlen)) return 1;
+  if ((x = yd_get(root, "reference_steps")) && yd_int_range(doc, x, "reference_steps", 1, INT_MAX, &in->ref_steps, err, errlen)) return 1;
   snprintf(in->outdir, sizeof in->outdir, "out/sweep/%s", in->name);
   if ((x = yd_get(root, "output"))) {
     const char *d;

@@ -278,7 +278,7 @@ PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool de
   PetscCall(VecRestoreArray(Ru, &ra));
   if (ct->mortar) PetscCall(contact_mortar_forces(ct, lam, Ru)); /* P2: int lambda_h N n dA */
   PetscCall(MPIU_Allreduce(loc, all, 2, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)lam)));
-  *Rr       = depth_control ? ur - target : all[0] - target;
+  *Rr       = depth_control ? ct->kn * (ur - target) : all[0] - target;
   *ncp_norm = PetscSqrtReal(all[1]);
   PetscFunctionReturn(0);
 }
@@ -289,34 +289,34 @@ PetscErrorCode contact_constraint_residual(Contact *ct, Vec lam, Vec Rlam) {
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(lam, &la));
   PetscCall(VecGetArray(Rlam, &ra));
-  for (PetscInt i = 0; i < ct->n; i++) ra[i] = ct->active[i] ? -ct->w[i] * ct->g[i] : la[i]; /* eq. 12; eq. 15's I rows */
+  for (PetscInt i = 0; i < ct->n; i++) ra[i] = ct->active[i] ? -ct->c * ct->w[i] * ct->g[i] : ct->w[i] * la[i]; /* eq. 12; eq. 15's I rows */
   PetscCall(VecRestoreArray(Rlam, &ra));
   PetscCall(VecRestoreArrayRead(lam, &la));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal kshift) {
+PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscBool shift) {
   const PetscInt dim = ct->dim;
   PetscMPIInt    rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)ct->D), &rank));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  li = ct->rstart + i, zero = 0;
-    PetscReal wn[3], c = ct->w[i] * contact_ndotd(ct, i), one = 1.0, z = 0.0;
+    PetscReal wn[3], c = ct->w[i] * contact_ndotd(ct, i), z = 0.0;
     contact_frame_normal(ct, i, wn);
     for (PetscInt d = 0; d < dim; d++) wn[d] *= -ct->w[i];
     for (PetscInt d = 0; d < dim && !ct->mortar; d++) { /* dR_u/dlambda = -w n, all nodes (exact) */
       PetscInt r = ct->row[i * dim + d];
       if (r < 0) continue;
       PetscCall(MatSetValue(ct->Bt, r, li, wn[d], INSERT_VALUES));
-      PetscCall(MatSetValue(ct->B, li, r, ct->active[i] ? wn[d] : 0.0, INSERT_VALUES)); /* d(-w g)/du */
+      PetscCall(MatSetValue(ct->B, li, r, ct->active[i] ? ct->c * wn[d] : 0.0, INSERT_VALUES)); /* d(-c w g)/du */
     }
-    PetscCall(MatSetValue(ct->Ct, 0, li, depth_control ? 0.0 : c, INSERT_VALUES));    /* eq. 19 */
-    PetscCall(MatSetValue(ct->C, li, zero, ct->active[i] ? c : 0.0, INSERT_VALUES));  /* d(-w g)/du_r */
-    PetscCall(MatSetValue(ct->D, li, li, ct->active[i] ? z : one, INSERT_VALUES));    /* identity rows */
+    PetscCall(MatSetValue(ct->Ct, 0, li, depth_control ? 0.0 : c, INSERT_VALUES));            /* eq. 19 */
+    PetscCall(MatSetValue(ct->C, li, zero, ct->active[i] ? ct->c * c : 0.0, INSERT_VALUES)); /* d(-c w g)/du_r */
+    PetscCall(MatSetValue(ct->D, li, li, ct->active[i] ? z : ct->w[i], INSERT_VALUES));      /* w x identity rows */
   }
   if (ct->mortar) PetscCall(contact_mortar_coupling(ct)); /* P2: Bt and B from the facet integrals */
-  ct->kr = depth_control ? 1.0 : kshift, ct->depth_control = depth_control;
+  ct->kr = depth_control || shift ? ct->kn : 0.0, ct->depth_control = depth_control;
   if (!rank) PetscCall(MatSetValue(ct->Kr, 0, 0, ct->kr, INSERT_VALUES));
   Mat all[6] = {ct->Bt, ct->B, ct->Ct, ct->C, ct->D, ct->Kr};
   for (int k = ct->mortar ? 2 : 0; k < 6; k++) PetscCall(MatAssemblyBegin(all[k], MAT_FINAL_ASSEMBLY));
@@ -343,7 +343,7 @@ PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k) {
+PetscErrorCode contact_node_stiffness(Contact *ct, Mat K) {
   Vec                diag;
   const PetscScalar *da;
   PetscInt           rstart;
@@ -358,7 +358,7 @@ PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k) {
   PetscCall(VecRestoreArrayRead(diag, &da));
   PetscCall(VecDestroy(&diag));
   PetscCall(MPIU_Allreduce(&kmax, &all, 1, MPIU_REAL, MPI_MAX, PetscObjectComm((PetscObject)K)));
-  *k = all;
+  ct->kn = all;
   PetscFunctionReturn(0);
 }
 

@@ -10,8 +10,11 @@
  * the applied load P. Eqs. 13-14 read with this g: C(lambda, g) = lambda - max(0, lambda - c g), active where
  * lambda - c g > 0. Residuals (zero at a solution):
  *   R_u      = f_int - f_ext - sum_i lambda_i w_i n_i
- *   R_r      = sum_i lambda_i w_i (n_i . d) - P           (force control; u_r - h(t) under depth control)
- *   R_lam,i  = -w_i g_i on the active set,  lambda_i elsewhere. */
+ *   R_r      = sum_i lambda_i w_i (n_i . d) - P           (force control; k_n (u_r - h(t)) under depth control)
+ *   R_lam,i  = -c w_i g_i on the active set,  w_i lambda_i elsewhere.
+ * Every row is a force: the multiplier rows are eq. 12 and eq. 15's identity rows scaled by c w_i and w_i (the
+ * complementarity function of eq. 13 times w_i, whose norm the Newton loop measures), the depth row by k_n, a
+ * contact node's stiffness; so a Krylov solver's residual norm weighs all rows alike (the solution is unchanged). */
 #ifndef CONTACT_H
 #define CONTACT_H
 
@@ -31,6 +34,8 @@ typedef struct {
   PetscBool    *active;
   PetscBool    *rim;               /* on the edge of the potential contact surface (not on a mirror plane) */
   PetscReal     c;                 /* complementarity constant of eq. 13 (stress per length) */
+  PetscReal     kn;                /* a contact node's stiffness (force per length): the depth row's scale, and the
+                                      indenter row's diagonal under force control with nothing in contact */
   PetscReal     weight_sum;        /* all ranks: area (3D), area per thickness x thickness, 2 pi r area */
   /* blocks of eq. 15, fixed nonzero pattern */
   Mat           Kr, Bt, Ct, B, C, D; /* (u_r,u_r), (u,lam), (u_r,lam), (lam,u), (lam,u_r), (lam,lam) */
@@ -57,15 +62,15 @@ PetscErrorCode contact_update_gaps(Contact *ct, Vec U, PetscReal ur);
  * is below 1e-12 of it is inactive); returns the number of changes and the active count (all ranks). */
 PetscErrorCode contact_update_active(Contact *ct, Vec lam, PetscReal lambda_ref, PetscInt *changes, PetscInt *nactive);
 /* Add the contact forces to R_u (at the last gaps' normals), and write R_r (force control: target is the
- * load P; depth control: the depth), and the 2-norm of w_i (lambda_i - max(0, lambda_i - c g_i)), the
+ * load P; depth control: the depth; a force either way), and the 2-norm of w_i (lambda_i - max(0, lambda_i - c g_i)), the
  * complementarity residual of eq. 13 in force units (all ranks). */
 PetscErrorCode contact_residual(Contact *ct, Vec lam, PetscReal ur, PetscBool depth_control, PetscReal target,
                                 Vec Ru, PetscReal *Rr, PetscReal *ncp_norm);
-/* R_lam for the current active set: -w_i g_i on it (eq. 12), lambda_i off it. */
+/* R_lam for the current active set: -c w_i g_i on it (eq. 12), w_i lambda_i off it (force units). */
 PetscErrorCode contact_constraint_residual(Contact *ct, Vec lam, Vec Rlam);
-/* The contact blocks for the current active set and normals. kshift: the indenter row's diagonal under
- * force control (0 unless the active set is empty). */
-PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscReal kshift);
+/* The contact blocks for the current active set and normals. shift: under force control, k_n on the indenter
+ * row's diagonal (its row is empty while nothing is in contact). */
+PetscErrorCode contact_jacobian(Contact *ct, PetscBool depth_control, PetscBool shift);
 /* sum lambda_i w_i (n_i . d) over all ranks (the contact force on the indenter along d), the largest
  * penetration (-min g), and the smallest multiplier on the active set. */
 PetscErrorCode contact_summary(Contact *ct, Vec lam, PetscReal *force, PetscReal *penetration, PetscReal *min_lambda);
@@ -76,7 +81,7 @@ PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count);
  * active set turns on), or with pointwise on P2 over the Gauss points and nodes of the contact facets (where the
  * surface itself touches: the mean gaps would set the tip into the surface by part of an element). */
 PetscErrorCode contact_first_touch(Contact *ct, PetscBool pointwise, PetscReal *dmin);
-/* The largest diagonal entry of the stiffness on the contact nodes (a one-node stiffness). */
-PetscErrorCode contact_node_stiffness(Contact *ct, Mat K, PetscReal *k);
+/* k_n: the largest diagonal entry of the stiffness K on the contact nodes (a one-node stiffness). */
+PetscErrorCode contact_node_stiffness(Contact *ct, Mat K);
 
 #endif

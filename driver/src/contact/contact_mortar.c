@@ -426,9 +426,9 @@ PetscErrorCode contact_mortar_coupling(Contact *ct) {
   }
   PetscCall(MatAssemblyBegin(ct->Bt, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ct->Bt, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatTranspose(ct->Bt, MAT_REUSE_MATRIX, &ct->B)); /* d(-w g)/du = Bt^T on the active rows, zero elsewhere */
+  PetscCall(MatTranspose(ct->Bt, MAT_REUSE_MATRIX, &ct->B)); /* d(-c w g)/du = c Bt^T on the active rows, zero elsewhere */
   PetscCall(VecGetArray(m->act, &aa));
-  for (PetscInt i = 0; i < ct->n; i++) aa[i] = ct->active[i] ? 1.0 : 0.0;
+  for (PetscInt i = 0; i < ct->n; i++) aa[i] = ct->active[i] ? ct->c : 0.0;
   PetscCall(VecRestoreArray(m->act, &aa));
   PetscCall(MatDiagonalScale(ct->B, m->act, NULL));
   PetscFunctionReturn(0);

@@ -29,7 +29,8 @@ PetscErrorCode contact_mortar_destroy(Contact *ct);
 PetscErrorCode contact_mortar_gaps(Contact *ct, Vec U, PetscReal ur);
 /* R_u -= int lambda_h N_k n dA (the contact work, at the last gaps' normals). */
 PetscErrorCode contact_mortar_forces(Contact *ct, Vec lam, Vec Ru);
-/* Bt = dR_u/dlambda = -int psi_j N_k n dA, all multipliers; B = its transpose on the active rows. */
+/* Bt = dR_u/dlambda = -int psi_j N_k n dA, all multipliers; B = c times its transpose on the active rows (the
+   multiplier rows in force units, contact.h). */
 PetscErrorCode contact_mortar_coupling(Contact *ct);
 /* The indenter's travel to its first touch of the surface at the last gaps, pointwise: the smallest
    g / (n . d) over the Gauss points and the P2 nodes of the facets (this rank). */

@@ -14,7 +14,7 @@ static const double DEG = M_PI / 180;
 
 static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage *st, char *err, size_t errlen) {
   char    path[96], sub[128];
-  YdNode *v, *x;
+  YdNode *x;
   snprintf(path, sizeof path, "stages[%d].indenter", i);
   st->kind = IND_LOAD_HOLD; /* a stage that does not mention the indenter holds its load */
   if (!nd) return 0;
@@ -37,22 +37,26 @@ static int read_stage(YdDoc *doc, YdNode *nd, int i, double copies, IndentStage 
     if (load->kind != YD_MAPPING || !(x = yd_get(load, "exp")))
       FAIL("%s:%d: key '%s': expected a number, 'hold' or {exp: {P0, k}}", doc->file, load->line, sub);
     st->kind = IND_LOAD_EXP;
+    char p0[160], pk[160];
     snprintf(sub, sizeof sub, "%s.load.exp", path);
-    if (yd_double(doc, yd_get(x, "P0"), sub, &st->P0, err, errlen) || yd_double(doc, yd_get(x, "k"), sub, &st->k, err, errlen)) return 1;
-    if (!(st->P0 > 0)) FAIL("%s:%d: key '%s.P0': expected > 0, got %g", doc->file, x->line, sub, st->P0);
+    snprintf(p0, sizeof p0, "%s.P0", sub), snprintf(pk, sizeof pk, "%s.k", sub);
+    if (yd_double(doc, yd_get(x, "P0"), p0, &st->P0, err, errlen) || yd_double(doc, yd_get(x, "k"), pk, &st->k, err, errlen)) return 1;
+    if (!(st->P0 > 0)) FAIL("%s:%d: key '%s': expected > 0, got %g", doc->file, yd_key_line(x, "P0"), p0, st->P0);
     if (yd_check_unused(doc, x, sub, "P0, k", err, errlen) || yd_check_unused(doc, load, path, "exp", err, errlen)) return 1;
   }
   if ((x = yd_get(nd, "until"))) {
     snprintf(sub, sizeof sub, "%s.until", path);
     if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen)) return 1;
-    if ((v = yd_get(x, "depth")) && (yd_double(doc, v, sub, &st->until_depth, err, errlen) || !(st->until_depth > 0)))
-      FAIL("%s:%d: key '%s.depth': expected a depth > 0", doc->file, v->line, sub);
-    if ((v = yd_get(x, "load")) && (yd_double(doc, v, sub, &st->until_load, err, errlen) || !(st->until_load > 0)))
-      FAIL("%s:%d: key '%s.load': expected a load > 0", doc->file, v->line, sub);
-    if ((st->until_depth > 0) == (st->until_load > 0)) FAIL("%s:%d: key '%s': give one of depth or load", doc->file, x->line, sub);
+    YdNode *d = yd_get(x, "depth"), *l = yd_get(x, "load");
+    if (yd_check_unused(doc, x, sub, "depth, load", err, errlen)) return 1; /* an unknown word first, by its name */
+    if (!!d + !!l != 1) FAIL("%s:%d: key '%s': give one of depth or load, got %s", doc->file, x->line, sub, d ? "both" : "neither");
+    if (d && yd_double(doc, d, sub, &st->until_depth, err, errlen)) return 1;
+    if (l && yd_double(doc, l, sub, &st->until_load, err, errlen)) return 1;
+    if (d && !(st->until_depth > 0)) FAIL("%s:%d: key '%s.depth': expected a depth > 0, got %g", doc->file, d->line, sub, st->until_depth);
+    if (l && !(st->until_load > 0)) FAIL("%s:%d: key '%s.load': expected a load > 0, got %g", doc->file, l->line, sub, st->until_load);
     if (st->kind == IND_LOAD_HOLD || st->kind == IND_DEPTH_RAMP)
-      FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp or exp)", doc->file, x->line, sub);
-    if (yd_check_unused(doc, x, sub, "depth, load", err, errlen)) return 1;
+      FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp or exp), not %s", doc->file, x->line, sub,
+           st->kind == IND_LOAD_HOLD ? "load: hold" : "depth control");
   }
   if (st->kind == IND_LOAD_RAMP) st->target /= copies; /* the model carries 1/copies of the indenter's load */
   st->P0 /= copies, st->until_load /= copies;
@@ -110,8 +114,10 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
            "(along the axis at the reference position: Sneddon's and Hertz's linearised contact), got '%s'", doc->file, v->line, s);
     sh->vertical = !strcmp(s, "vertical");
   }
-  if ((v = yd_get(nd, "complementarity_c")) && (yd_double(doc, v, "indenter.complementarity_c", &is->c, err, errlen) || !(is->c > 0)))
-    FAIL("%s:%d: key 'indenter.complementarity_c': expected > 0 (stress per length)", doc->file, v->line);
+  if ((v = yd_get(nd, "complementarity_c"))) {
+    if (yd_double(doc, v, "indenter.complementarity_c", &is->c, err, errlen)) return 1;
+    if (!(is->c > 0)) FAIL("%s:%d: key 'indenter.complementarity_c': expected > 0 (stress per length), got %g", doc->file, v->line, is->c);
+  }
   is->copies = 1;
   if ((v = yd_get(nd, "copies"))) {
     if (yd_double(doc, v, "indenter.copies", &is->copies, err, errlen)) return 1;

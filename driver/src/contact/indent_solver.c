@@ -11,15 +11,33 @@ static double wall(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
+/* The nest of eq. 15 with the displacement block K: [K 0 Bt; 0 Kr Ct; B C D] (Bt carries every multiplier: the
+ * exact derivative of R_u). */
+static PetscErrorCode nest_of(Contact *ct, Mat K, Mat *A) {
+  Mat blocks[9] = {K, NULL, ct->Bt, NULL, ct->Kr, ct->Ct, ct->B, ct->C, ct->D};
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateNest(PetscObjectComm((PetscObject)K), 3, NULL, 3, NULL, blocks, A));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
+                                   IndentSolver *s) {
   MPI_Comm  comm = PetscObjectComm((PetscObject)K);
   PetscInt  m, M, nr;
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(s, sizeof *s));
-  s->K = K;
-  /* eq. 15: [K 0 Bt; 0 Kr Ct; B C D] (Bt carries every multiplier: the exact derivative of R_u) */
-  Mat blocks[9] = {K, NULL, ct->Bt, NULL, ct->Kr, ct->Ct, ct->B, ct->C, ct->D};
-  PetscCall(MatCreateNest(comm, 3, NULL, 3, NULL, blocks, &s->A));
+  s->K = K, s->assemble = assemble, s->actx = actx;
+  s->fieldsplit = o->solver == 1, s->refactor_its = o->refactor_its, s->rtol_tight = o->rtol_tight, s->refactor = PETSC_TRUE;
+  s->check = o->check_solve;
+  s->kept = !s->fieldsplit && s->refactor_its > 0;
+  /* the operator: with a kept factorisation the matrix-free tangent (K is assembled only to be factored),
+     otherwise K itself */
+  PetscCall(nest_of(ct, s->kept ? Kmf : K, &s->A));
+  if (s->kept) PetscCall(nest_of(ct, K, &s->Apc));
+  else {
+    PetscCall(PetscObjectReference((PetscObject)s->A));
+    s->Apc = s->A;
+  }
   {
     IS rows[3];
     PetscCall(MatNestGetISs(s->A, rows, NULL));
@@ -33,20 +51,20 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
   PetscCall(MatGetSize(s->A, &M, NULL));
   PetscCall(VecCreateMPI(comm, m, M, &s->X));
   PetscCall(VecDuplicate(s->X, &s->F));
-  {
-    const char *types[2] = {"direct", "fieldsplit"};
-    PetscInt    which    = 0;
-    PetscCall(PetscOptionsGetEList(NULL, NULL, "-indent_solver", types, 2, &which, NULL));
-    s->fieldsplit = which == 1;
-  }
   PetscCall(KSPCreate(comm, &s->ksp));
+  PetscCall(KSPSetOptionsPrefix(s->ksp, "indent_"));
   PC pc;
   PetscCall(KSPGetPC(s->ksp, &pc));
   if (!s->fieldsplit) {
-    PetscCall(KSPSetType(s->ksp, KSPPREONLY));
+    if (s->kept) { /* GMRES on the nest, right-preconditioned by the kept factorisation (flexible GMRES: it keeps the
+                      preconditioned directions, so the solution costs no further triangular solve) */
+      PetscCall(KSPSetType(s->ksp, KSPFGMRES));
+      PetscCall(KSPSetTolerances(s->ksp, 1e-2, 1e-300, PETSC_DEFAULT, 30));
+      PetscCall(KSPGMRESSetRestart(s->ksp, 30));
+    } else PetscCall(KSPSetType(s->ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
     PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    PetscCall(options_default("-mat_mumps_icntl_14", "100")); /* room for the delayed pivots (zero diagonal) */
+    PetscCall(options_default("-indent_mat_mumps_icntl_14", "100")); /* room for the delayed pivots (zero diagonal) */
   } else {
     PetscCall(ISGetLocalSize(s->is[1], &nr));
     PetscCall(KSPSetType(s->ksp, KSPFGMRES));
@@ -65,17 +83,18 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s) {
     PetscCall(MatCreateAIJ(comm, nl, nl, ct->N + 1, ct->N + 1, 0, dnz, 0, onz, &s->Sp));
     PetscCall(PetscFree2(dnz, onz));
     PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, s->Sp));
-    PetscCall(options_default("-fieldsplit_u_ksp_type", "gmres"));
-    PetscCall(options_default("-fieldsplit_u_ksp_rtol", "1e-12"));
-    PetscCall(options_default("-fieldsplit_u_pc_type", "gamg"));
-    PetscCall(options_default("-fieldsplit_contact_ksp_type", "gmres"));
-    PetscCall(options_default("-fieldsplit_contact_ksp_rtol", "1e-12"));
-    PetscCall(options_default("-fieldsplit_contact_pc_type", "lu"));
-    PetscCall(options_default("-fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
+    PetscCall(options_default("-indent_fieldsplit_u_ksp_type", "gmres"));
+    PetscCall(options_default("-indent_fieldsplit_u_ksp_rtol", "1e-12"));
+    PetscCall(options_default("-indent_fieldsplit_u_pc_type", "gamg"));
+    PetscCall(options_default("-indent_fieldsplit_contact_ksp_type", "gmres"));
+    PetscCall(options_default("-indent_fieldsplit_contact_ksp_rtol", "1e-12"));
+    PetscCall(options_default("-indent_fieldsplit_contact_pc_type", "lu"));
+    PetscCall(options_default("-indent_fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
     /* MUMPS' workspace estimate does not foresee the delayed pivots of the zero diagonal: relax it */
-    PetscCall(options_default("-fieldsplit_contact_mat_mumps_icntl_14", "200"));
+    PetscCall(options_default("-indent_fieldsplit_contact_mat_mumps_icntl_14", "200"));
   }
   PetscCall(KSPSetFromOptions(s->ksp));
+  PetscCall(KSPGetTolerances(s->ksp, &s->rtol, NULL, NULL, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -83,6 +102,7 @@ PetscErrorCode indent_solver_destroy(IndentSolver *s) {
   PetscFunctionBeginUser;
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->A));
+  PetscCall(MatDestroy(&s->Apc));
   PetscCall(MatDestroy(&s->Aaij));
   PetscCall(MatDestroy(&s->Sp));
   for (int k = 0; k < 3; k++) PetscCall(ISDestroy(&s->is[k]));
@@ -93,7 +113,8 @@ PetscErrorCode indent_solver_destroy(IndentSolver *s) {
 }
 
 /* The Schur preconditioning matrix in the numbering of the (u_r, lambda) split: u_r first (global 0),
- * then the multipliers (global 1 + their index). */
+ * then the multipliers (global 1 + their index). The multiplier rows are the scaled ones of contact.h:
+ * c B and c C on the active set, w_i on the diagonal elsewhere. */
 static PetscErrorCode assemble_schur_pre(IndentSolver *s, Contact *ct) {
   Vec                diag;
   const PetscScalar *da;
@@ -109,17 +130,17 @@ static PetscErrorCode assemble_schur_pre(IndentSolver *s, Contact *ct) {
   if (!rank) PetscCall(MatSetValue(s->Sp, 0, 0, ct->kr, INSERT_VALUES));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscInt  gi = 1 + ct->rstart + i, zero = 0;
-    PetscReal c = ct->w[i] * contact_ndotd(ct, i), sii = 1, nf[3];
+    PetscReal c = ct->w[i] * contact_ndotd(ct, i), sii = ct->w[i], nf[3];
     if (ct->active[i]) {
       sii = 0;
       contact_frame_normal(ct, i, nf); /* the node's rows are in its nodal frame (mirror planes) */
       for (PetscInt d = 0; d < dim; d++) {
         PetscInt r = ct->row[i * dim + d];
-        if (r >= 0) sii -= PetscSqr(ct->w[i] * nf[d]) / PetscRealPart(da[r - rstart]);
+        if (r >= 0) sii -= ct->c * PetscSqr(ct->w[i] * nf[d]) / PetscRealPart(da[r - rstart]);
       }
     }
     PetscCall(MatSetValue(s->Sp, zero, gi, ct->depth_control ? 0.0 : c, INSERT_VALUES));
-    PetscCall(MatSetValue(s->Sp, gi, zero, ct->active[i] ? c : 0.0, INSERT_VALUES));
+    PetscCall(MatSetValue(s->Sp, gi, zero, ct->active[i] ? ct->c * c : 0.0, INSERT_VALUES));
     PetscCall(MatSetValue(s->Sp, gi, gi, sii, INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayRead(diag, &da));
@@ -140,8 +161,85 @@ static PetscErrorCode part(Vec flat, IS is, Vec v, PetscBool to_flat) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, Vec du, PetscReal *dur,
-                                   Vec dlam, PetscBool *ok) {
+/* -indent_check_solve: the kept solve's solution X against a fresh LU solve of the same system (K assembled at the
+ * iterate, the nest converted, MUMPS), printed as |X - X_lu| / |X_lu| with the multipliers as lengths (lambda / c). */
+static PetscErrorCode check_against_fresh_lu(IndentSolver *s, PetscReal c) {
+  Mat       A;
+  KSP       ksp;
+  PC        pc;
+  Vec       Y;
+  PetscReal d, n;
+  PetscFunctionBeginUser;
+  PetscCall(s->assemble(s->actx));
+  PetscCall(MatAssemblyBegin(s->Apc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(s->Apc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatConvert(s->Apc, MATAIJ, MAT_INITIAL_MATRIX, &A));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)A), &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetOperators(ksp, A, A));
+  PetscCall(VecDuplicate(s->X, &Y));
+  PetscCall(KSPSolve(ksp, s->F, Y));
+  /* in lengths: the multipliers (pressures) over the complementarity constant c (pressure per length) */
+  Vec X, lam;
+  PetscCall(VecDuplicate(s->X, &X));
+  PetscCall(VecCopy(s->X, X));
+  Vec *both[] = {&X, &Y};
+  for (int k = 0; k < 2; k++) {
+    PetscCall(VecGetSubVector(*both[k], s->is[2], &lam));
+    PetscCall(VecScale(lam, 1 / c));
+    PetscCall(VecRestoreSubVector(*both[k], s->is[2], &lam));
+  }
+  PetscCall(VecNorm(Y, NORM_2, &n));
+  PetscCall(VecAXPY(X, -1.0, Y));
+  PetscCall(VecNorm(X, NORM_2, &d));
+  PetscCall(VecDestroy(&X));
+  s->check_max = PetscMax(s->check_max, d / PetscMax(n, 1e-300));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A), "    solve check: kept factorisation against a fresh LU: |dx - dx_lu| / |dx_lu| = %.3e (lambda / c: all lengths)\n",
+                        (double)(d / PetscMax(n, 1e-300))));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&A));
+  PetscFunctionReturn(0);
+}
+
+/* The direct path: GMRES on the current nest with the kept factorisation (indent_solver.h), refactored first
+ * when due, and once more at once when the solve fails on a kept one; refactor_its 0: LU alone, every time.
+ * Due: when the Krylov iterations beyond the first, summed over the solves since the factorisation, exceed
+ * refactor_its, the cost of a factorisation counted in Krylov iterations (a fresh one solves in one). */
+static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, PetscBool tight, KSPConvergedReason *reason) {
+  PetscInt its = 0;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  for (int attempt = 0; attempt < 2; attempt++) {
+    PetscBool fresh = s->refactor || !s->Aaij || !s->kept;
+    if (fresh) { /* K at this iterate, and the nest's values into the same AIJ matrix: the pattern is fixed, so MUMPS
+                    keeps its analysis */
+      PetscCall(s->assemble(s->actx));
+      PetscCall(MatAssemblyBegin(s->Apc, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(s->Apc, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatConvert(s->Apc, MATAIJ, s->Aaij ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &s->Aaij));
+      s->setups++, s->refactor = PETSC_FALSE, s->extra_its = 0;
+    }
+    PetscCall(KSPSetOperators(s->ksp, s->kept ? s->A : s->Aaij, s->Aaij));
+    PetscCall(KSPSetReusePreconditioner(s->ksp, fresh ? PETSC_FALSE : PETSC_TRUE));
+    PetscCall(KSPSolve(s->ksp, s->F, s->X));
+    PetscCall(KSPGetConvergedReason(s->ksp, reason));
+    PetscCall(KSPGetIterationNumber(s->ksp, &its));
+    s->linear_its += its;
+    if (*reason > 0 || fresh) break;
+    s->refactor = PETSC_TRUE; /* the kept factorisation no longer serves: a fresh one, now */
+  }
+  if (s->check && s->kept) PetscCall(check_against_fresh_lu(s, c));
+  s->extra_its += PetscMax(its - 1, 0);
+  if (s->kept && s->extra_its > s->refactor_its) s->refactor = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
+                                   PetscReal *dur, Vec dlam, PetscBool *ok) {
   double             t0 = wall();
   KSPConvergedReason reason;
   Vec                sub;
@@ -159,18 +257,16 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCall(VecRestoreSubVector(s->F, s->is[1], &sub));
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
-  if (!s->fieldsplit) {
-    /* the nest's values into the same AIJ matrix: the pattern is fixed, so MUMPS keeps its analysis */
-    PetscCall(MatConvert(s->A, MATAIJ, s->Aaij ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &s->Aaij));
-    PetscCall(KSPSetOperators(s->ksp, s->Aaij, s->Aaij));
-  } else {
+  if (!s->fieldsplit) PetscCall(solve_kept(s, ct->c, tight, &reason));
+  else {
+    PetscCall(s->assemble(s->actx));
     PetscCall(assemble_schur_pre(s, ct));
     PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
+    PetscCall(KSPSolve(s->ksp, s->F, s->X));
+    PetscCall(KSPGetConvergedReason(s->ksp, &reason));
+    PetscCall(KSPGetIterationNumber(s->ksp, &its));
+    s->linear_its += its, s->setups++;
   }
-  PetscCall(KSPSolve(s->ksp, s->F, s->X));
-  PetscCall(KSPGetConvergedReason(s->ksp, &reason));
-  PetscCall(KSPGetIterationNumber(s->ksp, &its));
-  s->linear_its += its;
   *ok = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(VecScale(s->X, -1.0));
   PetscCall(part(s->X, s->is[0], du, PETSC_FALSE));

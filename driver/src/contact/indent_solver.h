@@ -1,35 +1,68 @@
 /* The linearised indentation system of eq. 15 (Yin, Liu & Borja 2021) as a PETSc MatNest over
  * (u, u_r, lambda), of fixed size and nonzero pattern across iterations, and its two solver paths:
- *   direct      the nest converted to AIJ, LU by MUMPS (pivoting copes with the zero diagonal of the
- *               indenter row under force control and of the active multiplier rows);
+ *   direct      GMRES on the nest, preconditioned by the LU factorisation (MUMPS) of the nest of an earlier
+ *               Newton iteration, converted to AIJ (pivoting copes with the zero diagonal of the indenter row
+ *               under force control and of the active multiplier rows). The factorisation is kept across
+ *               iterations and steps while GMRES converges in a few iterations, and rebuilt when the Krylov
+ *               iterations beyond the first since it was made exceed -indent_refactor_its (the cost of a
+ *               factorisation counted in Krylov iterations), when a solve fails (then at once), and after a
+ *               checkpoint (so that a restart repeats the run bit for bit). The operator is the matrix-free
+ *               tangent (fe_tangent_operator): K is assembled only when it is factored. GMRES solves to
+ *               -indent_ksp_rtol (1e-2) while Newton stops on its error estimate (semismooth.c: a correction
+ *               whose remaining error is theta |du| is accepted once that is below etol |dU|, and an inexact
+ *               solve's theta is about its rtol), and to -indent_ksp_rtol_tight (1e-10) when Newton iterates
+ *               to a small residual and while the active set changes, where an inexact direction could flip
+ *               a node with lambda - c g near zero onto another branch of a non-unique contact solution (seen
+ *               on the mirrored half model of test_sector). GMRES is right-
+ *               preconditioned, so its residual is the true one; every row of the system is a force
+ *               (contact.h), so its norm weighs the equilibrium, indenter and gap rows alike.
+ *               -indent_refactor_its 0: a fresh factorisation at every iteration, LU alone;
  *   fieldsplit  PCFIELDSPLIT on the nest itself: u | (u_r, lambda), Schur complement on the small block,
  *               the displacement block by GAMG (rigid-body near null space) inside GMRES, the Schur
  *               complement preconditioned by its "selfp" approximation assembled here and factored.
- * -indent_solver direct|fieldsplit selects; options with the prefixes fieldsplit_u_ and fieldsplit_contact_
- * reach the inner solvers. */
+ * -indent_solver direct|fieldsplit selects; the solver's options take the prefix indent_ (-indent_ksp_rtol,
+ * -indent_ksp_monitor, -indent_mat_mumps_icntl_*, -indent_fieldsplit_u_*, -indent_fieldsplit_contact_*). */
 #ifndef INDENT_SOLVER_H
 #define INDENT_SOLVER_H
 
 #include <petscksp.h>
 
 #include "contact.h"
+#include "contact_options.h"
 
 typedef struct {
   PetscBool fieldsplit;
-  Mat       K;           /* the displacement block (the FE Jacobian) */
-  Mat       A, Aaij, Sp; /* the nest; its AIJ copy (direct); the Schur preconditioning matrix */
+  Mat       K;           /* the displacement block (the FE Jacobian), assembled by assemble(actx) when needed */
+  PetscErrorCode (*assemble)(void *);
+  void     *actx;
+  PetscBool kept;        /* direct with a kept factorisation (refactor_its > 0) */
+  Mat       A, Apc;      /* the nest (kept: its K block the matrix-free tangent) and the nest with K (A if not kept) */
+  Mat       Aaij, Sp;    /* the AIJ copy of Apc that is factored (direct); the Schur preconditioning matrix */
   IS        is[3], isrl; /* u, u_r, lambda in the flat layout; u_r and lambda together */
   Vec       X, F;        /* flat work vectors */
   KSP       ksp;
-  PetscInt  linear_its;  /* Krylov iterations over the run (fieldsplit) */
-  double    seconds;     /* wall time in set-up and solve */
+  PetscInt  refactor_its; /* direct: the cost of a factorisation in Krylov iterations (solve_kept) */
+  PetscInt  extra_its;    /* direct: Krylov iterations beyond the first since the last factorisation */
+  PetscReal rtol, rtol_tight; /* kept: GMRES' relative tolerances, loose and tight */
+  PetscBool check;        /* -indent_check_solve: a fresh LU solve beside every kept one */
+  PetscReal check_max;    /* the largest relative difference seen */
+  PetscBool refactor;     /* direct: rebuild it at the next solve */
+  PetscInt  linear_its;   /* Krylov iterations over the run */
+  PetscInt  setups;       /* factorisations (direct) or preconditioner set-ups (fieldsplit) over the run */
+  double    seconds;      /* wall time in set-up and solve */
 } IndentSolver;
 
-PetscErrorCode indent_solver_create(Contact *ct, Mat K, IndentSolver *s);
+/* K: the assembled displacement block; Kmf: the same tangent as a matrix-free operator (fe_tangent_operator);
+ * assemble(actx) assembles K at the current iterate, called only when K is factored or preconditioned. */
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
+                                   IndentSolver *s);
 PetscErrorCode indent_solver_destroy(IndentSolver *s);
-/* Solve J dx = -F for the current blocks; F is given by its parts (R_r on rank 0), dx returned likewise. */
-PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, Vec du, PetscReal *dur,
-                                   Vec dlam, PetscBool *ok);
+/* The next solve factors afresh (a new stage, a checkpoint). */
+static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }
+/* Solve J dx = -F for the current blocks; F is given by its parts (R_r on rank 0), dx returned likewise. tight:
+ * solve to -indent_ksp_rtol_tight, not -indent_ksp_rtol (kept factorisation only). */
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
+                                   PetscReal *dur, Vec dlam, PetscBool *ok);
 
 /* The product of the current blocks with a direction (du, dur, dlam): (ju, jr, jlam) = J d (for the
  * finite-difference check of the tangent). */

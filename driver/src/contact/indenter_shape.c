@@ -3,12 +3,16 @@
 #include <math.h>
 
 /* Gap and gradient in the frame of the tip: lateral vector l (dim - 1 components), height z above the
- * tip. grad_l and grad_z are the lateral and upward components of n. */
-static double cone_gap(double psi, const double l[], int nl, double z, double gl[], double *gz) {
+ * tip. grad_l and grad_z are the lateral and upward components of n. tie: a length at roundoff level of the
+ * coordinates; a point within it of the apex's region belongs to the face. A node on the axis in contact sits at
+ * the apex (g = 0, z = 0): the gap's gradient jumps there from the face's (0, -sin psi) to the apex's (0, -1), and
+ * roundoff in z alone would pick one or the other from one iterate to the next (Newton then stalls); the face's
+ * is kept, as the Berkovich keeps the mean of its tied faces. */
+static double cone_gap(double psi, const double l[], int nl, double z, double tie, double gl[], double *gz) {
   double rho = 0;
   for (int k = 0; k < nl; k++) rho += l[k] * l[k];
   rho = sqrt(rho);
-  if (rho * sin(psi) + z * cos(psi) < 0) { /* below the apex: the tip is the closest point */
+  if (rho * sin(psi) + z * cos(psi) < -tie) { /* below the apex: the tip is the closest point */
     double r = sqrt(rho * rho + z * z);
     if (r == 0) {
       for (int k = 0; k < nl; k++) gl[k] = 0;
@@ -60,7 +64,12 @@ double indenter_gap(const IndenterShape *s, const double X[], const double x[], 
   for (int k = 0; k < nl; k++) l[k] = x[k] - s->tip[k];
   switch (s->kind) {
   case SHAPE_CONE:
-  case SHAPE_WEDGE: g = cone_gap(s->half_angle, l, nl, z, gl, &gz); break;
+  case SHAPE_WEDGE: {
+    double tie = 1e-12 * fabs(ur);
+    for (int k = 0; k <= nl; k++) tie += 1e-12 * (fabs(x[k]) + fabs(s->tip[k]));
+    g = cone_gap(s->half_angle, l, nl, z, tie, gl, &gz);
+    break;
+  }
   case SHAPE_BERKOVICH: { /* three planes; the gap to the pyramid is the largest plane distance, exact
                              wherever the closest point lies on a face (the contact zone). On an edge or at the
                              tip (faces tied to roundoff) the normal is the mean of the tied faces' gradients, a

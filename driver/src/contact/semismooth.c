@@ -1,5 +1,7 @@
 #include "semismooth.h"
 
+#include "contact_options.h"
+
 #include "../fe/fe_state.h"
 #include "../io/log_events.h"
 
@@ -35,12 +37,11 @@ PetscErrorCode semismooth_evaluate(Semismooth *in, PetscReal *merit) {
     PetscCall(MPIU_Allreduce(&s, &all, 1, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
     in->ncp = PetscSqrtReal(all);
   }
-  PetscReal rr = in->depth_control ? in->Rr * in->kshift : in->Rr; /* depth rows in force units */
-  *merit       = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + rr * rr) / in->fref;
+  *merit = PetscSqrtReal(in->ru * in->ru + in->ncp * in->ncp + in->Rr * in->Rr) / in->fref; /* R_r: a force (contact.h) */
   PetscFunctionReturn(0);
 }
 
-/* A signature of the active set (all ranks), to notice a set met again: cycling. */
+/* A signature of the active set (all ranks), to notice a set met again: cycling (met_again). */
 static PetscErrorCode active_signature(Semismooth *in, unsigned long long *sig) {
   unsigned long long loc = 0;
   PetscFunctionBeginUser;
@@ -100,14 +101,10 @@ static PetscErrorCode check_tangent(Semismooth *in, PetscReal *merit) {
   PetscReal scale = PetscMax(PetscMax(nu, PetscAbsReal(in->ur)), 1e-3 * xall), dur = scale; /* of the solution's size */
   PetscCall(VecScale(du, scale));
   PetscCall(VecScale(dl, in->fref / PetscMax(in->ct.weight_sum, 1e-300)));
-  { /* -indent_check_tangent_part u | r | lambda: only that part of the direction */
-    char      which[16] = "";
-    PetscBool set;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-indent_check_tangent_part", which, sizeof which, &set));
-    if (set && strcmp(which, "u")) PetscCall(VecZeroEntries(du));
-    if (set && strcmp(which, "r")) dur = 0;
-    if (set && strcmp(which, "lambda")) PetscCall(VecZeroEntries(dl));
-  }
+  /* -indent_check_tangent_part u | r | lambda (1, 2, 3): only that part of the direction */
+  if (in->tangent_part && in->tangent_part != 1) PetscCall(VecZeroEntries(du));
+  if (in->tangent_part && in->tangent_part != 2) dur = 0;
+  if (in->tangent_part && in->tangent_part != 3) PetscCall(VecZeroEntries(dl));
   eps = 1e-6;
   PetscCall(indent_solver_apply(&in->sol, du, dur, dl, ju, &jr, jl));
   PetscCall(residual_along(in, eps, du, dur, dl, rp, &rrp, lp));
@@ -153,7 +150,7 @@ static PetscErrorCode error_small(Semismooth *in, PetscReal merit, PetscReal mer
 
 /* Force control with nothing in contact: no state carries the load until the indenter touches, so it is moved
  * down to the first touch of the multipliers' gaps (their mean gaps on P2) instead of by the indenter-row shift's
- * steps of R_r / kshift. Needed on P2: there the tip vertex's mean gap is positive while the tip touches, and
+ * steps of R_r / k_n. Needed on P2: there the tip vertex's mean gap is positive while the tip touches, and
  * the shift's steps took more than the iteration limit to close it. No move when a gap is already closed (P1 with
  * the tip on the surface). */
 static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
@@ -167,98 +164,137 @@ static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
   PetscFunctionReturn(0);
 }
 
-/* One step by the semismooth Newton method of Box 1: the active set from eq. 14 at every iterate, the
- * system of eq. 15 solved for the set, a backtracking line search on the merit, converged when the
- * residual is small and the set did not change. */
-PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out) {
-  unsigned long long sig[64];
-  PetscReal          merit, merit_prev = 0;
-  PetscInt           k, changes, damp = 0;
+/* Predict: the step's first iterate, the last converged state or its extrapolation along the last converged rates
+ * (the multipliers kept non-negative). */
+static PetscErrorCode predict(Semismooth *in, PetscReal h) {
   PetscFunctionBeginUser;
-  *status     = STEP_DIVERGED;
-  in->changes = 0;
-  /* the start: the last converged state, or its extrapolation along the last converged rates */
   PetscCall(VecCopy(in->U0, in->U));
   PetscCall(VecCopy(in->lam0, in->lam));
   in->ur = in->ur0;
   if (in->predictor && in->have_rate && in->dt_prev > 0) {
-    PetscReal r = h / in->dt_prev;
+    PetscReal    r = h / in->dt_prev;
+    PetscScalar *la;
     PetscCall(VecAXPY(in->U, r, in->rateU));
     PetscCall(VecAXPY(in->lam, r, in->ratelam));
     in->ur += r * in->rateur;
-    PetscScalar *la;
     PetscCall(VecGetArray(in->lam, &la));
     for (PetscInt i = 0; i < in->ct.n; i++) la[i] = PetscMax(0, PetscRealPart(la[i]));
     PetscCall(VecRestoreArray(in->lam, &la));
   }
+  PetscFunctionReturn(0);
+}
+
+/* Update the active set (eq. 14) at the iterate, and record its signature in the step's history. Released (force
+ * control at zero load): no contact pressure anywhere. */
+static PetscErrorCode update_active_set(Semismooth *in, PetscInt *changes) {
+  PetscFunctionBeginUser;
+  if (semismooth_released(in)) {
+    PetscInt loc = 0;
+    for (PetscInt i = 0; i < in->ct.n; i++) loc += in->ct.active[i], in->ct.active[i] = PETSC_FALSE;
+    PetscCall(MPIU_Allreduce(&loc, changes, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
+    in->nactive = 0;
+  } else PetscCall(contact_update_active(&in->ct, in->lam, in->fref / in->ct.weight_sum, changes, &in->nactive));
+  in->changes += *changes;
+  PetscFunctionReturn(0);
+}
+
+/* Whether the set of iteration k (just recorded) was met two or more iterations before: cycling. */
+static PetscBool met_again(const ActiveSetHistory *h) {
+  for (PetscInt j = 0; j + 2 < h->n; j++)
+    if (h->sig[j] == h->sig[h->n - 1]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* Converged: the set did not change and the residual is small (every part below rtol of the force scale), or,
+ * under an error measure, the estimated remaining error is (error_small). */
+static PetscErrorCode converged(Semismooth *in, PetscInt k, PetscInt changes, PetscReal merit, PetscReal merit_prev, PetscBool *done) {
+  const PetscReal f = in->rtol * in->fref;
+  PetscBool       small = in->ru <= f && in->ncp <= f && PetscAbsReal(in->Rr) <= f;
+  PetscFunctionBeginUser;
+  if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, merit_prev, &small));
+  if (in->monitor)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n", (int)k,
+                          (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes, (double)in->ur));
+  *done = small && changes == 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Solve: eq. 15 for the current set, with a stiffness shift on the indenter row when no node is in contact (force
+ * control: the row would be empty); the direction into (du, dur, dlam). The linear solve may be loose only while
+ * the error estimate stops Newton and the set is settled (indent_solver.h). */
+static PetscErrorCode solve(Semismooth *in, PetscInt changes, PetscBool shift, PetscReal *merit, PetscReal *dur, PetscBool *ok) {
+  PetscBool tight = changes > 0 || !in->newton_estimate || in->etol <= 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
+  PetscCall(contact_jacobian(&in->ct, in->depth_control, shift));
+  PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT), 0, 0, 0, 0));
+  PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
+  if (in->fd_check && !shift) PetscCall(check_tangent(in, merit)); /* the shift is in the tangent only */
+  PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, tight, in->du, dur, in->dlam, ok));
+  PetscFunctionReturn(0);
+}
+
+/* Line search: while the active set settles the full semismooth step is taken (it identifies the set in finitely
+ * many steps); with the set unchanged, the step is halved while the merit does not fall (Armijo, at most 5
+ * halvings); a damped step (alpha = 1/2) after a cycle. The iterate moves; *merit becomes the new one. */
+static PetscErrorCode line_search(Semismooth *in, PetscReal dur, PetscBool search, PetscBool damped, PetscReal *merit) {
+  PetscReal urk = in->ur, alpha = damped ? 0.5 : 1.0, trial;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(in->U, in->Uk));
+  PetscCall(VecCopy(in->lam, in->lamk));
+  for (int ls = 0;; ls++) {
+    PetscCall(VecWAXPY(in->U, alpha, in->du, in->Uk));
+    PetscCall(VecWAXPY(in->lam, alpha, in->dlam, in->lamk));
+    in->ur = urk + alpha * dur;
+    PetscCall(semismooth_evaluate(in, &trial));
+    if (!search || trial <= (1 - 1e-4 * alpha) * *merit || ls == 5 || trial < in->rtol) break;
+    alpha *= 0.5;
+  }
+  *merit = trial;
+  PetscCall(VecNorm(in->du, NORM_INFINITY, &in->du_norm));
+  in->du_norm *= alpha, in->dur_last = alpha * dur;
+  PetscFunctionReturn(0);
+}
+
+/* One step by the semismooth Newton method of Box 1, in the phases of deal.II's step-42: predict, then per
+ * iteration update the active set (eq. 14), test convergence, solve eq. 15 for the set, line search. A set met
+ * again two iterations or more later is a cycle: the next step is damped, and after the third the stepper cuts
+ * the step back. */
+PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out) {
+  PetscReal merit, merit_prev = 0;
+  PetscInt  k, changes, damp = 0;
+  PetscFunctionBeginUser;
+  *status = STEP_DIVERGED, in->changes = 0, in->history.n = 0;
+  PetscCall(predict(in, h));
   PetscCall(semismooth_evaluate(in, &merit));
   for (k = 0; k <= in->max_it; k++) {
-    if (semismooth_released(in)) { /* released: no load, no contact pressure anywhere */
-      PetscInt loc = 0;
-      for (PetscInt i = 0; i < in->ct.n; i++) loc += in->ct.active[i], in->ct.active[i] = PETSC_FALSE;
-      PetscCall(MPIU_Allreduce(&loc, &changes, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)in->U)));
-      in->nactive = 0;
-    } else PetscCall(contact_update_active(&in->ct, in->lam, in->fref / in->ct.weight_sum, &changes, &in->nactive));
-    in->changes += changes;
+    PetscBool done = PETSC_FALSE, ok, shift;
+    PetscReal dur, m;
+    PetscCall(update_active_set(in, &changes));
     if (!in->depth_control && !semismooth_released(in) && in->nactive == 0 && in->target > 0) PetscCall(approach(in, &merit));
-    PetscCall(active_signature(in, &sig[k % 64]));
-    PetscBool small = in->ru <= in->rtol * in->fref && in->ncp <= in->rtol * in->fref &&
-                      PetscAbsReal(in->depth_control ? in->Rr * in->kshift : in->Rr) <= in->rtol * in->fref;
-    if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, merit_prev, &small));
-    if (in->monitor)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n",
-                            (int)k, (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes,
-                            (double)in->ur));
-    if (small && changes == 0) {
+    PetscCall(active_signature(in, &in->history.sig[in->history.n++]));
+    PetscCall(converged(in, k, changes, merit, merit_prev, &done));
+    if (done) {
       *status = STEP_OK;
       break;
     }
     if (k == in->max_it) break;
-    if (changes > 0) /* cycling: a set met two or more iterations ago comes back */
-      for (PetscInt j = PetscMax(0, k - 63); j < k - 1; j++)
-        if (sig[j % 64] == sig[k % 64]) {
-          in->cycles++;
-          if (++damp > 2) { /* damped twice and still cycling: let the stepper cut the step back */
-            *status = STEP_CYCLING;
-            *its_out = k;
-            PetscFunctionReturn(0);
-          }
-          break;
-        }
-    /* eq. 15 for the current set; a stiffness shift on the indenter row when no node is in contact
-       (force control: the row would be empty) */
-    PetscBool shift = !in->depth_control && in->nactive == 0;
-    PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
-    PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
-    PetscCall(contact_jacobian(&in->ct, in->depth_control, shift ? in->kshift : 0.0));
-    PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT), 0, 0, 0, 0));
-    PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
-    if (in->fd_check && !shift) PetscCall(check_tangent(in, &merit)); /* the shift is in the tangent only */
-    PetscReal dur;
-    PetscBool ok;
-    PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, in->du, &dur, in->dlam, &ok));
+    if (changes > 0 && met_again(&in->history)) {
+      in->cycles++;
+      if (++damp > 2) { /* damped twice and still cycling: let the stepper cut the step back */
+        *status = STEP_CYCLING;
+        break;
+      }
+    }
+    shift = !in->depth_control && in->nactive == 0;
+    PetscCall(solve(in, changes, shift, &merit, &dur, &ok));
     if (!ok) {
       *status = STEP_LINEAR;
       break;
     }
-    /* line search: while the active set settles the full semismooth step is taken (it identifies the
-       set in finitely many steps); with the set unchanged, the step is halved while the merit does not
-       fall (Armijo, at most 5 halvings); a damped step (alpha = 1/2) after a cycle */
-    PetscCall(VecCopy(in->U, in->Uk));
-    PetscCall(VecCopy(in->lam, in->lamk));
-    PetscReal urk = in->ur, alpha = damp ? 0.5 : 1.0, trial;
-    PetscBool search = in->line_search && changes == 0 && !shift;
-    for (int ls = 0;; ls++) {
-      PetscCall(VecWAXPY(in->U, alpha, in->du, in->Uk));
-      PetscCall(VecWAXPY(in->lam, alpha, in->dlam, in->lamk));
-      in->ur = urk + alpha * dur;
-      PetscCall(semismooth_evaluate(in, &trial));
-      if (!search || trial <= (1 - 1e-4 * alpha) * merit || ls == 5 || trial < in->rtol) break;
-      alpha *= 0.5;
-    }
-    merit_prev = merit, merit = trial;
-    PetscCall(VecNorm(in->du, NORM_INFINITY, &in->du_norm));
-    in->du_norm *= alpha, in->dur_last = alpha * dur;
+    m = merit;
+    PetscCall(line_search(in, dur, in->line_search && changes == 0 && !shift, damp > 0, &m));
+    merit_prev = merit, merit = m;
   }
   *its_out = k;
   PetscFunctionReturn(0);
@@ -292,6 +328,14 @@ PetscErrorCode semismooth_commit(Semismooth *in, PetscReal h, PetscBool same_sta
 }
 
 
+/* K at the iterate, for the solver when it factors or preconditions (indent_solver.h). */
+static PetscErrorCode assemble_tangent(void *ctx) {
+  Semismooth *in = ctx;
+  PetscFunctionBeginUser;
+  PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, in->p));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
   MPI_Comm comm = PetscObjectComm((PetscObject)p->dm);
   PetscFunctionBeginUser;
@@ -323,26 +367,21 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   for (int k = 0; lv[k]; k++) PetscCall(VecDuplicate(in->lam, lv[k]));
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecZeroEntries(*all[k]));
-  PetscCall(indent_solver_create(&in->ct, in->K, &in->sol));
-  in->rtol = 1e-10, in->max_it = 30, in->predictor = PETSC_TRUE, in->line_search = PETSC_TRUE, in->newton_estimate = PETSC_TRUE;
-  PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1)", NULL);
-  PetscCall(PetscOptionsReal("-indent_rtol", "residual tolerance relative to the load", NULL, in->rtol, &in->rtol, NULL));
-  PetscCall(PetscOptionsInt("-indent_max_it", "Newton iterations per step", NULL, in->max_it, &in->max_it, NULL));
-  PetscCall(PetscOptionsBool("-indent_predictor", "start each step from the extrapolated last increment", NULL, in->predictor, &in->predictor, NULL));
-  PetscCall(PetscOptionsBool("-indent_monitor", "print every Newton iteration", NULL, in->monitor, &in->monitor, NULL));
-  PetscCall(PetscOptionsBool("-indent_line_search", "Armijo line search once the active set is fixed", NULL, in->line_search, &in->line_search, NULL));
-  PetscCall(PetscOptionsBool("-indent_newton_estimate", "with an error measure, stop Newton once its estimated error is a small fraction of the step's tolerance",
-                             NULL, in->newton_estimate, &in->newton_estimate, NULL));
-  PetscCall(PetscOptionsBool("-indent_check_tangent", "compare the tangent with finite differences", NULL, in->fd_check, &in->fd_check, NULL));
-  PetscOptionsEnd();
-  in->max_it = PetscMin(in->max_it, 63);
+  IndentOptions o; /* -indent_*: contact_options.c */
+  PetscCall(indent_options(comm, &o));
+  in->rtol = o.rtol, in->max_it = o.max_it, in->predictor = o.predictor, in->monitor = o.monitor, in->line_search = o.line_search;
+  in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent, in->tangent_part = o.tangent_part;
+  PetscCall(PetscMalloc1(in->max_it + 1, &in->history.sig));
+  PetscCall(fe_jacobian_coo_setup(p, in->K));
+  PetscCall(fe_tangent_operator(p, in->K, &in->Kmf));
+  PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
      indenter row's shift (one contact node's stiffness) and the complementarity constant. */
   p->time = 0, p->dt = 0, p->umat_tol = 0;
   PetscCall(fe_residual(NULL, in->U, in->Ru, p));
   PetscCall(fe_problem_commit(p));
   PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, p));
-  PetscCall(contact_node_stiffness(&in->ct, in->K, &in->kshift));
+  PetscCall(contact_node_stiffness(&in->ct, in->K));
   {
     PetscReal E = 0, Eall, ell = 0, lall;
     for (PetscInt k = 0; k < p->npoint; k++) E = PetscMax(E, p->ddsdde[k * 36]);
@@ -377,5 +416,7 @@ PetscErrorCode semismooth_destroy(Semismooth *in) {
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecDestroy(all[k]));
   PetscCall(MatDestroy(&in->K));
+  PetscCall(MatDestroy(&in->Kmf));
+  PetscCall(PetscFree(in->history.sig));
   PetscFunctionReturn(0);
 }

@@ -12,20 +12,26 @@
 #include "indent_scene.h"
 #include "indent_solver.h"
 
+/* The active sets of a step's iterations, by their signatures (a hash over all ranks), to notice one met again. */
+typedef struct {
+  unsigned long long *sig; /* max_it + 1 */
+  PetscInt            n;
+} ActiveSetHistory;
+
 /* Everything the Newton loop works on: the problem, the contact, the unknowns (u, u_r, lambda) with their
  * committed values and last converged increments (the predictor), residual parts and settings. */
 typedef struct {
   FeProblem   *p;
   Contact      ct;
   IndentSolver sol;
-  Mat          K;
+  Mat          K, Kmf;                           /* the FE tangent, assembled and matrix-free */
   Vec          U, lam, Ru, Rlam, du, dlam;       /* iterate, residual parts, Newton direction */
   Vec          Uk, lamk;                         /* the iterate before a line search */
   Vec          U0, lam0, rateU, ratelam;         /* committed; last converged increment */
   PetscReal    ur, ur0, rateur, dt_prev;
   PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate;
-  PetscReal    rtol, kshift, fref;
-  PetscInt     max_it;
+  PetscReal    rtol, fref;
+  PetscInt     max_it, tangent_part;              /* tangent_part: -indent_check_tangent_part (contact_options.h) */
   /* the step being solved */
   PetscBool    depth_control;
   PetscReal    target;                           /* load or depth at the step's end */
@@ -35,6 +41,7 @@ typedef struct {
   PetscReal    du_norm, dur_last;                /* the last correction: |alpha du|_inf, alpha dur */
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
   PetscInt     its_total, cycles;
+  ActiveSetHistory history;
 } Semismooth;
 
 enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };

@@ -286,39 +286,3 @@ PetscErrorCode fe_constraint_node_frame(const FeConstraint *con, PetscInt off, P
     for (PetscInt j = 0; j < dim; j++) R[i * dim + j] = fr >= 0 ? con->R[fr * dim * dim + i * dim + j] : (PetscReal)(i == j);
   PetscFunctionReturn(0);
 }
-
-PetscErrorCode fe_constraint_plane_spread(DM dm, const char *group, const PetscReal n[], PetscReal *spread, PetscReal *size) {
-  DMLabel            label;
-  PetscInt           dim, vStart, vEnd;
-  PetscReal          lo = PETSC_MAX_REAL, hi = -PETSC_MAX_REAL, gmin[3] = {0, 0, 0}, gmax[3] = {0, 0, 0}, all[2];
-  Vec                coords;
-  PetscSection       cs;
-  const PetscScalar *x;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)dm);
-  PetscFunctionBeginUser;
-  PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(DMGetLabel(dm, group, &label));
-  PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "boundary.mirror: the mesh has no physical group '%s'", group);
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  PetscCall(DMGetCoordinatesLocal(dm, &coords));
-  PetscCall(DMGetCoordinateSection(dm, &cs));
-  PetscCall(VecGetArrayRead(coords, &x));
-  for (PetscInt v = vStart; v < vEnd; v++) {
-    PetscInt val, off;
-    PetscCall(DMLabelGetValue(label, v, &val));
-    if (val < 0) continue;
-    PetscCall(PetscSectionGetOffset(cs, v, &off));
-    PetscReal d = 0;
-    for (PetscInt a = 0; a < dim; a++) d += PetscRealPart(x[off + a]) * n[a];
-    lo = PetscMin(lo, d), hi = PetscMax(hi, d);
-  }
-  PetscCall(VecRestoreArrayRead(coords, &x));
-  PetscCall(MPIU_Allreduce(&lo, &all[0], 1, MPIU_REAL, MPIU_MIN, comm));
-  PetscCall(MPIU_Allreduce(&hi, &all[1], 1, MPIU_REAL, MPIU_MAX, comm));
-  *spread = all[1] >= all[0] ? all[1] - all[0] : 0;
-  PetscCall(DMGetBoundingBox(dm, gmin, gmax));
-  *size = 0;
-  for (PetscInt a = 0; a < dim; a++) *size += PetscSqr(gmax[a] - gmin[a]);
-  *size = PetscSqrtReal(*size);
-  PetscFunctionReturn(0);
-}

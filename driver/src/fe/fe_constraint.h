@@ -55,8 +55,5 @@ PetscErrorCode fe_constraint_rotate_cell(const FeConstraint *con, const PetscInt
 PetscErrorCode fe_constraint_node_frame(const FeConstraint *con, PetscInt off, PetscReal R[9]);
 /* All points of a label, whatever their values (a gmsh physical group may carry several), this rank's. */
 PetscErrorCode fe_label_points(DMLabel label, IS *points);
-/* For input checks: the spread of x . n over the nodes of a group (max - min, all ranks) and the size of the mesh
- * (its bounding box's diagonal). Collective. */
-PetscErrorCode fe_constraint_plane_spread(DM dm, const char *group, const PetscReal n[], PetscReal *spread, PetscReal *size);
 
 #endif

@@ -4,6 +4,7 @@
 #include <petscdmplex.h>
 
 #include "../io/gmsh_mesh.h"
+#include "fe_natural.h"
 #include "fe_problem.h"
 
 PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm) {
@@ -30,7 +31,10 @@ PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *
     PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
     PetscCall(PetscPartitionerSetFromOptions(part));
   }
-  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
+  PetscSF migration = NULL;
+  PetscCall(DMPlexDistribute(*dm, 0, &migration, &dist));
+  PetscCall(fe_natural_setup(*dm, dist, migration)); /* the serial mesh's numbers, for output and checkpoints */
+  PetscCall(PetscSFDestroy(&migration));
   if (dist) {
     PetscCall(DMDestroy(dm));
     *dm = dist;

@@ -10,63 +10,45 @@
 #include <string.h>
 #include <unistd.h>
 
-/* Cell fields: name, number of components, and where they come from in a point's state
- * (fe_problem.h: stress, strain, then STATEV with the Cam-Clay IX slots of camclay9.h). */
+/* Cell fields: name, number of components in the state, where they come from in a point's state
+ * (fe_problem.h: stress, strain, then STATEV with the Cam-Clay IX slots of camclay9.h), and whether the Voigt
+ * values are strains (engineering shear, halved in the tensor). */
 typedef struct {
   const char *name;
   PetscInt    nc, offset;
+  PetscBool   strain;
 } CellField;
 static const CellField cell_fields[] = {
-  {"stress", 6, ST_STRESS},
-  {"strain", 6, ST_STRAN},
-  {"evp_hard", 6, ST_STATEV + CAMCLAY9_SV_EVP_HARD},
-  {"evp_soft", 6, ST_STATEV + CAMCLAY9_SV_EVP_SOFT},
-  {"evp", 6, ST_STATEV + CAMCLAY9_SV_EVP},
-  {"pc_hard", 1, ST_STATEV + CAMCLAY9_SV_PC_HARD},
-  {"pc_soft", 1, ST_STATEV + CAMCLAY9_SV_PC_SOFT},
-  {"phi", 1, -1},
+  {"stress", 6, ST_STRESS, PETSC_FALSE},
+  {"strain", 6, ST_STRAN, PETSC_TRUE},
+  {"evp_hard", 6, ST_STATEV + CAMCLAY9_SV_EVP_HARD, PETSC_TRUE},
+  {"evp_soft", 6, ST_STATEV + CAMCLAY9_SV_EVP_SOFT, PETSC_TRUE},
+  {"evp", 6, ST_STATEV + CAMCLAY9_SV_EVP, PETSC_TRUE},
+  {"pc_hard", 1, ST_STATEV + CAMCLAY9_SV_PC_HARD, PETSC_FALSE},
+  {"pc_soft", 1, ST_STATEV + CAMCLAY9_SV_PC_SOFT, PETSC_FALSE},
+  {"phi", 1, -1, PETSC_FALSE},
 };
 enum { NCELLFIELDS = sizeof cell_fields / sizeof cell_fields[0] };
+/* The row-major place of each Voigt component 11 22 33 12 13 23 in a 3x3 tensor (and of its mirror). */
+static const PetscInt voigt_row[6] = {0, 4, 8, 1, 2, 5}, voigt_mirror[6] = {0, 4, 8, 3, 6, 7};
 
 static PetscBool field_present(const FeProblem *p, const CellField *cf) {
   return (PetscBool)!(cf->offset >= ST_STATEV && cf->offset + cf->nc > ST_STATEV + p->mat.nstatv); /* UMAT without these slots */
 }
 
-/* What the six components of a tensor are, per kinematics (the UMAT's Voigt order; in 2D the 33 slot is the
- * out-of-plane or hoop component, 13 and 23 are zero). */
+/* What the nine components of a tensor are, per kinematics (in 2D the zz slot is the out-of-plane or hoop
+ * component, and xz, yz are zero). */
 static const char *tensor_components(const FeProblem *p) {
   switch (p->kin) {
-  case KIN_PLANE_STRAIN: return "xx yy zz(out-of-plane) xy 0 0";
-  case KIN_AXISYMMETRIC: return "rr zz tt(hoop) rz 0 0";
-  default: return "11 22 33 12 13 23";
+  case KIN_PLANE_STRAIN: return "full 3x3 tensors row by row: xx xy 0 yx yy 0 0 0 zz (zz out of plane); strains as tensors (eps_xy = gamma_xy / 2)";
+  case KIN_AXISYMMETRIC: return "full 3x3 tensors row by row: rr rz 0 zr zz 0 0 0 tt (tt: hoop); strains as tensors (eps_rz = gamma_rz / 2)";
+  default: return "full 3x3 tensors row by row: 11 12 13 21 22 23 31 32 33; strains as tensors (eps_12 = gamma_12 / 2)";
   }
 }
 
 static PetscErrorCode file_path(const FeOutput *o, const char *base, PetscBool final, char *path, size_t n) {
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(path, n, "%s/%s%s", o->dir, base, final ? "" : ".part"));
-  PetscFunctionReturn(0);
-}
-
-/* The points of [pStart, pStart + size(num)) that this rank owns (num >= 0), which DMPlex numbers
- * contiguously from the first of them. */
-static PetscErrorCode owned_points(IS num, PetscInt pStart, PetscInt *nloc, PetscInt **pts) {
-  const PetscInt *g;
-  PetscInt        n, m = 0, g0 = -1;
-  PetscFunctionBeginUser;
-  PetscCall(ISGetLocalSize(num, &n));
-  PetscCall(ISGetIndices(num, &g));
-  for (PetscInt k = 0; k < n; k++) m += g[k] >= 0;
-  PetscCall(PetscMalloc1(m + 1, pts));
-  m = 0;
-  for (PetscInt k = 0; k < n; k++) {
-    if (g[k] < 0) continue;
-    if (g0 < 0) g0 = g[k];
-    PetscCheck(g[k] == g0 + m, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: owned points not numbered contiguously");
-    (*pts)[m++] = pStart + k;
-  }
-  PetscCall(ISRestoreIndices(num, &g));
-  *nloc = m;
   PetscFunctionReturn(0);
 }
 
@@ -92,75 +74,103 @@ static PetscErrorCode view_in(PetscViewer viewer, const char *group, PetscObject
   PetscFunctionReturn(0);
 }
 
-/* Cell connectivity in global vertex numbers, each simplex positively oriented (as VTK expects). */
+/* The two vertices of each edge of a simplex in VTK's order of the mid-side nodes (VTK_QUADRATIC_TETRA,
+   VTK_QUADRATIC_TRIANGLE; XDMF's Tetrahedron_10 and Triangle_6). */
+static const PetscInt tet_edges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}}, tri_edges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+
+/* The vertices of cell c, positively oriented (as VTK expects: the first two swapped when not). */
+static PetscErrorCode cell_vertices(FeProblem *p, PetscInt c, const PetscScalar *x, PetscSection cs, PetscInt lv[4]) {
+  PetscInt *cl = NULL, ncl, m = 0, vStart, vEnd, off[4], nvc = p->dim + 1;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetTransitiveClosure(p->dm, c, PETSC_TRUE, &ncl, &cl));
+  for (PetscInt j = 0; j < 2 * ncl; j += 2)
+    if (cl[j] >= vStart && cl[j] < vEnd && m < nvc) lv[m++] = cl[j];
+  PetscCall(DMPlexRestoreTransitiveClosure(p->dm, c, PETSC_TRUE, &ncl, &cl));
+  PetscCheck(m == nvc, PETSC_COMM_SELF, PETSC_ERR_SUP, "fe_output: cell %d is not a simplex", (int)c);
+  for (PetscInt j = 0; j < m; j++) PetscCall(PetscSectionGetOffset(cs, lv[j], &off[j]));
+  PetscReal a[3][3] = {{0}}, det;
+  for (PetscInt j = 1; j < m; j++)
+    for (PetscInt d = 0; d < p->dim; d++) a[j - 1][d] = PetscRealPart(x[off[j] + d] - x[off[0] + d]);
+  det = p->dim == 3 ? a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+                    : a[0][0] * a[1][1] - a[0][1] * a[1][0];
+  if (det < 0) {
+    PetscInt t = lv[0];
+    lv[0] = lv[1], lv[1] = t;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Cell connectivity in natural node numbers: the vertices, then (P2) the mid-side nodes of the edges. */
 static PetscErrorCode write_cells(FeProblem *p, FeOutput *o) {
   const PetscInt  nvc = p->dim + 1;
-  IS              vnum, is;
-  const PetscInt *gv;
-  PetscInt        vStart, vEnd, *idx, cdim;
+  const PetscInt *nat;
+  PetscInt       *leaf, *root;
   PetscSection    cs;
   Vec             X;
   const PetscScalar *x;
+  IS              is;
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
-  PetscCall(DMPlexGetVertexNumbering(p->dm, &vnum));
-  PetscCall(ISGetIndices(vnum, &gv));
-  PetscCall(DMGetCoordinateDim(p->dm, &cdim));
+  PetscCall(fe_natural_indices(p->dm, &nat));
   PetscCall(DMGetCoordinateSection(p->dm, &cs));
   PetscCall(DMGetCoordinatesLocal(p->dm, &X));
   PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(PetscMalloc1(o->ncloc * nvc + 1, &idx));
-  for (PetscInt k = 0; k < o->ncloc; k++) {
-    PetscInt *cl = NULL, ncl, m = 0, lv[4], off[4];
-    PetscCall(DMPlexGetTransitiveClosure(p->dm, o->cown[k], PETSC_TRUE, &ncl, &cl));
-    for (PetscInt j = 0; j < 2 * ncl; j += 2)
-      if (cl[j] >= vStart && cl[j] < vEnd && m < nvc) lv[m++] = cl[j];
-    PetscCall(DMPlexRestoreTransitiveClosure(p->dm, o->cown[k], PETSC_TRUE, &ncl, &cl));
-    PetscCheck(m == nvc, PETSC_COMM_SELF, PETSC_ERR_SUP, "fe_output: cell %d is not a simplex", (int)o->cown[k]);
-    for (PetscInt j = 0; j < m; j++) PetscCall(PetscSectionGetOffset(cs, lv[j], &off[j]));
-    PetscReal a[3][3] = {{0}}, det;
-    for (PetscInt j = 1; j < m; j++)
-      for (PetscInt d = 0; d < p->dim; d++) a[j - 1][d] = PetscRealPart(x[off[j] + d] - x[off[0] + d]);
-    det = p->dim == 3 ? a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                          a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
-                      : a[0][0] * a[1][1] - a[0][1] * a[1][0];
-    if (det < 0) {
-      PetscInt t = lv[0];
-      lv[0] = lv[1], lv[1] = t;
-    }
-    for (PetscInt j = 0; j < m; j++) {
-      PetscInt g = gv[lv[j] - vStart];
-      idx[k * nvc + j] = g < 0 ? -(g + 1) : g;
+  PetscCall(PetscMalloc1(o->cells.n * o->npc + 1, &leaf));
+  PetscCall(PetscMalloc1(o->cells.nroot * o->npc + 1, &root));
+  for (PetscInt k = 0; k < o->cells.n; k++) {
+    PetscInt lv[4], *row = &leaf[k * o->npc];
+    PetscCall(cell_vertices(p, o->cells.points[k], x, cs, lv));
+    for (PetscInt j = 0; j < nvc; j++) row[j] = o->nodes.offset[0] + nat[lv[j]];
+    for (PetscInt e = 0; e < o->npc - nvc; e++) {
+      const PetscInt *ev = p->dim == 3 ? tet_edges[e] : tri_edges[e], pair[2] = {lv[ev[0]], lv[ev[1]]}, *join;
+      PetscInt        nj;
+      PetscCall(DMPlexGetJoin(p->dm, 2, pair, &nj, &join));
+      PetscCheck(nj == 1, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: no edge between two vertices of a cell");
+      row[nvc + e] = o->nodes.offset[1] + nat[join[0]];
+      PetscCall(DMPlexRestoreJoin(p->dm, 2, pair, &nj, &join));
     }
   }
   PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(ISRestoreIndices(vnum, &gv));
-  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)p->dm), o->ncloc * nvc, idx, PETSC_OWN_POINTER, &is));
-  PetscCall(ISSetBlockSize(is, nvc));
+  PetscCall(fe_natural_gather_int(&o->cells, o->npc, leaf, root));
+  PetscCall(PetscFree(leaf));
+  PetscCall(ISCreateGeneral(o->comm, o->cells.nroot * o->npc, root, PETSC_OWN_POINTER, &is));
+  PetscCall(ISSetBlockSize(is, o->npc));
   PetscCall(PetscObjectSetName((PetscObject)is, "cells"));
   PetscCall(view_in(o->viewer, "/mesh", (PetscObject)is));
   PetscCall(ISDestroy(&is));
   PetscFunctionReturn(0);
 }
 
+/* Node coordinates: the vertices', and (P2) the edges' midpoints. */
 static PetscErrorCode write_mesh(FeProblem *p, FeOutput *o) {
   PetscSection       cs;
   Vec                X, C;
   const PetscScalar *x;
   PetscScalar       *c;
+  PetscInt           vStart, vEnd;
   PetscFunctionBeginUser;
   PetscCall(DMGetCoordinateSection(p->dm, &cs));
   PetscCall(DMGetCoordinatesLocal(p->dm, &X));
-  PetscCall(block_vec(PetscObjectComm((PetscObject)p->dm), o->nvloc, p->dim, "coordinates", &C));
+  PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(o->nodes.n * p->dim + 1, &c));
   PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(VecGetArray(C, &c));
-  for (PetscInt k = 0; k < o->nvloc; k++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(cs, o->vown[k], &off));
-    for (PetscInt d = 0; d < p->dim; d++) c[k * p->dim + d] = x[off + d];
+  for (PetscInt k = 0; k < o->nodes.n; k++) {
+    PetscInt        pt = o->nodes.points[k], ncone = 1, off;
+    const PetscInt *cone = &pt;
+    if (pt < vStart || pt >= vEnd) { /* an edge: its midpoint */
+      PetscCall(DMPlexGetConeSize(p->dm, pt, &ncone));
+      PetscCall(DMPlexGetCone(p->dm, pt, &cone));
+    }
+    for (PetscInt d = 0; d < p->dim; d++) c[k * p->dim + d] = 0;
+    for (PetscInt j = 0; j < ncone; j++) {
+      PetscCall(PetscSectionGetOffset(cs, cone[j], &off));
+      for (PetscInt d = 0; d < p->dim; d++) c[k * p->dim + d] += x[off + d] / ncone;
+    }
   }
-  PetscCall(VecRestoreArray(C, &c));
   PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(fe_natural_gather(&o->nodes, p->dim, c, "coordinates", &C));
+  PetscCall(PetscFree(c));
   PetscCall(view_in(o->viewer, "/mesh", (PetscObject)C));
   PetscCall(VecDestroy(&C));
   PetscCall(write_cells(p, o));
@@ -168,7 +178,7 @@ static PetscErrorCode write_mesh(FeProblem *p, FeOutput *o) {
   PetscCall(PetscViewerHDF5WriteAttribute(o->viewer, "/fields", "cell_values", PETSC_STRING,
                                           "averages over the quadrature points of a cell, weighted by the volume"));
   PetscCall(PetscViewerHDF5WriteAttribute(o->viewer, "/fields", "displacement_values", PETSC_STRING,
-                                          p->order > 1 ? "at the vertices: the P1 interpolant of the P2 field"
+                                          p->order > 1 ? "at the nodes of the quadratic cells: vertices, then edge midpoints"
                                                        : "at the vertices (P1)"));
   PetscFunctionReturn(0);
 }
@@ -180,30 +190,25 @@ static PetscErrorCode check_mesh(FeProblem *p, FeOutput *o, const char *path) {
   PetscCall(PetscViewerHDF5PushGroup(o->viewer, "/mesh"));
   PetscCall(PetscViewerHDF5ReadSizes(o->viewer, "cells", &bs, &n));
   PetscCall(PetscViewerHDF5PopGroup(o->viewer));
-  PetscCheck(n == o->nc * (p->dim + 1), PetscObjectComm((PetscObject)p->dm), PETSC_ERR_FILE_UNEXPECTED,
-             "%s: /mesh/cells has %d entries, but this mesh has %d cells of %d vertices: the file is not this run's output",
-             path, (int)n, (int)o->nc, (int)(p->dim + 1));
+  PetscCheck(n == o->cells.N * o->npc, PetscObjectComm((PetscObject)p->dm), PETSC_ERR_FILE_UNEXPECTED,
+             "%s: /mesh/cells has %d entries, but this mesh has %d cells of %d nodes: the file is not this run's output",
+             path, (int)n, (int)o->cells.N, (int)o->npc);
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append, FeOutput *o) {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
-  char        path[700];
-  IS          num;
-  PetscInt    vStart, vEnd;
-  PetscMPIInt rank;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)p->dm);
+  char           path[700];
+  PetscMPIInt    rank;
+  const PetscInt node_depths[2] = {0, 1};
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(o, sizeof *o));
   PetscCall(PetscSNPrintf(o->dir, sizeof o->dir, "%s", outdir));
-  o->comm = comm;
+  o->comm     = comm;
   o->promoted = append;
-  PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
-  PetscCall(DMPlexGetVertexNumbering(p->dm, &num));
-  PetscCall(owned_points(num, vStart, &o->nvloc, &o->vown));
-  PetscCall(DMPlexGetCellNumbering(p->dm, &num));
-  PetscCall(owned_points(num, p->cStart, &o->ncloc, &o->cown));
-  PetscCall(MPIU_Allreduce(&o->nvloc, &o->nv, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCall(MPIU_Allreduce(&o->ncloc, &o->nc, 1, MPIU_INT, MPI_SUM, comm));
+  o->npc      = p->order > 1 ? (p->dim == 3 ? 10 : 6) : p->dim + 1;
+  PetscCall(fe_natural_create(p->dm, p->order > 1 ? 2 : 1, node_depths, PETSC_FALSE, &o->nodes));
+  PetscCall(fe_natural_create(p->dm, 1, &p->dim, PETSC_FALSE, &o->cells));
   PetscCall(file_path(o, "fields.h5", o->promoted, path, sizeof path));
   if (append) {
     int missing = 0;
@@ -219,54 +224,61 @@ PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append
   PetscFunctionReturn(0);
 }
 
-/* The displacement at the owned vertices, boundary values in, padded to 3 components. */
-static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, Vec *D) {
-  Vec                Uloc;
-  PetscSection       s;
-  PetscScalar       *u;
-  PetscScalar       *d;
+/* The displacement at the owned nodes, boundary values in, in global axes, padded to 3 components. */
+static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, const char *name, Vec *D) {
+  Vec          Uloc;
+  PetscSection s;
+  PetscScalar *u, *d;
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalVector(p->dm, &Uloc));
+  PetscCall(VecZeroEntries(Uloc));
   PetscCall(DMGlobalToLocal(p->dm, U, INSERT_VALUES, Uloc));
   PetscCall(DMGetLocalSection(p->dm, &s));
-  PetscCall(block_vec(PetscObjectComm((PetscObject)p->dm), o->nvloc, 3, "displacement", D));
   PetscCall(VecGetArray(Uloc, &u));
   PetscCall(fe_constraint_to_global(&p->con, u)); /* the fixed components' zeros; nodal frames to global axes */
-  PetscCall(VecGetArray(*D, &d));
-  for (PetscInt k = 0; k < o->nvloc; k++) {
+  PetscCall(PetscMalloc1(3 * o->nodes.n + 1, &d));
+  for (PetscInt k = 0; k < o->nodes.n; k++) {
     PetscInt off, ndof;
-    PetscCall(PetscSectionGetOffset(s, o->vown[k], &off));
-    PetscCall(PetscSectionGetDof(s, o->vown[k], &ndof));
-    PetscCheck(ndof == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: %d dofs at a vertex", (int)ndof);
+    PetscCall(PetscSectionGetOffset(s, o->nodes.points[k], &off));
+    PetscCall(PetscSectionGetDof(s, o->nodes.points[k], &ndof));
+    PetscCheck(ndof == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: %d dofs at a node", (int)ndof);
     for (PetscInt c = 0; c < 3; c++) d[3 * k + c] = c < p->dim ? u[off + c] : 0;
   }
-  PetscCall(VecRestoreArray(*D, &d));
   PetscCall(VecRestoreArray(Uloc, &u));
   PetscCall(DMRestoreLocalVector(p->dm, &Uloc));
+  PetscCall(fe_natural_gather(&o->nodes, 3, d, name, D));
+  PetscCall(PetscFree(d));
   PetscFunctionReturn(0);
 }
 
-/* A cell field: per owned cell, the average over its quadrature points (weights w detJ). In 2D the 13 and
- * 23 slots of stress and strain are not the UMAT's (NTENS = 4) and are written as the zeros they are. */
-static PetscErrorCode cell_vec(FeProblem *p, const CellField *cf, FeOutput *o, Vec *F) {
-  PetscScalar *a;
+/* A cell field: per owned cell, the average over its quadrature points (weights w detJ); a tensor as its nine
+ * components. In 2D the 13 and 23 slots of stress and strain are not the UMAT's (NTENS = 4) and are written as the
+ * zeros they are. */
+static PetscErrorCode cell_vec(FeProblem *p, const CellField *cf, FeOutput *o, const char *name, Vec *F) {
+  const PetscInt bs = cf->nc == 6 ? 9 : 1;
+  PetscScalar   *a;
   PetscFunctionBeginUser;
-  PetscCall(block_vec(PetscObjectComm((PetscObject)p->dm), o->ncloc, cf->nc, cf->name, F));
-  PetscCall(VecGetArray(*F, &a));
-  for (PetscInt k = 0; k < o->ncloc; k++) {
-    const PetscInt c = o->cown[k] - p->cStart;
+  PetscCall(PetscCalloc1(o->cells.n * bs + 1, &a));
+  for (PetscInt k = 0; k < o->cells.n; k++) {
+    const PetscInt c = o->cells.points[k] - p->cStart;
     for (PetscInt j = 0; j < cf->nc; j++) {
-      PetscReal sum = 0, vol = 0;
+      PetscReal sum = 0, vol = 0, v;
       for (PetscInt q = 0; q < p->nq; q++) {
         const PetscInt  pt = c * p->nq + q;
         const PetscReal w  = p->wdetJ[pt];
         sum += w * (cf->offset < 0 ? p->phi[c] : p->state[pt * p->nsv + cf->offset + j]);
         vol += w;
       }
-      a[k * cf->nc + j] = p->dim == 2 && cf->offset < ST_STATEV && j >= 4 ? 0 : sum / vol;
+      v = p->dim == 2 && cf->offset < ST_STATEV && j >= 4 ? 0 : sum / vol;
+      if (bs == 1) a[k] = v;
+      else {
+        if (j >= 3 && cf->strain) v /= 2; /* engineering shear to the tensor's */
+        a[k * 9 + voigt_row[j]] = a[k * 9 + voigt_mirror[j]] = v;
+      }
     }
   }
-  PetscCall(VecRestoreArray(*F, &a));
+  PetscCall(fe_natural_gather(&o->cells, bs, a, name, F));
+  PetscCall(PetscFree(a));
   PetscFunctionReturn(0);
 }
 
@@ -289,40 +301,42 @@ static PetscErrorCode write_time(FeOutput *o, PetscInt k, PetscReal t) {
 }
 
 /* ------------------------------------------------------------------------------------------ XDMF */
-static void data_item(FILE *fp, const char *type, int prec, PetscInt n, PetscInt nc, const char *h5path) {
+static void data_item(FILE *fp, const char *h5, const char *type, int prec, PetscInt n, PetscInt nc, const char *h5path) {
   fprintf(fp, "          <DataItem DataType=\"%s\" Precision=\"%d\" Format=\"HDF\" Dimensions=\"%d", type, prec, (int)n);
   if (nc > 1) fprintf(fp, " %d", (int)nc);
-  fprintf(fp, "\">fields.h5:%s</DataItem>\n", h5path);
+  fprintf(fp, "\">%s:%s</DataItem>\n", h5, h5path);
 }
 
-static void xmf_grid(FILE *fp, const FeProblem *p, const FeOutput *o, PetscInt k) {
-  char ds[96];
+static void xmf_grid(FILE *fp, const FeProblem *p, const FeOutput *o, const char *h5, PetscInt k) {
+  char        ds[96];
+  const char *topology = p->order > 1 ? (p->dim == 3 ? "Tetrahedron_10" : "Triangle_6") : (p->dim == 3 ? "Tetrahedron" : "Triangle");
   fprintf(fp, "    <Grid Name=\"output %d\" GridType=\"Uniform\">\n      <Time Value=\"%.17g\"/>\n", (int)k, (double)o->times[k]);
-  fprintf(fp, "      <Topology TopologyType=\"%s\" NumberOfElements=\"%d\">\n", p->dim == 3 ? "Tetrahedron" : "Triangle", (int)o->nc);
-  data_item(fp, "Int", (int)sizeof(PetscInt), o->nc, p->dim + 1, "/mesh/cells");
+  fprintf(fp, "      <Topology TopologyType=\"%s\" NumberOfElements=\"%d\">\n", topology, (int)o->cells.N);
+  data_item(fp, h5, "Int", (int)sizeof(PetscInt), o->cells.N, o->npc, "/mesh/cells");
   fprintf(fp, "      </Topology>\n      <Geometry GeometryType=\"%s\">\n", p->dim == 3 ? "XYZ" : "XY");
-  data_item(fp, "Float", 8, o->nv, p->dim, "/mesh/coordinates");
+  data_item(fp, h5, "Float", 8, o->nodes.N, p->dim, "/mesh/coordinates");
   fprintf(fp, "      </Geometry>\n      <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
   snprintf(ds, sizeof ds, "/fields/displacement/%06d", (int)k);
-  data_item(fp, "Float", 8, o->nv, 3, ds);
+  data_item(fp, h5, "Float", 8, o->nodes.N, 3, ds);
   fprintf(fp, "      </Attribute>\n");
   for (PetscInt f = 0; f < NCELLFIELDS; f++) {
     const CellField *cf = &cell_fields[f];
     if (!field_present(p, cf)) continue;
-    fprintf(fp, "      <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Cell\">\n", cf->name, cf->nc == 6 ? "Tensor6" : "Scalar");
+    fprintf(fp, "      <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Cell\">\n", cf->name, cf->nc == 6 ? "Tensor" : "Scalar");
     snprintf(ds, sizeof ds, "/fields/%s/%06d", cf->name, (int)k);
-    data_item(fp, "Float", 8, o->nc, cf->nc, ds);
+    data_item(fp, h5, "Float", 8, o->cells.N, cf->nc == 6 ? 9 : 1, ds);
     fprintf(fp, "      </Attribute>\n");
   }
   fprintf(fp, "    </Grid>\n");
 }
 
 /* Rank 0 writes the whole index to a temporary file and renames it over the current one, so a reader
- * never sees half a file. */
+ * never sees half a file. Before the promotion it is fields.xmf.part and names fields.h5.part. */
 static PetscErrorCode xmf_write(FeProblem *p, FeOutput *o) {
   PetscMPIInt rank;
   char        tmp[700], path[700];
   int         err = 0;
+  const char *h5  = o->promoted ? "fields.h5" : "fields.h5.part";
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)p->dm), &rank));
   PetscCall(file_path(o, "fields.xmf", o->promoted, path, sizeof path));
@@ -332,12 +346,11 @@ static PetscErrorCode xmf_write(FeProblem *p, FeOutput *o) {
     if (fp) {
       fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n");
       fprintf(fp, "    <Information Name=\"tensor_components\" Value=\"%s\"/>\n", tensor_components(p));
-      fprintf(fp, "    <Information Name=\"strain_shear\" Value=\"engineering (2 eps_ij)\"/>\n");
       fprintf(fp, "    <Information Name=\"cell_values\" Value=\"averages over the quadrature points\"/>\n");
       fprintf(fp, "    <Information Name=\"displacement\" Value=\"%s\"/>\n",
-              p->order > 1 ? "vertex values of the P2 field (P1 interpolant)" : "vertex values (P1)");
+              p->order > 1 ? "at the nodes of the quadratic cells (vertices, then edge midpoints)" : "vertex values (P1)");
       fprintf(fp, "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-      for (PetscInt k = 0; k < o->nout; k++) xmf_grid(fp, p, o, k);
+      for (PetscInt k = 0; k < o->nout; k++) xmf_grid(fp, p, o, h5, k);
       fprintf(fp, "    </Grid>\n  </Domain>\n</Xdmf>\n");
       err = ferror(fp) ? EIO : 0;
       if (fclose(fp) && !err) err = errno;
@@ -366,15 +379,13 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(driver_event(EV_OUTPUT), 0, 0, 0, 0));
   PetscCall(PetscSNPrintf(name, sizeof name, "%06d", (int)o->nout));
-  PetscCall(displacement_vec(p, U, o, &v));
-  PetscCall(PetscObjectSetName((PetscObject)v, name));
+  PetscCall(displacement_vec(p, U, o, name, &v));
   PetscCall(view_in(o->viewer, "/fields/displacement", (PetscObject)v));
   PetscCall(VecDestroy(&v));
   for (PetscInt f = 0; f < NCELLFIELDS; f++) {
     const CellField *cf = &cell_fields[f];
     if (!field_present(p, cf)) continue;
-    PetscCall(cell_vec(p, cf, o, &v));
-    PetscCall(PetscObjectSetName((PetscObject)v, name));
+    PetscCall(cell_vec(p, cf, o, name, &v));
     PetscCall(PetscSNPrintf(group, sizeof group, "/fields/%s", cf->name));
     PetscCall(view_in(o->viewer, group, (PetscObject)v));
     PetscCall(VecDestroy(&v));
@@ -391,29 +402,23 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   PetscFunctionReturn(0);
 }
 
-static int rename_part(const FeOutput *o, const char *base) {
-  char from[700], to[700];
-  snprintf(from, sizeof from, "%s/%s.part", o->dir, base);
-  snprintf(to, sizeof to, "%s/%s", o->dir, base);
-  if (rename(from, to) == 0 || (errno == ENOENT && access(to, F_OK) == 0)) return 0;
-  return errno;
-}
-
-PetscErrorCode fe_output_promote(FeOutput *o) {
+PetscErrorCode fe_output_promote(FeProblem *p, FeOutput *o) {
   MPI_Comm    comm = o->comm;
   PetscMPIInt rank;
-  int         err[2] = {0, 0};
+  int         err  = 0;
+  char        from[700], to[700];
   PetscFunctionBeginUser;
   if (o->promoted) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (!rank) {
-    err[0] = rename_part(o, "fields.h5");
-    if (!err[0] && o->nout > 0) err[1] = rename_part(o, "fields.xmf"); /* it names fields.h5 already */
-  }
-  PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, comm));
-  PetscCheck(!err[0] && !err[1], comm, PETSC_ERR_FILE_WRITE, "fe_output: cannot rename %s/%s.part to its final name: %s",
-             o->dir, err[0] ? "fields.h5" : "fields.xmf", strerror(err[0] ? err[0] : err[1]));
+  PetscCall(file_path(o, "fields.h5", PETSC_FALSE, from, sizeof from));
+  PetscCall(file_path(o, "fields.h5", PETSC_TRUE, to, sizeof to));
+  if (!rank && rename(from, to) && !(errno == ENOENT && access(to, F_OK) == 0)) err = errno;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "fe_output: cannot rename %s to %s: %s", from, to, strerror(err));
   o->promoted = PETSC_TRUE;
+  if (o->nout > 0) PetscCall(xmf_write(p, o)); /* fields.xmf, naming fields.h5 */
+  PetscCall(file_path(o, "fields.xmf", PETSC_FALSE, from, sizeof from));
+  if (!rank) remove(from);
   PetscFunctionReturn(0);
 }
 
@@ -421,8 +426,8 @@ PetscErrorCode fe_output_close(FeProblem *p, FeOutput *o) {
   PetscFunctionBeginUser;
   if (o->nout > 0) PetscCall(xmf_write(p, o)); /* after a resume without further outputs: its times */
   PetscCall(PetscViewerDestroy(&o->viewer));
-  PetscCall(PetscFree(o->vown));
-  PetscCall(PetscFree(o->cown));
+  PetscCall(fe_natural_destroy(&o->nodes));
+  PetscCall(fe_natural_destroy(&o->cells));
   PetscCall(PetscFree(o->times));
   PetscFunctionReturn(0);
 }

@@ -9,12 +9,6 @@
 #include <string.h>
 #include <time.h>
 
-/* Index of the state of point (local cell c, quadrature point q). */
-
-
-/* Voigt pairs (Abaqus order 11 22 33 12 13 23). */
-static const PetscInt vi[6] = {0, 1, 2, 0, 0, 1}, vj[6] = {0, 1, 2, 1, 2, 2};
-
 /* The area of a boundary face and the direction n of its load: the outward normal (a pressure, t = -p n), or for a
  * traction along axis (>= 0) -e_axis (the force is +t, written as -(-e_axis)). */
 static PetscErrorCode face_load_direction(FeProblem *p, PetscInt face, PetscInt axis, PetscReal *area, PetscReal n[3]) {
@@ -142,6 +136,34 @@ PetscErrorCode fe_problem_unit_load(FeProblem *p, const char *load, Vec *f) {
   PetscFunctionReturn(0);
 }
 
+/* The element kernels (fe_kernel.h) take the closure node-major, basis b = scalar basis b / dim, component
+ * b % dim: check that PETSc's vector Lagrange space is so (its tabulation at the first point). */
+static PetscErrorCode check_vector_layout(const FeProblem *p) {
+  const PetscInt   nb = p->nb, nc = p->dim;
+  const PetscReal *T  = p->tab->T[0];
+  PetscFunctionBeginUser;
+  for (PetscInt b = 0; b < nb; b++)
+    for (PetscInt cc = 0; cc < nc; cc++) {
+      PetscReal v = T[b * nc + cc], s = T[(b - b % nc) * nc];
+      PetscCheck(cc == b % nc ? PetscAbsReal(v - s) <= 1e-12 : v == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                 "the vector Lagrange basis is not node-major (basis %d, component %d)", (int)b, (int)cc);
+    }
+  PetscFunctionReturn(0);
+}
+
+/* Physical gradients of the scalar basis at quadrature point q (ns x dim) from the reference derivatives and the
+ * inverse Jacobian: g[a][d] = sum_e dphi_a/dxi_e dxi_e/dx_d. */
+static void basis_gradients(const FeProblem *p, PetscInt q, const PetscReal *invJ, PetscReal *g) {
+  const PetscInt   nb = p->nb, nc = p->dim, dim = p->dim;
+  const PetscReal *D  = &p->tab->T[1][q * nb * nc * dim];
+  for (PetscInt a = 0; a < p->ns; a++)
+    for (PetscInt d = 0; d < dim; d++) {
+      PetscReal s = 0;
+      for (PetscInt e = 0; e < dim; e++) s += D[(a * nc * nc) * dim + e] * invJ[e * dim + d];
+      g[a * dim + d] = s;
+    }
+}
+
 PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure) {
@@ -178,7 +200,10 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
   p->nsv    = ST_STATEV + mat->nstatv;
   PetscCall(PetscCalloc3(p->npoint * p->nsv, &p->state, p->npoint * p->nsv, &p->trial, p->npoint * 36, &p->ddsdde));
   PetscCall(PetscMalloc1(p->cEnd - p->cStart, &p->phi));
-  PetscCall(PetscMalloc3(p->npoint * 9, &p->invJ, p->npoint, &p->wdetJ, p->npoint, &p->radius));
+  p->ns = p->nb / p->dim;
+  PetscCall(check_vector_layout(p));
+  PetscCall(PetscMalloc4(p->npoint * p->ns * p->dim, &p->grad, kin == KIN_AXISYMMETRIC ? p->npoint * p->ns : 0, &p->shape_r, p->npoint, &p->wdetJ,
+                         p->npoint, &p->radius));
   { /* closure dofs of each cell in the local vector, once: the residual gathers and scatters with them */
     PetscSection ls, gs;
     PetscCall(DMGetLocalSection(dm, &ls));
@@ -202,11 +227,13 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
       PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
       for (PetscInt q = 0; q < p->nq; q++) {
         PetscCheck(detJ[q] > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "cell %d is inverted (det J = %g)", (int)c, (double)detJ[q]);
-        PetscCall(PetscArraycpy(&p->invJ[SV(p, c, q) * 9], &invJ[q * p->dim * p->dim], p->dim * p->dim));
         /* volume weight: plane strain per its thickness; axisymmetric 2 pi r (x1 = r) */
         PetscReal r = v0[q * p->dim], scale = kin == KIN_PLANE_STRAIN ? thickness : kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : 1;
         rmin = PetscMin(rmin, r);
         p->radius[SV(p, c, q)] = r;
+        basis_gradients(p, q, &invJ[q * p->dim * p->dim], &p->grad[SV(p, c, q) * p->ns * p->dim]);
+        if (kin == KIN_AXISYMMETRIC)
+          for (PetscInt a = 0; a < p->ns; a++) p->shape_r[SV(p, c, q) * p->ns + a] = p->tab->T[0][(q * p->nb + a * p->dim) * p->dim] / r;
         p->wdetJ[SV(p, c, q)]  = p->qweights[q] * detJ[q] * scale;
       }
     }
@@ -235,7 +262,7 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(VecDestroy(&p->ddsdde_u));
   PetscCall(PetscFree3(p->state, p->trial, p->ddsdde));
   PetscCall(PetscFree(p->phi));
-  PetscCall(PetscFree3(p->invJ, p->wdetJ, p->radius));
+  PetscCall(PetscFree4(p->grad, p->shape_r, p->wdetJ, p->radius));
   PetscCall(PetscFree2(p->cell_dofs, p->cell_rows));
   PetscCall(fe_constraint_destroy(&p->con));
   PetscCall(PetscFree(p->devp_prev));
@@ -326,200 +353,6 @@ PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, P
     PetscCall(PetscFree3(counts, displs, mine));
   }
   PetscCall(PetscFree2(z, xc));
-  PetscFunctionReturn(0);
-}
-
-/* B (Voigt, engineering shear; ntens x nb) at quadrature point q of a cell from the reference
- * derivatives and the inverse Jacobian: eps_I = sum_b B[I][b] u_b. In 2D the rows are 11 22 33 12:
- * eps_33 = 0 in plane strain and u_r / r (the basis values over the radius) in axisymmetry. */
-static void strain_operator(const FeProblem *p, PetscInt c, PetscInt q, PetscReal *B) {
-  const PetscInt   nb = p->nb, nc = p->dim, dim = p->dim;
-  const PetscReal *D = &p->tab->T[1][q * nb * nc * dim], *V = &p->tab->T[0][q * nb * nc];
-  const PetscReal *invJ = &p->invJ[SV(p, c, q) * 9];
-  for (PetscInt b = 0; b < nb; b++) {
-    PetscReal g[3][3] = {{0}}; /* g[c][d] = d phi_{b,c} / d x_d */
-    for (PetscInt cc = 0; cc < nc; cc++)
-      for (PetscInt d = 0; d < dim; d++)
-        for (PetscInt e = 0; e < dim; e++) g[cc][d] += D[(b * nc + cc) * dim + e] * invJ[e * dim + d];
-    if (dim == 3) {
-      for (PetscInt vI = 0; vI < 6; vI++)
-        B[vI * nb + b] = vI < 3 ? g[vi[vI]][vj[vI]] : g[vi[vI]][vj[vI]] + g[vj[vI]][vi[vI]];
-    } else {
-      B[0 * nb + b] = g[0][0];
-      B[1 * nb + b] = g[1][1];
-      B[2 * nb + b] = p->kin == KIN_AXISYMMETRIC ? V[b * nc + 0] / p->radius[SV(p, c, q)] : 0;
-      B[3 * nb + b] = g[0][1] + g[1][0];
-    }
-  }
-}
-
-/* The element loop: residual (F = F_int - F_ext) and, with the same UMAT calls, the tangent cache. */
-PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
-  FeProblem   *p  = (FeProblem *)ctx;
-  DM           dm = p->dm;
-  Vec          Uloc, Floc;
-  PetscSection s;
-  PetscReal    B[6 * 90];
-  PetscScalar  ue[90], re[90], *ua, *fa;
-  PetscReal    min_pnewdt = PETSC_MAX_REAL;
-  clock_t      t0         = clock();
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
-  PetscCheck(p->nq <= 64 && p->nb <= 90, PETSC_COMM_SELF, PETSC_ERR_SUP, "element too large");
-  PetscCall(DMGetLocalSection(dm, &s));
-  PetscCall(DMGetLocalVector(dm, &Uloc));
-  PetscCall(DMGetLocalVector(dm, &Floc));
-  PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
-  PetscCall(VecZeroEntries(Floc));
-  p->have_failed_call = 0;
-  PetscCall(VecGetArray(Uloc, &ua));
-  PetscCall(VecGetArray(Floc, &fa));
-  PetscCall(fe_constraint_to_global(&p->con, ua)); /* the fixed components (zero values); nodal frames to global axes */
-  const PetscInt ntens = p->mat.ntens;
-  /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
-     p->umat_tol) and, per cell, its phi; p->mat itself is never written. */
-  UmatMaterial  local = p->mat, *mat = &local;
-  if (mat->tol_slot >= 0 && mat->tol_slot < mat->nprops && p->umat_tol >= 0) mat->props[mat->tol_slot] = p->umat_tol;
-  PetscReal reaction[3] = {0, 0, 0};
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
-    for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]];
-    PetscCall(PetscArrayzero(re, p->nb));
-    if (mat->phi_slot >= 0) mat->props[mat->phi_slot] = p->phi[c - p->cStart];
-    for (PetscInt q = 0; q < p->nq; q++) {
-      strain_operator(p, c, q, B);
-      PetscReal eps[6] = {0};
-      for (PetscInt vI = 0; vI < ntens; vI++)
-        for (PetscInt b = 0; b < p->nb; b++) eps[vI] += B[vI * p->nb + b] * PetscRealPart(ue[b]);
-      const PetscReal *st = &p->state[SV(p, c, q) * p->nsv];
-      UmatCall         call;
-      PetscCall(PetscArraycpy(call.stress, st + ST_STRESS, 6));
-      PetscCall(PetscArraycpy(call.statev, st + ST_STATEV, p->mat.nstatv));
-      PetscCall(PetscArraycpy(call.stran, st + ST_STRAN, 6));
-      for (PetscInt vI = 0; vI < ntens; vI++) call.dstran[vI] = eps[vI] - st[ST_STRAN + vI];
-      call.time[0] = call.time[1] = p->time - p->dt;
-      call.dtime                  = p->dt;
-      call.noel                   = (int)c + 1;
-      call.npt                    = (int)q + 1;
-      call.kstep = call.kinc = 1;
-      call.sse = call.spd = call.scd = 0;
-      umat_invoke(mat, &call);
-      p->umat_calls++;
-      if (call.pnewdt < 1 && !p->have_failed_call) { /* rare: rebuild the call's input from the state */
-        p->have_failed_call = 1, p->failed_out = call, p->failed_mat = *mat, p->failed_in = call;
-        PetscCall(PetscArraycpy(p->failed_in.stress, st + ST_STRESS, 6));
-        PetscCall(PetscArraycpy(p->failed_in.statev, st + ST_STATEV, p->mat.nstatv));
-      }
-      min_pnewdt       = PetscMin(min_pnewdt, call.pnewdt);
-      PetscReal *tr    = &p->trial[SV(p, c, q) * p->nsv];
-      PetscCall(PetscArraycpy(tr + ST_STRESS, call.stress, 6));
-      PetscCall(PetscArraycpy(tr + ST_STRAN, eps, 6));
-      PetscCall(PetscArraycpy(tr + ST_STATEV, call.statev, p->mat.nstatv));
-      PetscCall(PetscArraycpy(&p->ddsdde[SV(p, c, q) * 36], call.ddsdde, ntens * ntens));
-      const PetscReal w = p->wdetJ[SV(p, c, q)];
-      for (PetscInt b = 0; b < p->nb; b++) {
-        PetscReal sum = 0;
-        for (PetscInt vI = 0; vI < ntens; vI++) sum += B[vI * p->nb + b] * call.stress[vI];
-        re[b] += w * sum;
-      }
-    }
-    for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
-  }
-  PetscCall(fe_constraint_to_frame(&p->con, fa, reaction)); /* internal force on the fixed components; into the frames */
-  PetscCall(VecRestoreArray(Uloc, &ua));
-  PetscCall(VecRestoreArray(Floc, &fa));
-  PetscCall(VecZeroEntries(F));
-  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, F));
-  PetscCall(VecAXPY(F, -1.0, p->fext));
-  PetscCall(DMRestoreLocalVector(dm, &Uloc));
-  PetscCall(DMRestoreLocalVector(dm, &Floc));
-  PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
-  for (PetscInt d = 0; d < 3; d++) p->reaction_local[d] = reaction[d];
-  p->ddsdde_valid = 1;
-  if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
-  PetscCall(VecCopy(U, p->ddsdde_u));
-  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
-  PetscCall(PetscLogEventEnd(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
-  FeProblem       *p = (FeProblem *)ctx;
-  PetscReal        B[6 * 90], DB[6 * 90];
-  PetscScalar     *Ke = NULL;
-  PetscBool        same = PETSC_FALSE;
-  clock_t          t0   = clock();
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
-  if (p->ddsdde_valid) PetscCall(VecEqual(U, p->ddsdde_u, &same));
-  if (!same) { /* the cached tangents belong to another U: evaluate there first */
-    p->tangent_recomputes++;
-    Vec F;
-    PetscCall(VecDuplicate(U, &F));
-    PetscCall(fe_residual(snes, U, F, ctx));
-    PetscCall(VecDestroy(&F));
-  }
-  const PetscBool coo = p->coo_mat == P; /* the values go to the COO array, all set at once at the end */
-  if (!coo) PetscCall(MatZeroEntries(P));
-  if (!coo) PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
-  const PetscInt n = p->mat.ntens, nb = p->nb;
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    PetscScalar *K = coo ? &p->coo_v[(c - p->cStart) * nb * nb] : Ke;
-    PetscCall(PetscArrayzero(K, nb * nb));
-    for (PetscInt q = 0; q < p->nq; q++) {
-      strain_operator(p, c, q, B);
-      const PetscReal *D = &p->ddsdde[SV(p, c, q) * 36]; /* column-major n x n */
-      const PetscReal  w = p->wdetJ[SV(p, c, q)];
-      for (PetscInt b = 0; b < nb; b++)
-        for (PetscInt vI = 0; vI < n; vI++) {
-          PetscReal sum = 0;
-          for (PetscInt vK = 0; vK < n; vK++) sum += D[vI + n * vK] * B[vK * nb + b];
-          DB[vI * nb + b] = sum;
-        }
-      for (PetscInt a = 0; a < nb; a++)
-        for (PetscInt b = 0; b < nb; b++) {
-          PetscReal sum = 0;
-          for (PetscInt vI = 0; vI < n; vI++) sum += B[vI * nb + a] * DB[vI * nb + b];
-          K[a * nb + b] += w * sum;
-        }
-    }
-    PetscCall(fe_constraint_rotate_cell(&p->con, &p->cell_dofs[(c - p->cStart) * nb], nb, K)); /* nodal frames */
-    /* constrained dofs have negative rows: MatSetValues skips them */
-    const PetscInt *rows = &p->cell_rows[(c - p->cStart) * nb];
-    if (!coo) PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));
-  }
-  PetscCall(PetscFree(Ke));
-  if (coo) PetscCall(MatSetValuesCOO(P, p->coo_v, INSERT_VALUES));
-  else {
-    PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
-  }
-  if (Jac != P) {
-    PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
-  }
-  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
-  PetscCall(PetscLogEventEnd(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-/* COO assembly of the Jacobian into J (MatSetPreallocationCOO/MatSetValuesCOO): every cell's element
-   matrix in one array, rows and columns from cell_rows (constrained ones negative, which PETSc ignores), set
-   at once; fe_jacobian writes there when it assembles J. */
-PetscErrorCode fe_jacobian_coo_setup(FeProblem *p, Mat J) {
-  const PetscInt nb = p->nb, ncell = p->cEnd - p->cStart;
-  PetscCount     n = (PetscCount)ncell * nb * nb, k = 0;
-  PetscInt      *ci, *cj;
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(n, &ci, n, &cj));
-  for (PetscInt c = 0; c < ncell; c++)
-    for (PetscInt a = 0; a < nb; a++)
-      for (PetscInt b = 0; b < nb; b++, k++) ci[k] = p->cell_rows[c * nb + a], cj[k] = p->cell_rows[c * nb + b];
-  PetscCall(MatSetPreallocationCOO(J, n, ci, cj));
-  PetscCall(PetscFree2(ci, cj));
-  PetscCall(PetscFree(p->coo_v));
-  PetscCall(PetscMalloc1(n, &p->coo_v));
-  p->coo_mat = J;
   PetscFunctionReturn(0);
 }
 

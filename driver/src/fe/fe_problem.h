@@ -30,7 +30,7 @@ typedef struct FeProblem {
   PetscFE         fe;
   PetscQuadrature quad;
   PetscTabulation tab;
-  PetscInt        dim, order, nq, nb; /* nb: basis functions of the vector field on a cell */
+  PetscInt        dim, order, nq, nb, ns; /* nb: basis functions of the vector field on a cell, ns = nb / dim scalar ones */
   const PetscReal *qweights;
   PetscInt        cStart, cEnd;
   UmatMaterial    mat;
@@ -40,8 +40,10 @@ typedef struct FeProblem {
   PetscReal      *state, *trial, *ddsdde;
   PetscInt       *cell_dofs;       /* per cell: the local-vector index of each closure dof (nb) */
   PetscInt       *cell_rows;       /* per cell: global matrix index of each closure dof, < 0 if constrained */
-  PetscReal      *invJ, *wdetJ, *radius;   /* per cell and quadrature point: inverse Jacobian (9), weight x detJ
-                                     (fixed: small strain, and the geometry is computed once) */
+  PetscReal      *grad, *shape_r;  /* per quadrature point: the scalar basis' physical gradients (ns x dim) and, in
+                                      axisymmetry, its values over the radius (ns), for fe_kernel.h (fixed: small
+                                      strain, and the geometry is computed once) */
+  PetscReal      *wdetJ, *radius;   /* per quadrature point: weight x detJ (x thickness or 2 pi r), radius x1 */
   PetscInt        ddsdde_valid;         /* the tangent cache belongs to the last residual's U ... */
   Vec             ddsdde_u;             /* ... which is this one */
   PetscReal       time, dt;             /* end of the step being solved, its length */
@@ -93,6 +95,9 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 /* Assemble the Jacobian J by COO from now on (the other matrices by MatSetValues). */
 PetscErrorCode fe_jacobian_coo_setup(FeProblem *p, Mat J);
+/* The Jacobian as a matrix-free operator (a MatShell of the layout of 'like'): the tangents of the last residual
+ * applied cell by cell, the same operator as fe_jacobian's matrix to roundoff, at a tenth of an assembly's cost. */
+PetscErrorCode fe_tangent_operator(FeProblem *p, Mat like, Mat *A);
 /* Consistent nodal forces (a global vector) of a unit pressure on the boundary faces of a group, or of a
  * unit traction along an axis for load 'GROUP.x' ('.y', '.z'), with the kinematics' weight (thickness,
  * 2 pi r): the traction along an axis gives each node int N_i dGamma. */

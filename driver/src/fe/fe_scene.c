@@ -1,6 +1,7 @@
 #include "fe_scene.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,9 +39,12 @@ static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, Stage *g, int
     YdNode     *y;
     g->fn[gi] = FN_TABLE;
     snprintf(sub, sizeof sub, "%s.table", path);
-    if (yd_string(doc, yd_get(x, "file"), sub, &file, err, errlen) || yd_string(doc, yd_get(x, "time"), sub, &tc, err, errlen) ||
-        yd_string(doc, yd_get(x, "value"), sub, &vc, err, errlen))
-      return 1;
+    const char *keys[3] = {"file", "time", "value"}, **dst[3] = {&file, &tc, &vc};
+    for (int k = 0; k < 3; k++) {
+      char full[260];
+      snprintf(full, sizeof full, "%s.%s", sub, keys[k]);
+      if (yd_string(doc, yd_get(x, keys[k]), full, dst[k], err, errlen)) return 1;
+    }
     if ((y = yd_get(x, "time_factor")) && yd_double(doc, y, sub, &tf, err, errlen)) return 1;
     if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
     if (yd_check_unused(doc, x, sub, "file, time, value, time_factor, factor", err, errlen)) return 1;
@@ -166,7 +170,7 @@ static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t 
       if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
-    if ((v = yd_get(x, "fields_every")) && yd_int(doc, v, "output.fields_every", &sc->fields_every, err, errlen)) return 1;
+    if ((v = yd_get(x, "fields_every")) && yd_int_range(doc, v, "output.fields_every", 0, INT_MAX, &sc->fields_every, err, errlen)) return 1;
     if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
   }
   return 0;

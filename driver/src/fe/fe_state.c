@@ -1,6 +1,10 @@
 #include "fe_state.h"
 
+#include <petsclayouthdf5.h>
+#include <petscviewerhdf5.h>
+
 #include "camclay9.h"
+#include "fe_natural.h"
 
 static PetscBool has_evp(const FeProblem *p) { return p->mat.nstatv >= CAMCLAY9_NSTATV_MIN ? PETSC_TRUE : PETSC_FALSE; }
 
@@ -36,45 +40,176 @@ PetscErrorCode fe_state_volume_error(FeProblem *p, PetscReal h, PetscReal h_prev
   PetscFunctionReturn(0);
 }
 
-int fe_state_save(FeProblem *p, Vec U, BinFile *f) {
-  PetscInt           nloc, has = p->devp_prev != NULL;
-  const PetscScalar *u;
-  if (VecGetLocalSize(U, &nloc) || VecGetArrayRead(U, &u)) return 1;
-  binfile_write(f, &nloc, sizeof nloc, 1);
-  binfile_write(f, u, sizeof(PetscScalar), (size_t)nloc);
-  if (VecRestoreArrayRead(U, &u)) return 1;
-  binfile_write(f, &p->npoint, sizeof p->npoint, 1);
-  binfile_write(f, &p->nsv, sizeof p->nsv, 1);
-  binfile_write(f, p->state, sizeof(PetscReal), (size_t)(p->npoint * p->nsv));
-  binfile_write(f, &has, sizeof has, 1);
-  if (has) binfile_write(f, p->devp_prev, sizeof(PetscReal), (size_t)(6 * p->npoint));
-  binfile_write(f, &p->have_devp, sizeof p->have_devp, 1);
-  binfile_write(f, &p->umat_calls, sizeof p->umat_calls, 1);
-  return !f->ok;
+/* The nodes of the field: the vertices, and the edges of P2. */
+static PetscInt node_depths(const FeProblem *p, PetscInt depths[2]) {
+  depths[0] = 0, depths[1] = 1;
+  return p->order > 1 ? 2 : 1;
 }
 
-int fe_state_load(FeProblem *p, Vec U, BinFile *f) {
-  PetscInt     nloc = -1, mine, npoint = -1, nsv = -1, has = 0;
-  PetscScalar *u;
-  if (VecGetLocalSize(U, &mine)) return 1;
-  binfile_read(f, &nloc, sizeof nloc, 1);
-  if (nloc != mine) return 1; /* another mesh or partition */
-  if (VecGetArray(U, &u)) return 1;
-  binfile_read(f, u, sizeof(PetscScalar), (size_t)nloc);
-  if (VecRestoreArray(U, &u)) return 1;
-  binfile_read(f, &npoint, sizeof npoint, 1);
-  binfile_read(f, &nsv, sizeof nsv, 1);
-  if (npoint != p->npoint || nsv != p->nsv) return 1;
-  binfile_read(f, p->state, sizeof(PetscReal), (size_t)(npoint * nsv));
-  binfile_read(f, &has, sizeof has, 1);
-  if (has) {
-    if (!p->devp_prev && PetscCalloc1(6 * p->npoint + 1, &p->devp_prev)) return 1;
-    binfile_read(f, p->devp_prev, sizeof(PetscReal), (size_t)(6 * p->npoint));
+static PetscErrorCode view_in(PetscViewer v, const char *group, Vec x) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(v, group));
+  PetscCall(VecView(x, v));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode load_from(PetscViewer v, const char *group, Vec x) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(v, group));
+  PetscCall(VecLoad(x, v));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+/* Per-cell blocks of the points' arrays (nc values per point: the state, or the viscoplastic increments). */
+static PetscErrorCode cells_view(FeProblem *p, const FeNatural *m, PetscViewer v, const char *name, const PetscReal *a, PetscInt nc) {
+  PetscScalar *leaf;
+  Vec          x;
+  const PetscInt bs = p->nq * nc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(m->n * bs + 1, &leaf));
+  for (PetscInt k = 0; k < m->n; k++) PetscCall(PetscArraycpy(&leaf[k * bs], &a[(m->points[k] - p->cStart) * bs], bs));
+  PetscCall(fe_natural_gather(m, bs, leaf, name, &x));
+  PetscCall(view_in(v, "/cells", x));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscFree(leaf));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode cells_read(FeProblem *p, const FeNatural *m, PetscViewer v, const char *name, PetscReal *a, PetscInt nc) {
+  PetscScalar *leaf;
+  Vec          x;
+  const PetscInt bs = p->nq * nc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(m->n * bs + 1, &leaf));
+  PetscCall(fe_natural_vec(m, bs, name, &x));
+  PetscCall(load_from(v, "/cells", x));
+  PetscCall(fe_natural_scatter(m, bs, x, leaf));
+  for (PetscInt k = 0; k < m->n; k++) PetscCall(PetscArraycpy(&a[(m->points[k] - p->cStart) * bs], &leaf[k * bs], bs));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscFree(leaf));
+  PetscFunctionReturn(0);
+}
+
+/* A global vector of the field at its nodes (constrained components 0, in the nodes' frames) in natural order. */
+static PetscErrorCode nodes_view(FeProblem *p, const FeNatural *m, PetscViewer v, Vec U, const char *name) {
+  Vec          L, x;
+  PetscSection s;
+  PetscScalar *u, *leaf;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(p->dm, &s));
+  PetscCall(DMGetLocalVector(p->dm, &L));
+  PetscCall(VecZeroEntries(L));
+  PetscCall(DMGlobalToLocal(p->dm, U, INSERT_VALUES, L));
+  PetscCall(VecGetArray(L, &u));
+  PetscCall(PetscMalloc1(m->n * p->dim + 1, &leaf));
+  for (PetscInt k = 0; k < m->n; k++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, m->points[k], &off));
+    for (PetscInt c = 0; c < p->dim; c++) leaf[k * p->dim + c] = u[off + c];
   }
-  binfile_read(f, &p->have_devp, sizeof p->have_devp, 1);
-  binfile_read(f, &p->umat_calls, sizeof p->umat_calls, 1);
-  if (f->ok) PetscArraycpy(p->trial, p->state, p->npoint * p->nsv);
-  return !f->ok;
+  PetscCall(VecRestoreArray(L, &u));
+  PetscCall(DMRestoreLocalVector(p->dm, &L));
+  PetscCall(fe_natural_gather(m, p->dim, leaf, name, &x));
+  PetscCall(view_in(v, "/nodes", x));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscFree(leaf));
+  PetscFunctionReturn(0);
+}
+
+/* Back: every local node (ghosts too) gets its value, then the owned unconstrained ones make the global vector. */
+static PetscErrorCode nodes_read(FeProblem *p, const FeNatural *m, PetscViewer v, Vec U, const char *name) {
+  Vec          L, x;
+  PetscSection s;
+  PetscScalar *u, *leaf;
+  PetscFunctionBeginUser;
+  PetscCall(fe_natural_vec(m, p->dim, name, &x));
+  PetscCall(load_from(v, "/nodes", x));
+  PetscCall(PetscMalloc1(m->n * p->dim + 1, &leaf));
+  PetscCall(fe_natural_scatter(m, p->dim, x, leaf));
+  PetscCall(VecDestroy(&x));
+  PetscCall(DMGetLocalSection(p->dm, &s));
+  PetscCall(DMGetLocalVector(p->dm, &L));
+  PetscCall(VecZeroEntries(L));
+  PetscCall(VecGetArray(L, &u));
+  for (PetscInt k = 0; k < m->n; k++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, m->points[k], &off));
+    for (PetscInt c = 0; c < p->dim; c++) u[off + c] = leaf[k * p->dim + c];
+  }
+  PetscCall(VecRestoreArray(L, &u));
+  PetscCall(DMLocalToGlobal(p->dm, L, INSERT_VALUES, U));
+  PetscCall(DMRestoreLocalVector(p->dm, &L));
+  PetscCall(PetscFree(leaf));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_state_view(FeProblem *p, PetscViewer v, PetscInt nvec, Vec vecs[], const char *const names[]) {
+  FeNatural   nodes, cells;
+  PetscInt    depths[2], nd = node_depths(p, depths);
+  PetscMPIInt rank, size;
+  Vec         calls;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
+  PetscFunctionBeginUser;
+  PetscCall(fe_natural_create(p->dm, nd, depths, PETSC_FALSE, &nodes));
+  PetscCall(fe_natural_create(p->dm, 1, &p->dim, PETSC_FALSE, &cells));
+  for (PetscInt k = 0; k < nvec; k++) PetscCall(nodes_view(p, &nodes, v, vecs[k], names[k]));
+  PetscCall(cells_view(p, &cells, v, "state", p->state, p->nsv));
+  if (has_evp(p)) {
+    if (!p->devp_prev) PetscCall(PetscCalloc1(6 * p->npoint + 1, &p->devp_prev));
+    PetscCall(cells_view(p, &cells, v, "devp", p->devp_prev, 6));
+  }
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(VecCreateMPI(comm, 1, size, &calls));
+  PetscCall(PetscObjectSetName((PetscObject)calls, "umat_calls"));
+  PetscCall(VecSetValue(calls, rank, (PetscScalar)p->umat_calls, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(calls));
+  PetscCall(VecAssemblyEnd(calls));
+  PetscCall(view_in(v, "/", calls));
+  PetscCall(VecDestroy(&calls));
+  PetscCall(fe_natural_destroy(&nodes));
+  PetscCall(fe_natural_destroy(&cells));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_state_read(FeProblem *p, PetscViewer v, PetscInt nvec, Vec vecs[], const char *const names[]) {
+  FeNatural   nodes, cells;
+  PetscInt    depths[2], nd = node_depths(p, depths), bs, nold;
+  PetscMPIInt rank, size;
+  Vec         calls;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
+  PetscFunctionBeginUser;
+  PetscCall(fe_natural_create(p->dm, nd, depths, PETSC_TRUE, &nodes));
+  PetscCall(fe_natural_create(p->dm, 1, &p->dim, PETSC_FALSE, &cells));
+  for (PetscInt k = 0; k < nvec; k++) PetscCall(nodes_read(p, &nodes, v, vecs[k], names[k]));
+  PetscCall(cells_read(p, &cells, v, "state", p->state, p->nsv));
+  if (has_evp(p)) {
+    if (!p->devp_prev) PetscCall(PetscCalloc1(6 * p->npoint + 1, &p->devp_prev));
+    PetscCall(cells_read(p, &cells, v, "devp", p->devp_prev, 6));
+  }
+  PetscCall(PetscArraycpy(p->trial, p->state, p->npoint * p->nsv));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscViewerHDF5ReadSizes(v, "umat_calls", &bs, &nold));
+  PetscCall(VecCreateMPI(comm, nold == size ? 1 : PETSC_DECIDE, nold, &calls));
+  PetscCall(PetscObjectSetName((PetscObject)calls, "umat_calls"));
+  PetscCall(load_from(v, "/", calls));
+  if (nold == size) {
+    const PetscScalar *c;
+    PetscCall(VecGetArrayRead(calls, &c));
+    p->umat_calls = (PetscInt)PetscRealPart(c[0]);
+    PetscCall(VecRestoreArrayRead(calls, &c));
+  } else {
+    PetscScalar sum;
+    PetscCall(VecSum(calls, &sum));
+    p->umat_calls = rank ? 0 : (PetscInt)PetscRealPart(sum);
+  }
+  PetscCall(VecDestroy(&calls));
+  PetscCall(fe_natural_destroy(&nodes));
+  PetscCall(fe_natural_destroy(&cells));
+  PetscFunctionReturn(0);
 }
 
 /* ---- volume statistics (fe_problem.h) ---- */

@@ -3,7 +3,8 @@
 #ifndef FE_STATE_H
 #define FE_STATE_H
 
-#include "../io/binfile.h"
+#include <petscviewer.h>
+
 #include "fe_problem.h"
 
 /* Commit the trial state; keeps each point's viscoplastic strain increment (h: the step's length). */
@@ -13,8 +14,12 @@ PetscErrorCode fe_state_commit(FeProblem *p, PetscReal h);
  * the viscoplastic strain rate over the step, CETOL's local estimate, relative to the step's increment).
  * -1 when there is no previous increment. */
 PetscErrorCode fe_state_volume_error(FeProblem *p, PetscReal h, PetscReal h_prev, PetscReal *err);
-/* This rank's part of a checkpoint: U, every point's state and increments, the UMAT call count. */
-int fe_state_save(FeProblem *p, Vec U, BinFile *f);
-int fe_state_load(FeProblem *p, Vec U, BinFile *f);
+/* The state's part of a checkpoint's shared file (a PETSc HDF5 viewer), in the serial mesh's order
+ * (fe_natural.h), so that a run written on N ranks restarts on any M: the nodal vectors given (global vectors of
+ * p->dm: the displacement, the predictor's increment) under /nodes, every point's state and viscoplastic
+ * increment per cell under /cells, each rank's UMAT call count. Collective. */
+PetscErrorCode fe_state_view(FeProblem *p, PetscViewer v, PetscInt nvec, Vec vecs[], const char *const names[]);
+/* Read it back; the UMAT call counts: each rank its own on as many ranks as wrote them, else rank 0 their sum. */
+PetscErrorCode fe_state_read(FeProblem *p, PetscViewer v, PetscInt nvec, Vec vecs[], const char *const names[]);
 
 #endif

@@ -1,7 +1,7 @@
 #include "log_events.h"
 
 static const char *names[EV_COUNT] = {"CC9 residual+UMAT", "CC9 Jacobian", "CC9 contact", "CC9 contact solve", "CC9 field output",
-                                      "CC9 checkpoint"};
+                                      "CC9 checkpoint", "CC9 tangent apply"};
 
 PetscLogEvent driver_event(DriverEvent e) {
   static PetscLogEvent events[EV_COUNT];

@@ -1,4 +1,8 @@
-/* PETSc options the driver sets as defaults: a value only where the command line or the scene gave none. */
+/* The driver's own options (-checkpoint_every, -fe_*, -indent_*, ...): each module declares and reads them in
+ * one PetscOptionsBegin/End block through these functions, which check the value first (an integer in its
+ * range, a finite number, a boolean: the message names the option, io/text.h) and remember the name, so
+ * that main can call every module's block before the run and refuse a misspelt option of the driver's
+ * (options_check_unknown), and -help lists them all. PETSc options the driver sets as defaults: options_default. */
 #ifndef OPTIONS_H
 #define OPTIONS_H
 
@@ -6,5 +10,34 @@
 
 /* Sets option name to value unless it is set already (the user's choice wins). */
 PetscErrorCode options_default(const char *name, const char *value);
+
+/* Inside PetscOptionsBegin/End (PetscOptionsObject is the block's). */
+PetscErrorCode options_int(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscInt def, PetscInt lo,
+                           PetscInt hi, PetscInt *value, PetscBool *set);
+PetscErrorCode options_real(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscReal def,
+                            PetscReal *value, PetscBool *set);
+PetscErrorCode options_bool(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscBool def,
+                            PetscBool *value, PetscBool *set);
+PetscErrorCode options_string(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, const char *def,
+                              char *value, size_t len, PetscBool *set);
+PetscErrorCode options_elist(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, const char *const *list,
+                             PetscInt n, PetscInt def, PetscInt *value, PetscBool *set);
+
+/* A module's PETSc solver takes this options prefix (KSPSetOptionsPrefix: "indent_"): the options of PETSc's objects
+ * under it (-indent_ksp_*, -indent_pc_*, -indent_mat_*, -indent_fieldsplit_*) are PETSc's to check, not the driver's. */
+void options_petsc_prefix(const char *prefix);
+
+/* After every module's block has run: an option given (on the command line or, source non-NULL, in a scene's
+ * solver.options) that starts like one of the driver's options (its first word: -indent_, -fe_, -checkpoint_,
+ * ..., or one of extra_prefixes) but is none of them is an error: fills err ("option -checkpoint_evry: not an
+ * option of the driver (misspelt -checkpoint_every?) ...") and returns 1. names: the options to check (NULL:
+ * every option never read so far). */
+int options_check_unknown(const char *const *names, int n, const char *const *extra_prefixes, const char *source, char *err,
+                          size_t errlen);
+
+/* After the blocks' first reading (main): the driver's options given are marked as not read again, so that
+ * the warning at the end of a run still names one that this kind of scene never reads (-indent_rtol for a point
+ * scene). */
+PetscErrorCode options_forget_reads(void);
 
 #endif

@@ -2,6 +2,7 @@
 #include "yaml_doc.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -10,6 +11,8 @@
 #include <strings.h>
 #include <sys/stat.h>
 #include <yaml.h>
+
+#include "text.h"
 
 static void say(char *err, size_t errlen, const char *fmt, ...) {
   va_list ap;
@@ -20,14 +23,17 @@ static void say(char *err, size_t errlen, const char *fmt, ...) {
 
 static YdNode *node_new(YdKind kind, int line) {
   YdNode *nd = calloc(1, sizeof *nd);
-  nd->kind = kind;
-  nd->line = line;
+  nd->kind  = kind;
+  nd->line  = line;
+  nd->index = -1;
   return nd;
 }
 
 static void node_push(YdNode *parent, char *key, int key_line, YdNode *child) {
   parent->items = realloc(parent->items, (parent->n + 1) * sizeof *parent->items);
   parent->items[parent->n] = child;
+  child->key                = key; /* owned by the parent's keys */
+  child->index              = parent->kind == YD_SEQUENCE ? (int)parent->n : -1;
   if (parent->kind == YD_MAPPING) {
     parent->keys      = realloc(parent->keys, (parent->n + 1) * sizeof *parent->keys);
     parent->key_lines = realloc(parent->key_lines, (parent->n + 1) * sizeof *parent->key_lines);
@@ -220,31 +226,13 @@ static const char *kind_name(YdKind k) {
   return k == YD_SCALAR ? "a value" : k == YD_SEQUENCE ? "a list" : "a mapping";
 }
 
-/* Levenshtein distance, capped at 9 (short keys only). */
-static int distance(const char *a, const char *b) {
-  size_t la = strlen(a), lb = strlen(b);
-  int    d[33][33];
-  if (la > 32 || lb > 32) return 9;
-  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
-  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
-  for (size_t i = 1; i <= la; i++)
-    for (size_t j = 1; j <= lb; j++) {
-      int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-      if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
-      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best) best = d[i - 2][j - 2] + 1;
-      d[i][j] = best;
-    }
-  return d[la][lb] < 9 ? d[la][lb] : 9;
-}
-
 YdNode *yd_require(const YdDoc *doc, YdNode *map, const char *key, YdKind kind, const char *path, char *err,
                    size_t errlen) {
   YdNode *nd = yd_get(map, key);
   if (nd) return yd_expect(doc, nd, kind, path, err, errlen) ? NULL : nd;
   if (map && map->kind == YD_MAPPING)
     for (size_t i = 0; i < map->n; i++)
-      if (!map->used[i] && distance(map->keys[i], key) <= 2) {
+      if (!map->used[i] && text_distance(map->keys[i], key) <= 2) {
         say(err, errlen, "%s:%d: unknown key '%s' (misspelt '%s'?): key '%s' is missing: expected %s", doc->file,
             map->key_lines[i], map->keys[i], key, path, kind_name(kind));
         return NULL;
@@ -253,51 +241,73 @@ YdNode *yd_require(const YdDoc *doc, YdNode *map, const char *key, YdKind kind, 
   return NULL;
 }
 
+const char *yd_path(const YdNode *node, const char *path, char *buf, size_t n) {
+  size_t lp = strlen(path);
+  if (node && node->key) {
+    size_t lk = strlen(node->key);
+    if ((lp == lk || (lp > lk && path[lp - lk - 1] == '.')) && !strcmp(path + lp - lk, node->key)) return path;
+    snprintf(buf, n, "%s%s%s", path, lp ? "." : "", node->key);
+    return buf;
+  }
+  if (node && node->index >= 0 && !(lp && path[lp - 1] == ']')) {
+    snprintf(buf, n, "%s[%d]", path, node->index);
+    return buf;
+  }
+  return path;
+}
+
 int yd_expect(const YdDoc *doc, const YdNode *node, YdKind kind, const char *path, char *err, size_t errlen) {
+  char full[512];
   if (!node) {
     say(err, errlen, "%s: key '%s' is missing: expected %s", doc->file, path, kind_name(kind));
     return 1;
   }
   if (node->kind != kind) {
-    say(err, errlen, "%s:%d: key '%s': expected %s, got %s", doc->file, node->line, path, kind_name(kind),
-        kind_name(node->kind));
+    say(err, errlen, "%s:%d: key '%s': expected %s, got %s", doc->file, node->line, yd_path(node, path, full, sizeof full),
+        kind_name(kind), kind_name(node->kind));
     return 1;
   }
   return 0;
 }
 
 int yd_double(const YdDoc *doc, const YdNode *node, const char *path, double *value, char *err, size_t errlen) {
+  char full[512];
   if (yd_expect(doc, node, YD_SCALAR, path, err, errlen)) return 1;
-  char *end;
-  errno     = 0;
-  double v  = strtod(node->text, &end);
-  if (end == node->text || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-    say(err, errlen, "%s:%d: key '%s': expected a finite number, got '%s'", doc->file, node->line, path, node->text);
+  if (text_real(node->text, value)) {
+    say(err, errlen, "%s:%d: key '%s': expected a finite number, got '%s'", doc->file, node->line,
+        yd_path(node, path, full, sizeof full), node->text);
     return 1;
   }
-  *value = v;
+  return 0;
+}
+
+int yd_int_range(const YdDoc *doc, const YdNode *node, const char *path, long long lo, long long hi, int *value, char *err,
+                 size_t errlen) {
+  char full[512], want[96];
+  if (yd_expect(doc, node, YD_SCALAR, path, err, errlen)) return 1;
+  int why = text_int(node->text, lo, hi, value);
+  if (why) {
+    if (why == TEXT_NOT_A_NUMBER && lo <= INT_MIN && hi >= INT_MAX) snprintf(want, sizeof want, "an integer");
+    else text_int_expected(lo, hi, want, sizeof want);
+    say(err, errlen, "%s:%d: key '%s': expected %s, got '%s'", doc->file, node->line, yd_path(node, path, full, sizeof full),
+        want, node->text);
+    return 1;
+  }
   return 0;
 }
 
 int yd_int(const YdDoc *doc, const YdNode *node, const char *path, int *value, char *err, size_t errlen) {
-  if (yd_expect(doc, node, YD_SCALAR, path, err, errlen)) return 1;
-  char *end;
-  errno  = 0;
-  long v = strtol(node->text, &end, 10);
-  if (end == node->text || *end != '\0' || errno == ERANGE || v < -2147483647L || v > 2147483647L) {
-    say(err, errlen, "%s:%d: key '%s': expected an integer, got '%s'", doc->file, node->line, path, node->text);
-    return 1;
-  }
-  *value = (int)v;
-  return 0;
+  return yd_int_range(doc, node, path, INT_MIN, INT_MAX, value, err, errlen);
 }
 
 int yd_bool(const YdDoc *doc, const YdNode *node, const char *path, int *value, char *err, size_t errlen) {
+  char full[512];
   if (yd_expect(doc, node, YD_SCALAR, path, err, errlen)) return 1;
   if (!strcasecmp(node->text, "true") || !strcasecmp(node->text, "yes")) *value = 1;
   else if (!strcasecmp(node->text, "false") || !strcasecmp(node->text, "no")) *value = 0;
   else {
-    say(err, errlen, "%s:%d: key '%s': expected true or false, got '%s'", doc->file, node->line, path, node->text);
+    say(err, errlen, "%s:%d: key '%s': expected true or false, got '%s'", doc->file, node->line,
+        yd_path(node, path, full, sizeof full), node->text);
     return 1;
   }
   return 0;
@@ -313,6 +323,8 @@ int yd_doubles(const YdDoc *doc, const YdNode *node, const char *path, double *v
                size_t errlen) {
   if (yd_expect(doc, node, YD_SEQUENCE, path, err, errlen)) return 1;
   int cap = n < 0 ? -n : n;
+  char full[512];
+  path = yd_path(node, path, full, sizeof full);
   if ((n >= 0 && (int)node->n != n) || (n < 0 && (int)node->n > cap)) {
     say(err, errlen, "%s:%d: key '%s': expected a list of %s%d numbers, got %zu", doc->file, node->line, path,
         n < 0 ? "at most " : "", cap, node->n);

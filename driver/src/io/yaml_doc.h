@@ -11,6 +11,8 @@ typedef struct YdNode YdNode;
 struct YdNode {
   YdKind   kind;
   int      line;      /* 1-based line in the file */
+  const char *key;    /* the key it is the value of (in its mapping), or NULL */
+  int      index;     /* its index in its sequence, or -1 */
   char    *text;      /* scalar text (YD_SCALAR) */
   size_t   n;         /* children: sequence items, or mapping pairs */
   YdNode **items;     /* sequence items, or mapping values */
@@ -34,9 +36,14 @@ YdNode *yd_get(YdNode *map, const char *key);
 int yd_key_line(const YdNode *map, const char *key);
 
 /* Typed reads; each returns 0 on success, else writes "file:line: key 'path': expected ..., got ..."
- * into err and returns 1. 'path' is the dotted key path used in messages. */
+ * into err and returns 1. 'path' is the dotted key path used in messages; when it names the node's parent
+ * (stages[0].steps for the node of count), the node's own key or index is added, so a message always
+ * names the key whose value is wrong. */
 int yd_double(const YdDoc *doc, const YdNode *node, const char *path, double *value, char *err, size_t errlen);
 int yd_int(const YdDoc *doc, const YdNode *node, const char *path, int *value, char *err, size_t errlen);
+/* An integer in [lo, hi] (io/text.h: the one integer check of every reader). */
+int yd_int_range(const YdDoc *doc, const YdNode *node, const char *path, long long lo, long long hi, int *value, char *err,
+                 size_t errlen);
 int yd_bool(const YdDoc *doc, const YdNode *node, const char *path, int *value, char *err, size_t errlen);
 int yd_string(const YdDoc *doc, const YdNode *node, const char *path, const char **value, char *err, size_t errlen);
 /* A sequence of exactly n numbers (n < 0: any length up to -n; count returned in *got). */
@@ -49,6 +56,8 @@ YdNode *yd_require(const YdDoc *doc, YdNode *map, const char *key, YdKind kind, 
 /* Expect a node of a kind. */
 int yd_expect(const YdDoc *doc, const YdNode *node, YdKind kind, const char *path, char *err, size_t errlen);
 /* After reading a mapping: any key never asked for is an error naming it and the allowed keys. */
+/* The key path of node: path, with the node's key or index added unless path ends with it. */
+const char *yd_path(const YdNode *node, const char *path, char *buf, size_t n);
 int yd_check_unused(const YdDoc *doc, const YdNode *map, const char *path, const char *allowed, char *err,
                     size_t errlen);
 

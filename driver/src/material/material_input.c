@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "camclay9.h"
+#include "../io/options.h"
+#include "../io/text.h"
 
 /* Cam-Clay IX PROPS slot names (docs/umat.md), in slot order. */
 static const char *slot_names[] = {"phi",   "lambda_hard", "muT_hard",      "muL_hard", "a_hard",     "b_hard",
@@ -36,21 +38,36 @@ static void set_slot(UmatMaterial *mat, int slot, double v, int *normal) {
   if (slot + 1 > mat->nprops) mat->nprops = slot + 1 <= 20 ? slot + 1 : 23; /* 21, 22: a partial normal */
 }
 
+PetscErrorCode material_options(char *set, size_t n, PetscBool *given) {
+  PetscFunctionBeginUser;
+  set[0] = '\0';
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Material", NULL);
+  PetscCall(options_string(PetscOptionsObject, "-material_set",
+                           "PROPS overrides NAME=VALUE[,NAME=VALUE...] (names as in material.set), applied after the scene's material.set",
+                           set, set, n, given));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/* Where each PROPS slot's value came from, for the message of a value the UMAT refuses. */
+typedef struct {
+  int  line[UMAT_MAX_PROPS]; /* the scene line of material.set.NAME or material.props[k] (0: the preset) */
+  char set[UMAT_MAX_PROPS];  /* given by material.set (else by material.props) */
+  char option[UMAT_MAX_PROPS]; /* overridden by -material_set */
+} SlotSources;
+
 /* -material_set NAME=VALUE[,NAME=VALUE...]: PROPS overrides from the command line, applied after the
  * scene's material.set with the same names and checks (the calibrate scene's forward runs use it). */
-static int apply_option_set(UmatMaterial *mat, int *normal, char *err, size_t errlen) {
+static int apply_option_set(UmatMaterial *mat, int *normal, SlotSources *src, char *err, size_t errlen) {
   char      buf[2048] = "", *tok, *save = NULL;
   PetscBool given     = PETSC_FALSE;
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Material", NULL);
-  if (PetscOptionsString("-material_set", "PROPS overrides NAME=VALUE[,NAME=VALUE...] (names as in material.set), "
-                         "applied after the scene's material.set", NULL, buf, buf, sizeof buf, &given)) {
+  if (material_options(buf, sizeof buf, &given)) {
     snprintf(err, errlen, "option -material_set: could not be read");
     return 1;
   }
-  PetscOptionsEnd();
   if (!given) return 0;
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-    char *eq = strchr(tok, '='), *end = NULL;
+    char *eq = strchr(tok, '=');
     if (!eq) {
       snprintf(err, errlen, "option -material_set: '%s': expected NAME=VALUE", tok);
       return 1;
@@ -61,20 +78,34 @@ static int apply_option_set(UmatMaterial *mat, int *normal, char *err, size_t er
       snprintf(err, errlen, "option -material_set: unknown PROPS name '%s': the names are " SLOT_LIST, tok);
       return 1;
     }
-    double v = strtod(eq + 1, &end);
-    if (end == eq + 1 || *end || !isfinite(v)) {
+    double v;
+    if (text_real(eq + 1, &v)) {
       snprintf(err, errlen, "option -material_set: '%s=%s': expected a finite number", tok, eq + 1);
       return 1;
     }
     set_slot(mat, slot, v, normal);
+    src->option[slot] = 1;
   }
   return 0;
+}
+
+/* The UMAT's message on a refused slot (1-based), with where its value came from. */
+static void refused_slot(const YdDoc *doc, const YdNode *node, const SlotSources *src, const UmatMaterial *mat, int code,
+                         const char *msg, char *err, size_t errlen) {
+  int k = code - 1;
+  if (code < 1 || code > UMAT_MAX_PROPS) snprintf(err, errlen, "%s:%d: material: %s", doc->file, node->line, msg);
+  else if (src->option[k])
+    snprintf(err, errlen, "option -material_set: %s=%.17g (scene %s): %s", k < NSLOTS ? slot_names[k] : "?", mat->props[k], doc->file,
+             msg);
+  else if (src->set[k]) snprintf(err, errlen, "%s:%d: key 'material.set.%s': %s", doc->file, src->line[k], slot_names[k], msg);
+  else if (src->line[k]) snprintf(err, errlen, "%s:%d: key 'material.props[%d]': %s", doc->file, src->line[k], k, msg);
+  else snprintf(err, errlen, "%s:%d: material: %s", doc->file, node->line, msg);
 }
 
 /* material.props (woodford or a list of numbers) and material.set (named slots); *props_out: the props node;
  * *normal_in_props set when set names n1..n3. */
 static int read_props_set(const YdDoc *doc, YdNode *node, UmatMaterial *mat, YdNode **props_out, int *normal_in_props,
-                          char *err, size_t errlen) {
+                          SlotSources *src, char *err, size_t errlen) {
   YdNode *nd, *props = yd_get(node, "props");
   *props_out = props;
   if (!props) {
@@ -91,6 +122,8 @@ static int read_props_set(const YdDoc *doc, YdNode *node, UmatMaterial *mat, YdN
     return 1;
   } else if (yd_doubles(doc, props, "material.props", mat->props, -UMAT_MAX_PROPS, &mat->nprops, err, errlen)) {
     return 1;
+  } else {
+    for (int k = 0; k < mat->nprops; k++) src->line[k] = props->items[k]->line;
   }
   if ((nd = yd_get(node, "set"))) {
     if (yd_expect(doc, nd, YD_MAPPING, "material.set", err, errlen)) return 1;
@@ -107,6 +140,7 @@ static int read_props_set(const YdDoc *doc, YdNode *node, UmatMaterial *mat, YdN
       double v;
       if (yd_double(doc, nd->items[i], path, &v, err, errlen)) return 1;
       set_slot(mat, slot, v, normal_in_props);
+      src->line[slot] = nd->key_lines[i], src->set[slot] = 1;
     }
   }
   return 0;
@@ -167,17 +201,14 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   mat->tol_slot = camclay ? 19 : -1;
   umat_material_set_name(mat, name);
 
-  int normal_in_props = 0; /* n1..n3 given in props or set: bedding_angle would override them */
-  int nprops_given;
-  if (read_props_set(doc, node, mat, &props, &normal_in_props, err, errlen)) return 1;
-  if (camclay && apply_option_set(mat, &normal_in_props, err, errlen)) return 1;
+  int         normal_in_props = 0; /* n1..n3 given in props or set: bedding_angle would override them */
+  int         nprops_given;
+  SlotSources src;
+  memset(&src, 0, sizeof src);
+  if (read_props_set(doc, node, mat, &props, &normal_in_props, &src, err, errlen)) return 1;
+  if (camclay && apply_option_set(mat, &normal_in_props, &src, err, errlen)) return 1;
   if (read_bedding(doc, node, ntens, camclay, normal_in_props, mat, &nprops_given, err, errlen)) return 1;
-  if ((nd = yd_get(node, "nstatv")) && yd_int(doc, nd, "material.nstatv", &mat->nstatv, err, errlen)) return 1;
-  if (mat->nstatv < 0 || mat->nstatv > UMAT_MAX_STATEV) {
-    snprintf(err, errlen, "%s:%d: key 'material.nstatv': expected 0 to %d, got %d", doc->file,
-             yd_key_line(node, "nstatv"), UMAT_MAX_STATEV, mat->nstatv);
-    return 1;
-  }
+  if ((nd = yd_get(node, "nstatv")) && yd_int_range(doc, nd, "material.nstatv", 0, UMAT_MAX_STATEV, &mat->nstatv, err, errlen)) return 1;
   if (yd_check_unused(doc, node, "material", "umat, name, props, set, bedding_angle, normal, nstatv", err, errlen))
     return 1;
   if (camclay && nprops_given < 19) {
@@ -190,7 +221,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
     int  code;
     camclay9_check_props(mat->props, mat->nprops, mat->nstatv, ntens, 3, &code, msg, sizeof msg);
     if (code) {
-      snprintf(err, errlen, "%s:%d: material: %s", doc->file, node->line, msg);
+      refused_slot(doc, node, &src, mat, code, msg, err, errlen);
       return 1;
     }
   }

@@ -3,11 +3,16 @@
 #ifndef MATERIAL_INPUT_H
 #define MATERIAL_INPUT_H
 
+#include <petscsys.h>
+
 #include "../io/yaml_doc.h"
 #include "umat_call.h"
 
 /* Read the block into mat (ntens must already be set). Returns 0, or 1 with err filled. */
 int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen);
+
+/* -material_set (declared and read here; io/options.h): its text, whether given. */
+PetscErrorCode material_options(char *set, size_t n, PetscBool *given);
 
 /* Index (0-based) of a named Cam-Clay IX PROPS slot, or -1. */
 int material_slot(const char *name);

@@ -1,6 +1,7 @@
 /* Reading a material-point scene from YAML; every error names the file, the line and the key. */
 #include "point_scene.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -240,8 +241,10 @@ static int read_segment_table(YdDoc *doc, YdNode *nd, const char *path, Segment 
   if (yd_expect(doc, tab, YD_MAPPING, sub, err, errlen)) return 1;
   const char *file, *tcol;
   double      tfac = 1;
-  if (yd_string(doc, yd_get(tab, "file"), sub, &file, err, errlen)) return 1;
-  if (yd_string(doc, yd_get(tab, "time"), sub, &tcol, err, errlen)) return 1;
+  char pf[200], pt[200];
+  snprintf(pf, sizeof pf, "%s.file", sub), snprintf(pt, sizeof pt, "%s.time", sub);
+  if (yd_string(doc, yd_get(tab, "file"), pf, &file, err, errlen)) return 1;
+  if (yd_string(doc, yd_get(tab, "time"), pt, &tcol, err, errlen)) return 1;
   YdNode *f = yd_get(tab, "time_factor");
   if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
   if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
@@ -327,7 +330,7 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
       if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
-    if ((v = yd_get(x, "progress_every")) && yd_int(doc, v, "output.progress_every", &sc->progress_every, err, errlen)) return 1;
+    if ((v = yd_get(x, "progress_every")) && yd_int_range(doc, v, "output.progress_every", 0, INT_MAX, &sc->progress_every, err, errlen)) return 1;
     if (yd_check_unused(doc, x, "output", "directory, progress_every", err, errlen)) return 1;
   }
   if ((x = yd_get(root, "check_tangent")) && yd_bool(doc, x, "check_tangent", &sc->check_tangent, err, errlen)) return 1;

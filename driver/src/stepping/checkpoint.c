@@ -4,15 +4,21 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #define CKPT_MAGIC 0x43433952 /* "CC9R" */
-#define CKPT_VERSION 2
+#define CKPT_VERSION 3
 
 static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
   snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);
+}
+
+/* The set's shared file (the solver's distributed state, written and read by all ranks together). */
+static void shared_path(const RunnerOptions *opt, int step, char *path, size_t n) {
+  snprintf(path, n, "%s/checkpoint.%d.h5", opt->outdir, step);
 }
 
 static int all_ok(MPI_Comm comm, int ok) {
@@ -22,20 +28,49 @@ static int all_ok(MPI_Comm comm, int ok) {
 }
 
 /* The sets before this one are no longer needed: this rank's files of every other step (also those a kill
-   between the two renames left behind). */
-static void remove_older_sets(const RunnerOptions *opt, int rank, int step) {
+   between the two renames left behind); rank 0: the shared files of the other steps, and the files of ranks a
+   run on more ranks left (a restart on fewer). */
+static void remove_older_sets(const RunnerOptions *opt, int rank, int size, int step) {
   DIR           *dir = opendir(opt->outdir);
   struct dirent *e;
   if (!dir) return;
   while ((e = readdir(dir))) {
     int  s, r, n = 0;
     char path[1100];
-    if (sscanf(e->d_name, "checkpoint.%d.rank%d.bin%n", &s, &r, &n) == 2 && !e->d_name[n] && r == rank && s != step) {
-      set_path(opt, s, rank, path, sizeof path);
+    if (sscanf(e->d_name, "checkpoint.%d.rank%d.bin%n", &s, &r, &n) == 2 && !e->d_name[n] && (r == rank || (!rank && r >= size)) &&
+        s != step) {
+      set_path(opt, s, r, path, sizeof path);
+      remove(path);
+    }
+    n = 0;
+    if (!rank && sscanf(e->d_name, "checkpoint.%d.h5%n", &s, &n) == 1 && (!e->d_name[n] || !strcmp(e->d_name + n, ".tmp")) && s != step) {
+      snprintf(path, sizeof path, "%s/%s", opt->outdir, e->d_name);
       remove(path);
     }
   }
   closedir(dir);
+}
+
+/* The solver's shared file, written by all ranks to a temporary name; rank 0 syncs it to disk and renames it. */
+static int write_shared(StepSolver *sv, const RunnerOptions *opt, int step, char *err, size_t errlen) {
+  char path[1100], tmp[1110];
+  int  rank, ok;
+  MPI_Comm_rank(sv->comm, &rank);
+  shared_path(opt, step, path, sizeof path);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  ok = !sv->save_shared(sv->ctx, tmp);
+  if (all_ok(sv->comm, ok) && !rank) {
+    int fd = open(tmp, O_RDONLY);
+    ok = fd >= 0 && !fsync(fd);
+    if (fd >= 0) close(fd);
+    ok = ok && !rename(tmp, path);
+  }
+  if (!all_ok(sv->comm, ok)) {
+    snprintf(err, errlen, "%s: cannot write the checkpoint's shared file; the previous checkpoint is kept", path);
+    if (!rank) remove(tmp);
+    return 1;
+  }
+  return 0;
 }
 
 static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
@@ -55,6 +90,7 @@ static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int
   MPI_Bcast(&off, 1, MPI_LONG, 0, sv->comm); /* rank 0 holds the history */
   st->history_offset = off;
   char path[1100], tmp[1110];
+  if (sv->save_shared && write_shared(sv, opt, st->step, err, errlen)) return 1;
   set_path(opt, st->step, rank, path, sizeof path);
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   unsigned long long hash = binfile_hash(opt->scene_file);
@@ -89,7 +125,7 @@ static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int
     snprintf(err, errlen, "%s/checkpoint.latest: cannot write; the previous checkpoint is kept", opt->outdir);
     return 1;
   }
-  remove_older_sets(opt, rank, st->step);
+  remove_older_sets(opt, rank, size, st->step);
   *last = st->step;
   return 0;
 }
@@ -120,22 +156,25 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
     snprintf(err, errlen, "-restart: %s/checkpoint.latest is missing or damaged (run with -checkpoint_every N first)", opt->outdir);
     return 1;
   }
-  if (nranks != size) {
+  if (nranks != size && !sv->load_shared) {
     snprintf(err, errlen, "-restart: the checkpoint in %s was written by %d ranks; restart with mpiexec -n %d", opt->outdir, nranks,
              nranks);
     return 2;
   }
-  char path[1100];
-  set_path(opt, step, rank, path, sizeof path);
+  /* Each rank reads its own file; on another number of ranks (the distributed state is in the shared file) the
+     ranks beyond the writers read rank 0's, which holds the same values. */
+  int                from = rank < nranks ? rank : 0;
+  char               path[1100];
   BinFile            f;
   unsigned long long hash = 0;
   int                code = 0; /* 0 ok, 1 missing or damaged, 2 another scene */
+  set_path(opt, step, from, path, sizeof path);
   if (binfile_open(&f, path, "rb")) code = 1;
   else {
     binfile_expect_int(&f, CKPT_MAGIC);
     binfile_expect_int(&f, CKPT_VERSION);
-    binfile_expect_int(&f, size);
-    binfile_expect_int(&f, rank);
+    binfile_expect_int(&f, nranks);
+    binfile_expect_int(&f, from);
     binfile_read(&f, &hash, sizeof hash, 1);
     if (f.ok && hash != binfile_hash(opt->scene_file)) code = 2;
     binfile_read(&f, st, sizeof *st, 1);
@@ -144,7 +183,7 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
     if (binfile_close(&f, 0) && !code) code = 1;
     if (!code && st->step != step) code = 1;
   }
-  int worst = 0, mine = code ? rank : size, first_bad = size;
+  int worst = 0, mine = code ? from : nranks, first_bad = nranks;
   MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);
   MPI_Allreduce(&mine, &first_bad, 1, MPI_INT, MPI_MIN, sv->comm);
   if (worst == 2)
@@ -154,11 +193,21 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
                           "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, first_bad, step, first_bad);
   if (worst) return worst;
+  if (sv->load_shared) {
+    shared_path(opt, step, path, sizeof path);
+    if (sv->load_shared(sv->ctx, path)) {
+      snprintf(err, errlen, "-restart: %s (written by %d ranks) cannot be read into this run's mesh on %d (a mesh or contact surface "
+                            "other than the checkpointed run's?): nothing was written", path, nranks, size);
+      return 1;
+    }
+  }
   if (sv->resume && sv->resume(sv->ctx)) {
     snprintf(err, errlen, "-restart: the state of the checkpoint of step %d in %s could not be set up", step, opt->outdir);
     return 1;
   }
   *last = step;
-  if (!rank && !opt->quiet) printf("restart at step %d, t = %g s (stage %d)\n", st->step, st->t, st->stage);
+  if (!rank && !opt->quiet)
+    printf("restart at step %d, t = %g s (stage %d)%s\n", st->step, st->t, st->stage, nranks != size ? ", on another number of ranks" : "");
+  if (!rank && !opt->quiet && nranks != size) printf("  the checkpoint was written by %d ranks, this run has %d\n", nranks, size);
   return 0;
 }

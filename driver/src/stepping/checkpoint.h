@@ -14,7 +14,7 @@
 typedef struct {
   int    stage, in_stage, first_in_stage, step, its, cutbacks, cut_in_step, rejected_error;
   int    pending_instant, k_planned, cut_in_plan, next_stage_time, have_prev, nout, kink;
-  double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio;
+  double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio, ratio_prev;
   double out_prev[STEP_MAX_OUT], dout_prev[STEP_MAX_OUT], out_scale[STEP_MAX_OUT];
   long   history_offset;
 } RunState;

@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <petscviewerhdf5.h>
+
 #include "../fe/fe_state.h"
 #include "../point/point_solve.h"
 
@@ -82,19 +84,19 @@ int fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen) {
   return 0;
 }
 
-int fe_common_promote(FeCommon *c) { return c->fields ? (int)fe_output_promote(&c->out) : 0; }
+int fe_common_promote(FeCommon *c) { return c->fields ? (int)fe_output_promote(c->p, &c->out) : 0; }
 
-int fe_common_save(FeCommon *c, Vec U, BinFile *f) {
+int fe_common_save(FeCommon *c, BinFile *f) {
   binfile_write(f, c->start, sizeof(double), FE_MAX_GROUPS);
   binfile_write(f, c->now, sizeof(double), FE_MAX_GROUPS);
   PetscInt nout = c->fields ? c->out.nout : 0;
   binfile_write(f, &nout, sizeof nout, 1);
   if (nout) binfile_write(f, c->out.times, sizeof(PetscReal), (size_t)nout);
-  if (!f->ok) return 1;
-  return fe_state_save(c->p, U, f);
+  binfile_write(f, &c->p->have_devp, sizeof c->p->have_devp, 1);
+  return !f->ok;
 }
 
-int fe_common_load(FeCommon *c, Vec U, BinFile *f) {
+int fe_common_load(FeCommon *c, BinFile *f) {
   PetscInt nout = 0;
   binfile_read(f, c->start, sizeof(double), FE_MAX_GROUPS);
   binfile_read(f, c->now, sizeof(double), FE_MAX_GROUPS);
@@ -104,7 +106,14 @@ int fe_common_load(FeCommon *c, Vec U, BinFile *f) {
   if (PetscMalloc1(nout + 1, &c->saved_times)) return 1;
   c->nsaved = nout;
   binfile_read(f, c->saved_times, sizeof(PetscReal), (size_t)nout);
-  return !f->ok || fe_state_load(c->p, U, f);
+  binfile_read(f, &c->p->have_devp, sizeof c->p->have_devp, 1);
+  return !f->ok;
+}
+
+PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool write, PetscViewer *v) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5Open(PetscObjectComm((PetscObject)c->p->dm), path, write ? FILE_MODE_WRITE : FILE_MODE_READ, v));
+  PetscFunctionReturn(0);
 }
 
 int fe_common_resume(FeCommon *c) {

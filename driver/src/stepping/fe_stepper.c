@@ -155,29 +155,35 @@ static int write_fields(void *ctx, double t, char *err, size_t errlen) {
 static int promote(void *ctx) { return fe_common_promote(&((FeSolver *)ctx)->c); }
 
 static int save(void *ctx, BinFile *b) {
-  FeSolver          *f = ctx;
-  PetscInt           n;
-  const PetscScalar *d;
-  if (fe_common_save(&f->c, f->U0, b)) return 1;
+  FeSolver *f = ctx;
+  f->refactor = PETSC_TRUE; /* the next solve factors afresh, as a run restarted from here does */
+  if (fe_common_save(&f->c, b)) return 1;
   binfile_write(b, &f->have_rate, sizeof f->have_rate, 1);
-  VecGetLocalSize(f->dU, &n);
-  VecGetArrayRead(f->dU, &d);
-  binfile_write(b, d, sizeof(PetscScalar), (size_t)n);
-  VecRestoreArrayRead(f->dU, &d);
   return !b->ok;
 }
 
 static int load(void *ctx, BinFile *b) {
-  FeSolver    *f = ctx;
-  PetscInt     n;
-  PetscScalar *d;
-  if (fe_common_load(&f->c, f->U0, b)) return 1;
+  FeSolver *f = ctx;
+  if (fe_common_load(&f->c, b)) return 1;
   binfile_read(b, &f->have_rate, sizeof f->have_rate, 1);
-  VecGetLocalSize(f->dU, &n);
-  VecGetArray(f->dU, &d);
-  binfile_read(b, d, sizeof(PetscScalar), (size_t)n);
-  VecRestoreArray(f->dU, &d);
   return !b->ok;
+}
+
+/* The committed displacement and the predictor's last increment, with the points' state (fe/fe_state.h). */
+static const char *const shared_names[2] = {"displacement", "increment"};
+
+static int save_shared(void *ctx, const char *path) {
+  FeSolver   *f = ctx;
+  PetscViewer v;
+  Vec         vecs[2] = {f->U0, f->dU};
+  return fe_common_shared_open(&f->c, path, PETSC_TRUE, &v) || fe_state_view(f->c.p, v, 2, vecs, shared_names) || PetscViewerDestroy(&v);
+}
+
+static int load_shared(void *ctx, const char *path) {
+  FeSolver   *f = ctx;
+  PetscViewer v;
+  Vec         vecs[2] = {f->U0, f->dU};
+  return fe_common_shared_open(&f->c, path, PETSC_FALSE, &v) || fe_state_read(f->c.p, v, 2, vecs, shared_names) || PetscViewerDestroy(&v);
 }
 
 static int resume(void *ctx) {
@@ -196,14 +202,12 @@ static long umat_calls(void *ctx) { return (long)((FeSolver *)ctx)->c.p->umat_ca
  * -mat_mumps_icntl_* given by the user win; -fe_refactor_its 0 -ksp_type preonly is a plain direct solve
  * at every Newton iteration. The Jacobian is unsymmetric (the viscoplastic consistent tangent: about
  * 5e-5 relative on the triaxial cylinder), so LU, not Cholesky, and GMRES, not CG. */
-static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
+static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp, const FeSolverOptions *o) {
   PC        pc;
-  PetscInt  n, gamg_above = 100000; /* measured: docs/performance.md, "FE scaling" */
+  PetscInt  n, gamg_above = o->gamg_above;
   PetscBool given;
   PetscFunctionBeginUser;
-  f->refactor_its = 20;
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_refactor_its", &f->refactor_its, NULL));
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fe_gamg_above", &gamg_above, NULL));
+  f->refactor_its = o->refactor_its;
   PetscCall(MatGetSize(f->J, &n, NULL));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &given));
   if (!given && n > gamg_above) PetscCall(options_default("-pc_type", "gamg"));
@@ -219,6 +223,21 @@ static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode fe_solver_options(MPI_Comm comm, FeSolverOptions *o) {
+  PetscFunctionBeginUser;
+  o->refactor_its = 20, o->gamg_above = 100000, o->coo = PETSC_TRUE, o->predictor = PETSC_TRUE;
+  PetscOptionsBegin(comm, NULL, "Finite-element scenes (docs/driver.md, Solvers)", NULL);
+  PetscCall(options_int(PetscOptionsObject, "-fe_refactor_its", "rebuild the kept factorisation when a solve takes more Krylov iterations "
+                        "per Newton iteration (0: every iteration)", o->refactor_its, 0, PETSC_MAX_INT, &o->refactor_its, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-fe_gamg_above", "GAMG instead of LU above this many unknowns (measured: docs/performance.md)",
+                        o->gamg_above, 0, PETSC_MAX_INT, &o->gamg_above, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-fe_coo", "assemble the Jacobian by COO (false: MatSetValues)", o->coo, &o->coo, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-fe_predictor", "start each step's Newton from the extrapolated last increment", o->predictor,
+                         &o->predictor, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 /* SNES on the element loop: full Newton steps on the consistent tangent (cut back by the runner when they
  * fail), as Abaqus does; -snes_linesearch_type bt restores a backtracking line search. */
 static PetscErrorCode solver_setup(FeSolver *f) {
@@ -226,7 +245,9 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   FeProblem  *p  = f->c.p;
   MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
   KSP         ksp;
+  FeSolverOptions o;
   PetscFunctionBeginUser;
+  PetscCall(fe_solver_options(comm, &o));
   PetscCall(SNESCreate(comm, &f->snes));
   PetscCall(DMCreateMatrix(p->dm, &f->J));
   PetscCall(DMCreateGlobalVector(p->dm, &f->U));
@@ -243,11 +264,9 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   }
   PetscCall(SNESSetFunction(f->snes, f->R, fe_residual, p));
   PetscCall(SNESSetJacobian(f->snes, f->J, f->J, fe_jacobian, p));
-  PetscBool coo = PETSC_TRUE;
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_coo", &coo, NULL));
-  if (coo) PetscCall(fe_jacobian_coo_setup(p, f->J)); /* measured: docs/performance.md, "FE element loops" */
+  if (o.coo) PetscCall(fe_jacobian_coo_setup(p, f->J)); /* measured: docs/performance.md, "FE element loops" */
   PetscCall(SNESGetKSP(f->snes, &ksp));
-  PetscCall(linear_solver_setup(f, ksp));
+  PetscCall(linear_solver_setup(f, ksp, &o));
   PetscReal pmax = 1, fref = 0; /* force scale for the absolute tolerance: the largest load on all loaded faces */
   for (int i = 0; i < sc->nstage; i++)
     for (int g = 0; g < sc->npressure; g++)
@@ -265,8 +284,7 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   PetscBool preonly;
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
   if (preonly) f->refactor_its = 0; /* no Krylov solver to correct a kept factorisation */
-  f->predictor = PETSC_TRUE;
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fe_predictor", &f->predictor, NULL));
+  f->predictor = o.predictor;
   PetscFunctionReturn(0);
 }
 
@@ -309,7 +327,8 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
       return 1;
   }
   StepSolver sv = {&f, "fe", sc->nstage, PetscObjectComm((PetscObject)p->dm), stage_begin, solve, accept, NULL,
-                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume};
+                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume,
+                   save_shared, load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&f.c);

@@ -24,6 +24,13 @@ typedef struct {
   PetscInt   nsaved;
 } FeCommon;
 
+/* The FE solver's options (-fe_*), declared and read in one place (io/options.h). */
+typedef struct {
+  PetscInt  refactor_its, gamg_above;
+  PetscBool coo, predictor;
+} FeSolverOptions;
+PetscErrorCode fe_solver_options(MPI_Comm comm, FeSolverOptions *o);
+
 /* Run the stages of an FE scene (SNES) or of an indentation scene on the set-up problem p. */
 int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);
 int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);
@@ -41,8 +48,12 @@ PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome
 void           fe_common_accept(FeCommon *c, const StepRequest *rq);
 int            fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen);
 int            fe_common_promote(FeCommon *c);
-int            fe_common_save(FeCommon *c, Vec U, BinFile *f);
-int            fe_common_load(FeCommon *c, Vec U, BinFile *f); /* reads only (no collective call) */
+/* A checkpoint: the loads and output times (the same on every rank: in each rank's file), and the shared
+ * file (PETSc HDF5) that holds the fields and states in the serial mesh's order (fe/fe_state.h), so that a run
+ * restarts on any number of ranks. */
+int            fe_common_save(FeCommon *c, BinFile *f);
+int            fe_common_load(FeCommon *c, BinFile *f); /* reads only (no collective call) */
+PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool write, PetscViewer *v);
 int            fe_common_resume(FeCommon *c);                  /* collective: loads and statistics */
 void           fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n);
 

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "../contact/contact_io.h"
 #include "../contact/semismooth.h"
 #include "../fe/fe_state.h"
 
@@ -15,6 +16,7 @@ typedef struct {
   IndentScene *is;
   Semismooth   in;
   double       load, load_max, stage_start, force, pen, lmin;
+  char         until_key[64];
 } Indent;
 
 static const char *shape_name(const IndentScene *is) {
@@ -32,20 +34,24 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   d->in.depth_control = st->kind == IND_DEPTH_RAMP;
   if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load, d->in.have_rate = PETSC_FALSE;
   if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE) {
-    snprintf(err, errlen, "%s: stage '%s': give one end event: indenter.until or until, not both", d->is->file, g->name);
+    snprintf(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
+             d->is->file, s, g->name);
     return 1;
   }
   if (st->until_load > 0) { /* the time the load reaches the event, known in advance */
     double start = d->stage_start, te = st->kind == IND_LOAD_EXP ? log(st->until_load / st->P0) / st->k
                                                                  : (st->target != start ? g->duration * (st->until_load - start) / (st->target - start) : -1);
     if (!(te >= 0 && te <= g->duration)) {
-      snprintf(err, errlen, "stage '%s': the load never reaches until.load = %g within the stage's duration %g s", g->name,
-               whole(d, st->until_load), g->duration);
+      snprintf(err, errlen, "%s: key 'stages[%d].indenter.until.load': stage '%s': the load never reaches %g within the stage's "
+               "duration %g s", d->is->file, s, g->name, whole(d, st->until_load), g->duration);
       return 1;
     }
     v->duration = te;
   }
-  if (st->until_depth > 0) v->until.kind = EVENT_DEPTH, v->until.value = st->until_depth, v->must_reach = 1, v->event_start = d->in.ur;
+  if (st->until_depth > 0) {
+    snprintf(d->until_key, sizeof d->until_key, "stages[%d].indenter.until.depth", s);
+    v->until.kind = EVENT_DEPTH, v->until.value = st->until_depth, v->must_reach = 1, v->event_start = d->in.ur, v->until_key = d->until_key;
+  }
   return 0;
 }
 
@@ -59,7 +65,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   in->target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
   if (st->until_load > 0 && rq->lambda >= 1) in->target = st->until_load; /* the event time is the stage's end */
   if (!in->depth_control) in->fref = PetscMax(PetscMax(d->load_max, in->target), 1e-300);
-  else in->fref = PetscMax(PetscMax(d->load_max, in->kshift * PetscAbsReal(in->target)), 1e-300);
+  else in->fref = PetscMax(PetscMax(d->load_max, in->ct.kn * PetscAbsReal(in->target)), 1e-300);
   int      status;
   PetscInt its = 0;
   p->umat_tol  = 0; /* Newton iterates without the UMAT's error control */
@@ -140,28 +146,13 @@ static int write_fields(void *ctx, double t, char *err, size_t errlen) {
 
 static int promote(void *ctx) { return fe_common_promote(&((Indent *)ctx)->c); }
 
-static void vec_io(BinFile *f, Vec v, int write) {
-  PetscInt     n;
-  PetscScalar *a;
-  VecGetLocalSize(v, &n);
-  VecGetArray(v, &a);
-  if (write) binfile_write(f, a, sizeof(PetscScalar), (size_t)n);
-  else binfile_read(f, a, sizeof(PetscScalar), (size_t)n);
-  VecRestoreArray(v, &a);
-}
-
-/* The indenter's state, with the predictor's (the last converged increments), so a restart is exact. */
+/* The indenter's state, with the predictor's (the last converged increments), so a restart is exact: the values
+   every rank holds alike here, the multipliers and the active set (per node) in the shared file (contact_io.h). */
 static int state_io(Indent *d, BinFile *f, int write) {
   Semismooth *in = &d->in;
   double      vals[9] = {in->ur0, in->rateur, in->dt_prev, (double)in->have_rate, d->load, d->load_max, d->stage_start, in->its_total, in->cycles};
-  PetscInt    n = in->ct.n, m = n;
-  if (write) binfile_write(f, vals, sizeof(double), 9), binfile_write(f, &n, sizeof n, 1);
-  else binfile_read(f, vals, sizeof(double), 9), binfile_read(f, &m, sizeof m, 1);
-  if (m != n) return 1;
-  vec_io(f, in->lam0, write), vec_io(f, in->ratelam, write), vec_io(f, in->rateU, write);
-  /* the active set of the committed state: the next step's first iterate is judged against it */
-  if (write) binfile_write(f, in->ct.active, sizeof *in->ct.active, (size_t)n), binfile_write(f, &in->nactive, sizeof in->nactive, 1);
-  else binfile_read(f, in->ct.active, sizeof *in->ct.active, (size_t)n), binfile_read(f, &in->nactive, sizeof in->nactive, 1);
+  if (write) binfile_write(f, vals, sizeof(double), 9), binfile_write(f, &in->nactive, sizeof in->nactive, 1);
+  else binfile_read(f, vals, sizeof(double), 9), binfile_read(f, &in->nactive, sizeof in->nactive, 1);
   if (!write) {
     in->ur0 = in->ur = vals[0], in->rateur = vals[1], in->dt_prev = vals[2], in->have_rate = vals[3] != 0;
     d->load = vals[4], d->load_max = vals[5], d->stage_start = vals[6], in->its_total = (PetscInt)vals[7], in->cycles = (PetscInt)vals[8];
@@ -171,12 +162,32 @@ static int state_io(Indent *d, BinFile *f, int write) {
 
 static int save(void *ctx, BinFile *f) {
   Indent *d = ctx;
-  return fe_common_save(&d->c, d->in.U0, f) || state_io(d, f, 1);
+  indent_solver_refresh(&d->in.sol); /* the next solve factors afresh, as a run restarted from here does */
+  return fe_common_save(&d->c, f) || state_io(d, f, 1);
 }
 
 static int load(void *ctx, BinFile *f) {
   Indent *d = ctx;
-  return fe_common_load(&d->c, d->in.U0, f) || state_io(d, f, 0);
+  return fe_common_load(&d->c, f) || state_io(d, f, 0);
+}
+
+/* The committed displacement and its last increment, the points' state (fe/fe_state.h), the multipliers. */
+static const char *const shared_names[2] = {"displacement", "increment"};
+
+static int save_shared(void *ctx, const char *path) {
+  Indent     *d = ctx;
+  PetscViewer v;
+  Vec         vecs[2] = {d->in.U0, d->in.rateU};
+  return fe_common_shared_open(&d->c, path, PETSC_TRUE, &v) || fe_state_view(d->c.p, v, 2, vecs, shared_names) ||
+         contact_io_view(&d->in.ct, d->c.p->dm, v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
+}
+
+static int load_shared(void *ctx, const char *path) {
+  Indent     *d = ctx;
+  PetscViewer v;
+  Vec         vecs[2] = {d->in.U0, d->in.rateU};
+  return fe_common_shared_open(&d->c, path, PETSC_FALSE, &v) || fe_state_read(d->c.p, v, 2, vecs, shared_names) ||
+         contact_io_read(&d->in.ct, d->c.p->dm, v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
 }
 
 static int resume(void *ctx) {
@@ -205,17 +216,17 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
                     "indenter-row shift %.4g\n",
               shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
-              (double)d.in.ct.c, (double)d.in.kshift);
+              (double)d.in.ct.c, (double)d.in.ct.kn);
   StepSolver sv = {&d, "indentation", sc->nstage, comm, stage_begin, solve, accept, check, history_header, history_row, progress,
-                   write_fields, promote, save, load, replay, umat_calls, resume};
+                   write_fields, promote, save, load, replay, umat_calls, resume, save_shared, load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&d.c);
   PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
-                    "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations), wall %.2f s -> %s/history.csv\n",
+                    "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations, %d factorisations), wall %.2f s -> %s/history.csv\n",
               sc->name, sum.steps, (int)d.in.its_total, d.in.predictor ? "on" : "off", sum.cutbacks, sum.rejected_error, (int)d.in.cycles,
               sum.umat_calls, p->assembly_seconds, d.in.sol.seconds, d.in.sol.fieldsplit ? "fieldsplit" : "direct", (int)d.in.sol.linear_its,
-              sum.wall, opt->outdir);
+              (int)d.in.sol.setups, sum.wall, opt->outdir);
   semismooth_destroy(&d.in);
   return rc;
 }

@@ -215,7 +215,7 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   }
   pt.t_start = calloc((size_t)sc->nseg + 1, sizeof(double)), pt.t_end = calloc((size_t)sc->nseg + 1, sizeof(double));
   StepSolver sv = {&pt, "point", sc->nseg, MPI_COMM_SELF, stage_begin, solve, accept, NULL, history_header, history_row,
-                   progress, NULL, NULL, save, load, replay, NULL, NULL};
+                   progress, NULL, NULL, save, load, replay, NULL, NULL, NULL, NULL};
   RunnerOptions opt;
   memset(&opt, 0, sizeof opt);
   if (given) opt = *given;

@@ -150,7 +150,7 @@ static double next_length(Run *r, const StepRequest *rq, const StepOutcome *o, d
   const StepControl *sc = r->view.steps;
   RunState          *st = &r->st;
   double             dt;
-  if (sc->adaptive) dt = step_control_next(sc, rq->h, o->pnewdt, ratio);
+  if (sc->adaptive) dt = step_control_next(sc, rq->h, o->pnewdt, ratio, r->opt->elementary ? -1 : st->ratio_prev);
   else if (st->cut_in_plan) {
     double planned_end = 0;
     for (int k = 0; k <= st->k_planned; k++) planned_end += step_control_planned(sc, r->view.duration, k);
@@ -189,6 +189,10 @@ static void plan_step(Run *r, StepRequest *rq, int *at_output) {
 
 enum { STEP_ACCEPTED, STEP_RETRY, STEP_FAILED };
 
+/* For run-time messages: the scene file and the name of its list of stages. */
+static const char *scene_file(const Run *r) { return r->opt->scene_file ? r->opt->scene_file : "(scene)"; }
+static const char *stage_list(const Run *r) { return r->sv->kind && !strcmp(r->sv->kind, "point") ? "segments" : "stages"; }
+
 /* Judge a solved step: cut back (failure, the UMAT's PNEWDT, the error measure), land on an event, or
  * accept. */
 static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ratio, double *kink_ratio, int *landed, char *err,
@@ -213,8 +217,10 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
     double factor = step_control_cut_factor(!o->converged, o->pnewdt, *ratio);
     st->cutbacks++, st->cut_in_step++;
     if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio;
+    st->ratio_prev = -1;
     if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min)) {
-      snprintf(err, errlen, "stage '%s': step failed for good at t = %.6g s (dt = %.3g s): %s", r->view.name, st->t, rq->h,
+      snprintf(err, errlen, "%s: %s[%d] (stage '%s'): step failed for good at t = %.6g s (dt = %.3g s): %s", scene_file(r),
+               stage_list(r), st->stage, r->view.name, st->t, rq->h,
                !o->converged ? (o->why ? o->why : "not converged")
                : o->pnewdt < 1 ? "the UMAT asked for a smaller step" : "the time-step error stays above its tolerance");
       return STEP_FAILED;
@@ -243,7 +249,8 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   else st->dt = next_length(r, rq, o, ratio);
   /* After a kink the estimate may hold the step, not shorten it: a jump of the rate would otherwise cut every
      step where nodes keep entering contact (3D), and without it the steps there would grow unchecked. */
-  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, rq->h, o->pnewdt, kink_ratio), rq->h));
+  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, rq->h, o->pnewdt, kink_ratio, -1), rq->h));
+  st->ratio_prev = ratio; /* the PI controller's memory: none across a kink, a rejection or a stage's start */
   st->landing = 0;
   int dir = event_direction(r->view.until.kind);
   if (dir && rq->h > 0) {
@@ -275,6 +282,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
   if (sv->stage_begin(sv->ctx, st->stage, resumed, &r->view, err, errlen)) return 1;
   if (!resumed) {
     st->t_stage = 0, st->k_planned = 0, st->cut_in_plan = 0, st->landing = 0, st->first_in_stage = 1, st->next_stage_time = 0;
+    st->ratio_prev = -1;
     st->pending_instant = r->view.instant || r->view.duration == 0;
     st->dt              = step_control_planned(r->view.steps, r->view.duration, 0);
     st->event_prev      = r->view.event_start;
@@ -313,8 +321,12 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     if (at_output || (opt->fields_every > 0 && st->step % opt->fields_every == 0) || stage_done)
       if (write_fields(r, err, errlen)) return 1;
     if (stage_done && !landed && r->view.must_reach && r->view.until.kind != EVENT_NONE) {
-      snprintf(err, errlen, "stage '%s': %s = %g (until) was not reached by the stage's end (t = %g s): lengthen its duration",
-               r->view.name, stage_event_name(r->view.until.kind), r->view.until.value, st->t);
+      char key[128];
+      if (r->view.until_key) snprintf(key, sizeof key, "%s", r->view.until_key);
+      else snprintf(key, sizeof key, "%s[%d].until", stage_list(r), st->stage);
+      snprintf(err, errlen, "%s: key '%s': stage '%s': %s = %g (until) was not reached by the stage's end (t = %g s): lengthen its "
+               "duration (%s[%d].duration = %g s)", scene_file(r), key, r->view.name, stage_event_name(r->view.until.kind),
+               r->view.until.value, st->t, stage_list(r), st->stage, r->view.duration);
       return 1;
     }
     if (stage_done) st->stage++, st->in_stage = 0;
@@ -323,7 +335,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
       st->history_offset = r->hist ? ftell(r->hist) : 0;
       if (checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen)) return 1;
     }
-    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return 3;
+    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return write_fields(r, err, errlen) ? 1 : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
   st->stage++, st->in_stage = 0;

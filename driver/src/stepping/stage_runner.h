@@ -28,6 +28,7 @@ typedef struct {
   const StepControl *steps;
   StageEvent         until;
   int                must_reach; /* the until event must happen within the duration (else the run fails) */
+  const char        *until_key;  /* its key in the scene, for messages (NULL: stages[s].until or segments[s].until) */
   double             event_start; /* the until quantity at the stage's start (for landing) */
   int                nout_times;  /* fields at exactly these stage times (output: {times} of a stage) */
   const double      *out_times;
@@ -103,12 +104,18 @@ typedef struct {
   /* After every rank has loaded its checkpoint file (load reads only, so a rank whose file is bad cannot
    * leave the others in a collective call): the collective work of a resumed state. May be NULL. */
   int (*resume)(void *ctx);
+  /* Optional, collective: the solver's distributed state in a file of its own (path), in an order that does not
+   * depend on the partition, and its reading; with them a run restarts on any number of ranks (save and load then
+   * hold only what every rank has alike). FE and indentation scenes: a PETSc HDF5 file. */
+  int (*save_shared)(void *ctx, const char *path);
+  int (*load_shared)(void *ctx, const char *path);
 } StepSolver;
 
 typedef struct {
   const char        *outdir;      /* "" or NULL: no files at all (the extremes sweep) */
   const char        *scene_file;  /* hashed into checkpoints: a restart needs the same scene */
   int                checkpoint_every, restart, max_steps, progress_every, fields_every, quiet;
+  int                elementary;  /* the elementary step controller instead of the PI controller (step_control.h) */
   const char        *part_file;   /* another new file of the run, named *.part until its first step (the mesh) */
 } RunnerOptions;
 

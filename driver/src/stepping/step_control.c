@@ -93,12 +93,19 @@ double step_control_planned(const StepControl *sc, double duration, int k) {
   return first * pow(sc->ratio, k);
 }
 
-/* A relative measure is first order in dt (the estimate is O(dt^2), the increment O(dt)): dt scales with
- * 1/ratio. worst_point follows the UMAT's PNEWDT, which already holds its own safety factor. */
-double step_control_next(const StepControl *sc, double dt, double pnewdt, double ratio) {
+/* A relative measure is first order in dt (the estimate is O(dt^2), the increment O(dt)): the elementary
+ * controller scales dt with 1/ratio. With the previous step's ratio too, the PI controller of Gustafsson
+ * (ACM TOMS 17, 1991, 533-554; Soderlind, Numer. Algorithms 31, 2002, 281-310), with the exponents 0.7/k and
+ * 0.4/k for k = 1: dt' = dt S ratio^-0.7 ratio_prev^0.4. It damps the cycle the elementary controller falls into
+ * when the estimate lags the step (grow, grow, reject). worst_point follows the UMAT's PNEWDT, which already holds
+ * its own safety factor. */
+double step_control_next(const StepControl *sc, double dt, double pnewdt, double ratio, double ratio_prev) {
   double f = sc->growth;
   if (sc->measure == MEASURE_WORST_POINT || ratio < 0) f = fmin(f, pnewdt);
-  else f = fmin(fmin(f, pnewdt), fmax(STEP_SAFETY / fmax(ratio, 1e-300), 0.2));
+  else {
+    double r = fmax(ratio, 1e-300), c = ratio_prev > 0 ? STEP_SAFETY * pow(r, -STEP_PI_I) * pow(ratio_prev, STEP_PI_P) : STEP_SAFETY / r;
+    f = fmin(fmin(f, pnewdt), fmax(c, 0.2));
+  }
   return fmin(fmax(dt * f, sc->min), sc->max);
 }
 

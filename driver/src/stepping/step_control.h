@@ -31,6 +31,8 @@ typedef struct {
 #define STEP_MAX_CUTBACKS 30    /* consecutive cutbacks of one step before the run stops */
 #define STEP_CUT_DIVERGED 0.25  /* the step's Newton method (or the control Newton) did not converge */
 #define STEP_SAFETY 0.9         /* error controller: aim below the tolerance */
+#define STEP_PI_I 0.7           /* PI controller's exponents for an estimate first order in dt (Gustafsson 1991; */
+#define STEP_PI_P 0.4           /* Soderlind 2002): dt' = dt S r^-0.7 r_prev^0.4 */
 
 /* steps: {count: N, spacing: linear | geometric, ratio: r}
  *    or  {adaptive: true, first, min, max, growth, error: {measure: worst_point | volume | output, tol}}.
@@ -40,8 +42,9 @@ int step_control_read(const YdDoc *doc, YdNode *node, const char *path, double d
 /* The k-th planned fixed step (k from 0) of a stage of this duration; adaptive: the first step. */
 double step_control_planned(const StepControl *sc, double duration, int k);
 /* After an accepted adaptive step of length dt: the next one. pnewdt: the UMAT's suggestion (worst_point);
- * ratio: error estimate / tol of a relative measure (< 0: none this step). */
-double step_control_next(const StepControl *sc, double dt, double pnewdt, double ratio);
+ * ratio: error estimate / tol of a relative measure (< 0: none this step); ratio_prev: the previous accepted
+ * step's (< 0: none, or the elementary controller asked for): with both, the PI controller. */
+double step_control_next(const StepControl *sc, double dt, double pnewdt, double ratio, double ratio_prev);
 /* The factor a rejected step is cut by: the UMAT's PNEWDT (< 1), or error ratio (> 1), or divergence. */
 double step_control_cut_factor(int diverged, double pnewdt, double ratio);
 const char *step_control_measure_name(ErrorMeasure m);

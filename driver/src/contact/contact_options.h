@@ -1,0 +1,21 @@
+/* The indentation's options (-indent_*), declared and read in one place: the semismooth Newton method reads
+ * them at its set-up, main once before the run (io/options.h: -help, values checked, misspellings refused). */
+#ifndef CONTACT_OPTIONS_H
+#define CONTACT_OPTIONS_H
+
+#include <petscsys.h>
+
+typedef struct {
+  PetscReal rtol;            /* residual tolerance relative to the load */
+  PetscInt  max_it;          /* Newton iterations per step */
+  PetscBool predictor, monitor, line_search, newton_estimate, check_tangent;
+  PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit */
+  PetscInt  refactor_its;    /* direct: the cost of a factorisation in Krylov iterations; 0: factor at every iteration */
+  PetscReal rtol_tight;      /* direct: GMRES' tolerance while the active set changes (indent_solver.h) */
+  PetscBool check_solve;     /* direct, kept: compare every solve with a fresh LU solve of the same system */
+  PetscInt  tangent_part;    /* -indent_check_tangent_part: 0 all, 1 u, 2 r, 3 lambda */
+} IndentOptions;
+
+PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o);
+
+#endif

@@ -1,0 +1,230 @@
+/* The element loops of the FE problem: the residual with the UMAT at every quadrature point (which also caches
+ * its tangents), the Jacobian assembled from the cached tangents (MatSetValues or COO), and the same Jacobian
+ * applied to a vector without assembling it (the matrix-free operator of the contact solver). The kernels at a
+ * point are fe_kernel.h's. */
+#include "fe_kernel.h"
+#include "fe_problem.h"
+#include "../io/log_events.h"
+
+#include <time.h>
+
+static inline KernelPoint kernel_point(const FeProblem *p, PetscInt k) {
+  KernelPoint kp = {p->dim, p->ns, &p->grad[k * p->ns * p->dim], p->shape_r ? &p->shape_r[k * p->ns] : NULL};
+  return kp;
+}
+
+/* The UMAT call of point k (local cell c, quadrature point q) at total strain eps, from the committed state;
+ * its results go to the trial state and the tangent cache. */
+static PetscErrorCode point_update(FeProblem *p, UmatMaterial *mat, PetscInt c, PetscInt q, const PetscReal eps[6], UmatCall *call) {
+  const PetscInt   k = SV(p, c, q), ntens = p->mat.ntens;
+  const PetscReal *st = &p->state[k * p->nsv];
+  PetscReal       *tr = &p->trial[k * p->nsv];
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(call->stress, st + ST_STRESS, 6));
+  PetscCall(PetscArraycpy(call->statev, st + ST_STATEV, p->mat.nstatv));
+  PetscCall(PetscArraycpy(call->stran, st + ST_STRAN, 6));
+  for (PetscInt vI = 0; vI < ntens; vI++) call->dstran[vI] = eps[vI] - st[ST_STRAN + vI];
+  call->time[0] = call->time[1] = p->time - p->dt;
+  call->dtime                   = p->dt;
+  call->noel                    = (int)c + 1;
+  call->npt                     = (int)q + 1;
+  call->kstep = call->kinc = 1;
+  call->sse = call->spd = call->scd = 0;
+  umat_invoke(mat, call);
+  p->umat_calls++;
+  if (call->pnewdt < 1 && !p->have_failed_call) { /* rare: rebuild the call's input from the state */
+    p->have_failed_call = 1, p->failed_out = *call, p->failed_mat = *mat, p->failed_in = *call;
+    PetscCall(PetscArraycpy(p->failed_in.stress, st + ST_STRESS, 6));
+    PetscCall(PetscArraycpy(p->failed_in.statev, st + ST_STATEV, p->mat.nstatv));
+  }
+  PetscCall(PetscArraycpy(tr + ST_STRESS, call->stress, 6));
+  PetscCall(PetscArraycpy(tr + ST_STRAN, eps, 6));
+  PetscCall(PetscArraycpy(tr + ST_STATEV, call->statev, p->mat.nstatv));
+  PetscCall(PetscArraycpy(&p->ddsdde[k * 36], call->ddsdde, ntens * ntens));
+  PetscFunctionReturn(0);
+}
+
+/* The element loop: residual (F = F_int - F_ext) and, with the same UMAT calls, the tangent cache. */
+PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
+  FeProblem   *p  = (FeProblem *)ctx;
+  DM           dm = p->dm;
+  Vec          Uloc, Floc;
+  PetscScalar  ue[90], re[90], *ua, *fa;
+  PetscReal    min_pnewdt = PETSC_MAX_REAL, reaction[3] = {0, 0, 0};
+  clock_t      t0         = clock();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
+  PetscCheck(p->nq <= 64 && p->nb <= 90, PETSC_COMM_SELF, PETSC_ERR_SUP, "element too large");
+  PetscCall(DMGetLocalVector(dm, &Uloc));
+  PetscCall(DMGetLocalVector(dm, &Floc));
+  PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
+  PetscCall(VecZeroEntries(Floc));
+  p->have_failed_call = 0;
+  PetscCall(VecGetArray(Uloc, &ua));
+  PetscCall(VecGetArray(Floc, &fa));
+  PetscCall(fe_constraint_to_global(&p->con, ua)); /* the fixed components (zero values); nodal frames to global axes */
+  /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
+     p->umat_tol) and, per cell, its phi; p->mat itself is never written. */
+  UmatMaterial local = p->mat, *mat = &local;
+  if (mat->tol_slot >= 0 && mat->tol_slot < mat->nprops && p->umat_tol >= 0) mat->props[mat->tol_slot] = p->umat_tol;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
+    for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]], re[b] = 0;
+    if (mat->phi_slot >= 0) mat->props[mat->phi_slot] = p->phi[c - p->cStart];
+    for (PetscInt q = 0; q < p->nq; q++) {
+      const KernelPoint kp = kernel_point(p, SV(p, c, q));
+      PetscReal         eps[6];
+      UmatCall          call;
+      kernel_strain(&kp, ue, eps);
+      PetscCall(point_update(p, mat, c, q, eps, &call));
+      min_pnewdt = PetscMin(min_pnewdt, call.pnewdt);
+      kernel_force(&kp, call.stress, p->wdetJ[SV(p, c, q)], re);
+    }
+    for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
+  }
+  PetscCall(fe_constraint_to_frame(&p->con, fa, reaction)); /* internal force on the fixed components; into the frames */
+  PetscCall(VecRestoreArray(Uloc, &ua));
+  PetscCall(VecRestoreArray(Floc, &fa));
+  PetscCall(VecZeroEntries(F));
+  PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, F));
+  PetscCall(VecAXPY(F, -1.0, p->fext));
+  PetscCall(DMRestoreLocalVector(dm, &Uloc));
+  PetscCall(DMRestoreLocalVector(dm, &Floc));
+  PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt d = 0; d < 3; d++) p->reaction_local[d] = reaction[d];
+  p->ddsdde_valid = 1;
+  if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
+  PetscCall(VecCopy(U, p->ddsdde_u));
+  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscCall(PetscLogEventEnd(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The cached tangents must belong to U: evaluate the residual there first if they do not. */
+static PetscErrorCode tangents_at(FeProblem *p, Vec U) {
+  PetscBool same = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (p->ddsdde_valid) PetscCall(VecEqual(U, p->ddsdde_u, &same));
+  if (!same) {
+    Vec F;
+    p->tangent_recomputes++;
+    PetscCall(VecDuplicate(U, &F));
+    PetscCall(fe_residual(NULL, U, F, p));
+    PetscCall(VecDestroy(&F));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
+  FeProblem   *p  = (FeProblem *)ctx;
+  PetscScalar *Ke = NULL;
+  clock_t      t0 = clock();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
+  PetscCall(tangents_at(p, U));
+  const PetscBool coo = p->coo_mat == P; /* the values go to the COO array, all set at once at the end */
+  if (!coo) PetscCall(MatZeroEntries(P));
+  if (!coo) PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
+  const PetscInt n = p->mat.ntens, nb = p->nb;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscScalar *K = coo ? &p->coo_v[(c - p->cStart) * nb * nb] : Ke;
+    PetscCall(PetscArrayzero(K, nb * nb));
+    for (PetscInt q = 0; q < p->nq; q++) {
+      const KernelPoint kp = kernel_point(p, SV(p, c, q));
+      kernel_tangent(&kp, n, &p->ddsdde[SV(p, c, q) * 36], p->wdetJ[SV(p, c, q)], K);
+    }
+    PetscCall(fe_constraint_rotate_cell(&p->con, &p->cell_dofs[(c - p->cStart) * nb], nb, K)); /* nodal frames */
+    /* constrained dofs have negative rows: MatSetValues skips them */
+    const PetscInt *rows = &p->cell_rows[(c - p->cStart) * nb];
+    if (!coo) PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));
+  }
+  PetscCall(PetscFree(Ke));
+  if (coo) PetscCall(MatSetValuesCOO(P, p->coo_v, INSERT_VALUES));
+  else {
+    PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  }
+  if (Jac != P) {
+    PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
+  }
+  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscCall(PetscLogEventEnd(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* COO assembly of the Jacobian into J (MatSetPreallocationCOO/MatSetValuesCOO): every cell's element
+   matrix in one array, rows and columns from cell_rows (constrained ones negative, which PETSc ignores), set
+   at once; fe_jacobian writes there when it assembles J. */
+PetscErrorCode fe_jacobian_coo_setup(FeProblem *p, Mat J) {
+  const PetscInt nb = p->nb, ncell = p->cEnd - p->cStart;
+  PetscCount     n = (PetscCount)ncell * nb * nb, k = 0;
+  PetscInt      *ci, *cj;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(n, &ci, n, &cj));
+  for (PetscInt c = 0; c < ncell; c++)
+    for (PetscInt a = 0; a < nb; a++)
+      for (PetscInt b = 0; b < nb; b++, k++) ci[k] = p->cell_rows[c * nb + a], cj[k] = p->cell_rows[c * nb + b];
+  PetscCall(MatSetPreallocationCOO(J, n, ci, cj));
+  PetscCall(PetscFree2(ci, cj));
+  PetscCall(PetscFree(p->coo_v));
+  PetscCall(PetscMalloc1(n, &p->coo_v));
+  p->coo_mat = J;
+  PetscFunctionReturn(0);
+}
+
+/* Y = K X with the tangents cached by the last residual, cell by cell as the residual goes: the fixed components
+ * zero and the framed nodes in global axes on the way in, the forces into the frames on the way out. The same
+ * operator as fe_jacobian's matrix (to roundoff). */
+static PetscErrorCode tangent_apply(Mat A, Vec X, Vec Y) {
+  FeProblem   *p;
+  DM           dm;
+  Vec          Xloc, Yloc;
+  PetscScalar  xe[90], ye[90], *xa, *ya;
+  clock_t      t0 = clock();
+  PetscFunctionBeginUser;
+  PetscCall(MatShellGetContext(A, &p));
+  PetscCall(PetscLogEventBegin(driver_event(EV_TANGENT_APPLY), 0, 0, 0, 0));
+  dm = p->dm;
+  PetscCall(DMGetLocalVector(dm, &Xloc));
+  PetscCall(DMGetLocalVector(dm, &Yloc));
+  PetscCall(DMGlobalToLocal(dm, X, INSERT_VALUES, Xloc));
+  PetscCall(VecZeroEntries(Yloc));
+  PetscCall(VecGetArray(Xloc, &xa));
+  PetscCall(VecGetArray(Yloc, &ya));
+  PetscCall(fe_constraint_to_global(&p->con, xa));
+  const PetscInt n = p->mat.ntens;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
+    for (PetscInt b = 0; b < p->nb; b++) xe[b] = xa[dofs[b]], ye[b] = 0;
+    for (PetscInt q = 0; q < p->nq; q++) {
+      const PetscInt    k  = SV(p, c, q);
+      const KernelPoint kp = kernel_point(p, k);
+      PetscReal         eps[6], sig[6];
+      kernel_strain(&kp, xe, eps);
+      kernel_stress(n, &p->ddsdde[k * 36], eps, sig);
+      kernel_force(&kp, sig, p->wdetJ[k], ye);
+    }
+    for (PetscInt b = 0; b < p->nb; b++) ya[dofs[b]] += ye[b];
+  }
+  PetscCall(fe_constraint_to_frame(&p->con, ya, NULL));
+  PetscCall(VecRestoreArray(Xloc, &xa));
+  PetscCall(VecRestoreArray(Yloc, &ya));
+  PetscCall(VecZeroEntries(Y));
+  PetscCall(DMLocalToGlobal(dm, Yloc, ADD_VALUES, Y));
+  PetscCall(DMRestoreLocalVector(dm, &Xloc));
+  PetscCall(DMRestoreLocalVector(dm, &Yloc));
+  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscCall(PetscLogEventEnd(driver_event(EV_TANGENT_APPLY), 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_tangent_operator(FeProblem *p, Mat like, Mat *A) {
+  PetscInt m, n, M, N;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetLocalSize(like, &m, &n));
+  PetscCall(MatGetSize(like, &M, &N));
+  PetscCall(MatCreateShell(PetscObjectComm((PetscObject)like), m, n, M, N, p, A));
+  PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))tangent_apply));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,119 @@
+"""Restarts on another number of ranks (issue 23): a run checkpointed on 1 rank continues on 2, and one
+checkpointed on 2 continues on 1, with the same history as the uninterrupted run.
+
+The checkpoint's shared file (checkpoint.STEP.h5) holds the displacement, the predictor's increment, every
+quadrature point's state, the contact multipliers and the active set in the serial mesh's order, so each rank of
+the new partition reads exactly what was written for its points; from there the run is one on the new number of
+ranks. Reference [self]: the uninterrupted run on 1 rank (1 and 2 ranks agree to round-off on these scenes:
+fixed steps, full Newton convergence). Asserted: the same steps, stages, Newton iterations and cutbacks (and
+active contact nodes), every other history column within 1e-10 of its quantity's largest value, and the
+fields continued in the same fields.h5 (its times, the last stress field within 1e-10).
+
+Two scenes: a heterogeneous Cam-Clay IX box on P2 (phi field, bedding at 30 degrees: edges carry unknowns, every
+point a different state) under an instant axial load held in creep, then a lateral ramp; an axisymmetric
+Cam-Clay IX (kerogen) cone indentation, load, hold and unload. Both restart mid-stage (step 5).
+"""
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
+MESHES = ROOT / "meshes"
+TOL = 1e-10
+
+BOX = f"""scene: fe
+mesh: {{geometry: {MESHES}/box.geo, parameters: {{Lx: 1, Ly: 1, Lz: 2, size: 0.5}}, order: 2}}
+material: {{props: woodford, set: {{phi: 0.5}}, bedding_angle: 30}}
+phi: {{mean: 0.5, std: 0.05, min: 0.4, max: 0.6, seed: 7}}
+initial: {{stress: [-35, -35, -35, 0, 0, 0], pressure: {{x1: 35, y1: 35, z1: 35}}}}
+boundary:
+  fixed: [{{group: x0, components: [x]}}, {{group: y0, components: [y]}}, {{group: z0, components: [z]}}]
+  pressure: [x1, y1, z1]
+stages:
+  - {{name: creep, duration: 3600, load: instant, pressure: {{z1: 75}}, steps: {{count: 8, spacing: geometric, ratio: 1.6}}}}
+  - {{name: more, duration: 3600, pressure: {{x1: 40}}, steps: {{count: 4}}}}
+output: {{fields_every: 3}}
+"""
+
+CONE = f"""scene: fe
+mesh:
+  geometry: {MESHES}/indent_block2d.geo
+  parameters: {{W: 2, H: 2, half: 1, h_tip: 0.08, h_far: 0.3, r_fine: 0.4, r_contact: 0.9}}
+  kinematics: axisymmetric
+material: {{props: woodford, set: {{phi: 0}}}}
+boundary:
+  fixed: [{{group: bottom, components: [x, y]}}, {{group: left, components: [x]}}, {{group: right, components: [x]}}]
+indenter: {{shape: cone, half_angle: 70.3, contact: contact}}
+stages:
+  - {{name: load, duration: 10, indenter: {{load: 150}}, steps: {{count: 6}}}}
+  - {{name: hold, duration: 20, indenter: {{load: hold}}, steps: {{count: 6, spacing: geometric, ratio: 1.3}}}}
+  - {{name: unload, duration: 5, indenter: {{load: 0}}, steps: {{count: 3}}}}
+output: {{fields_every: 3}}
+"""
+
+EXACT = ("stage", "step", "newton_its", "cutbacks", "active_nodes", "active_changes")   # the same decisions
+SKIP = ("wall", "umat_calls", "stage_name", "max_penetration")   # timing, rank 0's count, round-off around 0
+
+
+def run(text, out, ranks=1, args=()):
+    scene = out.parent / (out.name + ".yaml")
+    scene.write_text(text)
+    cmd = [DRIVER, "-input", str(scene), "-output_dir", str(out), *args]
+    if ranks > 1:
+        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), *cmd]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out.parent, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return proc
+
+
+def history(out):
+    return np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+
+
+def worst_difference(a, b):
+    """The largest difference of b from a over the columns that are not decisions, relative to the largest
+    value of its quantity (eps_*, sig_*, reaction_*, evp33_*: one scale per group of components)."""
+    cols = [c for c in a.dtype.names if c not in EXACT + SKIP and a[c].dtype.kind in "fi"]
+    scale = {}
+    for c in cols:
+        g = c.split("_")[0]
+        scale[g] = max(scale.get(g, 1e-300), float(np.max(np.abs(a[c]))))
+    return max((float(np.max(np.abs(a[c] - b[c]))) / scale[c.split("_")[0]], c) for c in cols)
+
+
+def last_stress(out):
+    with h5py.File(out / "fields.h5") as f:
+        keys = sorted(f["/fields/stress"])
+        return f["/time"][:, 0], f[f"/fields/stress/{keys[-1]}"][()]
+
+
+@pytest.mark.parametrize("name,text", [("box_p2", BOX), ("cone", CONE)])
+def test_restart_on_another_number_of_ranks(tmp_path, name, text):
+    full = tmp_path / f"{name}_full"
+    run(text, full)
+    ref = history(full)
+    t_ref, s_ref = last_stress(full)
+    for first, then in ((1, 2), (2, 1)):
+        out = tmp_path / f"{name}_{first}to{then}"
+        run(text, out, first, ["-checkpoint_every", "5", "-max_steps", "6"])
+        assert (out / "checkpoint.5.h5").is_file() and len(list(out.glob("checkpoint.5.rank*.bin"))) == first
+        proc = run(text, out, then, ["-restart"])
+        assert "restart at step 5" in proc.stdout and "on another number of ranks" in proc.stdout, proc.stdout
+        h = history(out)
+        assert len(h) == len(ref)
+        for c in EXACT:
+            if c in ref.dtype.names:
+                assert np.array_equal(h[c], ref[c]), (c, h[c], ref[c])
+        diff, col = worst_difference(ref, h)
+        t, s = last_stress(out)
+        sdiff = float(np.max(np.abs(s - s_ref)) / np.max(np.abs(s_ref)))
+        print(f"{name}: checkpoint on {first} rank(s) at step 5, restarted on {then}: {len(h) - 1} steps as uninterrupted, "
+              f"worst history difference {diff:.1e} ({col}), last stress field {sdiff:.1e}")
+        assert diff < TOL and sdiff < TOL
+        assert np.allclose(t, t_ref, rtol=1e-13, atol=0)
