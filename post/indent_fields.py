@@ -3,13 +3,19 @@ fixed rectangle of the undeformed mesh (the cells clipped to it, so the mean is 
 does not jump as a centroid crosses the region's edge), nodal averages for maps without the cell-to-cell
 checkerboard, and the checkerboard's size. Tensor fields are read through six() alone.
 """
+import sys
+from pathlib import Path
+
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fields import tensor6  # noqa: E402
 
 
 def six(F, name, k):
     """The (ncells, 6) cell values of tensor field `name` at output k, components 11 22 33 12 13 23 (strains with
-    engineering shear). The one place that knows how fields.h5 stores a tensor."""
-    return F.cell(name, k)
+    engineering shear), read by post/fields.py: the one place here that knows how fields.h5 stores a tensor."""
+    return tensor6(F.f, name, k)
 
 
 def cell_areas(F):
@@ -63,14 +69,15 @@ def region_mean(values, weights):
 
 def nodal_average(F, values):
     """Cell values averaged to the vertices, each cell weighted by its area: the field drawn without the
-    cell-to-cell checkerboard (linear elements under nearly isochoric flow)."""
+    cell-to-cell checkerboard (linear elements under nearly isochoric flow). Nodes of no cell's corners (the
+    mid-side nodes of P2 meshes in fields.h5) get NaN."""
     A = cell_areas(F)
     nv = F.x.shape[0]
     num, den = np.zeros(nv), np.zeros(nv)
     for j in range(F.cells.shape[1]):
         np.add.at(num, F.cells[:, j], A * values)
         np.add.at(den, F.cells[:, j], A)
-    return num / np.where(den > 0, den, 1.0)
+    return np.where(den > 0, num / np.where(den > 0, den, 1.0), np.nan)   # NaN: a P2 cell's mid-side node
 
 
 def checkerboard(F, values, mask):

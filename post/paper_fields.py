@@ -97,7 +97,7 @@ def loading_rate_numbers(run):
         near05 = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < 0.5
         w05 = H.A * near05
         res = {"evp_start": {"mean": float(np.sum(e0 * w05) / np.sum(w05)),
-                             "max": float(np.max(nodal_average(F, e0)[np.hypot(F.x[:, 0], F.x[:, 1]) < 0.5]))}}
+                             "max": float(np.nanmax(nodal_average(F, e0)[np.hypot(F.x[:, 0], F.x[:, 1]) < 0.5]))}}
         # Fig. 9: volumetric against deviatoric vp strain at the end of the hold
         ev = six(F, "evp", H.k1)
         near = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < 2 * a
@@ -108,7 +108,7 @@ def loading_rate_numbers(run):
         de = e1 - e0
         rc, prof = ring_profile(H, de, a)
         nod = nodal_average(F, de)
-        below = F.x[:, 1] <= 0
+        below = (F.x[:, 1] <= 0) & np.isfinite(nod)
         j = np.flatnonzero(below)[np.argmax(nod[below])]
         res["fig10b"] = {"ring_r": rc.tolist(), "ring_mean": prof.tolist(), "r_peak": float(rc[np.nanargmax(prof)]),
                          "peak_over_tip_ring": float(np.nanmax(prof) / prof[0]), "nodal_max_at": F.x[j, :2].tolist(),
@@ -164,6 +164,7 @@ def _map(fig, ax, F, nodal, lim, clim, cmap, title):
 def _clim(arrays, F, lim, diverging):
     m = (np.abs(F.x[:, 0]) <= lim) & (F.x[:, 1] >= -lim)
     v = np.concatenate([x[m] for x in arrays])
+    v = v[np.isfinite(v)]
     if diverging:
         s = float(np.percentile(np.abs(v), 99)) or 1.0
         return (-s, s), "RdBu_r"
