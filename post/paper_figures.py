@@ -1,9 +1,9 @@
 """The figures of docs/paper.md, drawn from the runs of tools/reproduce.py into DIR/figures.
 
-Per-run figures come from post/indent_plots.py and post/triaxial_plots.py (their output is logged to
-DIR/figures/plots.log); the figures that set runs side by side (Fig. 13 for the three loading rates,
-Fig. 17 for both theta with the paper's fits, Fig. 18's soft/hard ratio) are drawn here.
-draw_all returns {figure id: [(png path, caption)]}.
+P-h and creep curves come from post/indent_plots.py and post/triaxial_plots.py (their output is logged to
+DIR/figures/plots.log); the 2D fields (Figs. 9-13, 15: nodal averages, one colour scale across the loading rates,
+region probes) from post/paper_fields.py; Fig. 17 (both theta with the paper's fits under both readings of eq.
+28's log) and Fig. 18's soft/hard ratio are drawn here. draw_all returns {figure id: [(png path, caption)]}.
 """
 import contextlib
 import shutil
@@ -17,8 +17,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import indent_plots  # noqa: E402
 import triaxial_plots  # noqa: E402
 from lomnitz import lomnitz  # noqa: E402
+import paper_fields  # noqa: E402
 from paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,  # noqa: E402
-                           tip_stress_change, triaxial_series)
+                           triaxial_series)
 
 DPI = 90
 
@@ -40,33 +41,20 @@ def _plot(log, argv, main=indent_plots.main):
             return False
 
 
+def _fields(log, draw, *args):
+    """A figure of post/paper_fields.py; its failure (a missing output) is logged, not raised."""
+    try:
+        return draw(*args)
+    except SystemExit as e:
+        print(f"skipped {draw.__name__}: {e}", file=log)
+        return {} if draw is paper_fields.draw_loading_rate else None
+
+
 def _copy(src, dest):
     if Path(src).is_file():
         shutil.copyfile(src, dest)
         return dest
     return None
-
-
-def fig13(out, figs):
-    fig = Figure(figsize=(6, 4))
-    ax = fig.subplots()
-    drawn = False
-    for k, a in enumerate(ALPHAS):
-        r = tip_stress_change(out / f"loading_rate_a{a}")
-        if r is None:
-            continue
-        dt, ds, xy = r
-        ax.plot(dt, ds, ".-", ms=3, color=f"C{k}", label=f"α = {a} (cell at {xy[0]:.2g}, {xy[1]:.2g} µm)")
-        drawn = True
-    if not drawn:
-        return None
-    ax.axhline(0, color="k", lw=0.6)
-    ax.set_xlabel("time since the start of the hold [s]")
-    ax.set_ylabel("Δ‖σ‖ beneath the tip [MPa]")
-    ax.set_title("cf. Fig. 13: paper has a rise for α = 0.1, falls for α = 1, 10", fontsize=9)
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    return _save(fig, figs / "fig13_tip_stress.png")
 
 
 def fig17(out, figs):
@@ -82,7 +70,9 @@ def fig17(out, figs):
         for ax in (ax1, ax2):
             ax.plot(t[1:] / 3600, eps[1:], "-", color=f"C{k}", label=f"ours, θ = {th}")
             ax.plot(t[1:] / 3600, lomnitz(t[1:], B, tau), "--", color=f"C{k}",
-                    label=f"paper's fit θ = {th}: B = {B:.3g}, τ = {tau:g} s")
+                    label=f"paper's fit θ = {th} (B = {B:.3g}, τ = {tau:g} s), eq. 28 with ln")
+            ax.plot(t[1:] / 3600, lomnitz(t[1:], B, tau) / np.log(10.0), ":", color=f"C{k}",
+                    label="the same fit with log10")
         drawn = True
     if not drawn:
         return None
@@ -93,7 +83,7 @@ def fig17(out, figs):
         ax.set_ylabel("axial creep strain (compression +)")
         ax.grid(alpha=0.3)
     ax1.legend(fontsize=7)
-    ax1.set_title("cf. Fig. 17 (linear time)", fontsize=9)
+    ax1.set_title("cf. Fig. 17 (linear time); eq. 28's log read as ln and as log10", fontsize=9)
     ax2.set_title("the same, log time", fontsize=9)
     return _save(fig, figs / "fig17_creep.png")
 
@@ -142,19 +132,16 @@ def draw_all(out, numbers=None):
         if _plot(log, ["compare", *runs, "--labels", *[f"α = {a}" for a in ALPHAS], "--out", figs / "lr"]):
             add("fig7", _copy(figs / "lr" / "compare_ph.png", figs / "fig7_ph.png"), "P–h for α = 0.1, 1, 10")
             add("fig8", _copy(figs / "lr" / "compare_creep.png", figs / "fig8_creep.png"), "creep depth vs hold time")
-        for a, run in zip(ALPHAS, runs):
-            if _plot(log, ["fields", run, "--window", "0.6", "--out", run]):
-                if a == "1":
-                    add("fig9", _copy(run / "fig9.png", figs / f"fig9_a{a}.png"), f"α = {a}")
-                for f in ("fig10", "fig11", "fig12"):
-                    add(f, _copy(run / f"{f}.png", figs / f"{f}_a{a}.png"), f"α = {a}")
-        add("fig13", fig13(out, figs), "Δ‖σ‖ in the cell beneath the tip, all α")
+        for fid, items in _fields(log, paper_fields.draw_loading_rate, runs, [f"α = {a}" for a in ALPHAS], figs).items():
+            for path, caption in items:
+                add(fid, path, caption)
         runs = [out / f"bedding_theta{t}" for t in THETAS_BEDDING]
         if _plot(log, ["compare", *runs, "--labels", *[f"θ = {t}" for t in THETAS_BEDDING], "--out", figs / "bed"]):
             add("fig14", _copy(figs / "bed" / "compare_creep.png", figs / "fig14_creep.png"), "creep depth vs hold time")
-        if _plot(log, ["vectors", out / "bedding_theta45", "--window", "12.5", "--out", out / "bedding_theta45"]):
-            add("fig15", _copy(out / "bedding_theta45" / "vectors.png", figs / "fig15_vectors.png"),
-                "displacement increments during the hold, θ = 45")
+        if (out / "bedding_theta45" / "fields.h5").is_file():
+            add("fig15", _fields(log, paper_fields.fig15, out / "bedding_theta45", 45, paper_fields.A_BED,
+                                 figs / "fig15_vectors.png"),
+                "displacement increments during the hold, θ = 45, the bedding planes and the measured flow axis drawn")
         add("fig17", fig17(out, figs), "axial creep strain after σd, both θ, with the paper's Lomnitz fits")
         for th in THETAS_TRIAXIAL:
             run = out / f"triaxial_theta{th}"

@@ -3,8 +3,9 @@
 collect(DIR) reads DIR/<scene>/history.csv (and fields.h5 of the loading-rate runs) and returns a dict
 (also written to DIR/numbers.json); check_trends(numbers) checks the four trends the paper states and
 that the quick mode asserts. Conventions: creep strain = axial strain since the deviator was applied,
-compression positive; indentation creep depth = h - h(start of hold); Lomnitz law B ln(1 + t/tau) with
-the natural logarithm (post/lomnitz.py).
+compression positive; indentation creep depth = h - h(start of hold); Lomnitz law B log(1 + t/tau) (eq. 28)
+read with the natural logarithm (post/lomnitz.py; "paper_creep") and with log10 ("paper_creep_log10": the
+same curve / ln 10): the paper does not say which.
 """
 import json
 import sys
@@ -14,6 +15,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from lomnitz import lomnitz, lomnitz_fit  # noqa: E402
+from paper_fields import A_BED, BENEATH, REGION_KEYS, flow_direction, loading_rate_numbers  # noqa: E402
 
 ALPHAS = ("0.1", "1", "10")
 THETAS_BEDDING = (0, 30, 45, 60, 90)
@@ -70,6 +72,7 @@ def triaxial_numbers(run, theta):
         "duration": float(t[-1]),
         "creep": {f"{x:g}": float(np.interp(x, t, eps)) for x in CREEP_TIMES},
         "paper_creep": {f"{x:g}": float(lomnitz(x, B, tau)) for x in CREEP_TIMES},
+        "paper_creep_log10": {f"{x:g}": float(lomnitz(x, B, tau) / np.log(10.0)) for x in CREEP_TIMES},
         "fits": {k: {"B": v[0], "tau": v[1]} for k, v in resampled_fits(t, eps).items()},
         "soft_over_hard": {f"{x:g}": float(np.interp(x, t[pos], ratio)) for x in RATIO_TIMES if x <= t[-1] * (1 + 1e-6)},
         "soft_over_hard_10x_until": last_time_above(t[pos], ratio, SOFT_OVER_HARD),
@@ -85,72 +88,6 @@ def indent_numbers(run):
     return s
 
 
-def tip_stress_change(run):
-    """(dt, d|sigma|) in the cell beneath the tip during the hold (Fig. 13), from fields.h5; None without it."""
-    from fields_h5 import Fields, tensor_norm
-    from indent_plots import History, STAGE_COLUMNS, probe_cell
-    if not (Path(run) / "fields.h5").is_file():
-        return None
-    t0, t1 = History(run, need=STAGE_COLUMNS).hold_times()
-    with Fields(run) as F:
-        T = F.times
-        k0 = F.nearest(t0)
-        c, _ = probe_cell(F, None)
-        idx = np.flatnonzero((T >= T[k0]) & (T <= t1 + 1e-9 * max(1.0, t1)))
-        sig = tensor_norm(F.cell_history("stress", c)[idx], False)
-        return T[idx] - T[k0], sig - sig[0], tuple(float(x) for x in F.centroids[c, :2])
-
-
-def evp_at_start_of_hold(run, radius):
-    """Max and mean of |evp| (soft and hard frames together) over the cells within `radius` of the tip at
-    the output nearest to the start of the hold (Fig. 10, A1/B1/C1); None without fields.h5."""
-    from fields_h5 import Fields, tensor_norm
-    from indent_plots import History, STAGE_COLUMNS
-    if not (Path(run) / "fields.h5").is_file():
-        return None
-    t0, _ = History(run, need=STAGE_COLUMNS).hold_times()
-    with Fields(run) as F:
-        k0 = F.nearest(t0)
-        near = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < radius
-        n = tensor_norm(F.cell("evp", k0), True)[near]
-        return {"max": float(n.max()), "mean": float(n.mean()), "radius": radius, "cells": int(near.sum())}
-
-
-def _cell_areas(F):
-    x = F.x[:, :2][F.cells]
-    return 0.5 * np.abs(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]))
-
-
-def field_regions(run, a_contact):
-    """Fig. 9 and Fig. 12 as numbers, at the end of the hold, over the undeformed 2D mesh (tip at the origin):
-    fig9: the 99th percentile of |tr evp| and of |dev evp| over the cells within 2 a_contact of the tip, and
-    the area where each exceeds 10 % of that value (deviatoric: "more intense and concentrated over a smaller
-    zone"); fig12: the area-mean change of |sigma| since the start of the hold beneath the tip (|x| < a/4,
-    -a/2 < y < 0) and on the sides of the indent (a/2 < |x| < 3a/2, -a/2 < y < 0), a the contact half-width."""
-    from fields_h5 import Fields, dev_norm, tensor_norm, trace
-    from indent_plots import History, STAGE_COLUMNS
-    if not (Path(run) / "fields.h5").is_file():
-        return None
-    t0, t1 = History(run, need=STAGE_COLUMNS).hold_times()
-    with Fields(run) as F:
-        k0, k1 = F.nearest(t0), F.nearest(t1)
-        A = _cell_areas(F)
-        x, y = F.centroids[:, 0], F.centroids[:, 1]
-        near = np.hypot(x, y) < 2 * a_contact
-        e = F.cell("evp", k1)
-        tr, dv = np.abs(trace(e)), dev_norm(e, True)
-        res = {"a_contact": a_contact}
-        for name, v in (("tr", tr), ("dev", dv)):
-            top = float(np.percentile(v[near], 99))
-            res[f"{name}_p99"], res[f"{name}_area"] = top, float(A[v > 0.1 * top].sum())
-        ds = tensor_norm(F.cell("stress", k1), False) - tensor_norm(F.cell("stress", k0), False)
-        strip = (y < 0) & (y > -0.5 * a_contact)
-        for name, m in (("beneath", strip & (np.abs(x) < 0.25 * a_contact)),
-                        ("sides", strip & (np.abs(x) > 0.5 * a_contact) & (np.abs(x) < 1.5 * a_contact))):
-            res[f"dsig_{name}"] = float(np.sum(ds[m] * A[m]) / np.sum(A[m]))
-        return res
-
-
 # ------------------------------------------------------------------ all
 def collect(out):
     """All numbers of the runs in `out` (missing runs are left out); writes out/numbers.json."""
@@ -163,15 +100,16 @@ def collect(out):
             continue
         n["indent"][d.name] = indent_numbers(d)
         if d.name.startswith("loading_rate_a"):
-            r = tip_stress_change(d)
-            if r is not None:
-                dt, ds, xy = r
+            f = loading_rate_numbers(d)
+            if f is not None:
+                s = f["fig13"]["dsig"]
                 n["fig13"][d.name.removeprefix("loading_rate_a")] = {
-                    "cell_centroid": xy, "change_end": float(ds[-1]), "change_min": float(ds.min()),
-                    "change_max": float(ds.max()), "hold": float(dt[-1]), "outputs": int(dt.size)}
-            n["indent"][d.name]["evp_start"] = evp_at_start_of_hold(d, 0.5)
-            a = n["indent"][d.name]["depth_end_of_hold"] * np.tan(np.radians(136.51 / 2))   # wedge: a = h tan(68.26)
-            n["indent"][d.name]["regions"] = field_regions(d, a)
+                    "region": list(BENEATH), "change_end": float(s[-1]), "change_min": float(min(s)),
+                    "change_max": float(max(s)), "hold": float(f["fig13"]["t"][-1]), "outputs": len(s)}
+                n["indent"][d.name].update(evp_start=f["evp_start"], fig10b=f["fig10b"], fig11=f["fig11"],
+                                           checker=f["checker"], regions={k: f[k] for k in REGION_KEYS})
+        if d.name.startswith("bedding_theta") and d.name.removeprefix("bedding_theta").isdigit():
+            n["indent"][d.name]["flow"] = flow_direction(d, A_BED, int(d.name.removeprefix("bedding_theta")))
     (out / "numbers.json").write_text(json.dumps(n, indent=1, default=float) + "\n", encoding="utf-8")
     return n
 

@@ -49,6 +49,10 @@ SCENES = {
     "bedding_theta45": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta60": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta90": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
+    # Fig. 14's sensitivity to the plane-strain thickness (the paper gives none): 3 um, about the Berkovich-equivalent
+    # thickness at 15 mN (t = 4.9 h_B, h_B = 0.62 um), the indent about a third as wide: the mesh scaled by 1/3
+    **{f"bedding_theta{t}_t3": dict(IND2, file=f"bedding_theta{t}", mesh={"h_tip": 1.25, "h_far": 7.5}, thickness=3,
+                                    mesh_scale=1 / 3) for t in (0, 30, 45, 60, 90)},
     "triaxial_theta0": {"mesh": {"size": 12.0}, "mpi": 2},
     "triaxial_theta90": {"mesh": {"size": 12.0}, "mpi": 2},
 }
@@ -59,13 +63,30 @@ def scene_file(key):
     return ROOT / "input" / f"{SCENES[key].get('file', key)}.yaml"
 
 
-def quick_scene(key, dest):
-    """Write the coarse variant of input/<key>.yaml to dest: absolute mesh path, coarser mesh, looser UMAT
-    tolerance; loads, durations, materials and boundary conditions unchanged."""
+def variant_scene(key, dest, quick):
+    """Write the scene of key to dest: input/<file>.yaml with an absolute mesh path and the key's variant (a
+    plane-strain thickness, the mesh's lengths scaled), and with --quick its coarse variant (quick_scene)."""
     q = SCENES[key]
     d = yaml.safe_load(scene_file(key).read_text(encoding="utf-8"))
     geo = Path(d["mesh"]["geometry"])
     d["mesh"]["geometry"] = str((ROOT / "meshes" / geo.name).resolve())
+    if quick:
+        quick_scene(q, d)
+    if "thickness" in q:
+        d["mesh"]["thickness"] = q["thickness"]
+        d["name"] = key
+    if "mesh_scale" in q:
+        for k in ("h_tip", "h_far", "r_fine"):
+            d["mesh"]["parameters"][k] *= q["mesh_scale"]
+    what = "coarse variant" if quick else "variant"
+    dest.write_text(f"# {what} of input/{scene_file(key).name} written by tools/reproduce.py{' --quick' if quick else ''}\n"
+                    + yaml.safe_dump(d, sort_keys=False), encoding="utf-8")
+    return dest
+
+
+def quick_scene(q, d):
+    """The coarse variant of a scene (its dict d, changed in place): coarser mesh, looser step control; loads,
+    durations, materials and boundary conditions unchanged."""
     d["mesh"]["parameters"].update(q.get("mesh", {}))
     if "order" in q:
         d["mesh"]["order"] = q["order"]
@@ -77,9 +98,6 @@ def quick_scene(key, dest):
             d["material"].setdefault("set", {})["tol"] = q["tol"]
     if "fields_every" in q:
         d["output"]["fields_every"] = q["fields_every"]
-    dest.write_text(f"# Coarse variant of input/{scene_file(key).name} written by tools/reproduce.py --quick\n"
-                    + yaml.safe_dump(d, sort_keys=False), encoding="utf-8")
-    return dest
 
 
 def mpiexec():
@@ -167,9 +185,9 @@ def main(argv=None):
     for key in keys:
         if key not in SCENES:
             raise SystemExit(f"reproduce: unknown scene '{key}' (known: {', '.join(SCENES)})")
-        if a.quick:
+        if a.quick or "thickness" in SCENES[key]:
             (out / "scenes").mkdir(exist_ok=True)
-            scene, ranks = quick_scene(key, out / "scenes" / f"{key}.yaml"), 1
+            scene, ranks = variant_scene(key, out / "scenes" / f"{key}.yaml", a.quick), 1
         else:
             scene, ranks = scene_file(key), SCENES[key].get("mpi", 1)
             ranks = ranks if (ranks > 1 and a.jobs >= ranks and mpiexec()) else 1

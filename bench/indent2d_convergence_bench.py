@@ -1,0 +1,303 @@
+#!/usr/bin/env python3
+"""Mesh and element study of the paper's 2D indentation scenes (issue 26, items 1-3): how converged the loading-rate
+and bedding studies are, why P1 and P2 differ, and the cheapest model within 1 % of its own converged answer on the
+depths and the creep depth and 5 % on the stress under the tip.
+
+The scenes are input/loading_rate_a1.yaml and input/bedding_theta45.yaml as shipped (plane strain, the wedge of the
+Berkovich's section; the shipped time-step settings), with an unload stage added (to zero in 20 s, as the 3D
+scenes) for the residual depth, on ladders of
+  h_tip   the element size within r_fine of the tip (ratio about sqrt 2; h_far = FAR h_tip: the whole mesh refined);
+  r_fine  the fine zone's radius at a fixed h_tip (the shipped 0.4 um ends inside the loading-rate contact);
+each with P1 and P2 triangles. Reported per rung: the depth at the end of loading, the creep depth over the hold,
+the residual depth, the mean of |sigma| over a fixed region under the tip (|x| < a/4, -a/2 < y < 0 of the undeformed
+mesh, a the contact half-width at the end of loading rounded: the cells clipped to it, post/indent_fields.py) at the
+end of the load and of the hold and its change over the hold (Fig. 13's quantity), the checkerboard of |sigma| within
+a of the tip, steps, CPU (user + system of the driver), UMAT calls, and the ratio CPU / (UMAT calls x the UMAT
+benchmark's time per viscoplastic plane-strain call, measured by build/bench/umat_bench at the start of the same
+invocation).
+
+Results go to a JSON file as each rung finishes (--results, default out/indent2d_convergence.json; rerunning skips
+the rungs already there, from any ladder), so the study can be cut and resumed. --doc writes the section "## 2D
+indentation: mesh and element study" of docs/performance.md from that file, followed by the reading written by hand
+in bench/indent2d_convergence_conclusions.md.
+
+Usage: bench/indent2d_convergence_bench.py [--ladders lr2,lr1,...] [--hmin H] [--max-cpu S] [--doc] [--quick]
+"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))
+from indent_convergence_bench import bracket, richardson, run  # noqa: E402
+from performance_doc import replace_section  # noqa: E402
+from step_control_bench import absolute  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+UMAT_BENCH = ROOT / "build" / "bench" / "umat_bench"
+CONCLUSIONS = ROOT / "bench" / "indent2d_convergence_conclusions.md"
+TITLE = "## 2D indentation: mesh and element study"
+R2 = math.sqrt(2)
+FAR = 7.5   # h_far / h_tip, as shipped (0.15 / 0.02)
+UNLOAD = ("  - name: unload\n    duration: 20\n    indenter: {load: 0}\n"
+          "    steps: {adaptive: true, first: 1, min: 1.0e-9, max: 1, error: {measure: output, tol: 0.1}}\n")
+# scene key: (scene file, length scale (the bedding block is the loading-rate block x 25), region under the tip)
+SCENES = {"lr": ("loading_rate_a1", 1.0, (-0.125, 0.125, -0.25, 0.0)),
+          "bed": ("bedding_theta45", 25.0, (-1.35, 1.35, -2.7, 0.0))}
+KEYS = ("h_max", "creep", "h_res", "sig_load", "sig_hold", "dsig")
+LIMIT = {"h_max": 0.01, "creep": 0.01, "h_res": 0.01, "sig_hold": 0.05}   # the shipped model's budget
+LABEL = {"h_max": "h_max [nm]", "creep": "creep [nm]", "h_res": "h_res [nm]", "sig_load": "σ̄ load [MPa]",
+         "sig_hold": "σ̄ hold [MPa]", "dsig": "Δσ̄ [MPa]"}
+# ladder: (label, scene, order, what varies, the fixed value, the ladder in loading-rate units (x scale for bed))
+H_LR = [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01, 0.01 / R2, 0.005]
+LADDERS = {
+    "lr2": ("loading rate, P2, r_fine 0.6", "lr", 2, "h_tip", 0.6, H_LR[:6]),
+    "lr1": ("loading rate, P1, r_fine 0.6", "lr", 1, "h_tip", 0.6, H_LR[2:]),
+    "lr2r": ("loading rate, P2, h_tip 0.02", "lr", 2, "r_fine", 0.02, [0.4, 0.6, 0.9]),
+    "lr1r": ("loading rate, P1, h_tip 0.02", "lr", 1, "r_fine", 0.02, [0.4, 0.6, 0.9]),
+    "lr1old": ("loading rate, P1, r_fine 0.4 (as shipped)", "lr", 1, "h_tip", 0.4, [0.02, 0.01, 0.005]),
+    "lr2f": ("loading rate, P2, r_fine 0.9", "lr", 2, "h_tip", 0.9, [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01]),
+    "lr2n": ("loading rate, P2, r_fine 0.9, other meshes near h_tip 0.02 (mesh noise)", "lr", 2, "h_tip", 0.9, [0.0206, 0.0194]),
+    "lr2t": ("loading rate, P2, h_tip 0.02, r_fine 0.9, time-step tol", "lr", 2, "tol", (0.02, 0.9), [5e-3]),
+    "bed2": ("bedding 45°, P2, r_fine 10", "bed", 2, "h_tip", 0.4, H_LR[:6]),
+    "bed1": ("bedding 45°, P1, r_fine 10", "bed", 1, "h_tip", 0.4, H_LR[:6]),
+    "bed2r": ("bedding 45°, P2, h_tip 0.5", "bed", 2, "r_fine", 0.02, [0.24, 0.4, 0.6]),
+}
+
+
+def scene_text(skey, order, h_tip, r_fine, tol=None, far=FAR):
+    """The scene as shipped with this mesh, fields at the stages' ends only, and the unload stage; tol: the load and
+    hold stages' output error tolerance (shipped 1.5e-2)."""
+    name, scale, _ = SCENES[skey]
+    t = absolute((ROOT / "input" / f"{name}.yaml").read_text())
+    if tol:
+        t = t.replace("measure: output, tol: 1.5e-2}", f"measure: output, tol: {tol:g}}}")
+    t = re.sub(r"h_tip: [0-9.e-]+", f"h_tip: {h_tip:.6g}", t, count=1)
+    t = re.sub(r"h_far: [0-9.e-]+", f"h_far: {far * h_tip:.6g}", t, count=1)
+    t = re.sub(r"r_fine: [0-9.e-]+", f"r_fine: {r_fine:.6g}", t, count=1)
+    t = re.sub(r"\n  order: \d+", "", t, count=1)
+    t = re.sub(r"(\n  kinematics: \w+)", rf"\1\n  order: {order}", t, count=1)
+    return t.replace("\noutput:", "\n" + UNLOAD.rstrip("\n") + "\noutput:", 1)
+
+
+def rungs(ladder):
+    """[(scene, order, h_tip, r_fine, tol)] of a ladder, in the scene's own units (tol None: as shipped)."""
+    _, skey, order, vary, fixed, values = LADDERS[ladder]
+    s = SCENES[skey][1]
+    if vary == "tol":
+        return [(skey, order, fixed[0] * s, fixed[1] * s, v) for v in values]
+    return [(skey, order, v * s, fixed * s, None) if vary == "h_tip" else (skey, order, fixed * s, v * s, None)
+            for v in values]
+
+
+def key(skey, order, h_tip, r_fine, tol=None):
+    return f"{skey}:P{order}:h{h_tip:.4g}:r{r_fine:.4g}" + (f"@{tol:g}" if tol else "")
+
+
+def umat_time_per_call():
+    """The UMAT benchmark's time per viscoplastic plane-strain call [s] (median, min), measured now. The benchmark
+    times with the wall clock; on a shared machine each is scaled by the benchmark process's CPU / wall share, so
+    that it compares with the driver's CPU time."""
+    if not UMAT_BENCH.is_file():
+        return None, None
+    t0, c0 = time.perf_counter(), os.times()
+    out = subprocess.run([str(UMAT_BENCH), "200000", "5"], capture_output=True, text=True).stdout
+    wall, c1 = time.perf_counter() - t0, os.times()
+    share = min(1.0, ((c1.children_user - c0.children_user) + (c1.children_system - c0.children_system)) / wall)
+    m = re.search(r"viscoplastic, both frames yield \| 4 \|\s*([0-9.]+) \|\s*([0-9.]+)", out)
+    return (float(m.group(1)) * 1e-9 * share, float(m.group(2)) * 1e-9 * share) if m else (None, None)
+
+
+def field_numbers(out, region):
+    """Region means of |sigma| at the end of the load and of the hold; within a of the tip at the end of the hold,
+    the checkerboard of |sigma| and how far the viscoplastic flow is from isochoric (|tr evp| / |dev evp|, area
+    weighted: near 0 is the incompressibility that locks linear triangles)."""
+    from fields_h5 import Fields, dev_norm, tensor_norm, trace
+    from indent_fields import cell_areas, checkerboard, clipped_areas, region_mean, six
+    from indent_plots import History, STAGE_COLUMNS
+    t0, t1 = History(out, need=STAGE_COLUMNS).hold_times()
+    with Fields(out) as F:
+        w = clipped_areas(F, region)
+        s0 = tensor_norm(six(F, "stress", F.nearest(t0)), False)
+        s1 = tensor_norm(six(F, "stress", F.nearest(t1)), False)
+        a = 4 * (region[1] - region[0]) / 2
+        near = (np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < a) & (F.centroids[:, 1] < 0)
+        e, A = six(F, "evp", F.nearest(t1)), cell_areas(F) * near
+        return dict(sig_load=region_mean(s0, w), sig_hold=region_mean(s1, w), dsig=region_mean(s1 - s0, w),
+                    checker=checkerboard(F, s1, near), vol=float(np.sum(A * np.abs(trace(e))) / np.sum(A * dev_norm(e, True))))
+
+
+def run_rung(skey, order, h_tip, r_fine, tol, tmp, t_call):
+    out = Path(tmp) / key(skey, order, h_tip, r_fine, tol).replace(":", "_")
+    r = run(scene_text(skey, order, h_tip, r_fine, tol), out)
+    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+    o = r.pop("o")
+    r["o"] = dict(h_max=o["depth at end of loading"], creep=o["creep depth"], h_res=o["residual depth"],
+                  **field_numbers(out, SCENES[skey][2]))
+    r["checker"], r["vol"] = r["o"].pop("checker"), r["o"].pop("vol")
+    r.update(scene=skey, order=order, h_tip=h_tip, r_fine=r_fine, tol=tol, h_far=FAR * h_tip, umat_calls=int(h["umat_calls"][-1]),
+             t_call=t_call[0], t_call_min=t_call[1])
+    return r
+
+
+def load(path):
+    return json.loads(path.read_text()) if path.exists() else {}
+
+
+def ladder_rows(res, ladder):
+    rows = [res.get(key(*g)) for g in rungs(ladder)]
+    return [r for r in rows if r and "failed" not in r]
+
+
+def reference(res, skey):
+    """The converged 2D answer of a scene: the P2 h_tip ladder's Richardson limit (last three rungs, order 0.5-4),
+    else the middle of the band that its last two rungs give for orders 1 to 2; its half-width the larger of
+    half that band and the distance to the P1 ladder's limit (the same rule) halved."""
+    a, b = (("lr2", "lr1") if skey == "lr" else ("bed2", "bed1"))
+    ref, hw = {}, {}
+    for k in KEYS:
+        lims = []
+        for lad in (a, b):
+            rows = ladder_rows(res, lad)
+            if len(rows) < 2:
+                lims.append(None)
+                continue
+            hs, xs = [r["h_tip"] for r in rows], [r["o"][k] for r in rows]
+            p, x = richardson(hs, xs)
+            band = bracket(hs, xs)
+            lims.append((x if x is not None else (band[0] + band[1]) / 2, abs(band[1] - band[0]) / 2))
+        if lims[0] is None:
+            return None, None
+        ref[k] = lims[0][0]
+        spread = [lims[0][1]] + ([abs(lims[0][0] - lims[1][0]) / 2] if lims[1] else [])
+        hw[k] = max(spread) / abs(ref[k]) if ref[k] else float("nan")
+    return ref, hw
+
+
+def fmt(k, v):
+    return f"{v * 1e3:.2f}" if k in ("h_max", "creep", "h_res") else f"{v:.1f}"
+
+
+def _f(x, spec):
+    return "" if x is None else format(x, spec)
+
+
+def ratio_cell(r):
+    return f"{r['cpu'] / (r['umat_calls'] * r['t_call']):.1f}" if r.get("t_call") else ""
+
+
+def section(res, command, note):
+    L = [TITLE, "",
+         f"Command: `{command}` ({time.strftime('%Y-%m-%d', time.gmtime())}; {note}).",
+         "`bench/indent2d_convergence_bench.py` (issue 26): loading_rate_a1 and bedding_theta45 as shipped, with an unload",
+         "to zero in 20 s added for the residual depth, on ladders of h_tip (h_far = 7.5 h_tip: the whole mesh refined) and",
+         "of the fine zone's radius r_fine, P1 and P2. h_max: depth at the end of loading; creep: the depth gained over the",
+         "2000 s hold; h_res: the residual depth; σ̄: the mean of ‖σ‖ over the region under the tip (|x| < 0.125,",
+         "−0.25 < y < 0 µm for the loading rate, × 10.8 for the bedding: a/4 by a/2 of each scene's contact half-width a,",
+         "cells clipped to it) at the end of the load and of the hold, Δσ̄ its change over the hold (Fig. 13's quantity);",
+         "chk: the checkerboard of ‖σ‖ at the end of the hold within a of the tip (RMS of each cell's difference from its",
+         "vertices' nodal averages over the RMS of ‖σ‖); vol: |tr εvp| / ‖dev εvp‖ there (area means; 0: isochoric flow,",
+         "which locks linear triangles). In brackets: the error against the scene's converged 2D answer",
+         "(below each scene). CPU: user + system of the driver, one run per rung, on a shared machine; ×UMAT: CPU over",
+         "UMAT calls × the UMAT benchmark's viscoplastic plane-strain time per call measured at the start of the same",
+         "invocation (the physics floor is 1).", ""]
+    for skey in SCENES:
+        ref, hw = reference(res, skey)
+        for lad, (label, sk, order, vary, fixed, _) in LADDERS.items():
+            if sk != skey:
+                continue
+            rows = ladder_rows(res, lad)
+            if not rows:
+                continue
+            L += [f"**{label}**", "", f"| {vary} [µm] | unknowns | " + " | ".join(LABEL[k] for k in KEYS)
+                  + " | chk | vol | steps | CPU [s] | UMAT calls | ×UMAT |", "|---" * (len(KEYS) + 8) + "|"]
+            for r in rows:
+                cells = [fmt(k, r["o"][k]) + (f" ({r['o'][k] / ref[k] - 1:+.1%})" if ref and k in LIMIT else "") for k in KEYS]
+                L.append(f"| {r[vary]:.4g} | {r['unknowns']} | " + " | ".join(cells)
+                         + f" | {r['checker']:.2f} | {_f(r.get('vol'), '.3f')} | {r['steps']} | {r['cpu']:.0f} | {r['umat_calls']:.3g} | {ratio_cell(r)} |")
+            if vary == "h_tip" and len(rows) >= 3:
+                cells = []
+                for k in KEYS:
+                    p, x = richardson([r["h_tip"] for r in rows], [r["o"][k] for r in rows])
+                    cells.append(f"{fmt(k, x)} (p = {p:.2f})" if x is not None else (f"erratic (p = {p:.2f})" if p else "not monotone"))
+                L.append("| Richardson limit | | " + " | ".join(cells) + " | | | | | | |")
+            L.append("")
+        if ref:
+            L += [f"**{SCENES[skey][0]}: the converged 2D answer** (the P2 ladder's limit, ± the larger of its own band and half "
+                  "its distance to the P1 ladder's limit): " + ", ".join(f"{LABEL[k].split(' [')[0]} {fmt(k, ref[k])} ± {hw[k]:.1%}" for k in KEYS), ""]
+            cand = sorted((r for r in res.values() if r.get("scene") == skey and "failed" not in r), key=lambda r: r["cpu"])
+            L += ["| model | h_tip | r_fine | unknowns | CPU [s] | " + " | ".join(LABEL[k].split(" [")[0] for k in LIMIT) + " | within |",
+                  "|---" * (6 + len(LIMIT)) + "|"]
+            for r in cand:
+                e = {k: r["o"][k] / ref[k] - 1 for k in LIMIT}
+                ok = all(abs(e[k]) <= LIMIT[k] for k in LIMIT)
+                L.append(f"| P{r['order']} | {r['h_tip']:.4g} | {r['r_fine']:.4g} | {r['unknowns']} | {r['cpu']:.0f} | "
+                         + " | ".join(f"{e[k]:+.1%}" for k in LIMIT) + f" | {'✓' if ok else ''} |")
+            L.append("")
+    if CONCLUSIONS.exists():
+        L += [CONCLUSIONS.read_text()]
+    return "\n".join(L) + "\n"
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--ladders", default="lr1r,lr2r,lr1,lr2,bed1,bed2,bed2r,lr1old", help=f"of {','.join(LADDERS)}")
+    ap.add_argument("--hmin", type=float, default=0, help="only rungs with h_tip >= this (loading-rate units)")
+    ap.add_argument("--max-unknowns", type=int, default=0, help="skip rungs whose mesh is estimated above this (0: all)")
+    ap.add_argument("--results", default=str(ROOT / "out" / "indent2d_convergence.json"), help="JSON of the results")
+    ap.add_argument("--doc", action="store_true", help="write the section of docs/performance.md from --results")
+    ap.add_argument("--note", default="shared machine, 2 cores, loaded", help="machine load, for the section")
+    ap.add_argument("--quick", action="store_true", help="the two coarsest P1 rungs of each scene, in a temporary file")
+    a = ap.parse_args(argv)
+    quick = tempfile.TemporaryDirectory() if a.quick else None
+    path = Path(quick.name) / "quick.json" if a.quick else Path(a.results)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    res = load(path)
+    if a.quick:
+        todo = [("lr", 1, 0.04, 0.4, None), ("lr", 1, 0.04 / R2, 0.4, None), ("bed", 1, 1.0, 10.0, None)]
+    else:
+        todo = []
+        for lad in a.ladders.split(","):
+            s = SCENES[LADDERS[lad][1]][1]
+            todo += [g for g in rungs(lad) if g[2] >= a.hmin * s * (1 - 1e-9) and g not in todo]
+        todo.sort(key=lambda g: g[1] ** 2 * (g[3] / g[2]) ** 2)   # cheapest first: unknowns about order^2 (r_fine / h_tip)^2
+    t_call = umat_time_per_call()
+    print(f"UMAT benchmark: {t_call[0] * 1e9:.0f} ns per viscoplastic plane-strain call (median; min {t_call[1] * 1e9:.0f})"
+          if t_call[0] else "UMAT benchmark: not built (no ratio)", flush=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        for g in todo:
+            k = key(*g)
+            if k in res:
+                continue
+            try:
+                r = run_rung(*g, tmp, t_call)
+            except RuntimeError as e:
+                why = [ln for ln in str(e).splitlines() if ln.startswith("driver:")]
+                res[k] = dict(scene=g[0], order=g[1], h_tip=g[2], r_fine=g[3], tol=g[4], failed=why[-1] if why else str(e)[-300:])
+                path.write_text(json.dumps(res, indent=1))
+                print(f"{k}: failed: {res[k]['failed']}", flush=True)
+                continue
+            res[k] = r
+            path.write_text(json.dumps(res, indent=1))
+            o = r["o"]
+            print(f"{k}: {r['unknowns']} unknowns, h_max {o['h_max'] * 1e3:.2f} nm, creep {o['creep'] * 1e3:.3f} nm, h_res "
+                  f"{o['h_res'] * 1e3:.2f} nm, sigma load/hold {o['sig_load']:.1f}/{o['sig_hold']:.1f} MPa (change "
+                  f"{o['dsig']:+.1f}), checker {r['checker']:.3f}, |tr|/|dev| evp {r['vol']:.3f}, {r['steps']} steps, CPU {r['cpu']:.1f} s, "
+                  f"{r['umat_calls']} UMAT calls{', x' + ratio_cell(r) if ratio_cell(r) else ''}", flush=True)
+    if a.doc and not a.quick:
+        replace_section(TITLE, section(res, "bench/indent2d_convergence_bench.py " + " ".join(argv or sys.argv[1:]), a.note))
+        print("written: docs/performance.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

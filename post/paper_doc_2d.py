@@ -1,0 +1,215 @@
+"""docs/paper.md's 2D studies (Yin, Liu & Borja 2021, §4, Figs. 7-15): the paper's words, our numbers (post/paper_fields.py,
+post/paper_numbers.py) and a verdict for every figure that states a result. Each verdict follows a rule written here
+from the paper's sentence, not from our runs; the rule is printed with the verdict.
+"""
+from paper_numbers import ALPHAS, THETAS_BEDDING
+
+TILT = 2.0        # deg: a principal flow axis within this of the load axis is no tilt (Fig. 15)
+
+
+def _f(x, fmt=".3g"):
+    return "—" if x is None else format(x, fmt)
+
+
+def _v(ok):
+    return "**agrees**" if ok else "**differs**"
+
+
+def _lr(ind):
+    return {a: ind.get(f"loading_rate_a{a}") or {} for a in ALPHAS}
+
+
+def fig10b(s):
+    """Fig. 10: "at the conclusion of the creep stage, an inelastic zone forms at a finite distance away from the
+    indenter tip, and not directly below it". Rule: the ring means of the hold's growth of |evp| peak away from the
+    tip (ring centre >= a/4) and at least 10 % above the innermost ring."""
+    b = s["fig10b"]
+    return b["r_peak"] >= 0.25 and b["peak_over_tip_ring"] >= 1.1
+
+
+def fig11(alpha, z):
+    """Fig. 11 at 100 s. alpha 0.1: "the inelastic zones develop from the top surface ... on the left and right sides
+    of the indenter": the sector beside the indent (0-30 deg from the surface) holds the largest share. alpha 10:
+    "develops throughout the entire circular region": the zone fills at least half its half-disc and no sector holds
+    more than half. alpha 1 ("merge into a circular region, although the maximum ... close to the top surface"):
+    fills at least half its half-disc."""
+    if alpha == "0.1":
+        return z["surface"] >= max(z["middle"], z["beneath"])
+    if alpha == "10":
+        return z["fill"] >= 0.5 and max(z["surface"], z["middle"], z["beneath"]) <= 0.5
+    return z["fill"] >= 0.5
+
+
+def fig15(f):
+    """Fig. 15: "the material flows from the stronger BP direction to the weaker BN direction". Rule: the principal
+    axis of the hold's displacement increments tilts from the load axis by more than TILT toward BN's side."""
+    if abs(f["beta"]) < TILT:
+        return None
+    return f["beta"] * f["beta_bn"] > 0
+
+
+def summary_rows(n, trends):
+    ind, f13 = n["indent"], n["fig13"]
+    t = {k: x for k, x in zip(("rate", "aniso"), trends)}
+    S = _lr(ind)
+    rows = [f"| 7, 8 | faster loading: shallower indent, more creep (§4.1) | {t['rate']['detail']} | {_v(t['rate']['ok'])} |"]
+    R = {a: s.get("regions") for a, s in S.items()}
+    if all(R.values()):
+        rows.append("| 9 | ‖dev εvp‖ more intense, more concentrated; tr εvp weaker, more pervasive (§4.1) | dev/tr 99th percentile "
+                    + ", ".join(f"{r['dev_p99'] / r['tr_p99']:.0f}×" for r in R.values()) + " for α = 0.1, 1, 10; dev area "
+                    + ", ".join(f"{r['dev_area'] / r['tr_area']:.2f}" for r in R.values()) + " of tr's | "
+                    + _v(all(r["dev_p99"] > r["tr_p99"] and r["dev_area"] < r["tr_area"] for r in R.values())) + " |")
+    ev = [s.get("evp_start") for s in S.values()]
+    if all(ev):
+        rows.append("| 10 (a) | before creep, faster loading → less viscoplastic strain around the tip (§4.1) | mean ‖εvp‖ within 0.5 µm: "
+                    + " > ".join(f"{e['mean']:.3g}" for e in ev) + " | " + _v(ev[0]["mean"] > ev[1]["mean"] > ev[2]["mean"]) + " |")
+    if all(s.get("fig10b") for s in S.values()):
+        rows.append("| 10 (b) | at the end of creep the inelastic zone lies away from the tip, not below it (§4.1) | the hold's growth "
+                    "of ‖εvp‖ peaks at r = " + ", ".join(f"{s['fig10b']['r_peak']:.2f} a ({s['fig10b']['peak_over_tip_ring']:.2f}× "
+                                                         "the tip's ring)" for s in S.values()) + " for α = 0.1, 1, 10 | "
+                    + "; ".join(f"α = {a}: {_v(fig10b(s))}" for a, s in S.items()) + " |")
+    if all(s.get("fig11") for s in S.values()):
+        z = {a: s["fig11"]["100"] for a, s in S.items()}
+        rows.append("| 11 | α = 0.1: zones from the surface beside the indent; α = 10: the whole circular region (§4.1) | at 100 s, "
+                    "share beside / beneath, fill of the half-disc: " + ", ".join(
+                        f"α = {a}: {v['surface']:.2f} / {v['beneath']:.2f}, {v['fill']:.2f}" for a, v in z.items()) + " | "
+                    + "; ".join(f"α = {a}: {_v(fig11(a, v))}" for a, v in z.items()) + " |")
+    if all(R.values()):
+        rows.append("| 12 | α = 0.1: sides relax; α = 1, 10: relaxation beneath the tip (§4.1) | Δ‖σ‖ beneath / beside: "
+                    + ", ".join(f"{r['dsig_beneath']:+.3g} / {r['dsig_sides']:+.3g} MPa" for r in R.values())
+                    + f" for α = 0.1, 1, 10 | α = 1, 10: {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))}; "
+                    f"α = 0.1: {_v(R['0.1']['dsig_sides'] < 0 < R['0.1']['dsig_beneath'])} |")
+    if f13:
+        ours = ", ".join(f"α = {a}: {v['change_end']:+.3g} MPa" for a, v in f13.items())
+        ok = {a: (v["change_end"] > 0) == (a == "0.1") for a, v in f13.items()}
+        rows.append(f"| 13 | ‖σ‖ beneath the tip rises for α = 0.1, falls for α = 1, 10 (§4.1) | region mean, {ours} over the hold | "
+                    + "; ".join(f"α = {a}: {_v(o)}" for a, o in ok.items()) + " |")
+    rows.append(f"| 14 | anisotropy weak in indentation creep (§4.2) | {t['aniso']['detail']}{thickness_note(ind)} | {_v(t['aniso']['ok'])} |")
+    f = (ind.get("bedding_theta45") or {}).get("flow")
+    if f:
+        v = fig15(f)
+        rows.append(f"| 15 | at θ = 45 the material flows from BP toward BN (§4.2) | principal axis of the hold's flow "
+                    f"{abs(f['beta']):.1f}° from the load axis, on {'BN' if f['beta'] * f['beta_bn'] > 0 else 'BP'}'s side | "
+                    + ("not distinguishable (tilt < 2°)" if v is None else _v(v)) + " |")
+    return rows
+
+
+def thickness_note(ind):
+    c3 = [(ind.get(f"bedding_theta{t}_t3") or {}).get("creep_depth") for t in THETAS_BEDDING]
+    if not all(c3):
+        return ""
+    return f"; at t = 3 µm (Berkovich-equivalent) max/min {max(c3) / min(c3):.3f}"
+
+
+def loading_rate(n, trends, images, rel, img):
+    ind, f13 = n["indent"], n["fig13"]
+    S = _lr(ind)
+    L = ["## Loading rate (§4.1, Figs. 7–13)", "",
+         "**Paper.** “as the loading rate increases, the depth of indentation decreases … During the creep stage, however, "
+         "larger viscoplastic deformations develop in materials that were subjected to higher loading rates” (§4.1, Fig. 7); "
+         "“at a higher loading rate, creep deformation develops faster and the indent extends deeper” (Fig. 8). “Prior to "
+         "creep, an increase of α from 0.1 to 10 leads to a significant decrease in the magnitude of the viscoplastic "
+         "strain around the indenter tip” (Fig. 10); “at the conclusion of the creep stage, an inelastic zone forms at a "
+         "finite distance away from the indenter tip, and not directly below it” (Fig. 10); “For α = 0.1, the inelastic "
+         "zones develop from the top surface of the material on the left and right sides of the indenter … For α = 10, "
+         "the inelastic zone develops throughout the entire circular region surrounding the indenter” (Fig. 11); for "
+         "α = 0.1 “two fan-shaped regions on the two sides of the indent experience a reduction in stress”, for α = 1 and "
+         "10 “stresses relax in the zones directly beneath the indenter” (Fig. 12); the stress “at a point in contact with "
+         "the tip” increases during the hold for α = 0.1 and decreases for α = 1 and 10 (Fig. 13).", "",
+         "**Ours** (the shipped scenes' model: README, “Which model each scene uses”; regions of the undeformed mesh, a = "
+         f"{_f((S['1'].get('regions') or {}).get('a_ref'), 'g')} µm the contact half-width rounded; post/paper_fields.py).", "",
+         "| α | h at end of load [µm] | creep depth in 2000 s [µm] | mean / max ‖εvp‖ within 0.5 µm, start of hold | "
+         "Δ‖σ‖ over the hold, region beneath the tip [MPa] | ‖σ‖ checkerboard within a |", "|---|---|---|---|---|---|"]
+    for a, s in S.items():
+        if not s:
+            continue
+        e, d = s.get("evp_start") or {}, f13.get(a, {})
+        L.append(f"| {a} | {_f(s['depth_end_of_load'], '.4g')} | {_f(s['creep_depth'], '.4g')} | {_f(e.get('mean'))} / "
+                 f"{_f(e.get('max'))} | {_f(d.get('change_end'), '+.3g')} (min {_f(d.get('change_min'), '+.3g')}, max "
+                 f"{_f(d.get('change_max'), '+.3g')}) | {_f(s.get('checker'), '.2f')} |")
+    L += fields_tables(S)
+    L += ["", f"**Verdicts.** Figs. 7, 8: {_v(trends[0]['ok'])} ({trends[0]['detail']})."]
+    L += fields_verdicts(S, f13)
+    L += [""]
+    for fid in ("fig7", "fig8", "fig13", "fig9", "fig10", "fig11", "fig12"):
+        L.append(img(images, fid, rel))
+    return L
+
+
+def fields_tables(S):
+    if not all(s.get("regions") and s.get("fig11") for s in S.values()):
+        return []
+    L = ["", "Figs. 9–12 as numbers (end of the hold unless said; the regions: beneath |x| < a/4, beside a/2 < |x| < 3a/2, "
+         "both −a/2 < y < 0, cells clipped to them; rings around the tip of width a/6):", "",
+         "| α | ‖dev εvp‖ / \\|tr εvp\\| (99th percentiles within 2a) | area above 10 % of it, dev / tr [µm²] | hold's growth of "
+         "‖εvp‖: ring of its peak, peak / innermost ring | Fig. 11 at 100 s / 2000 s: share beside, between, beneath; fill | "
+         "Δ‖σ‖ beneath / beside [MPa] |", "|---|---|---|---|---|---|"]
+    for a, s in S.items():
+        r, b, z = s["regions"], s["fig10b"], s["fig11"]
+        zz = " / ".join(f"{z[k]['surface']:.2f}, {z[k]['middle']:.2f}, {z[k]['beneath']:.2f}; {z[k]['fill']:.2f}" for k in ("100", "2000"))
+        L.append(f"| {a} | {r['dev_p99']:.3g} / {r['tr_p99']:.3g} | {r['dev_area']:.3g} / {r['tr_area']:.3g} | "
+                 f"r = {b['r_peak']:.2f} a, {b['peak_over_tip_ring']:.2f} | {zz} | {r['dsig_beneath']:+.3g} / {r['dsig_sides']:+.3g} |")
+    return L
+
+
+def fields_verdicts(S, f13):
+    L = []
+    R = {a: s.get("regions") for a, s in S.items()}
+    ev = [s.get("evp_start") for s in S.values()]
+    if all(ev):
+        ok = ev[0]["mean"] > ev[1]["mean"] > ev[2]["mean"]
+        L.append(f"Fig. 10 (before creep): {_v(ok)}: the mean ‖εvp‖ within 0.5 µm of the tip at the start of the hold "
+                 f"{'falls' if ok else 'does not fall monotonically'} from α = 0.1 to 10.")
+    if all(s.get("fig10b") for s in S.values()):
+        L.append("Fig. 10 (end of creep; rule: the ring means of the hold's growth of ‖εvp‖ peak at r ≥ a/4 and ≥ 1.1× the "
+                 "innermost ring): " + "; ".join(f"α = {a}: {_v(fig10b(s))} (peak at r = {s['fig10b']['r_peak']:.2f} a, "
+                                                 f"{s['fig10b']['peak_over_tip_ring']:.2f}×)" for a, s in S.items()) + ".")
+    if all(s.get("fig11") for s in S.values()):
+        L.append("Fig. 11 (at 100 s; rules: α = 0.1 the sector beside the indent holds the largest share; α = 10 the zone "
+                 "fills ≥ half its half-disc with no sector above half; α = 1 fills ≥ half): "
+                 + "; ".join(f"α = {a}: {_v(fig11(a, s['fig11']['100']))}" for a, s in S.items()) + ".")
+    if all(R.values()):
+        ok9 = all(r["dev_p99"] > r["tr_p99"] and r["dev_area"] < r["tr_area"] for r in R.values())
+        r01 = R["0.1"]
+        L += [f"Fig. 9: {_v(ok9)}: the deviatoric viscoplastic strain is the more intense and the more concentrated, "
+              "the volumetric the weaker and the more pervasive, for every α.",
+              f"Fig. 12, α = 1 and 10: {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))} (stress relaxes beneath "
+              f"the tip). α = 0.1: {_v(r01['dsig_sides'] < 0 < r01['dsig_beneath'])}: the paper has the sides relaxing "
+              f"and the stress beneath the tip rising; ours is {r01['dsig_beneath']:+.3g} MPa beneath and "
+              f"{r01['dsig_sides']:+.3g} MPa beside."]
+    if f13:
+        L.append("Fig. 13 (the mean of Δ‖σ‖ over the region beneath the tip, not one cell; the paper's “point in contact "
+                 "with the tip” is not placed more closely): " + "; ".join(
+                     f"α = {a}: {v['change_end']:+.3g} MPa, {_v((v['change_end'] > 0) == (a == '0.1'))}" for a, v in f13.items()) + ".")
+    return L
+
+
+def bedding(n, trends, images, rel, img):
+    ind = n["indent"]
+    L = ["## Bedding orientation (§4.2, Figs. 14–15)", "",
+         "**Paper.** “anisotropy in the creep response does not strongly manifest itself during an indentation "
+         "experiment” (§4.2, Fig. 14), in contrast with “strongly anisotropic creep behavior … from triaxial creep "
+         "simulations on the same shale” (§4.2, §5); “the material flows from the stronger BP direction to the weaker "
+         "BN direction” (Fig. 15).", "",
+         "**Ours.** The thickness of the plane-strain model is not the paper's (it gives none): 1 µm as shipped, and as a "
+         "sensitivity check 3 µm, about the Berkovich-equivalent thickness at 15 mN (equal mean pressure: t = 4.9 h_B, "
+         "h_B ≈ 0.62 µm; the mesh scaled with the indent, input/bedding_theta*.yaml comments). The flow's direction: the "
+         "principal axis of the hold's displacement increments within 2a of the tip (a = 5 µm), as an angle from the "
+         "downward load axis; the bedding normal's axis (BN) is at −θ on that convention, the planes' (BP) at 90° − θ.", "",
+         "| θ | h at end of load [µm] | creep depth in 2000 s [µm] | flow axis [°] | at t = 3 µm: h at end of load, creep depth [µm] |",
+         "|---|---|---|---|---|"]
+    for t in THETAS_BEDDING:
+        s, s3 = ind.get(f"bedding_theta{t}"), ind.get(f"bedding_theta{t}_t3")
+        if s:
+            f = s.get("flow") or {}
+            L.append(f"| {t} | {_f(s['depth_end_of_load'], '.4g')} | {_f(s['creep_depth'], '.4g')} | {_f(f.get('beta'), '+.1f')} | "
+                     + (f"{_f(s3['depth_end_of_load'], '.4g')}, {_f(s3['creep_depth'], '.4g')}" if s3 else "—") + " |")
+    f = (ind.get("bedding_theta45") or {}).get("flow")
+    v15 = fig15(f) if f else None
+    L += ["", f"**Verdicts.** Fig. 14: {_v(trends[1]['ok'])} ({trends[1]['detail']}){thickness_note(ind)}. Fig. 15 (rule: the "
+          f"principal flow axis tilts by more than {TILT:g}° toward BN's side): "
+          + ("no run" if not f else ("not distinguishable" if v15 is None else _v(v15)))
+          + (f" (θ = 45: {f['beta']:+.1f}°, BN at {f['beta_bn']:+.0f}°)" if f else "") + ".", ""]
+    for fid in ("fig14", "fig15"):
+        L.append(img(images, fid, rel))
+    return L
