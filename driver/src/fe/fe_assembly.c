@@ -66,11 +66,11 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
      p->umat_tol) and, per cell, its phi; p->mat itself is never written. */
   UmatMaterial local = p->mat, *mat = &local;
-  if (mat->tol_slot >= 0 && mat->tol_slot < mat->nprops && p->umat_tol >= 0) mat->props[mat->tol_slot] = p->umat_tol;
+  if (mat->pr.tol >= 0 && mat->pr.tol < mat->nprops && p->umat_tol >= 0) mat->props[mat->pr.tol] = p->umat_tol;
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
     for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]], re[b] = 0;
-    if (mat->phi_slot >= 0) mat->props[mat->phi_slot] = p->phi[c - p->cStart];
+    if (mat->pr.phi >= 0) mat->props[mat->pr.phi] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
       const KernelPoint kp = kernel_point(p, SV(p, c, q));
       PetscReal         eps[6];

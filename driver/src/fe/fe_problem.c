@@ -242,7 +242,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
     PetscCheck(rmin > 0, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
                "axisymmetric: a quadrature point has r = x = %g <= 0: the mesh must lie in x >= 0 (x is the radius)", (double)rmin);
   }
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->phi_slot >= 0 ? mat->props[mat->phi_slot] : 0;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->pr.phi >= 0 ? mat->props[mat->pr.phi] : 0;
   p->npressure = npressure;
   for (PetscInt g = 0; g < npressure; g++) {
     PetscCall(PetscStrncpy(p->pressure_group[g], pressure_groups[g], 64));

@@ -3,10 +3,9 @@
 #include <petsclayouthdf5.h>
 #include <petscviewerhdf5.h>
 
-#include "camclay9.h"
 #include "fe_natural.h"
 
-static PetscBool has_evp(const FeProblem *p) { return p->mat.nstatv >= CAMCLAY9_NSTATV_MIN ? PETSC_TRUE : PETSC_FALSE; }
+static PetscBool has_evp(const FeProblem *p) { return umat_has_slots(&p->mat, p->mat.sv.evp, 6) ? PETSC_TRUE : PETSC_FALSE; }
 
 PetscErrorCode fe_state_commit(FeProblem *p, PetscReal h) {
   PetscFunctionBeginUser;
@@ -14,7 +13,7 @@ PetscErrorCode fe_state_commit(FeProblem *p, PetscReal h) {
     if (!p->devp_prev) PetscCall(PetscCalloc1(6 * p->npoint + 1, &p->devp_prev));
     for (PetscInt k = 0; k < p->npoint; k++)
       for (PetscInt i = 0; i < 6; i++)
-        p->devp_prev[6 * k + i] = p->trial[k * p->nsv + ST_STATEV + CAMCLAY9_SV_EVP + i] - p->state[k * p->nsv + ST_STATEV + CAMCLAY9_SV_EVP + i];
+        p->devp_prev[6 * k + i] = p->trial[k * p->nsv + ST_STATEV + p->mat.sv.evp + i] - p->state[k * p->nsv + ST_STATEV + p->mat.sv.evp + i];
     p->have_devp = h > 0 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(fe_problem_commit(p));
@@ -28,7 +27,7 @@ PetscErrorCode fe_state_volume_error(FeProblem *p, PetscReal h, PetscReal h_prev
   if (!has_evp(p) || !p->have_devp || !(h > 0 && h_prev > 0)) PetscFunctionReturn(0);
   PetscReal r = h / h_prev;
   for (PetscInt k = 0; k < p->npoint; k++) {
-    const PetscReal *tr = &p->trial[k * p->nsv + ST_STATEV + CAMCLAY9_SV_EVP], *st = &p->state[k * p->nsv + ST_STATEV + CAMCLAY9_SV_EVP];
+    const PetscReal *tr = &p->trial[k * p->nsv + ST_STATEV + p->mat.sv.evp], *st = &p->state[k * p->nsv + ST_STATEV + p->mat.sv.evp];
     PetscReal        w  = p->wdetJ[k];
     for (PetscInt i = 0; i < 6; i++) {
       PetscReal d = tr[i] - st[i];
@@ -236,13 +235,13 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
       PetscReal        w  = p->wdetJ[SV(p, c, q)];
       loc[0] += w;
       for (PetscInt vI = 0; vI < 6; vI++) loc[1 + vI] += w * st[ST_STRAN + vI], loc[7 + vI] += w * st[ST_STRESS + vI];
-      if (p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
+      if (has_evp(p)) {
         PetscReal d2 = 0;
         for (PetscInt vI = 0; vI < 6; vI++)
-          d2 += PetscSqr(st[ST_STATEV + CAMCLAY9_SV_EVP + vI] - old[ST_STATEV + CAMCLAY9_SV_EVP + vI]);
+          d2 += PetscSqr(st[ST_STATEV + p->mat.sv.evp + vI] - old[ST_STATEV + p->mat.sv.evp + vI]);
         loc[13] += w * PetscSqrtReal(d2);
-        vals[SV(p, c, q)]             = st[ST_STATEV + CAMCLAY9_SV_EVP_HARD + axis]; /* axial vp strain */
-        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + CAMCLAY9_SV_EVP_SOFT + axis];
+        vals[SV(p, c, q)]             = st[ST_STATEV + p->mat.sv.evp_hard + axis]; /* axial vp strain */
+        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + p->mat.sv.evp_soft + axis];
       }
     }
   }
@@ -254,7 +253,7 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
   for (PetscInt k = 0; k < p->npoint; k++)
     for (PetscInt vI = 0; vI < 6; vI++) spread = PetscMax(spread, PetscAbsReal(src[k * p->nsv + ST_STRAN + vI] - s->strain_mean[vI]));
   PetscCall(MPIU_Allreduce(&spread, &s->strain_spread, 1, MPIU_REAL, MPIU_MAX, comm));
-  if (quantiles && p->mat.nstatv >= CAMCLAY9_NSTATV_MIN) {
+  if (quantiles && has_evp(p)) {
     /* Gather both frames' values on rank 0 for the quantiles. */
     PetscMPIInt n = (PetscMPIInt)p->npoint, *counts = NULL, *displs = NULL, total = 0;
     if (!rank) PetscCall(PetscMalloc2(size, &counts, size, &displs));

@@ -174,17 +174,28 @@ static int read_bedding(const YdDoc *doc, YdNode *node, int ntens, int camclay, 
     theta *= M_PI / 180;
     /* 3D: load along x3, n = (sin, 0, cos); plane strain / axisymmetric: load along x2, n = (sin, cos, 0). */
     double n[3] = {sin(theta), ntens == 6 ? 0.0 : cos(theta), ntens == 6 ? cos(theta) : 0.0};
-    memcpy(&mat->props[20], n, sizeof n);
-    mat->nprops = 23;
+    memcpy(&mat->props[mat->pr.normal], n, sizeof n);
+    mat->nprops = mat->pr.normal + 3;
   } else if (normal) {
-    if (yd_doubles(doc, normal, "material.normal", &mat->props[20], 3, NULL, err, errlen)) return 1;
-    mat->nprops = 23;
+    if (yd_doubles(doc, normal, "material.normal", &mat->props[mat->pr.normal], 3, NULL, err, errlen)) return 1;
+    mat->nprops = mat->pr.normal + 3;
   } else if (camclay && ntens == 4 && mat->nprops < 23) {
     /* 2D without a normal: theta = 0 with the load along x2, n = e2 (the UMAT needs it in-plane) */
-    mat->props[20] = 0, mat->props[21] = 1, mat->props[22] = 0;
-    mat->nprops    = 23;
+    mat->props[mat->pr.normal] = 0, mat->props[mat->pr.normal + 1] = 1, mat->props[mat->pr.normal + 2] = 0;
+    mat->nprops    = mat->pr.normal + 3;
   }
   return 0;
+}
+
+void material_slots(int camclay, UmatPropSlots *pr, UmatStateSlots *sv) {
+  const UmatPropSlots  pnone = {-1, -1, -1, -1, -1};
+  const UmatPropSlots  pcc9  = {.phi = 0, .eta_hard = 12, .eta_soft = 18, .tol = 19, .normal = 20}; /* docs/umat.md, PROPS */
+  *pr = camclay ? pcc9 : pnone;
+  const UmatStateSlots none = {-1, -1, -1, -1, -1, -1, -1, -1, -1};
+  const UmatStateSlots cc9  = {.sig_hard = CAMCLAY9_SV_SIG_HARD, .evp_hard = CAMCLAY9_SV_EVP_HARD, .pc_hard = CAMCLAY9_SV_PC_HARD,
+                               .sig_soft = CAMCLAY9_SV_SIG_SOFT, .evp_soft = CAMCLAY9_SV_EVP_SOFT, .pc_soft = CAMCLAY9_SV_PC_SOFT,
+                               .evp = CAMCLAY9_SV_EVP, .iterations = CAMCLAY9_SV_ITERATIONS, .flags = CAMCLAY9_SV_FLAGS};
+  *sv = camclay ? cc9 : none;
 }
 
 int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen) {
@@ -197,8 +208,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   memset(mat, 0, sizeof *mat);
   mat->ntens  = ntens;
   mat->nstatv = camclay ? CAMCLAY9_NSTATV_DIAGNOSTICS : 0;
-  mat->phi_slot = camclay ? 0 : -1;
-  mat->tol_slot = camclay ? 19 : -1;
+  material_slots(camclay, &mat->pr, &mat->sv);
   umat_material_set_name(mat, name);
 
   int         normal_in_props = 0; /* n1..n3 given in props or set: bedding_angle would override them */

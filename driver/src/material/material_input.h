@@ -9,6 +9,8 @@
 #include "umat_call.h"
 
 /* Read the block into mat (ntens must already be set). Returns 0, or 1 with err filled. */
+/* The PROPS and STATEV slots of Cam-Clay IX (camclay != 0) or none (all -1): UmatMaterial.pr and .sv. */
+void material_slots(int camclay, UmatPropSlots *pr, UmatStateSlots *sv);
 int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen);
 
 /* -material_set (declared and read here; io/options.h): its text, whether given. */

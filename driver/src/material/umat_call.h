@@ -8,15 +8,42 @@
 #define UMAT_MAX_PROPS 64
 #define UMAT_MAX_STATEV 256
 
+/* The STATEV slots the driver reads (0-based; the first of six Voigt components for tensors), -1 where the linked
+ * UMAT has none. material_read fills them from the UMAT's own header (Cam-Clay IX: camclay9.h, docs/umat.md
+ * "STATEV"), so that nothing outside material/ knows a UMAT's layout. */
+typedef struct {
+  int sig_hard, evp_hard, pc_hard;  /* the hard frame's stress, viscoplastic strain, preconsolidation pressure */
+  int sig_soft, evp_soft, pc_soft;  /* the soft frame's */
+  int evp;                          /* the total viscoplastic strain */
+  int iterations, flags;            /* the local Newton's iterations, the diagnostic flag bits */
+} UmatStateSlots;
+
+/* The PROPS slots the driver sets (0-based), -1 where the linked UMAT has none; filled by material_read (Cam-Clay IX:
+ * docs/umat.md "PROPS"). */
+typedef struct {
+  int phi;                /* the hard frame's volume fraction */
+  int eta_hard, eta_soft; /* the frames' viscosities */
+  int tol;                /* the step-control tolerance (PNEWDT) */
+  int normal;             /* the first of the bedding normal's three components */
+} UmatPropSlots;
+
 typedef struct {
   int    ntens;                  /* 6 (3D) or 4 (plane strain, axisymmetric) */
   int    nstatv;
   int    nprops;
   double props[UMAT_MAX_PROPS];
   char   cmname[80];             /* blank padded, as Fortran passes it */
-  int    phi_slot;               /* PROPS index of the hard-frame fraction (Cam-Clay IX: 0), -1 if none */
-  int    tol_slot;               /* PROPS index of the step-control tolerance (Cam-Clay IX: 19), -1 if none */
+  UmatPropSlots  pr;             /* the PROPS slots the driver sets */
+  UmatStateSlots sv;             /* the STATEV slots the driver reads */
 } UmatMaterial;
+
+/* Component i of the quantity at STATEV slot s (a UmatStateSlots entry) of a call's state, 0 where the UMAT has no
+ * such slot (s < 0, or beyond NSTATV). */
+static inline double umat_statev(const UmatMaterial *mat, const double *statev, int s, int i) {
+  return s >= 0 && s + i < mat->nstatv ? statev[s + i] : 0.0;
+}
+/* Whether the UMAT holds the six components from slot s. */
+static inline int umat_has_slots(const UmatMaterial *mat, int s, int n) { return s >= 0 && s + n <= mat->nstatv; }
 
 /* What the host passes in and gets back for one integration point and one increment. */
 typedef struct {

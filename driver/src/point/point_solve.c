@@ -3,7 +3,6 @@
  * against central differences, and the history columns of a point. */
 #include "point_solve.h"
 
-#include "camclay9.h"
 
 #include <float.h>
 #include <math.h>
@@ -12,9 +11,6 @@
 
 #define MAX_NEWTON 30
 
-static double statev_or_zero(const UmatMaterial *mat, const UmatCall *c, int slot) {
-  return slot < mat->nstatv ? c->statev[slot] : 0.0;
-}
 
 /* Solve J x = r in place (n <= 6), partial pivoting. Returns 1 if singular. */
 static int solve_small(int n, double J[6][6], double r[6]) {
@@ -180,14 +176,14 @@ void point_history_header(FILE *fp) {
 void point_history_row(FILE *fp, const UmatMaterial *mat, const UmatCall *c, double t, int step, int seg, double dt,
                       int newton, int cutbacks) {
   int n = mat->ntens;
-  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, (int)statev_or_zero(mat, c, CAMCLAY9_SV_ITERATIONS),
+  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, (int)umat_statev(mat, c->statev, mat->sv.iterations, 0),
           cutbacks);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stran[i] : 0.0);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stress[i] : 0.0);
-  const int base[5] = {CAMCLAY9_SV_SIG_HARD, CAMCLAY9_SV_SIG_SOFT, CAMCLAY9_SV_EVP_HARD, CAMCLAY9_SV_EVP_SOFT, CAMCLAY9_SV_EVP};
+  const int base[5] = {mat->sv.sig_hard, mat->sv.sig_soft, mat->sv.evp_hard, mat->sv.evp_soft, mat->sv.evp};
   for (int g = 0; g < 5; g++)
-    for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", statev_or_zero(mat, c, base[g] + i));
-  fprintf(fp, ",%.12g,%.12g,%d\n", statev_or_zero(mat, c, CAMCLAY9_SV_PC_HARD), statev_or_zero(mat, c, CAMCLAY9_SV_PC_SOFT),
-          (int)statev_or_zero(mat, c, CAMCLAY9_SV_FLAGS));
+    for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", umat_statev(mat, c->statev, base[g], i));
+  fprintf(fp, ",%.12g,%.12g,%d\n", umat_statev(mat, c->statev, mat->sv.pc_hard, 0), umat_statev(mat, c->statev, mat->sv.pc_soft, 0),
+          (int)umat_statev(mat, c->statev, mat->sv.flags, 0));
 }
 

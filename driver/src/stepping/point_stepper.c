@@ -1,6 +1,5 @@
 #include "point_stepper.h"
 
-#include "camclay9.h"
 
 #include <errno.h>
 #include <math.h>
@@ -25,7 +24,7 @@ typedef struct {
   PointSummary     *sum;
 } Point;
 
-static double sv_or_zero(const Point *pt, const UmatCall *c, int slot) { return slot < pt->sc->mat.nstatv ? c->statev[slot] : 0.0; }
+static double sv_or_zero(const Point *pt, const UmatCall *c, int slot, int i) { return umat_statev(&pt->sc->mat, c->statev, slot, i); }
 
 static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Point         *pt = ctx;
@@ -60,7 +59,7 @@ static void observe(Point *pt, const StepRequest *rq, StepOutcome *o) {
   int    n = pt->sc->mat.ntens;
   double p, q, devp[6];
   point_invariants(pt->next.stress, n, &p, &q);
-  for (int i = 0; i < 6; i++) devp[i] = sv_or_zero(pt, &pt->next, CAMCLAY9_SV_EVP + i) - sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_EVP + i);
+  for (int i = 0; i < 6; i++) devp[i] = sv_or_zero(pt, &pt->next, pt->sc->mat.sv.evp, i) - sv_or_zero(pt, &pt->cur, pt->sc->mat.sv.evp, i);
   o->event[EVENT_P_ABOVE] = p, o->event[EVENT_Q_ABOVE] = o->event[EVENT_Q_BELOW] = q;
   o->event[EVENT_EVP_RATE_BELOW] = rq->h > 0 ? norm6(devp) / rq->h : INFINITY;
   o->nout = 2 * n;
@@ -70,7 +69,7 @@ static void observe(Point *pt, const StepRequest *rq, StepOutcome *o) {
   }
   if (rq->want_volume_error && pt->have_devp && rq->h > 0 && pt->last_dt > 0) {
     double d[6], evp[6];
-    for (int i = 0; i < 6; i++) d[i] = devp[i] - rq->h / pt->last_dt * pt->devp_prev[i], evp[i] = sv_or_zero(pt, &pt->next, CAMCLAY9_SV_EVP + i);
+    for (int i = 0; i < 6; i++) d[i] = devp[i] - rq->h / pt->last_dt * pt->devp_prev[i], evp[i] = sv_or_zero(pt, &pt->next, pt->sc->mat.sv.evp, i);
     o->vol_err = norm6(d) / fmax(norm6(devp), 1e-9 * norm6(evp) + 1e-300);
   }
 }
@@ -83,7 +82,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   for (int i = 0; i < n; i++) target[i] = point_target(sg, i, pt->start, rq->lambda, rq->ts0 + rq->h);
   for (int i = 0; i < n; i++) deps[i] = pt->last_dt > 0 && rq->h > 0 ? pt->last_deps[i] * rq->h / pt->last_dt : 0;
   pt->mat = pt->sc->mat;
-  if (rq->umat_tol >= 0 && pt->mat.tol_slot >= 0 && pt->mat.tol_slot < pt->mat.nprops) pt->mat.props[pt->mat.tol_slot] = rq->umat_tol;
+  if (rq->umat_tol >= 0 && pt->mat.pr.tol >= 0 && pt->mat.pr.tol < pt->mat.nprops) pt->mat.props[pt->mat.pr.tol] = rq->umat_tol;
   pt->cur.time[0] = rq->ts0, pt->cur.time[1] = rq->t0;
   int rc = point_mixed_step(&pt->mat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
   /* a UMAT that asks for a smaller step: 'converged' with PNEWDT < 1, so the runner cuts by PNEWDT */
@@ -110,7 +109,7 @@ static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
     if (umat_write_replay(rp, &pt->mat, &in, &pt->next, "requested with -write_replay_at_step")) fprintf(stderr, "driver: could not write %s\n", rp);
   }
   for (int i = 0; i < 6; i++)
-    pt->devp_prev[i] = sv_or_zero(pt, &pt->next, CAMCLAY9_SV_EVP + i) - sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_EVP + i);
+    pt->devp_prev[i] = sv_or_zero(pt, &pt->next, pt->sc->mat.sv.evp, i) - sv_or_zero(pt, &pt->cur, pt->sc->mat.sv.evp, i);
   pt->have_devp = rq->h > 0;
   memcpy(pt->last_deps, pt->next.dstran, sizeof pt->last_deps);
   pt->last_dt = rq->h;
@@ -132,7 +131,7 @@ static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
 
 static void progress(void *ctx, char *buf, size_t n) {
   Point *pt = ctx;
-  snprintf(buf, n, "local %d ", (int)sv_or_zero(pt, &pt->cur, CAMCLAY9_SV_ITERATIONS));
+  snprintf(buf, n, "local %d ", (int)sv_or_zero(pt, &pt->cur, pt->sc->mat.sv.iterations, 0));
 }
 
 /* The point's state for a checkpoint: the committed call (plain values only), the predictor, the
@@ -168,13 +167,16 @@ static void write_json(const PointScene *sc, const double *t_start, const double
   FILE *fp = fopen(path, "w");
   if (!fp) return;
   fprintf(fp, "{\"name\": \"%s\", \"ntens\": %d, \"props\": [", sc->name, sc->mat.ntens);
-  double props[23] = {0};
-  memcpy(props, sc->mat.props, sizeof(double) * (sc->mat.nprops < 23 ? sc->mat.nprops : 23));
-  if (sc->mat.nprops < 23) props[22] = 1;
-  for (int i = 0; i < 23; i++) fprintf(fp, "%s%.17g", i ? ", " : "", props[i]);
-  double nn = sqrt(props[20] * props[20] + props[21] * props[21] + props[22] * props[22]);
+  /* PROPS up to the normal's slots, the normal e3 where none is given (the UMAT's default, docs/umat.md) */
+  const int n3 = sc->mat.pr.normal, np = n3 >= 0 ? n3 + 3 : sc->mat.nprops;
+  double    props[UMAT_MAX_PROPS] = {0}, b[3] = {0, 0, 1};
+  memcpy(props, sc->mat.props, sizeof(double) * (sc->mat.nprops < np ? sc->mat.nprops : np));
+  if (n3 >= 0 && sc->mat.nprops < np) props[n3 + 2] = 1;
+  if (n3 >= 0) memcpy(b, &props[n3], sizeof b);
+  for (int i = 0; i < np; i++) fprintf(fp, "%s%.17g", i ? ", " : "", props[i]);
+  double nn = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
   fprintf(fp, "], \"normal\": [%.17g, %.17g, %.17g], \"units\": {\"stress\": \"MPa\", \"time\": \"s\"}, \"segments\": [",
-          props[20] / nn, props[21] / nn, props[22] / nn);
+          b[0] / nn, b[1] / nn, b[2] / nn);
   for (int s = 0; s < sc->nseg; s++)
     fprintf(fp, "%s{\"name\": \"%s\", \"t_start\": %.17g, \"t_end\": %.17g, \"creep\": %s, \"axis\": %d}", s ? ", " : "",
             sc->seg[s].stage.name, t_start[s], t_end[s], sc->seg[s].stage.creep ? "true" : "false", sc->seg[s].axis);
