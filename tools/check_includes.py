@@ -20,17 +20,20 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
 def check(src):
+    def rel(path):  # as the user would write it: from the repository, or from src for another tree
+        return path.relative_to(ROOT) if path.resolve().is_relative_to(ROOT) else path.relative_to(src)
+
     bad, n = [], 0
     for path in sorted(src.rglob("*.[ch]")):
         folder = path.parent.name
         if folder not in LAYER:
-            bad.append(f"{path.relative_to(ROOT)}: folder '{folder}' has no place in the layers")
+            bad.append(f"{rel(path)}: folder '{folder}' has no place in the layers")
             continue
         for target in INCLUDE.findall(path.read_text()):
             n += 1
             if target == "camclay9.h":
                 if folder != "material":
-                    bad.append(f"{path.relative_to(ROOT)}: includes camclay9.h (only material/ may)")
+                    bad.append(f"{rel(path)}: includes camclay9.h (only material/ may)")
                 continue
             dest = (path.parent / target).resolve()
             if not dest.is_relative_to(src.resolve()):
@@ -39,7 +42,7 @@ def check(src):
             if to == folder:
                 continue
             if to not in LAYER or LAYER[to] >= LAYER[folder]:
-                bad.append(f"{path.relative_to(ROOT)}: includes {target} ({folder} -> {to} runs against "
+                bad.append(f"{rel(path)}: includes {target} ({folder} -> {to} runs against "
                            "app -> stepping -> contact -> {fe, point} -> scene -> material -> io)")
     return bad, n
 
