@@ -50,9 +50,12 @@ R2 = math.sqrt(2)
 FAR = 7.5   # h_far / h_tip, as shipped (0.15 / 0.02)
 UNLOAD = ("  - name: unload\n    duration: 20\n    indenter: {load: 0}\n"
           "    steps: {adaptive: true, first: 1, min: 1.0e-9, max: 1, error: {measure: output, tol: 0.1}}\n")
-# scene key: (scene file, length scale (the bedding block is the loading-rate block x 25), region under the tip)
-SCENES = {"lr": ("loading_rate_a1", 1.0, (-0.125, 0.125, -0.25, 0.0)),
-          "bed": ("bedding_theta45", 25.0, (-1.35, 1.35, -2.7, 0.0))}
+# scene key: (scene file, length scale (the bedding block is the loading-rate block x 25), region under the tip,
+# a change of the scene's text or None). "lrphi": the loading-rate scene with the hard frame (phi 0.5, as the
+# bedding scenes), whose elastic shear stiffness keeps the mixture from the incompressibility of the soft frame's flow
+SCENES = {"lr": ("loading_rate_a1", 1.0, (-0.125, 0.125, -0.25, 0.0), None),
+          "lrphi": ("loading_rate_a1", 1.0, (-0.125, 0.125, -0.25, 0.0), ("set: {phi: 0}", "set: {phi: 0.5}")),
+          "bed": ("bedding_theta45", 25.0, (-1.35, 1.35, -2.7, 0.0), None)}
 KEYS = ("h_max", "creep", "h_res", "sig_load", "sig_hold", "dsig")
 LIMIT = {"h_max": 0.01, "creep": 0.01, "h_res": 0.01, "sig_hold": 0.05}   # the shipped model's budget
 LABEL = {"h_max": "h_max [nm]", "creep": "creep [nm]", "h_res": "h_res [nm]", "sig_load": "σ̄ load [MPa]",
@@ -68,6 +71,8 @@ LADDERS = {
     "lr2f": ("loading rate, P2, r_fine 0.9", "lr", 2, "h_tip", 0.9, [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01]),
     "lr2n": ("loading rate, P2, r_fine 0.9, other meshes near h_tip 0.02 (mesh noise)", "lr", 2, "h_tip", 0.9, [0.0206, 0.0194]),
     "lr2t": ("loading rate, P2, h_tip 0.02, r_fine 0.9, time-step tol", "lr", 2, "tol", (0.02, 0.9), [5e-3]),
+    "lrphi1": ("loading rate with the hard frame (φ = 0.5), P1, r_fine 0.6", "lrphi", 1, "h_tip", 0.6, [0.02]),
+    "lrphi2": ("loading rate with the hard frame (φ = 0.5), P2, r_fine 0.6", "lrphi", 2, "h_tip", 0.6, [0.04]),
     "bed2": ("bedding 45°, P2, r_fine 10", "bed", 2, "h_tip", 0.4, H_LR[:6]),
     "bed1": ("bedding 45°, P1, r_fine 10", "bed", 1, "h_tip", 0.4, H_LR[:6]),
     "bed2r": ("bedding 45°, P2, h_tip 0.5", "bed", 2, "r_fine", 0.02, [0.24, 0.4, 0.6]),
@@ -77,8 +82,11 @@ LADDERS = {
 def scene_text(skey, order, h_tip, r_fine, tol=None, far=FAR):
     """The scene as shipped with this mesh, fields at the stages' ends only, and the unload stage; tol: the load and
     hold stages' output error tolerance (shipped 1.5e-2)."""
-    name, scale, _ = SCENES[skey]
+    name, scale, _, change = SCENES[skey]
     t = absolute((ROOT / "input" / f"{name}.yaml").read_text())
+    if change:
+        assert change[0] in t, f"{name}.yaml: no '{change[0]}' to change"
+        t = t.replace(change[0], change[1])
     if tol:
         t = t.replace("measure: output, tol: 1.5e-2}", f"measure: output, tol: {tol:g}}}")
     t = re.sub(r"h_tip: [0-9.e-]+", f"h_tip: {h_tip:.6g}", t, count=1)
