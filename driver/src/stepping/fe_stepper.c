@@ -326,9 +326,11 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
         fe_problem_reactions(p))
       return 1;
   }
-  StepSolver sv = {&f, "fe", sc->nstage, PetscObjectComm((PetscObject)p->dm), stage_begin, solve, accept, NULL,
-                   history_header, history_row, progress, write_fields, promote, save, load, replay, umat_calls, resume,
-                   save_shared, load_shared};
+  StepSolver sv = {.ctx = &f, .kind = "fe", .nstage = sc->nstage, .comm = PetscObjectComm((PetscObject)p->dm),
+                   .stage_begin = stage_begin, .solve = solve, .accept = accept, .history_header = history_header,
+                   .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
+                   .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
+                   .save_shared = save_shared, .load_shared = load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&f.c);

@@ -216,8 +216,11 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
                     "indenter-row shift %.4g\n",
               shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
               (double)d.in.ct.c, (double)d.in.ct.kn);
-  StepSolver sv = {&d, "indentation", sc->nstage, comm, stage_begin, solve, accept, check, history_header, history_row, progress,
-                   write_fields, promote, save, load, replay, umat_calls, resume, save_shared, load_shared};
+  StepSolver sv = {.ctx = &d, .kind = "indentation", .nstage = sc->nstage, .comm = comm, .stage_begin = stage_begin,
+                   .solve = solve, .accept = accept, .check = check, .history_header = history_header,
+                   .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
+                   .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
+                   .save_shared = save_shared, .load_shared = load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   fe_common_finish(&d.c);

@@ -204,8 +204,9 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
     return 1;
   }
   pt.t_start = calloc((size_t)sc->nseg + 1, sizeof(double)), pt.t_end = calloc((size_t)sc->nseg + 1, sizeof(double));
-  StepSolver sv = {&pt, "point", sc->nseg, MPI_COMM_SELF, stage_begin, solve, accept, NULL, history_header, history_row,
-                   progress, NULL, NULL, save, load, replay, NULL, NULL, NULL, NULL};
+  StepSolver sv = {.ctx = &pt, .kind = "point", .nstage = sc->nseg, .comm = MPI_COMM_SELF, .stage_begin = stage_begin,
+                   .solve = solve, .accept = accept, .history_header = history_header, .history_row = history_row,
+                   .progress = progress, .save = save, .load = load, .replay = replay};
   RunnerOptions opt;
   memset(&opt, 0, sizeof opt);
   if (given) opt = *given;
