@@ -1,0 +1,362 @@
+/* The one stage runner (driver/src/stepping/stage_runner.c) driven by a mock StepSolver, as PETSc keeps a TEST
+ * block beside each example: no mesh, no UMAT, a scalar "physics" whose answers are known in closed form.
+ *
+ * The mock: x' = -x/tau solved exactly over each step (x1 = x0 exp(-h/tau), so after any steps x(t) = x0
+ * exp(-t/tau)), an event quantity q = t (linear in the total time: its crossing time is the target itself), an
+ * error estimate it sets itself (the 'volume' measure: the runner's ratio is vol_err / tol) and a Newton failure
+ * it reports on a chosen solve call. It records every solve's step, every accepted time and every fields time.
+ *
+ * Cases, and what each number is checked against:
+ *  1 accept      10 equal steps over 1 s: 10 solves, 10 accepts, each 0.1, end at t = 1 exactly (==), x = x0 e^-1/tau
+ *                (1e-14); then 4 geometric steps (ratio 2) over 1.5 s: 0.1, 0.2, 0.4, 0.8 (scene/stage.h's plan,
+ *                first = T (r - 1)/(r^n - 1)).
+ *  2 reject      adaptive (growth 1, estimate 0.1 tol): the 4th solve's estimate is 3 tol, so the step is redone
+ *                at 0.9/3 = 0.3 of its length (step_control.h: STEP_SAFETY / ratio, within [0.1, 0.5]; docs/driver.md
+ *                "Step controller"); 1 rejection, 1 cutback, no later step longer, end at t = 1 exactly.
+ *  3 cutback     fixed 10 x 0.1 s, the 4th solve does not converge: redone at STEP_CUT_DIVERGED = 0.25 of it
+ *                (0.025), the plan resumed by doubling to the planned step's end (0.025, 0.05, 0.025: next_length),
+ *                then 0.1 again; the summary counts 1 cutback, 12 steps, end at t = 1, x = x0 e^-1/tau.
+ *  4 event       until q_above 0.537 (fixed 0.1 s steps): the stage ends with |q - 0.537| <= EVENT_TOL 0.537
+ *                (scene/stage.h, docs/driver.md "Events"), i.e. at t = 0.537 within that; the next stage's target
+ *                0.05 later lies inside its first step: that step is redone by the secant (one solve more than
+ *                accepts) and lands on 0.587 the same way; no cutback counted.
+ *  5 output      output times 0.25, 0.5, 0.8 of a 1 s stage in 3 steps: write_fields at t = 0, 0.25, 0.5, 0.8, 1
+ *                exactly (==), nothing else.
+ *  6 checkpoint  an adaptive two-stage run (the 'output' measure on x, then the mock's estimate varying in time;
+ *                the PI controller and the output measure both carry memory across steps): its steps in stage 0
+ *                settle at the controller's fixed point h = tau ln(1 + tol 0.9^(1/0.85)) (1e-5); run once
+ *                whole; once with -checkpoint_every 3 stopped by -max_steps 7; then restarted: the restart reads
+ *                checkpoint.latest = step 6 and its accepted times, steps and x are those of the whole run from
+ *                step 6 on, bit for bit.
+ * Exit 0 when every check holds. */
+#include <math.h>
+#include <petscsys.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stepping/stage_runner.h"
+
+static int failures = 0;
+#define CHECK(cond, ...)                                    \
+  do {                                                      \
+    if (!(cond)) {                                          \
+      fprintf(stderr, "FAILED (%s): ", __func__);           \
+      fprintf(stderr, __VA_ARGS__);                         \
+      fprintf(stderr, "\n");                                \
+      failures++;                                           \
+    }                                                       \
+  } while (0)
+
+static int near(double a, double b, double rtol) { return fabs(a - b) <= rtol * fmax(fabs(b), 1e-300); }
+
+/* ---------------------------------------------------------------------------------------------------- */
+/* The mock solver                                                                                      */
+
+#define MAXREC 512
+typedef struct {
+  Stage  stage[3];
+  int    nstage;
+  double tau, x0, x, x_trial, t; /* the committed state; t the mock's own clock (sum of accepted steps) */
+  int    fail_solve;            /* this solve call (from 1) reports no convergence (0: none) */
+  int    spike_solve;           /* this solve call's estimate is spike x tol */
+  double spike, err_level;      /* otherwise err_level x tol, or ... */
+  double err_coef;              /* ... when > 0: err_coef h (1 + 0.5 sin 5 t0), an estimate that varies */
+  int    nsolve, naccept, nwrite;
+  double stage_t0[3]; /* the time each stage began at */
+  double solve_h[MAXREC], accept_t[MAXREC], accept_h[MAXREC], write_t[MAXREC];
+} Mock;
+
+static void mock_init(Mock *m) {
+  memset(m, 0, sizeof *m);
+  m->tau = 2.0, m->x0 = m->x = 3.0;
+}
+
+static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+  Mock *m = ctx;
+  stage_view_of(&m->stage[s], v);
+  v->event_start = m->t; /* q = t */
+  m->stage_t0[s] = m->t;
+  return 0;
+}
+
+static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+  Mock *m = ctx;
+  int   call = ++m->nsolve;
+  if (call <= MAXREC) m->solve_h[call - 1] = rq->h;
+  m->x_trial   = m->x * exp(-rq->h / m->tau);
+  o->converged = call != m->fail_solve;
+  o->why       = "mock: not converged on purpose";
+  o->its       = 1;
+  o->event[EVENT_Q_ABOVE] = rq->t0 + rq->h;
+  o->nout = 1, o->out[0] = m->x_trial, o->group[0] = 0; /* the 'output' measure's estimate: the runner's own */
+  if (rq->want_volume_error) {
+    double tol = m->stage[rq->s].steps.tol;
+    o->vol_err = m->err_coef > 0 ? m->err_coef * rq->h * (1 + 0.5 * sin(5 * rq->t0)) : m->err_level * tol;
+    if (call == m->spike_solve) o->vol_err = m->spike * tol;
+  }
+  return 0;
+}
+
+static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+  Mock *m = ctx;
+  m->x = m->x_trial, m->t += rq->h;
+  if (m->naccept < MAXREC) m->accept_t[m->naccept] = m->t, m->accept_h[m->naccept] = rq->h;
+  m->naccept++;
+  return 0;
+}
+
+static int write_fields(void *ctx, double t, char *err, size_t errlen) {
+  Mock *m = ctx;
+  if (m->nwrite < MAXREC) m->write_t[m->nwrite] = t;
+  m->nwrite++;
+  return 0;
+}
+
+static void history_header(void *ctx, FILE *fp) { fprintf(fp, "t,step,x\n"); }
+static void history_row(void *ctx, FILE *fp, const RunnerRow *row) { fprintf(fp, "%.17g,%d,%.17g\n", row->t, row->step, ((Mock *)ctx)->x); }
+
+/* The checkpoint holds the physics' state only: what the runner must restore is its own business. */
+static int save(void *ctx, BinFile *f) {
+  Mock *m = ctx;
+  binfile_write(f, &m->x, sizeof m->x, 1);
+  binfile_write(f, &m->t, sizeof m->t, 1);
+  return !f->ok;
+}
+static int load(void *ctx, BinFile *f) {
+  Mock *m = ctx;
+  binfile_read(f, &m->x, sizeof m->x, 1);
+  binfile_read(f, &m->t, sizeof m->t, 1);
+  return !f->ok;
+}
+
+static StepSolver mock_solver(Mock *m) {
+  return (StepSolver){.ctx = m, .kind = "mock", .nstage = m->nstage, .comm = PETSC_COMM_SELF, .stage_begin = stage_begin,
+                      .solve = solve, .accept = accept, .history_header = history_header, .history_row = history_row,
+                      .write_fields = write_fields, .save = save, .load = load};
+}
+
+static Stage fixed_stage(double duration, int count, double ratio) {
+  Stage g;
+  memset(&g, 0, sizeof g);
+  snprintf(g.name, sizeof g.name, "fixed");
+  g.duration = duration, g.steps.count = count, g.steps.ratio = ratio;
+  return g;
+}
+
+static Stage adaptive_stage(double duration, double first, double growth, double max, ErrorMeasure measure, double tol) {
+  Stage g;
+  memset(&g, 0, sizeof g);
+  snprintf(g.name, sizeof g.name, "adaptive");
+  g.duration = duration, g.steps.adaptive = 1, g.steps.first = first, g.steps.min = 1e-6, g.steps.max = max;
+  g.steps.growth = growth, g.steps.measure = measure, g.steps.tol = tol;
+  return g;
+}
+
+static RunnerOptions quiet_options(void) {
+  RunnerOptions opt;
+  memset(&opt, 0, sizeof opt);
+  opt.max_steps = -1, opt.quiet = 1, opt.outdir = "";
+  return opt;
+}
+
+static int run(Mock *m, const RunnerOptions *opt, RunnerSummary *sum) {
+  StepSolver sv = mock_solver(m);
+  char       err[2048] = "";
+  int        rc = stage_runner_run(&sv, opt, sum, err, sizeof err);
+  CHECK(rc == 0, "stage_runner_run returned %d: %s", rc, err);
+  return rc;
+}
+
+/* A run without files or progress. */
+static int run_quiet(Mock *m, RunnerSummary *sum) {
+  RunnerOptions opt = quiet_options();
+  return run(m, &opt, sum);
+}
+
+/* The run ended at t = T exactly: the runner's clock and the mock's (the sum of the accepted steps). */
+static void check_end_exactly(const char *name, const Mock *m, const RunnerSummary *sum, double T) {
+  CHECK(sum->t == T && m->t == T, "%s: end at t = %.17g (runner), %.17g (accepted steps), expected %g exactly", name, sum->t, m->t, T);
+}
+
+/* ---------------------------------------------------------------------------------------------------- */
+/* The cases                                                                                            */
+
+static void case_accept(void) {
+  Mock          m;
+  RunnerSummary sum;
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = fixed_stage(1.0, 10, 1);
+  if (run_quiet(&m, &sum)) return;
+  CHECK(m.nsolve == 10 && m.naccept == 10 && sum.steps == 10 && sum.cutbacks == 0, "solves %d, accepts %d, steps %d, cutbacks %d (expected 10, 10, 10, 0)",
+        m.nsolve, m.naccept, sum.steps, sum.cutbacks);
+  for (int k = 0; k < m.naccept && k < 10; k++) CHECK(near(m.accept_h[k], 0.1, 1e-14), "step %d: h = %.17g, expected 0.1", k, m.accept_h[k]);
+  check_end_exactly(__func__, &m, &sum, 1.0);
+  CHECK(near(m.x, m.x0 * exp(-1.0 / m.tau), 1e-14), "x = %.17g, expected x0 exp(-t/tau) = %.17g", m.x, m.x0 * exp(-1.0 / m.tau));
+
+  mock_init(&m); /* geometric: first = 1.5 (2 - 1)/(2^4 - 1) = 0.1 */
+  m.nstage = 1, m.stage[0] = fixed_stage(1.5, 4, 2);
+  if (run_quiet(&m, &sum)) return;
+  const double want[4] = {0.1, 0.2, 0.4, 0.8};
+  CHECK(m.naccept == 4, "geometric: %d steps, expected 4", m.naccept);
+  for (int k = 0; k < m.naccept && k < 4; k++) CHECK(near(m.accept_h[k], want[k], 1e-14), "geometric step %d: h = %.17g, expected %g", k, m.accept_h[k], want[k]);
+  CHECK(near(sum.t, 1.5, 1e-15), "geometric: end at t = %.17g, expected 1.5", sum.t);
+}
+
+static void case_reject(void) {
+  Mock          m;
+  RunnerSummary sum;
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = adaptive_stage(1.0, 0.1, 1.0, 1.0, MEASURE_VOLUME, 0.1);
+  m.err_level = 0.1, m.spike_solve = 4, m.spike = 3;
+  if (run_quiet(&m, &sum)) return;
+  /* step_control_cut_factor: STEP_SAFETY / ratio within [0.1, 0.5], with STEP_SAFETY the documented 0.9 */
+  CHECK(STEP_SAFETY == 0.9 && m.nsolve >= 5, "STEP_SAFETY %g (docs/driver.md: 0.9), %d solves", STEP_SAFETY, m.nsolve);
+  CHECK(near(m.solve_h[3], 0.1, 1e-14), "the rejected step: h = %.17g, expected 0.1", m.solve_h[3]);
+  CHECK(near(m.solve_h[4], 0.3 * 0.1, 1e-14), "the retried step: h = %.17g, expected 0.9/3 x 0.1 = 0.03", m.solve_h[4]);
+  CHECK(sum.rejected_error == 1 && sum.cutbacks == 1, "rejected %d, cutbacks %d (expected 1, 1)", sum.rejected_error, sum.cutbacks);
+  CHECK(m.naccept == m.nsolve - 1, "accepts %d, solves %d: one solve is the rejected one", m.naccept, m.nsolve);
+  for (int k = 3; k < m.naccept; k++) CHECK(m.accept_h[k] <= 0.03 * (1 + 1e-12), "step %d after the rejection: h = %g > 0.03 (growth 1)", k, m.accept_h[k]);
+  check_end_exactly(__func__, &m, &sum, 1.0);
+}
+
+static void case_cutback(void) {
+  Mock          m;
+  RunnerSummary sum;
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = fixed_stage(1.0, 10, 1);
+  m.fail_solve = 4;
+  if (run_quiet(&m, &sum)) return;
+  CHECK(STEP_CUT_DIVERGED == 0.25, "STEP_CUT_DIVERGED %g, the documented 0.25", STEP_CUT_DIVERGED);
+  CHECK(m.nsolve == 13 && m.naccept == 12 && sum.steps == 12, "solves %d, accepts %d, steps %d (expected 13, 12, 12)", m.nsolve, m.naccept, sum.steps);
+  CHECK(near(m.solve_h[3], 0.1, 1e-14) && near(m.solve_h[4], 0.025, 1e-14), "failed step h = %.17g, retried h = %.17g (expected 0.1, 0.025)",
+        m.solve_h[3], m.solve_h[4]);
+  const double want[12] = {0.1, 0.1, 0.1, 0.025, 0.05, 0.025, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1};
+  for (int k = 0; k < m.naccept && k < 12; k++) CHECK(fabs(m.accept_h[k] - want[k]) <= 1e-15, "step %d: h = %.17g, expected %g", k, m.accept_h[k], want[k]);
+  CHECK(sum.cutbacks == 1 && sum.rejected_error == 0, "cutbacks %d, rejected by error %d (expected 1, 0)", sum.cutbacks, sum.rejected_error);
+  check_end_exactly(__func__, &m, &sum, 1.0);
+  CHECK(near(m.x, m.x0 * exp(-1.0 / m.tau), 1e-14), "x = %.17g, expected %.17g", m.x, m.x0 * exp(-1.0 / m.tau));
+}
+
+static void case_event(void) {
+  Mock          m;
+  RunnerSummary sum;
+  const double  q1 = 0.537, q2 = 0.587;
+  mock_init(&m);
+  m.nstage   = 2;
+  m.stage[0] = fixed_stage(1.0, 10, 1), m.stage[0].until = (StageEvent){EVENT_Q_ABOVE, q1};
+  m.stage[1] = fixed_stage(1.0, 10, 1), m.stage[1].until = (StageEvent){EVENT_Q_ABOVE, q2};
+  if (run_quiet(&m, &sum)) return;
+  CHECK(m.naccept == 7, "%d steps, expected 7: 5 x 0.1 and the landing, then the redone first step of stage 1", m.naccept);
+  double t1 = m.stage_t0[1], t2 = sum.t; /* q = t */
+  printf("event: stage 0 ends at q - %g = %.3g, stage 1 at q - %g = %.3g (tolerance %g)\n", q1, t1 - q1, q2, t2 - q2, EVENT_TOL * q1);
+  CHECK(fabs(t1 - q1) <= EVENT_TOL * q1, "stage 0 ended at q = %.17g, expected %g within %g", t1, q1, EVENT_TOL * q1);
+  CHECK(fabs(t2 - q2) <= EVENT_TOL * q2, "stage 1 ended at q = %.17g, expected %g within %g", t2, q2, EVENT_TOL * q2);
+  CHECK(near(m.accept_t[4], 0.5, 1e-14), "the step before the landing ended at %.17g, expected 0.5", m.accept_t[4]);
+  CHECK(m.nsolve == m.naccept + 1 && near(m.solve_h[6], 0.1, 1e-14), "solves %d (expected %d: stage 1's first step of 0.1 (%g) overshoots, redone)",
+        m.nsolve, m.naccept + 1, m.solve_h[6]);
+  CHECK(sum.cutbacks == 0 && m.t == t2, "cutbacks %d (expected 0), end %.17g (the mock's clock %.17g)", sum.cutbacks, t2, m.t);
+}
+
+static void case_output_times(void) {
+  Mock          m;
+  RunnerSummary sum;
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = fixed_stage(1.0, 3, 1);
+  const double times[3] = {0.25, 0.5, 0.8}, want[5] = {0, 0.25, 0.5, 0.8, 1.0};
+  m.stage[0].nout_times = 3;
+  memcpy(m.stage[0].out_times, times, sizeof times);
+  if (run_quiet(&m, &sum)) return;
+  CHECK(m.nwrite == 5, "%d field outputs, expected 5 (t = 0, the three times, the stage's end)", m.nwrite);
+  for (int k = 0; k < m.nwrite && k < 5; k++) CHECK(m.write_t[k] == want[k], "fields %d at t = %.17g, expected %g exactly", k, m.write_t[k], want[k]);
+}
+
+/* ---------------------------------------------------------------------------------------------------- */
+/* Checkpoint and restart                                                                               */
+
+static void checkpoint_mock(Mock *m) {
+  mock_init(m);
+  m->nstage = 2, m->err_coef = 0.5;
+  m->stage[0] = adaptive_stage(1.0, 0.05, 1.5, 0.3, MEASURE_OUTPUT, 0.02);
+  m->stage[1] = adaptive_stage(1.0, 0.05, 1.5, 0.3, MEASURE_VOLUME, 0.05);
+}
+
+static int make_dir(const char *tmpl, char *dir, size_t n, const char *sub) {
+  snprintf(dir, n, "%s/%s", tmpl, sub);
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "mkdir -p '%s'", dir);
+  return system(cmd);
+}
+
+static int latest_step(const char *dir) {
+  char path[1200];
+  int  step = -1, ranks = 0;
+  snprintf(path, sizeof path, "%s/checkpoint.latest", dir);
+  FILE *fp = fopen(path, "r");
+  if (fp && fscanf(fp, "%d %d", &step, &ranks) != 2) step = -1;
+  if (fp) fclose(fp);
+  return step;
+}
+
+static void case_checkpoint(const char *tmp) {
+  char          whole_dir[1100], ckpt_dir[1100], scene[1200];
+  Mock          whole, part, resumed;
+  RunnerSummary s_whole, s_part, s_res;
+  if (make_dir(tmp, whole_dir, sizeof whole_dir, "whole") || make_dir(tmp, ckpt_dir, sizeof ckpt_dir, "ckpt")) {
+    CHECK(0, "cannot create the run folders under %s", tmp);
+    return;
+  }
+  snprintf(scene, sizeof scene, "%s/scene.txt", tmp); /* hashed into the checkpoint: a restart needs the same */
+  FILE *fp = fopen(scene, "w");
+  if (fp) fprintf(fp, "mock scene\n"), fclose(fp);
+
+  RunnerOptions opt = quiet_options();
+  opt.scene_file = scene, opt.outdir = whole_dir;
+  checkpoint_mock(&whole);
+  if (run(&whole, &opt, &s_whole)) return;
+
+  /* The 'output' measure on x' = -x/tau with equal steps h is e^(h/tau) - 1 (the increment's change over the
+     increment); the PI controller holds h where 0.9 ratio^-(alpha - beta) = 1: h = tau ln(1 + tol 0.9^(1/0.85)). */
+  double h_pi = whole.tau * log(1 + 0.02 * pow(STEP_SAFETY, 1 / (1 - 0.15))), h_25 = whole.accept_h[25];
+  printf("checkpoint: stage 0's step 25 h = %.9g, the PI fixed point %.9g\n", h_25, h_pi);
+  CHECK(near(h_25, h_pi, 1e-5) && whole.accept_t[25] < 1, "stage 0 settles at h = %.9g (step 25), the controller's fixed point %.9g", h_25, h_pi);
+  opt.outdir = ckpt_dir, opt.checkpoint_every = 3, opt.max_steps = 7;
+  checkpoint_mock(&part);
+  if (run(&part, &opt, &s_part)) return;
+  int k = latest_step(ckpt_dir);
+  CHECK(s_part.stopped && s_part.steps == 7 && k == 6, "interrupted run: stopped %d after %d steps, checkpoint.latest %d (expected 1, 7, 6)",
+        s_part.stopped, s_part.steps, k);
+
+  opt.restart = 1, opt.max_steps = -1;
+  checkpoint_mock(&resumed); /* a fresh solver: the state comes from the checkpoint */
+  resumed.x = -1, resumed.t = -1;
+  if (run(&resumed, &opt, &s_res) || k != 6) return;
+  CHECK(whole.naccept > 12 && whole.accept_t[5] < 1.0, "the whole run: %d steps, step 6 at t = %g (expected > 12 steps, step 6 inside stage 0)",
+        whole.naccept, whole.accept_t[5]);
+  CHECK(resumed.naccept == whole.naccept - k && s_res.steps == s_whole.steps, "restart: %d steps after the checkpoint, %d in all; whole run %d, %d",
+        resumed.naccept, s_res.steps, whole.naccept - k, s_whole.steps);
+  int n = resumed.naccept < whole.naccept - k ? resumed.naccept : whole.naccept - k, same = 1;
+  for (int i = 0; i < n; i++) same &= !memcmp(&resumed.accept_t[i], &whole.accept_t[k + i], sizeof(double));
+  CHECK(same, "restart: accepted times differ from the whole run's from step %d on", k);
+  CHECK(!memcmp(&resumed.x, &whole.x, sizeof(double)) && !memcmp(&s_res.t, &s_whole.t, sizeof(double)) && near(s_res.t, 2.0, 1e-14),
+        "restart: x %.17g, t %.17g; whole run x %.17g, t %.17g (expected equal bit for bit, t = 2)", resumed.x, s_res.t, whole.x, s_whole.t);
+}
+
+int main(int argc, char **argv) {
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "The stage runner with a mock StepSolver.\n"));
+  char tmp[] = "/tmp/stage_runner_mock_XXXXXX";
+  if (!mkdtemp(tmp)) return perror("mkdtemp"), 1;
+  case_accept();
+  case_reject();
+  case_cutback();
+  case_event();
+  case_output_times();
+  case_checkpoint(tmp);
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+  if (!failures && system(cmd)) fprintf(stderr, "note: could not remove %s\n", tmp);
+  if (failures) fprintf(stderr, "%d check(s) failed (run folder kept: %s)\n", failures, tmp);
+  else printf("stage runner with a mock solver: all checks hold\n");
+  PetscCall(PetscFinalize());
+  return failures ? 1 : 0;
+}
