@@ -113,13 +113,13 @@ static void progress_line(Run *r, const StepOutcome *o, double h) {
 }
 
 /* The error estimate of a converged step relative to tol ('output', 'volume'), or -1 when there is none
- * (worst_point, fixed steps, the first step of a stage, an instant step). */
+ * (worst_point, fixed steps, the first step of a stage, an instant step, a solver that reports no outputs). */
 static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
   const StepControl *sc = r->view.steps;
   RunState          *st = &r->st;
   if (!sc->adaptive || sc->measure == MEASURE_WORST_POINT || rq->h == 0) return -1;
   if (sc->measure == MEASURE_VOLUME) return rq->first_in_stage || o->vol_err < 0 ? -1 : o->vol_err / sc->tol;
-  if (rq->first_in_stage || !st->have_prev || st->nout != o->nout || st->h_prev <= 0) return -1;
+  if (rq->first_in_stage || !st->have_prev || o->nout <= 0 || st->nout != o->nout || st->h_prev <= 0) return -1;
   double ratio = rq->h / st->h_prev, worst = 0;
   for (int g = 0; g <= o->group[o->nout - 1]; g++) {
     double num = 0, den = 0, scale = 0;
