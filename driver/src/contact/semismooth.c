@@ -383,7 +383,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
      indenter row's shift (one contact node's stiffness) and the complementarity constant. */
-  p->time = 0, p->dt = 0, p->umat_tol = 0;
+  p->time = 0, p->dt = 0, p->umat = umat_control(UMAT_CONTROL_OFF, 0);
   PetscCall(fe_residual(NULL, in->U, in->Ru, p));
   PetscCall(fe_problem_commit(p));
   PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, p));

@@ -64,9 +64,9 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(VecGetArray(Floc, &fa));
   PetscCall(fe_constraint_to_global(&p->con, ua)); /* the fixed components (zero values); nodal frames to global axes */
   /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
-     p->umat_tol) and, per cell, its phi; p->mat itself is never written. */
+     p->umat) and, per cell, its phi; p->mat itself is never written. */
   UmatMaterial local = p->mat, *mat = &local;
-  if (mat->pr.tol >= 0 && mat->pr.tol < mat->nprops && p->umat_tol >= 0) mat->props[mat->pr.tol] = p->umat_tol;
+  umat_control_apply(mat, p->umat);
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
     for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]], re[b] = 0;

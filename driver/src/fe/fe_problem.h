@@ -48,11 +48,8 @@ typedef struct FeProblem {
   Vec             ddsdde_u;             /* ... which is this one */
   PetscReal       time, dt;             /* end of the step being solved, its length */
   PetscReal       min_pnewdt;           /* smallest PNEWDT of the last residual evaluation (all ranks) */
-  PetscReal       umat_tol;             /* the UMAT's own step control for this evaluation (PROPS tol):
-                                           < 0 as the material gives it, >= 0 this value (0: off). While
-                                           Newton iterates it is off: a point whose step the UMAT would
-                                           reject keeps its old stress with a new tangent, which no
-                                           iteration can converge; the stepper judges the converged state */
+  UmatControl     umat;                 /* the UMAT's own step control for this evaluation (umat_call.h;
+                                           fe_problem_set_umat_control) */
   FeConstraint    con;                  /* fixed components and mirror planes (nodal frames) */
   PetscReal       reaction_local[3];    /* the supports' force from this rank's cells at the last residual */
   PetscReal       reaction[3];          /* ... summed over the ranks by fe_problem_reactions */
@@ -83,6 +80,8 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure);
 PetscErrorCode fe_problem_destroy(FeProblem *p);
+/* The UMAT's own step control for the following evaluations (off while Newton iterates). */
+static inline void fe_problem_set_umat_control(FeProblem *p, UmatControl c) { p->umat = c; }
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */
 PetscErrorCode fe_problem_set_initial_stress(FeProblem *p, const PetscReal stress0[6]);
 /* phi per cell: seeded normal (mean, std) kept within [lo, hi], a function of the cell centroids and the

@@ -58,6 +58,31 @@ typedef struct {
   int    noel, npt, kstep, kinc;
 } UmatCall;
 
+/* How an evaluation sets the UMAT's own step control (its PROPS tol, hence PNEWDT): off (tol 0), as the material
+ * gives it, or at a given tolerance (the worst_point error measure). While Newton iterates it is off: a point whose
+ * step the UMAT would reject keeps its old stress with a new tangent, which no iteration can converge; the stepper
+ * judges the converged state. OFF is 0, so a zeroed struct is off. */
+typedef enum { UMAT_CONTROL_OFF = 0, UMAT_CONTROL_AS_GIVEN, UMAT_CONTROL_AT } UmatControlMode;
+typedef struct {
+  UmatControlMode mode;
+  double          tol; /* UMAT_CONTROL_AT */
+} UmatControl;
+
+static inline UmatControl umat_control(UmatControlMode mode, double tol) {
+  UmatControl c = {mode, mode == UMAT_CONTROL_AT ? tol : 0};
+  return c;
+}
+/* The tolerance an evaluation under c uses (0: no control). */
+static inline double umat_control_tol(const UmatMaterial *mat, UmatControl c) {
+  if (c.mode == UMAT_CONTROL_AT) return c.tol;
+  if (c.mode == UMAT_CONTROL_OFF) return 0;
+  return mat->pr.tol >= 0 && mat->pr.tol < mat->nprops ? mat->props[mat->pr.tol] : 0;
+}
+/* A copy of the material's PROPS set for c (mat is the copy). */
+static inline void umat_control_apply(UmatMaterial *mat, UmatControl c) {
+  if (c.mode != UMAT_CONTROL_AS_GIVEN && mat->pr.tol >= 0 && mat->pr.tol < mat->nprops) mat->props[mat->pr.tol] = umat_control_tol(mat, c);
+}
+
 void umat_material_set_name(UmatMaterial *mat, const char *name);
 /* Call the linked UMAT. call->pnewdt is set large before the call, as Abaqus does. */
 void umat_invoke(const UmatMaterial *mat, UmatCall *call);

@@ -39,9 +39,7 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
 }
 
 PetscReal fe_common_umat_tol(const FeCommon *c, const StepRequest *rq) {
-  const UmatMaterial *m = &c->p->mat;
-  if (rq->umat_tol >= 0) return rq->umat_tol;
-  return m->pr.tol >= 0 && m->pr.tol < m->nprops ? m->props[m->pr.tol] : 0;
+  return umat_control_tol(&c->p->mat, rq->umat);
 }
 
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {

@@ -81,7 +81,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   SNESConvergedReason reason;
   PetscInt            its;
   if (fe_common_set_loads(&f->c, rq)) return 1;
-  p->umat_tol = 0; /* Newton iterates without the UMAT's error control */
+  fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
   PetscErrorCode ierr;
   if ((ierr = lagged_solve(f, rq, &reason, &its))) {
     err[0] = '\0'; /* main prints PETSc's message */
@@ -93,9 +93,9 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   PetscBool same = PETSC_FALSE;
   if (p->ddsdde_valid) VecEqual(f->U, p->ddsdde_u, &same);
   if (tol > 0 || !same) { /* the converged state again, with the UMAT's PNEWDT on */
-    p->umat_tol = tol;
+    fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
     if (fe_residual(f->snes, f->U, f->R, p)) return 1;
-    p->umat_tol = 0;
+    fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   }
   o->pnewdt = p->min_pnewdt;
   if (fe_common_observe(&f->c, rq, o)) return 1;
@@ -321,7 +321,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
     return (int)ierr;
   }
   if (!opt->restart) { /* the initial state: the UMAT initialises its state on a zero increment */
-    p->time = 0, p->dt = 0, p->umat_tol = 0;
+    p->time = 0, p->dt = 0, p->umat = umat_control(UMAT_CONTROL_OFF, 0);
     if (fe_residual(f.snes, f.U, f.R, p) || fe_problem_commit(p) || fe_problem_stats(p, sc->axis, &f.c.stats, PETSC_FALSE, f.c.quantiles) ||
         fe_problem_reactions(p))
       return 1;

@@ -67,7 +67,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   else in->fref = PetscMax(PetscMax(d->load_max, in->ct.kn * PetscAbsReal(in->target)), 1e-300);
   int      status;
   PetscInt its = 0;
-  p->umat_tol  = 0; /* Newton iterates without the UMAT's error control */
+  fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
   in->etol     = rq->newton_etol;
   PetscErrorCode ierr = semismooth_step(in, rq->h, &status, &its);
   if (ierr) {
@@ -79,9 +79,9 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   if (!o->converged) return 0;
   PetscReal tol = fe_common_umat_tol(&d->c, rq), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
-    p->umat_tol = tol;
+    fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
     if (semismooth_evaluate(in, &m)) return 1;
-    p->umat_tol = 0;
+    fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   }
   o->pnewdt = p->min_pnewdt;
   if (fe_common_observe(&d->c, rq, o)) return 1;

@@ -82,7 +82,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   for (int i = 0; i < n; i++) target[i] = point_target(sg, i, pt->start, rq->lambda, rq->ts0 + rq->h);
   for (int i = 0; i < n; i++) deps[i] = pt->last_dt > 0 && rq->h > 0 ? pt->last_deps[i] * rq->h / pt->last_dt : 0;
   pt->mat = pt->sc->mat;
-  if (rq->umat_tol >= 0 && pt->mat.pr.tol >= 0 && pt->mat.pr.tol < pt->mat.nprops) pt->mat.props[pt->mat.pr.tol] = rq->umat_tol;
+  umat_control_apply(&pt->mat, rq->umat);
   pt->cur.time[0] = rq->ts0, pt->cur.time[1] = rq->t0;
   int rc = point_mixed_step(&pt->mat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
   /* a UMAT that asks for a smaller step: 'converged' with PNEWDT < 1, so the runner cuts by PNEWDT */

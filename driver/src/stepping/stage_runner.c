@@ -188,8 +188,9 @@ static void plan_step(Run *r, StepRequest *rq, int *at_output) {
   }
   rq->lambda = r->view.instant || dur == 0 ? 1 : fmin((st->t_stage + rq->h) / dur, 1);
   const StepControl *sc = r->view.steps;
-  rq->umat_tol          = sc->adaptive && sc->measure == MEASURE_WORST_POINT ? (sc->tol > 0 ? sc->tol : -1) : 0;
-  if (!sc->adaptive) rq->umat_tol = -1; /* fixed steps: the material as given */
+  if (!sc->adaptive) rq->umat = umat_control(UMAT_CONTROL_AS_GIVEN, 0); /* fixed steps: the material as given */
+  else if (sc->measure != MEASURE_WORST_POINT) rq->umat = umat_control(UMAT_CONTROL_OFF, 0);
+  else rq->umat = sc->tol > 0 ? umat_control(UMAT_CONTROL_AT, sc->tol) : umat_control(UMAT_CONTROL_AS_GIVEN, 0);
   rq->want_volume_error = sc->adaptive && sc->measure == MEASURE_VOLUME;
   rq->newton_etol       = sc->adaptive && sc->measure != MEASURE_WORST_POINT && sc->tol > 0 ? NEWTON_KAPPA * sc->tol : 0;
 }

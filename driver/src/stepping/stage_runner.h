@@ -18,6 +18,7 @@
 
 #include "../io/binfile.h"
 #include "../io/yaml_doc.h"
+#include "../material/umat_call.h"
 #include "step_control.h"
 
 /* What the runner needs of a stage. */
@@ -43,7 +44,7 @@ typedef struct {
   int    s, first_in_stage;
   double t0, ts0, h, lambda;
   double h_prev;   /* the last accepted step's length (0: none yet) */
-  double umat_tol; /* >= 0: evaluate the converged state with the UMAT's own control at this tol (worst_point) */
+  UmatControl umat; /* the UMAT's own control for judging the converged state (worst_point: at the measure's tol) */
   int    want_volume_error;
   double newton_etol; /* > 0: Newton may stop once its estimated remaining error is below this fraction of the
                          step's increment (NEWTON_KAPPA x the error measure's tol); 0: the residual test only */
