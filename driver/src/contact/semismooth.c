@@ -296,7 +296,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     PetscCall(line_search(in, dur, in->line_search && changes == 0 && !shift, damp > 0, &m));
     merit_prev = merit, merit = m;
   }
-  *its_out = k;
+  *its_out = k, in->its_total += k;
   PetscFunctionReturn(0);
 }
 
@@ -383,7 +383,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
      indenter row's shift (one contact node's stiffness) and the complementarity constant. */
-  p->time = 0, p->dt = 0, p->umat = umat_control(UMAT_CONTROL_OFF, 0);
+  fe_problem_set_step(p, 0, 0), fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   PetscCall(fe_residual(NULL, in->U, in->Ru, p));
   PetscCall(fe_problem_commit(p));
   PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, p));
@@ -425,4 +425,28 @@ PetscErrorCode semismooth_destroy(Semismooth *in) {
   PetscCall(MatDestroy(&in->Kmf));
   PetscCall(PetscFree(in->history.sig));
   PetscFunctionReturn(0);
+}
+
+void semismooth_set_stage(Semismooth *in, PetscBool depth_control, PetscBool new_stage) {
+  in->depth_control = depth_control;
+  if (new_stage) in->have_rate = PETSC_FALSE; /* the last stage's increment predicts nothing in this one */
+}
+
+/* The force scale of the residual test: the largest load so far or this target (force control), or the depth row's
+   force k_n |target| (depth control; contact.h). */
+void semismooth_set_target(Semismooth *in, PetscReal target, PetscReal load_max, PetscReal etol) {
+  in->target = target, in->etol = etol;
+  in->fref   = PetscMax(PetscMax(load_max, in->depth_control ? in->ct.kn * PetscAbsReal(target) : target), 1e-300);
+}
+
+int semismooth_state_io(Semismooth *in, BinFile *f, int write) {
+  PetscReal r[3] = {in->ur0, in->rateur, in->dt_prev};
+  PetscInt  n[4] = {in->have_rate, in->its_total, in->cycles, in->nactive};
+  if (write) binfile_write(f, r, sizeof r[0], 3), binfile_write(f, n, sizeof n[0], 4);
+  else {
+    binfile_read(f, r, sizeof r[0], 3), binfile_read(f, n, sizeof n[0], 4);
+    in->ur0 = in->ur = r[0], in->rateur = r[1], in->dt_prev = r[2];
+    in->have_rate = n[0] ? PETSC_TRUE : PETSC_FALSE, in->its_total = n[1], in->cycles = n[2], in->nactive = n[3];
+  }
+  return !f->ok;
 }

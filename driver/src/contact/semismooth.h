@@ -8,6 +8,7 @@
 #define SEMISMOOTH_H
 
 #include "../fe/fe_problem.h"
+#include "../io/binfile.h"
 #include "contact.h"
 #include "indent_scene.h"
 #include "indent_solver.h"
@@ -59,6 +60,14 @@ PetscErrorCode semismooth_evaluate(Semismooth *in, PetscReal *merit);
 PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out);
 /* After a converged step at zero load with nothing in contact: the indenter down onto the surface. */
 PetscErrorCode semismooth_rest_on_surface(Semismooth *in);
+/* A stage's control (force or depth); new_stage: the last increment no longer predicts the next step. */
+void semismooth_set_stage(Semismooth *in, PetscBool depth_control, PetscBool new_stage);
+/* The next step's target (load or depth at its end), the largest load so far (the residual test's force scale) and
+   Newton's error tolerance (etol, see semismooth_step). */
+void semismooth_set_target(Semismooth *in, PetscReal target, PetscReal load_max, PetscReal etol);
+/* The state a restart needs that every rank holds alike (the depth, its last increment, the counters, the number
+   of active nodes): written or read (write 0) in one order. Returns nonzero when f failed. */
+int semismooth_state_io(Semismooth *in, BinFile *f, int write);
 /* Commit the converged step; same_stage: its increments predict the next step. */
 PetscErrorCode semismooth_commit(Semismooth *in, PetscReal h, PetscBool same_stage);
 

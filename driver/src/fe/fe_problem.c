@@ -355,6 +355,13 @@ PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, P
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode fe_problem_set_pressures(FeProblem *p, PetscInt n, const PetscReal pressure[]) {
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; k++) p->pressure[k] = pressure[k];
+  PetscCall(fe_problem_update_loads(p));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode fe_problem_update_loads(FeProblem *p) {
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(p->fext));

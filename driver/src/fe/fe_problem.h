@@ -82,6 +82,12 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
 PetscErrorCode fe_problem_destroy(FeProblem *p);
 /* The UMAT's own step control for the following evaluations (off while Newton iterates). */
 static inline void fe_problem_set_umat_control(FeProblem *p, UmatControl c) { p->umat = c; }
+/* The step the following evaluations solve: its end time and length (0: the initial state). */
+static inline void fe_problem_set_step(FeProblem *p, PetscReal time, PetscReal dt) { p->time = time, p->dt = dt; }
+/* The boundary pressures of the pressure groups 0..n-1 at the step's end, and the load vector from them. */
+PetscErrorCode fe_problem_set_pressures(FeProblem *p, PetscInt n, const PetscReal pressure[]);
+/* The COO Jacobian set up by fe_jacobian_coo_setup is being destroyed: assemble by MatSetValues again. */
+static inline void fe_jacobian_coo_release(FeProblem *p) { p->coo_mat = NULL; }
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */
 PetscErrorCode fe_problem_set_initial_stress(FeProblem *p, const PetscReal stress0[6]);
 /* phi per cell: seeded normal (mean, std) kept within [lo, hi], a function of the cell centroids and the

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC 0x43433952 /* "CC9R" */
-#define CKPT_VERSION 3
+#define CKPT_VERSION 4 /* 4: the indenter's counters as integers (semismooth_state_io) */
 
 static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
   snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);

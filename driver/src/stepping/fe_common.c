@@ -45,12 +45,13 @@ PetscReal fe_common_umat_tol(const FeCommon *c, const StepRequest *rq) {
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {
   const StageLoads *g = &c->sc->loads[rq->s];
   PetscFunctionBeginUser;
+  PetscReal pressure[FE_MAX_GROUPS];
   for (int k = 0; k < c->sc->npressure; k++) {
-    double target   = isnan(g->pressure[k]) ? c->start[k] : g->pressure[k];
-    c->p->pressure[k] = stage_pressure(g, k, c->start[k], target, rq->lambda, rq->ts0 + rq->h);
+    double target = isnan(g->pressure[k]) ? c->start[k] : g->pressure[k];
+    pressure[k]   = stage_pressure(g, k, c->start[k], target, rq->lambda, rq->ts0 + rq->h);
   }
-  PetscCall(fe_problem_update_loads(c->p));
-  c->p->time = rq->t0 + rq->h, c->p->dt = rq->h;
+  PetscCall(fe_problem_set_pressures(c->p, c->sc->npressure, pressure));
+  fe_problem_set_step(c->p, rq->t0 + rq->h, rq->h);
   PetscFunctionReturn(0);
 }
 
@@ -115,8 +116,7 @@ PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool wr
 int fe_common_resume(FeCommon *c) {
   if (c->fields && fe_output_resume(&c->out, c->nsaved, c->saved_times)) return 1;
   PetscFree(c->saved_times);
-  for (int k = 0; k < FE_MAX_GROUPS; k++) c->p->pressure[k] = c->now[k];
-  return fe_problem_update_loads(c->p) != 0 || fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE, c->quantiles) != 0;
+  return fe_problem_set_pressures(c->p, FE_MAX_GROUPS, c->now) != 0 || fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE, c->quantiles) != 0;
 }
 
 void fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {

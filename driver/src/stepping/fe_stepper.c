@@ -321,7 +321,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
     return (int)ierr;
   }
   if (!opt->restart) { /* the initial state: the UMAT initialises its state on a zero increment */
-    p->time = 0, p->dt = 0, p->umat = umat_control(UMAT_CONTROL_OFF, 0);
+    fe_problem_set_step(p, 0, 0), fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
     if (fe_residual(f.snes, f.U, f.R, p) || fe_problem_commit(p) || fe_problem_stats(p, sc->axis, &f.c.stats, PETSC_FALSE, f.c.quantiles) ||
         fe_problem_reactions(p))
       return 1;
@@ -339,7 +339,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
               sc->name, sum.steps, sum.its, sum.cutbacks, sum.rejected_error, sum.umat_calls, p->assembly_seconds, sum.wall, opt->outdir);
   VecDestroy(&f.U), VecDestroy(&f.R), VecDestroy(&f.U0), VecDestroy(&f.dU);
   MatDestroy(&f.J);
-  p->coo_mat = NULL;
+  fe_jacobian_coo_release(p);
   SNESDestroy(&f.snes);
   return rc;
 }

@@ -31,8 +31,8 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   IndentStage *st = &d->is->stage[s];
   Stage       *g  = &d->c.sc->stage[s];
   fe_common_stage_begin(&d->c, s, resumed, v);
-  d->in.depth_control = indent_stage_depth_control(st);
-  if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load, d->in.have_rate = PETSC_FALSE;
+  semismooth_set_stage(&d->in, indent_stage_depth_control(st), !resumed);
+  if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load;
   if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE) {
     snprintf(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
              d->is->file, s, g->name);
@@ -61,20 +61,17 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   IndentStage *st = &d->is->stage[rq->s];
   double       ts = rq->ts0 + rq->h;
   if (fe_common_set_loads(&d->c, rq)) return 1;
-  in->target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
-  if (st->until_load > 0 && rq->lambda >= 1) in->target = st->until_load; /* the event time is the stage's end */
-  if (!in->depth_control) in->fref = PetscMax(PetscMax(d->load_max, in->target), 1e-300);
-  else in->fref = PetscMax(PetscMax(d->load_max, in->ct.kn * PetscAbsReal(in->target)), 1e-300);
+  double target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
+  if (st->until_load > 0 && rq->lambda >= 1) target = st->until_load; /* the event time is the stage's end */
+  semismooth_set_target(in, target, d->load_max, rq->newton_etol);
   int      status;
   PetscInt its = 0;
   fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
-  in->etol     = rq->newton_etol;
   PetscErrorCode ierr = semismooth_step(in, rq->h, &status, &its);
   if (ierr) {
     err[0] = '\0'; /* main prints PETSc's message */
     return (int)ierr;
   }
-  in->its_total += its;
   o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
   if (!o->converged) return 0;
   PetscReal tol = fe_common_umat_tol(&d->c, rq), m;
@@ -148,14 +145,10 @@ static int promote(void *ctx) { return fe_common_promote(&((Indent *)ctx)->c); }
 /* The indenter's state, with the predictor's (the last converged increments), so a restart is exact: the values
    every rank holds alike here, the multipliers and the active set (per node) in the shared file (contact_io.h). */
 static int state_io(Indent *d, BinFile *f, int write) {
-  Semismooth *in = &d->in;
-  double      vals[9] = {in->ur0, in->rateur, in->dt_prev, (double)in->have_rate, d->load, d->load_max, d->stage_start, in->its_total, in->cycles};
-  if (write) binfile_write(f, vals, sizeof(double), 9), binfile_write(f, &in->nactive, sizeof in->nactive, 1);
-  else binfile_read(f, vals, sizeof(double), 9), binfile_read(f, &in->nactive, sizeof in->nactive, 1);
-  if (!write) {
-    in->ur0 = in->ur = vals[0], in->rateur = vals[1], in->dt_prev = vals[2], in->have_rate = vals[3] != 0;
-    d->load = vals[4], d->load_max = vals[5], d->stage_start = vals[6], in->its_total = (PetscInt)vals[7], in->cycles = (PetscInt)vals[8];
-  }
+  double vals[3] = {d->load, d->load_max, d->stage_start};
+  if (semismooth_state_io(&d->in, f, write)) return 1;
+  if (write) binfile_write(f, vals, sizeof(double), 3);
+  else binfile_read(f, vals, sizeof(double), 3), d->load = vals[0], d->load_max = vals[1], d->stage_start = vals[2];
   return !f->ok;
 }
 
