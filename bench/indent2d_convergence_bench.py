@@ -167,10 +167,14 @@ def ladder_rows(res, ladder):
 
 
 def reference(res, skey):
-    """The converged 2D answer of a scene: the P2 h_tip ladder's Richardson limit (last three rungs, order 0.5-4),
-    else the middle of the band that its last two rungs give for orders 1 to 2; its half-width the larger of
-    half that band and the distance to the P1 ladder's limit (the same rule) halved."""
-    a, b = (("lr2", "lr1") if skey == "lr" else ("bed2", "bed1"))
+    """The converged 2D answer of a scene: the P2 h_tip ladder's Richardson limit (last three rungs, order 0.5-4;
+    the loading rate's ladder with r_fine 0.9, the fine zone over the whole contact), else the middle of the band
+    that its last two rungs give for orders 1 to 2; its half-width the larger of half that band and the distance to
+    the P1 ladder's limit (the same rule) halved. None for lrphi (a P1-against-P2 check only)."""
+    pairs = {"lr": ("lr2f", "lr1"), "bed": ("bed2", "bed1")}
+    if skey not in pairs:
+        return None, None
+    a, b = pairs[skey]
     ref, hw = {}, {}
     for k in KEYS:
         lims = []
@@ -206,7 +210,7 @@ def ratio_cell(r):
 def section(res, command, note):
     L = [TITLE, "",
          f"Command: `{command}` ({time.strftime('%Y-%m-%d', time.gmtime())}; {note}).",
-         "`bench/indent2d_convergence_bench.py` (issue 26): loading_rate_a1 and bedding_theta45 as shipped, with an unload",
+         "`bench/indent2d_convergence_bench.py` (issue 26): loading_rate_a1 and bedding_theta45 (material, loads, steps as shipped), with an unload",
          "to zero in 20 s added for the residual depth, on ladders of h_tip (h_far = 7.5 h_tip: the whole mesh refined) and",
          "of the fine zone's radius r_fine, P1 and P2. h_max: depth at the end of loading; creep: the depth gained over the",
          "2000 s hold; h_res: the residual depth; σ̄: the mean of ‖σ‖ over the region under the tip (|x| < 0.125,",

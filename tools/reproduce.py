@@ -33,7 +33,7 @@ import paper_doc  # noqa: E402
 
 # key: (scene file in input/, quick overrides). Quick: mesh parameters, a looser step control (the stages'
 # output error measure at QUICK_OUTPUT_TOL, or the UMAT's tol where a scene has none), fields_every. Order: longest first in the full run (the 3D microindentation).
-IND2 = {"tol": 1.0e-3, "fields_every": 20}
+IND2 = {"tol": 1.0e-3, "fields_every": 20, "order": 1}  # quick 2D: P1 (the shipped scenes are P2)
 QUICK_OUTPUT_TOL = 0.05  # quick: the output error measure's tol (the shipped scenes: 1.5e-2)
 SCENES = {
     # the 3D scenes on their cheapest exact model (README, "Which model each scene uses"): kerogen and BN on the
@@ -41,9 +41,9 @@ SCENES = {
     "microindent_BN": {"file": "microindent_BN_sector", "mesh": {"h_tip": 5, "h_far": 20}, "order": 1, "tol": 1.0e-3},
     "microindent_BP": {"mesh": {"h_tip": 5, "h_far": 20}, "order": 1, "tol": 1.0e-3},
     "nanoindent_kerogen": {"file": "nanoindent_kerogen_sector", "mesh": {"h_tip": 0.2, "h_far": 0.8}, "order": 1, "tol": 1.0e-3},
-    "loading_rate_a0.1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3}),
-    "loading_rate_a1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3}),
-    "loading_rate_a10": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3}),
+    "loading_rate_a0.1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}),
+    "loading_rate_a1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}),
+    "loading_rate_a10": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}),
     "bedding_theta0": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta30": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta45": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
