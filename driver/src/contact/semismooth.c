@@ -389,8 +389,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   PetscCall(fe_jacobian(NULL, in->U, in->K, in->K, p));
   PetscCall(contact_node_stiffness(&in->ct, in->K));
   {
-    PetscReal E = 0, Eall, ell = 0, lall;
-    for (PetscInt k = 0; k < p->npoint; k++) E = PetscMax(E, p->ddsdde[k * 36]);
+    PetscReal E = fe_problem_stiffness_scale(p), Eall, ell = 0, lall;
     for (PetscInt i = 0; i < in->ct.n; i++) { /* a contact-node spacing from the weights */
       PetscReal w = in->ct.w[i], r = in->ct.X[i * in->ct.dim];
       ell = PetscMax(ell, p->dim == 3 ? PetscSqrtReal(w) : p->kin == KIN_AXISYMMETRIC ? (r > 0 ? w / (2 * PETSC_PI * r) : 0) : w / p->thickness);

@@ -355,6 +355,12 @@ PetscErrorCode fe_problem_set_phi(FeProblem *p, PetscReal mean, PetscReal std, P
   PetscFunctionReturn(0);
 }
 
+PetscReal fe_problem_stiffness_scale(const FeProblem *p) {
+  PetscReal E = 0;
+  for (PetscInt k = 0; k < p->npoint; k++) E = PetscMax(E, p->ddsdde[k * 36]);
+  return E;
+}
+
 PetscErrorCode fe_problem_set_pressures(FeProblem *p, PetscInt n, const PetscReal pressure[]) {
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < n; k++) p->pressure[k] = pressure[k];

@@ -86,6 +86,8 @@ static inline void fe_problem_set_umat_control(FeProblem *p, UmatControl c) { p-
 static inline void fe_problem_set_step(FeProblem *p, PetscReal time, PetscReal dt) { p->time = time, p->dt = dt; }
 /* The boundary pressures of the pressure groups 0..n-1 at the step's end, and the load vector from them. */
 PetscErrorCode fe_problem_set_pressures(FeProblem *p, PetscInt n, const PetscReal pressure[]);
+/* The largest D_1111 of this rank's points' last tangents (DDSDDE), a stiffness scale of the material. */
+PetscReal fe_problem_stiffness_scale(const FeProblem *p);
 /* The COO Jacobian set up by fe_jacobian_coo_setup is being destroyed: assemble by MatSetValues again. */
 static inline void fe_jacobian_coo_release(FeProblem *p) { p->coo_mat = NULL; }
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */
