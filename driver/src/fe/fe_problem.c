@@ -163,10 +163,78 @@ static void basis_gradients(const FeProblem *p, PetscInt q, const PetscReal *inv
     }
 }
 
+/* The closure dofs of each cell in the local vector and its rows in the global one, once: the residual gathers and
+ * scatters with them. */
+static PetscErrorCode cell_dofs_setup(FeProblem *p) {
+  PetscSection ls, gs;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalSection(p->dm, &ls));
+  PetscCall(DMGetGlobalSection(p->dm, &gs));
+  PetscCall(PetscMalloc2((p->cEnd - p->cStart) * p->nb, &p->cell_dofs, (p->cEnd - p->cStart) * p->nb, &p->cell_rows));
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscInt n, *idx = NULL;
+    PetscCall(DMPlexGetClosureIndices(p->dm, ls, ls, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+    PetscCheck(n == p->nb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "closure of cell %d has %d dofs, expected %d", (int)c, (int)n, (int)p->nb);
+    for (PetscInt b = 0; b < n; b++) p->cell_dofs[(c - p->cStart) * p->nb + b] = idx[b] < 0 ? -(idx[b] + 1) : idx[b];
+    PetscCall(DMPlexRestoreClosureIndices(p->dm, ls, ls, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+    PetscCall(DMPlexGetClosureIndices(p->dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+    for (PetscInt b = 0; b < n; b++) p->cell_rows[(c - p->cStart) * p->nb + b] = idx[b];
+    PetscCall(DMPlexRestoreClosureIndices(p->dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Per quadrature point, once: the basis gradients (and N/r, axisymmetric), the volume weight (plane strain per its
+ * thickness; axisymmetric 2 pi r, x1 = r) and the radius; an inverted cell or a point at r <= 0 (axisymmetric) is
+ * refused on every rank. */
+static PetscErrorCode point_geometry_setup(FeProblem *p) {
+  PetscReal v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64], rmin = PETSC_MAX_REAL;
+  PetscFunctionBeginUser;
+  PetscCheck(p->nq <= 64, PETSC_COMM_SELF, PETSC_ERR_SUP, "too many quadrature points");
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
+    PetscCall(DMPlexComputeCellGeometryFEM(p->dm, c, p->quad, v0, J, invJ, detJ));
+    for (PetscInt q = 0; q < p->nq; q++) {
+      PetscCheck(detJ[q] > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "cell %d is inverted (det J = %g)", (int)c, (double)detJ[q]);
+      PetscReal r = v0[q * p->dim], scale = p->kin == KIN_PLANE_STRAIN ? p->thickness : p->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : 1;
+      rmin = PetscMin(rmin, r);
+      p->radius[SV(p, c, q)] = r;
+      basis_gradients(p, q, &invJ[q * p->dim * p->dim], &p->grad[SV(p, c, q) * p->ns * p->dim]);
+      if (p->kin == KIN_AXISYMMETRIC)
+        for (PetscInt a = 0; a < p->ns; a++) p->shape_r[SV(p, c, q) * p->ns + a] = p->tab->T[0][(q * p->nb + a * p->dim) * p->dim] / r;
+      p->wdetJ[SV(p, c, q)] = p->qweights[q] * detJ[q] * scale;
+    }
+  }
+  if (p->kin == KIN_AXISYMMETRIC) { /* on every rank, so that all stop together */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmin, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)p->dm)));
+    PetscCheck(rmin > 0, PetscObjectComm((PetscObject)p->dm), PETSC_ERR_ARG_WRONG,
+               "axisymmetric: a quadrature point has r = x = %g <= 0: the mesh must lie in x >= 0 (x is the radius)", (double)rmin);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The Lagrange space of the given order on the mesh, with the smallest symmetric rule exact for B^T D B (degree
+ * 2(k-1)): 1 point for P1, 4 for P2. */
+static PetscErrorCode space_setup(FeProblem *p, const FeFixed *fixed, PetscInt nfixed) {
+  PetscQuadrature q;
+  PetscFunctionBeginUser;
+  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)p->dm), p->dim, p->dim, PETSC_TRUE, p->order, 2 * (p->order - 1), &p->fe));
+  PetscCall(PetscObjectSetName((PetscObject)p->fe, "displacement"));
+  PetscCall(PetscDTSimplexQuadrature(p->dim, PetscMax(2 * (p->order - 1), 1), PETSCDTSIMPLEXQUAD_MINSYM, &q));
+  PetscCall(PetscFESetQuadrature(p->fe, q));
+  PetscCall(PetscQuadratureDestroy(&q));
+  PetscCall(DMSetField(p->dm, 0, NULL, (PetscObject)p->fe));
+  PetscCall(DMCreateDS(p->dm));
+  PetscCall(fe_constraint_setup(&p->con, p->dm, p->fe, fixed, nfixed)); /* the section with its constrained components */
+  PetscCall(PetscFEGetQuadrature(p->fe, &p->quad));
+  PetscCall(PetscQuadratureGetData(p->quad, NULL, NULL, &p->nq, NULL, &p->qweights));
+  PetscCall(PetscFEGetCellTabulation(p->fe, 1, &p->tab));
+  p->nb = p->tab->Nb;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal thickness, PetscInt order,
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure) {
-  PetscReal rmin = PETSC_MAX_REAL; /* the smallest radius of a quadrature point (axisymmetric) */
   PetscFunctionBeginUser;
   p->dm        = dm;
   p->order     = order;
@@ -178,22 +246,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
              "the mesh is %dD but the kinematics (%s) need a %dD mesh", (int)p->dim,
              kin == KIN_3D ? "3d" : kin == KIN_PLANE_STRAIN ? "plane_strain" : "axisymmetric", kin == KIN_3D ? 3 : 2);
   PetscCheck(mat->ntens == (kin == KIN_3D ? 6 : 4), PetscObjectComm((PetscObject)dm), PETSC_ERR_PLIB, "NTENS");
-  PetscCall(PetscFECreateLagrange(PetscObjectComm((PetscObject)dm), p->dim, p->dim, PETSC_TRUE, order,
-                                  2 * (order - 1), &p->fe));
-  PetscCall(PetscObjectSetName((PetscObject)p->fe, "displacement"));
-  { /* The smallest symmetric rule exact for B^T D B (degree 2(k-1)): 1 point for P1, 4 for P2. */
-    PetscQuadrature q;
-    PetscCall(PetscDTSimplexQuadrature(p->dim, PetscMax(2 * (order - 1), 1), PETSCDTSIMPLEXQUAD_MINSYM, &q));
-    PetscCall(PetscFESetQuadrature(p->fe, q));
-    PetscCall(PetscQuadratureDestroy(&q));
-  }
-  PetscCall(DMSetField(dm, 0, NULL, (PetscObject)p->fe));
-  PetscCall(DMCreateDS(dm));
-  PetscCall(fe_constraint_setup(&p->con, dm, p->fe, fixed, nfixed)); /* the section with its constrained components */
-  PetscCall(PetscFEGetQuadrature(p->fe, &p->quad));
-  PetscCall(PetscQuadratureGetData(p->quad, NULL, NULL, &p->nq, NULL, &p->qweights));
-  PetscCall(PetscFEGetCellTabulation(p->fe, 1, &p->tab));
-  p->nb = p->tab->Nb;
+  PetscCall(space_setup(p, fixed, nfixed));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &p->cStart, &p->cEnd));
   p->npoint = (p->cEnd - p->cStart) * p->nq;
   p->nsv    = ST_STATEV + mat->nstatv;
@@ -203,45 +256,8 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
   PetscCall(check_vector_layout(p));
   PetscCall(PetscMalloc4(p->npoint * p->ns * p->dim, &p->grad, kin == KIN_AXISYMMETRIC ? p->npoint * p->ns : 0, &p->shape_r, p->npoint, &p->wdetJ,
                          p->npoint, &p->radius));
-  { /* closure dofs of each cell in the local vector, once: the residual gathers and scatters with them */
-    PetscSection ls, gs;
-    PetscCall(DMGetLocalSection(dm, &ls));
-    PetscCall(DMGetGlobalSection(dm, &gs));
-    PetscCall(PetscMalloc2((p->cEnd - p->cStart) * p->nb, &p->cell_dofs, (p->cEnd - p->cStart) * p->nb, &p->cell_rows));
-    for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-      PetscInt  n, *idx = NULL;
-      PetscCall(DMPlexGetClosureIndices(dm, ls, ls, c, PETSC_TRUE, &n, &idx, NULL, NULL));
-      PetscCheck(n == p->nb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "closure of cell %d has %d dofs, expected %d", (int)c, (int)n, (int)p->nb);
-      for (PetscInt b = 0; b < n; b++) p->cell_dofs[(c - p->cStart) * p->nb + b] = idx[b] < 0 ? -(idx[b] + 1) : idx[b];
-      PetscCall(DMPlexRestoreClosureIndices(dm, ls, ls, c, PETSC_TRUE, &n, &idx, NULL, NULL));
-      PetscCall(DMPlexGetClosureIndices(dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
-      for (PetscInt b = 0; b < n; b++) p->cell_rows[(c - p->cStart) * p->nb + b] = idx[b];
-      PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, c, PETSC_TRUE, &n, &idx, NULL, NULL));
-    }
-  }
-  {
-    PetscReal v0[3 * 64], J[9 * 64], invJ[9 * 64], detJ[64];
-    PetscCheck(p->nq <= 64, PETSC_COMM_SELF, PETSC_ERR_SUP, "too many quadrature points");
-    for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-      PetscCall(DMPlexComputeCellGeometryFEM(dm, c, p->quad, v0, J, invJ, detJ));
-      for (PetscInt q = 0; q < p->nq; q++) {
-        PetscCheck(detJ[q] > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "cell %d is inverted (det J = %g)", (int)c, (double)detJ[q]);
-        /* volume weight: plane strain per its thickness; axisymmetric 2 pi r (x1 = r) */
-        PetscReal r = v0[q * p->dim], scale = kin == KIN_PLANE_STRAIN ? thickness : kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : 1;
-        rmin = PetscMin(rmin, r);
-        p->radius[SV(p, c, q)] = r;
-        basis_gradients(p, q, &invJ[q * p->dim * p->dim], &p->grad[SV(p, c, q) * p->ns * p->dim]);
-        if (kin == KIN_AXISYMMETRIC)
-          for (PetscInt a = 0; a < p->ns; a++) p->shape_r[SV(p, c, q) * p->ns + a] = p->tab->T[0][(q * p->nb + a * p->dim) * p->dim] / r;
-        p->wdetJ[SV(p, c, q)]  = p->qweights[q] * detJ[q] * scale;
-      }
-    }
-  }
-  if (kin == KIN_AXISYMMETRIC) { /* on every rank, so that all stop together */
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rmin, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
-    PetscCheck(rmin > 0, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG,
-               "axisymmetric: a quadrature point has r = x = %g <= 0: the mesh must lie in x >= 0 (x is the radius)", (double)rmin);
-  }
+  PetscCall(cell_dofs_setup(p));
+  PetscCall(point_geometry_setup(p));
   for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->pr.phi >= 0 ? mat->props[mat->pr.phi] : 0;
   p->npressure = npressure;
   for (PetscInt g = 0; g < npressure; g++) {
