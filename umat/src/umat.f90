@@ -15,15 +15,14 @@ recursive subroutine umat( &
     ndi, nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, &
     celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, jstep, kinc)
   use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
-                         tangent_to_abaqus, rotate_mandel, mandel_w, is_finite
-  use ccix_props, only: ip_phi, ip_tol, is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, &
-                        is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, &
+  use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, tangent_to_abaqus
+  use ccix_props, only: ip_phi, ip_tol, is_pc_hard, is_iterations, is_flags, &
                         is_f_hard, is_f_soft, nstatv_diag, nstatv_min, message_len
-  use ccix_frame, only: flag_floor, flag_tension, flag_fallback
   use ccix_mixture, only: material_t, step_info_t, mixture_integrate, material_ddsdde, hard, soft
+  use ccix_state, only: state_rotate, state_unpack, state_pack, state_flags, suggest_step, step_ratio, &
+                        step_cutback, arguments_rejected
   use ccix_material_cache, only: material_for
-  use ccix_host, only: host_warning, host_stop
+  use ccix_host, only: host_stop
   implicit none
   character(len=80), intent(in) :: cmname
   integer, intent(in) :: ndi, nshr, ntens, nstatv, nprops, noel, npt, layer, kspt, jstep(*), kinc
@@ -39,9 +38,7 @@ recursive subroutine umat( &
   real(real64) :: deps(6), sig(6), d(6, 6), sig_full(6), phi, tol, ratio, frac(2)
   real(real64) :: sig_n(6, 2), pc_n(2), sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6)
   real(real64) :: sv(nstatv_min)   ! STATEV 1-32 at the start, rotated: STATEV itself changes only on success
-  real(real64), parameter :: cutback = 0.25_real64, max_growth = 1.5_real64
-  integer, parameter :: sig_slot(2) = [is_sig_hard, is_sig_soft], evp_slot(2) = [is_evp_hard, is_evp_soft]
-  integer :: code, k, flags
+  integer :: code, k
   logical :: initialise
   character(len=message_len) :: message
   character(len=160) :: where
@@ -66,8 +63,8 @@ recursive subroutine umat( &
   ! Arguments no smaller step can repair are rejected like a failed step (PNEWDT < 1, STRESS and
   ! STATEV unchanged, a message naming the argument): a negative or non-finite DTIME, a non-finite
   ! stored state (docs/umat.md "Rejected calls").
-  if (bad_arguments()) then
-    call suggest_step(pnewdt, cutback)
+  if (arguments_rejected(dtime, statev, props(ip_phi), noel, npt)) then
+    call suggest_step(pnewdt, step_cutback)
     call material_ddsdde(mat, ntens, ddsdde)
     return
   end if
@@ -89,12 +86,8 @@ recursive subroutine umat( &
     sv = statev(1:nstatv_min)
     if (drot(1, 1) /= 1 .or. drot(2, 2) /= 1 .or. drot(3, 3) /= 1 .or. drot(1, 2) /= 0 .or. &
         drot(2, 1) /= 0 .or. drot(1, 3) /= 0 .or. drot(3, 1) /= 0 .or. drot(2, 3) /= 0 .or. &
-        drot(3, 2) /= 0) call rotate_state(sv)
-    do k = hard, soft
-      sig_n(:, k) = sv(sig_slot(k):sig_slot(k) + 5) * mandel_w   ! Voigt stress -> Mandel
-    end do
-    pc_n(hard) = sv(is_pc_hard)
-    pc_n(soft) = sv(is_pc_soft)
+        drot(3, 2) /= 0) call state_rotate(drot, sv)
+    call state_unpack(sv, sig_n, pc_n)
   end if
 
   ! Strain increment: NTENS = 4 is 11, 22, 33, 12 with 13 = 23 = 0 (plane strain, axisymmetric).
@@ -106,22 +99,17 @@ recursive subroutine umat( &
                          sig_frames, pc, devp, devp_total, sig, d, info)
   if (info%failed) then
     ! Ask for a smaller step; STRESS and STATEV stay as they came in; DDSDDE elastic and finite.
-    call suggest_step(pnewdt, cutback)
+    call suggest_step(pnewdt, step_cutback)
     call material_ddsdde(mat, ntens, ddsdde)
     return
   end if
   ! Step control on the viscoplastic strain increment (PROPS(20) = tol > 0, theory.md sec. 3.6).
   if (tol > 0 .and. dtime > 0) then
     ratio = info%err_est / tol
-    if (ratio > 1) then
-      call suggest_step(pnewdt, max(cutback, 0.8_real64 / sqrt(ratio)))
+    call suggest_step(pnewdt, step_ratio(ratio))
+    if (ratio > 1) then   ! rejected: STRESS and STATEV stay as they came in
       call tangent()
       return
-    end if
-    if (ratio > 0) then
-      call suggest_step(pnewdt, min(max_growth, max(1.0_real64, 0.8_real64 / sqrt(ratio))))
-    else
-      call suggest_step(pnewdt, max_growth)
     end if
   end if
 
@@ -138,28 +126,12 @@ recursive subroutine umat( &
   sig_full = mandel_to_stress(sig)
   stress = sig_full(1:ntens)
   call tangent()
-  do k = hard, soft
-    sv(sig_slot(k):sig_slot(k) + 5) = sig_frames(:, k) / mandel_w
-  end do
-  sv(is_pc_hard) = pc(hard)
-  sv(is_pc_soft) = pc(soft)
-  if (info%viscoplastic) then
-    do k = hard, soft
-      sv(evp_slot(k):evp_slot(k) + 5) = sv(evp_slot(k):evp_slot(k) + 5) + devp(:, k) * mandel_w
-    end do
-    sv(is_evp_total:is_evp_total + 5) = sv(is_evp_total:is_evp_total + 5) + devp_total * mandel_w
-  end if
+  call state_pack(sig_frames, pc, devp, devp_total, info%viscoplastic, sv)
   statev(1:nstatv_min) = sv
   if (nstatv >= nstatv_diag) then
     ! Diagnostics (docs/umat.md): iterations, flags, yield function values at the end of the step.
-    flags = 0
-    do k = hard, soft
-      if (iand(info%flags(k), flag_floor) /= 0) flags = ior(flags, 2**(k - 1))
-      if (iand(info%flags(k), flag_tension) /= 0) flags = ior(flags, 4 * 2**(k - 1))
-      if (iand(info%flags(k), flag_fallback) /= 0) flags = ior(flags, 16)
-    end do
     statev(is_iterations) = info%iterations
-    statev(is_flags) = flags
+    statev(is_flags) = state_flags(info)
     statev(is_f_hard) = info%f(hard)
     statev(is_f_soft) = info%f(soft)
   end if
@@ -174,75 +146,5 @@ contains
       call material_ddsdde(mat, ntens, ddsdde)
     end if
   end subroutine tangent
-
-  !> True, with one line to the host (host_warning) naming the argument, its value and what was
-  !> expected, when DTIME is negative or not finite, or the stored state is not usable: a slot 1-32 not
-  !> finite (unless slot 13 <= 0 marks the state as uninitialised), or pc of a frame in use (slot 26)
-  !> not positive.
-  recursive logical function bad_arguments() result(bad)
-    character(len=*), parameter :: rejected = '; increment rejected (PNEWDT < 1) at element '
-    character(len=message_len) :: line
-    integer :: slot
-    bad = .true.
-    if (.not. (dtime >= 0 .and. dtime <= huge(dtime))) then
-      write (line, '(a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: DTIME = ', dtime, &
-        ': expected a finite time increment >= 0', rejected, noel, ', integration point ', npt
-      call host_warning(trim(line))
-      return
-    end if
-    if (is_finite(statev(is_pc_hard)) .and. statev(is_pc_hard) <= 0) then
-      bad = .false.   ! uninitialised: every stored slot is set from PROPS and STRESS
-      return
-    end if
-    if (all(abs(statev(1:nstatv_min)) <= huge(dtime))) then   ! all finite (NaN compares false)
-      slot = nstatv_min + 1
-    else
-      slot = 1
-    end if
-    do slot = slot, nstatv_min
-      if (.not. is_finite(statev(slot))) then
-        write (line, '(a,i0,a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: STATEV(', slot, ') = ', &
-          statev(slot), ': expected a finite number', rejected, noel, ', integration point ', npt
-        call host_warning(trim(line))
-        return
-      end if
-    end do
-    if (props(ip_phi) < 1 .and. .not. (statev(is_pc_soft) > 0)) then
-      write (line, '(a,i0,a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: STATEV(', is_pc_soft, ') = ', &
-        statev(is_pc_soft), ': expected the soft-frame pc > 0 ' // &
-        '(slot 13 > 0: the state is initialised)', &
-        rejected, noel, ', integration point ', npt
-      call host_warning(trim(line))
-      return
-    end if
-    bad = .false.
-  end function bad_arguments
-
-  !> Hosts differ in what PNEWDT holds on entry: Abaqus sets it large and takes the smallest request;
-  !> CalculiX passes -1 ("no request") and redoes the increment for ANY positive value, above 1 too
-  !> (docs/calculix.md). So with PNEWDT <= 0 on entry only a cutback (< 1) is written.
-  pure recursive subroutine suggest_step(pnewdt, ratio)
-    real(real64), intent(inout) :: pnewdt
-    real(real64), intent(in) :: ratio
-    if (pnewdt > 0) then
-      pnewdt = min(pnewdt, ratio)
-    else if (ratio < 1) then
-      pnewdt = ratio
-    end if
-  end subroutine suggest_step
-
-  !> R A R^T for every stored tensor: frame stresses, frame and overall viscoplastic strains.
-  pure recursive subroutine rotate_state(sv)
-    real(real64), intent(inout) :: sv(:)
-    integer :: kk
-    do kk = hard, soft
-      sv(sig_slot(kk):sig_slot(kk) + 5) = mandel_to_stress(rotate_mandel(drot, &
-                                            stress_to_mandel(sv(sig_slot(kk):sig_slot(kk) + 5))))
-      sv(evp_slot(kk):evp_slot(kk) + 5) = mandel_to_strain(rotate_mandel(drot, &
-                                            strain_to_mandel(sv(evp_slot(kk):evp_slot(kk) + 5))))
-    end do
-    sv(is_evp_total:is_evp_total + 5) = mandel_to_strain(rotate_mandel(drot, &
-                                          strain_to_mandel(sv(is_evp_total:is_evp_total + 5))))
-  end subroutine rotate_state
 
 end subroutine umat
