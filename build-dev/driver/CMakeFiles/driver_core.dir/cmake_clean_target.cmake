@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libdriver_core.a"
-)

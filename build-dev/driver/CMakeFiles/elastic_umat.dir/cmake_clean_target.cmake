@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libelastic_umat.a"
-)

@@ -1,2 +1,0 @@
-# Empty compiler generated dependencies file for creep_point.
-# This may be replaced when dependencies are built.

@@ -1,2 +1,0 @@
-# Empty compiler generated dependencies file for umat_stops_on_bad_props.
-# This may be replaced when dependencies are built.

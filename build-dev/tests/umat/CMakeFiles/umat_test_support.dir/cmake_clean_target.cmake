@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libumat_test_support.a"
-)
