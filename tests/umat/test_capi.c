@@ -1,4 +1,4 @@
-/* The library from C, as the FE driver uses it: camclay9_check_props and umat_ (issue #2). */
+/* The library from C, as the FE driver uses it: camclay9_check_props, camclay9_prop_name and umat_ (issue #2). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -24,6 +24,15 @@ int main(void) {
   camclay9_check_props(props, 23, 32, 6, 3, &code, msg, 10);
   check(strlen(msg) == 9, "message truncated to the buffer");
   props[7] = 0.00013;
+
+  /* The PROPS names (ccix_props' table, docs/umat.md): 0-based, NUL-terminated, truncated to the buffer. */
+  char name[16];
+  check(camclay9_prop_name(0, name, sizeof name) == 3 && !strcmp(name, "phi"), "PROPS name 0: phi");
+  check(camclay9_prop_name(18, name, sizeof name) == 8 && !strcmp(name, "eta_soft"), "PROPS name 18: eta_soft");
+  check(camclay9_prop_name(22, name, sizeof name) == 2 && !strcmp(name, "n3"), "PROPS name 22: n3");
+  check(camclay9_prop_name(23, name, sizeof name) == 0 && name[0] == '\0', "no PROPS slot 23");
+  check(camclay9_prop_name(-1, name, sizeof name) == 0, "no PROPS slot -1");
+  check(camclay9_prop_name(1, name, 4) == 3 && !strcmp(name, "lam"), "name truncated to the buffer");
 
   /* One elastic call (DTIME = 0): STRESS = C:DSTRAN from the stress-free state, DDSDDE = C. */
   double stress[6] = {0}, statev[32] = {0}, ddsdde[36], sse = 0, spd = 0, scd = 0, rpl, ddsddt[6], drplde[6],

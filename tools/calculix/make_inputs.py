@@ -24,11 +24,11 @@ import re
 import sys
 
 PROPS = """*USER MATERIAL, CONSTANTS=20, UNSYMM
-** phi, lam_h, muT_h, muL_h, a_h, b_h, M_h, lambdap_h
+** phi, lambda_hard, muT_hard, muL_hard, a_hard, b_hard, M_hard, lambda_p_hard
  0.5, 2900., 18000., 13000., 4100., 6900., 1.46, 0.00013
-** c1_h, c2_h, c3_h, pc0_h, eta_h, lam_s, mu_s, M_s
+** c1, c2, c3, pc0_hard, eta_hard, lambda_soft, mu_soft, M_soft
  0.73, -0.20, 0.40, 2.0, 1.3E13, 4600., 3100., 1.46
-** lambdap_s, pc0_s, eta_s, tol (0: no step control; these decks take fixed or host-chosen increments)
+** lambda_p_soft, pc0_soft, eta_soft, tol (0: no step control; these decks take fixed or host-chosen increments)
  0.0026, 35.0, 1.3E10, 0.
 *DEPVAR
  36

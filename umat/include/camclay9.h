@@ -23,6 +23,10 @@ void umat_(double *stress, double *statev, double *ddsdde, double *sse, double *
 void camclay9_check_props(const double *props, int nprops, int nstatv, int ntens, int ndi, int *code,
                           char *message, int message_capacity);
 
+/* The name of PROPS slot (0-based) into name (NUL-terminated, at most capacity bytes): the model's one spelling
+ * (docs/umat.md, PROPS). Returns its length, or 0 when slot is not a PROPS slot of the model. */
+int camclay9_prop_name(int slot, char *name, int capacity);
+
 /* Sizes (docs/umat.md). */
 enum {
   CAMCLAY9_NSTATV_MIN = 32,

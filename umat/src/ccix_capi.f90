@@ -1,10 +1,10 @@
 !> C-callable entry points besides the UMAT itself (which C calls as umat_ with the Abaqus list).
 module ccix_capi
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
-  use ccix_props, only: check_props, message_len
+  use ccix_props, only: check_props, message_len, prop_names, nprops_normal
   implicit none
   private
-  public :: camclay9_check_props
+  public :: camclay9_check_props, camclay9_prop_name
 
 contains
 
@@ -28,5 +28,22 @@ contains
     end do
     message(n + 1) = c_null_char
   end subroutine camclay9_check_props
+
+  !> The name of PROPS slot (0-based, as C counts) into name (NUL-terminated, at most capacity bytes);
+  !> returns the name's length, or 0 when slot is not a PROPS slot of the model (slot < 0 or >= 23).
+  recursive integer(c_int) function camclay9_prop_name(slot, name, capacity) result(n) &
+      bind(c, name='camclay9_prop_name')
+    integer(c_int), intent(in), value :: slot, capacity
+    character(kind=c_char), intent(out) :: name(*)
+    integer :: i
+    n = 0
+    if (capacity > 0) name(1) = c_null_char
+    if (slot < 0 .or. slot >= nprops_normal .or. capacity <= 0) return
+    n = int(min(len_trim(prop_names(slot + 1)), capacity - 1), c_int)
+    do i = 1, n
+      name(i) = prop_names(slot + 1)(i:i)
+    end do
+    name(n + 1) = c_null_char
+  end function camclay9_prop_name
 
 end module ccix_capi

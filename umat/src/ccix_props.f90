@@ -19,6 +19,12 @@ module ccix_props
   integer, parameter, public :: is_iterations = 33, is_flags = 34, is_f_hard = 35, is_f_soft = 36, &
                                 nstatv_diag = 36
   integer, parameter, public :: message_len = 256
+  !> The PROPS slots' names (docs/umat.md "PROPS"), in slot order: the one spelling of every host and
+  !> scene (material.set, -material_set, calibrate's parameters; C: camclay9_prop_name).
+  character(len=13), parameter, public :: prop_names(nprops_normal) = [character(len=13) :: &
+    'phi', 'lambda_hard', 'muT_hard', 'muL_hard', 'a_hard', 'b_hard', 'M_hard', 'lambda_p_hard', &
+    'c1', 'c2', 'c3', 'pc0_hard', 'eta_hard', 'lambda_soft', 'mu_soft', 'M_soft', 'lambda_p_soft', &
+    'pc0_soft', 'eta_soft', 'tol', 'n1', 'n2', 'n3']
 
   public :: check_props, bedding_normal, frames_from_props
 

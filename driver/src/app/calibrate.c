@@ -42,10 +42,9 @@ static int read_param(const YdDoc *doc, YdNode *nd, int k, CalParam *p, char *er
   snprintf(sub, sizeof sub, "%s.name", path);
   if (!(v = yd_require(doc, nd, "name", YD_SCALAR, sub, err, errlen)) || yd_string(doc, v, sub, &s, err, errlen)) return 1;
   snprintf(p->name, sizeof p->name, "%s", s);
+  char list[400];
   if ((p->slot = material_slot(s)) < 0)
-    FAIL("%s:%d: key '%s': unknown PROPS name '%s': expected one of phi, lambda_hard, muT_hard, muL_hard, a_hard, "
-         "b_hard, M_hard, lambda_p_hard, c1, c2, c3, pc0_hard, eta_hard, lambda_soft, mu_soft, M_soft, lambda_p_soft, "
-         "pc0_soft, eta_soft", doc->file, v->line, sub, s);
+    FAIL("%s:%d: key '%s': unknown PROPS name '%s': expected one of %s", doc->file, v->line, sub, s, material_slot_list(list, sizeof list));
   const char *keys[3] = {"start", "min", "max"};
   double     *vals[3] = {&p->start, &p->lo, &p->hi};
   for (int i = 0; i < 3; i++) {

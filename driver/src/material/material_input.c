@@ -10,12 +10,21 @@
 #include "../io/options.h"
 #include "../io/text.h"
 
-/* Cam-Clay IX PROPS slot names (docs/umat.md), in slot order. */
-static const char *slot_names[] = {"phi",   "lambda_hard", "muT_hard",      "muL_hard", "a_hard",     "b_hard",
-                                   "M_hard", "lambda_p_hard", "c1",          "c2",       "c3",         "pc0_hard",
-                                   "eta_hard", "lambda_soft", "mu_soft",    "M_soft",   "lambda_p_soft", "pc0_soft",
-                                   "eta_soft", "tol",         "n1",          "n2",       "n3"};
-enum { NSLOTS = 23 };
+/* Cam-Clay IX PROPS slot names, from the model's own table (ccix_props, camclay9_prop_name). */
+enum { NSLOTS = CAMCLAY9_NPROPS_WITH_NORMAL };
+static const char *slot_name(int k) {
+  static char name[NSLOTS][16]; /* filled on first use (the driver reads its input on one thread) */
+  if (k < 0 || k >= NSLOTS) return "?";
+  if (!name[k][0]) camclay9_prop_name(k, name[k], sizeof name[k]);
+  return name[k];
+}
+
+const char *material_slot_list(char *buf, size_t n) {
+  size_t len = 0;
+  buf[0]     = '\0';
+  for (int k = 0; k < NSLOTS && len < n; k++) len += (size_t)snprintf(buf + len, n - len, "%s%s", k ? ", " : "", slot_name(k));
+  return buf;
+}
 
 /* Yin, Liu & Borja (2021), Tables 1-2 (docs/umat.md). */
 static const double woodford[19] = {0.5,  2900, 18000, 13000, 4100, 6900, 1.46,   0.00013, 0.73,  -0.20,
@@ -23,13 +32,9 @@ static const double woodford[19] = {0.5,  2900, 18000, 13000, 4100, 6900, 1.46, 
 
 int material_slot(const char *name) {
   for (int i = 0; i < NSLOTS; i++)
-    if (!strcmp(slot_names[i], name)) return i;
+    if (!strcmp(slot_name(i), name)) return i;
   return -1;
 }
-
-#define SLOT_LIST                                                                                                   \
-  "phi, lambda_hard, muT_hard, muL_hard, a_hard, b_hard, M_hard, lambda_p_hard, c1, c2, c3, pc0_hard, eta_hard, "     \
-  "lambda_soft, mu_soft, M_soft, lambda_p_soft, pc0_soft, eta_soft, tol, n1, n2, n3"
 
 /* Set a named slot, growing nprops as 'set' does; *normal set when it is one of n1..n3. */
 static void set_slot(UmatMaterial *mat, int slot, double v, int *normal) {
@@ -75,7 +80,8 @@ static int apply_option_set(UmatMaterial *mat, int *normal, SlotSources *src, ch
     *eq      = '\0';
     int slot = material_slot(tok);
     if (slot < 0) {
-      snprintf(err, errlen, "option -material_set: unknown PROPS name '%s': the names are " SLOT_LIST, tok);
+      char list[400];
+      snprintf(err, errlen, "option -material_set: unknown PROPS name '%s': the names are %s", tok, material_slot_list(list, sizeof list));
       return 1;
     }
     double v;
@@ -95,9 +101,9 @@ static void refused_slot(const YdDoc *doc, const YdNode *node, const SlotSources
   int k = code - 1;
   if (code < 1 || code > UMAT_MAX_PROPS) snprintf(err, errlen, "%s:%d: material: %s", doc->file, node->line, msg);
   else if (src->option[k])
-    snprintf(err, errlen, "option -material_set: %s=%.17g (scene %s): %s", k < NSLOTS ? slot_names[k] : "?", mat->props[k], doc->file,
+    snprintf(err, errlen, "option -material_set: %s=%.17g (scene %s): %s", slot_name(k), mat->props[k], doc->file,
              msg);
-  else if (src->set[k]) snprintf(err, errlen, "%s:%d: key 'material.set.%s': %s", doc->file, src->line[k], slot_names[k], msg);
+  else if (src->set[k]) snprintf(err, errlen, "%s:%d: key 'material.set.%s': %s", doc->file, src->line[k], slot_name(k), msg);
   else if (src->line[k]) snprintf(err, errlen, "%s:%d: key 'material.props[%d]': %s", doc->file, src->line[k], k, msg);
   else snprintf(err, errlen, "%s:%d: material: %s", doc->file, node->line, msg);
 }
@@ -132,8 +138,9 @@ static int read_props_set(const YdDoc *doc, YdNode *node, UmatMaterial *mat, YdN
       char path[128];
       snprintf(path, sizeof path, "material.set.%s", nd->keys[i]);
       if (slot < 0) {
-        snprintf(err, errlen, "%s:%d: unknown key '%s': the PROPS slot names are " SLOT_LIST, doc->file,
-                 nd->key_lines[i], path);
+        char list[400];
+        snprintf(err, errlen, "%s:%d: unknown key '%s': the PROPS slot names are %s", doc->file, nd->key_lines[i], path,
+                 material_slot_list(list, sizeof list));
         return 1;
       }
       nd->used[i] = 1;

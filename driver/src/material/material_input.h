@@ -18,5 +18,7 @@ PetscErrorCode material_options(char *set, size_t n, PetscBool *given);
 
 /* Index (0-based) of a named Cam-Clay IX PROPS slot, or -1. */
 int material_slot(const char *name);
+/* The PROPS slots' names, comma-separated, into buf (for messages); returns buf. */
+const char *material_slot_list(char *buf, size_t n);
 
 #endif
