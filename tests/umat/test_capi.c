@@ -34,6 +34,18 @@ int main(void) {
   check(camclay9_prop_name(-1, name, sizeof name) == 0, "no PROPS slot -1");
   check(camclay9_prop_name(1, name, 4) == 3 && !strcmp(name, "lam"), "name truncated to the buffer");
 
+  /* The STATEV blocks: the exported table and the header's constants name the same slots. */
+  const struct { const char *name; int first, size; } blocks[] = {
+    {"sig_hard", CAMCLAY9_SV_SIG_HARD, 6}, {"evp_hard", CAMCLAY9_SV_EVP_HARD, 6}, {"pc_hard", CAMCLAY9_SV_PC_HARD, 1},
+    {"sig_soft", CAMCLAY9_SV_SIG_SOFT, 6}, {"evp_soft", CAMCLAY9_SV_EVP_SOFT, 6}, {"pc_soft", CAMCLAY9_SV_PC_SOFT, 1},
+    {"evp", CAMCLAY9_SV_EVP, 6},           {"iterations", CAMCLAY9_SV_ITERATIONS, 1}, {"flags", CAMCLAY9_SV_FLAGS, 1},
+    {"f_hard", 34, 1},                     {"f_soft", 35, 1}};
+  int nb = 0, first, size;
+  for (int k = 0; camclay9_statev_block(k, name, sizeof name, &first, &size); k++, nb++)
+    check(k < 11 && !strcmp(name, blocks[k].name) && first == blocks[k].first && size == blocks[k].size, blocks[k].name);
+  check(nb == 11 && first == -1 && size == 0, "11 STATEV blocks, then none");
+  check(blocks[10].first + 1 == CAMCLAY9_NSTATV_DIAGNOSTICS && blocks[6].first + 6 == CAMCLAY9_NSTATV_MIN, "the blocks fill NSTATV");
+
   /* One elastic call (DTIME = 0): STRESS = C:DSTRAN from the stress-free state, DDSDDE = C. */
   double stress[6] = {0}, statev[32] = {0}, ddsdde[36], sse = 0, spd = 0, scd = 0, rpl, ddsddt[6], drplde[6],
          drpldt, stran[6] = {0}, dstran[6] = {0, 0, -1e-4, 0, 0, 0}, time[2] = {0, 0}, dtime = 0, temp = 0,

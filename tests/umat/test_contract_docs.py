@@ -30,6 +30,23 @@ def test_umat_md_props_table_in_slot_order():
     assert 21 in slots and slots == sorted(slots)
 
 
+def statev_blocks():
+    src = (ROOT / "umat" / "src" / "ccix_props.f90").read_text()
+    consts = {k: int(v) for k, v in re.findall(r"(is_\w+) = (\d+)", src)}
+    names = re.findall(r"'(\w+)'", re.search(r"statev_block_names\(n_statev_blocks\) = \[(.*?)\]", src, re.S).group(1))
+    first = [consts[c] for c in re.findall(r"(is_\w+)", re.search(r"statev_block_first\(n_statev_blocks\) = \[(.*?)\]",
+                                                                      src, re.S).group(1))]
+    size = [int(x) for x in re.findall(r"\d+", re.search(r"statev_block_size\(n_statev_blocks\) = \[(.*?)\]", src).group(1))]
+    return list(zip(names, first, size))
+
+
+def test_umat_md_statev_table_matches_the_blocks():
+    text = (ROOT / "docs" / "umat.md").read_text()
+    section = text[text.index("## STATEV"):text.index("## Time step control")]
+    rows = [(int(a), int(b or a)) for a, b in re.findall(r"^\| (\d+)(?:[–-](\d+))? \|", section, re.M)]
+    assert rows == [(f, f + n - 1) for _, f, n in statev_blocks()], rows
+
+
 def test_deck_comments_spell_the_names():
     names = prop_names()
     decks = sorted((ROOT / "input" / "abaqus").glob("*.inp")) + [ROOT / "tools" / "calculix" / "make_inputs.py",

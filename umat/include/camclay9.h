@@ -27,6 +27,12 @@ void camclay9_check_props(const double *props, int nprops, int nstatv, int ntens
  * (docs/umat.md, PROPS). Returns its length, or 0 when slot is not a PROPS slot of the model. */
 int camclay9_prop_name(int slot, char *name, int capacity);
 
+/* STATEV block k (0-based: sig_hard, evp_hard, pc_hard, sig_soft, evp_soft, pc_soft, evp, iterations, flags,
+ * f_hard, f_soft; docs/umat.md, STATEV): its name into name (NUL-terminated, at most capacity bytes), its first
+ * slot (0-based) and its number of slots. Returns 1, or 0 when there is no block k. The enum below holds the same
+ * first slots as constants. */
+int camclay9_statev_block(int k, char *name, int capacity, int *first, int *size);
+
 /* Sizes (docs/umat.md). */
 enum {
   CAMCLAY9_NSTATV_MIN = 32,

@@ -1,10 +1,11 @@
 !> C-callable entry points besides the UMAT itself (which C calls as umat_ with the Abaqus list).
 module ccix_capi
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
-  use ccix_props, only: check_props, message_len, prop_names, nprops_normal
+  use ccix_props, only: check_props, message_len, prop_names, nprops_normal, n_statev_blocks, &
+                        statev_block_names, statev_block_first, statev_block_size
   implicit none
   private
-  public :: camclay9_check_props, camclay9_prop_name
+  public :: camclay9_check_props, camclay9_prop_name, camclay9_statev_block
 
 contains
 
@@ -45,5 +46,30 @@ contains
     end do
     name(n + 1) = c_null_char
   end function camclay9_prop_name
+
+  !> STATEV block k (0-based) of the model: its name into name (NUL-terminated, at most capacity bytes),
+  !> its first slot (0-based, as C counts) and its number of slots. Returns 1, or 0 when there is no
+  !> block k (then first = -1, size = 0).
+  recursive integer(c_int) function camclay9_statev_block(k, name, capacity, first, size) result(found) &
+      bind(c, name='camclay9_statev_block')
+    integer(c_int), intent(in), value :: k, capacity
+    character(kind=c_char), intent(out) :: name(*)
+    integer(c_int), intent(out) :: first, size
+    integer :: i, n
+    found = 0
+    first = -1
+    size = 0
+    if (capacity > 0) name(1) = c_null_char
+    if (k < 0 .or. k >= n_statev_blocks) return
+    found = 1
+    first = int(statev_block_first(k + 1) - 1, c_int)
+    size = int(statev_block_size(k + 1), c_int)
+    if (capacity <= 0) return
+    n = min(len_trim(statev_block_names(k + 1)), capacity - 1)
+    do i = 1, n
+      name(i) = statev_block_names(k + 1)(i:i)
+    end do
+    name(n + 1) = c_null_char
+  end function camclay9_statev_block
 
 end module ccix_capi

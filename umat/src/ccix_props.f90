@@ -19,6 +19,15 @@ module ccix_props
   integer, parameter, public :: is_iterations = 33, is_flags = 34, is_f_hard = 35, is_f_soft = 36, &
                                 nstatv_diag = 36
   integer, parameter, public :: message_len = 256
+  !> The STATEV blocks (docs/umat.md "STATEV"): name, first slot, number of slots. The C side reads
+  !> them through camclay9_statev_block; the fields the driver writes carry these names.
+  integer, parameter, public :: n_statev_blocks = 11
+  character(len=10), parameter, public :: statev_block_names(n_statev_blocks) = [character(len=10) :: &
+    'sig_hard', 'evp_hard', 'pc_hard', 'sig_soft', 'evp_soft', 'pc_soft', 'evp', 'iterations', 'flags', &
+    'f_hard', 'f_soft']
+  integer, parameter, public :: statev_block_first(n_statev_blocks) = [is_sig_hard, is_evp_hard, &
+    is_pc_hard, is_sig_soft, is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, is_f_hard, is_f_soft]
+  integer, parameter, public :: statev_block_size(n_statev_blocks) = [6, 6, 1, 6, 6, 1, 6, 1, 1, 1, 1]
   !> The PROPS slots' names (docs/umat.md "PROPS"), in slot order: the one spelling of every host and
   !> scene (material.set, -material_set, calibrate's parameters; C: camclay9_prop_name).
   character(len=13), parameter, public :: prop_names(nprops_normal) = [character(len=13) :: &

@@ -194,15 +194,25 @@ static int read_bedding(const YdDoc *doc, YdNode *node, int ntens, int camclay, 
   return 0;
 }
 
+/* The STATEV slot of the model's block 'name' (camclay9_statev_block), -1 if it has none. */
+static int statev_block(const char *name) {
+  char block[16];
+  int  first, size;
+  for (int k = 0; camclay9_statev_block(k, block, sizeof block, &first, &size); k++)
+    if (!strcmp(block, name)) return first;
+  return -1;
+}
+
 void material_slots(int camclay, UmatPropSlots *pr, UmatStateSlots *sv) {
   const UmatPropSlots  pnone = {-1, -1, -1, -1, -1};
-  const UmatPropSlots  pcc9  = {.phi = 0, .eta_hard = 12, .eta_soft = 18, .tol = 19, .normal = 20}; /* docs/umat.md, PROPS */
-  *pr = camclay ? pcc9 : pnone;
-  const UmatStateSlots none = {-1, -1, -1, -1, -1, -1, -1, -1, -1};
-  const UmatStateSlots cc9  = {.sig_hard = CAMCLAY9_SV_SIG_HARD, .evp_hard = CAMCLAY9_SV_EVP_HARD, .pc_hard = CAMCLAY9_SV_PC_HARD,
-                               .sig_soft = CAMCLAY9_SV_SIG_SOFT, .evp_soft = CAMCLAY9_SV_EVP_SOFT, .pc_soft = CAMCLAY9_SV_PC_SOFT,
-                               .evp = CAMCLAY9_SV_EVP, .iterations = CAMCLAY9_SV_ITERATIONS, .flags = CAMCLAY9_SV_FLAGS};
-  *sv = camclay ? cc9 : none;
+  const UmatStateSlots none  = {-1, -1, -1, -1, -1, -1, -1, -1, -1};
+  *pr = pnone, *sv = none;
+  if (!camclay) return;
+  pr->phi = material_slot("phi"), pr->eta_hard = material_slot("eta_hard"), pr->eta_soft = material_slot("eta_soft");
+  pr->tol = material_slot("tol"), pr->normal = material_slot("n1");
+  sv->sig_hard = statev_block("sig_hard"), sv->evp_hard = statev_block("evp_hard"), sv->pc_hard = statev_block("pc_hard");
+  sv->sig_soft = statev_block("sig_soft"), sv->evp_soft = statev_block("evp_soft"), sv->pc_soft = statev_block("pc_soft");
+  sv->evp = statev_block("evp"), sv->iterations = statev_block("iterations"), sv->flags = statev_block("flags");
 }
 
 int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, char *err, size_t errlen) {
