@@ -249,6 +249,17 @@ def test_restart_checks_agree_on_every_rank(tmp_path):
     proc = run(scene.replace("set: {phi: 0}", "set: {phi: 0, eta_soft: 2.6e10}"), out, np_=2, args=["-restart"], check=False,
                timeout=120)
     assert proc.returncode == 2 and "differs from the one the checkpoint" in proc.stderr
+    # a checkpoint of another format (an older driver's) is named as such, not as damaged
+    for r in (0, 1):
+        f = out / f"checkpoint.{step}.rank{r}.bin"
+        if f.exists():
+            b = bytearray(f.read_bytes())
+            b[4:8] = (3).to_bytes(4, "little")
+            f.write_bytes(bytes(b))
+    proc = run(scene, out, np_=2, args=["-restart"], check=False, timeout=120)
+    print(proc.stderr.strip())
+    assert proc.returncode == 2 and "another version of the driver (checkpoint format 3" in proc.stderr
+    assert (out / "history.csv").read_bytes() == before
 
 
 def test_failed_run_keeps_earlier_results(tmp_path):

@@ -167,12 +167,13 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
   char               path[1100];
   BinFile            f;
   unsigned long long hash = 0;
-  int                code = 0; /* 0 ok, 1 missing or damaged, 2 another scene */
+  int                code = 0, version = CKPT_VERSION; /* code: 0 ok, 1 missing or damaged, 2 another scene, 3 another format */
   set_path(opt, step, from, path, sizeof path);
   if (binfile_open(&f, path, "rb")) code = 1;
   else {
     binfile_expect_int(&f, CKPT_MAGIC);
-    binfile_expect_int(&f, CKPT_VERSION);
+    binfile_read(&f, &version, sizeof version, 1);
+    if (f.ok && version != CKPT_VERSION) code = 3, f.ok = 0;
     binfile_expect_int(&f, nranks);
     binfile_expect_int(&f, from);
     binfile_read(&f, &hash, sizeof hash, 1);
@@ -183,16 +184,21 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
     if (binfile_close(&f, 0) && !code) code = 1;
     if (!code && st->step != step) code = 1;
   }
-  int worst = 0, mine = code ? from : nranks, first_bad = nranks;
+  int worst = 0, mine = code ? from : nranks, first_bad = nranks, found = code == 3 ? version : 0, other = 0;
   MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);
   MPI_Allreduce(&mine, &first_bad, 1, MPI_INT, MPI_MIN, sv->comm);
-  if (worst == 2)
+  MPI_Allreduce(&found, &other, 1, MPI_INT, MPI_MAX, sv->comm);
+  if (worst == 3)
+    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written by another version of the driver (checkpoint "
+                          "format %d; this driver reads format %d): run the scene afresh, without -restart; nothing was written",
+             step, opt->outdir, other, CKPT_VERSION);
+  else if (worst == 2)
     snprintf(err, errlen, "-restart: the scene %s differs from the one the checkpoint in %s was written for (material, loads or "
                           "stages changed): run it afresh, without -restart", opt->scene_file, opt->outdir);
   else if (worst)
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
                           "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, first_bad, step, first_bad);
-  if (worst) return worst;
+  if (worst) return worst == 3 ? 2 : worst;
   if (sv->load_shared) {
     shared_path(opt, step, path, sizeof path);
     if (sv->load_shared(sv->ctx, path)) {
