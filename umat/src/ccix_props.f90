@@ -86,12 +86,59 @@ contains
     real(real64), intent(in) :: props(*)
     integer, intent(out) :: code
     character(len=message_len), intent(out) :: message
-    real(real64) :: lam, mu_t, mu_l, a, b, c33, n3(3)
+    real(real64) :: n3(3)
     integer :: i, n
     logical :: finite
 
     code = 0
     message = ''
+    call check_sizes(nprops, nstatv, ntens, ndi, code, message)
+    if (code /= 0) return
+    ! All finite (NaN compares false), in one pass without branches; the slot only when one is not.
+    n = min(nprops, nprops_normal)
+    finite = .true.
+    do i = 1, n
+      finite = finite .and. abs(props(i)) <= huge(1.0_real64)
+    end do
+    if (.not. finite) then
+      do i = 1, n
+        call require(code, message, props, is_finite(props(i)), i, 'a finite number')
+      end do
+      return
+    end if
+
+    ! Each check acts only while no earlier one has failed, so the first offending slot is reported.
+    call check_hard(props, code, message)
+    call check_soft(props, code, message)
+    if (code /= 0) return
+    if (nprops >= ip_tol) call require(code, message, props, props(ip_tol) >= 0, ip_tol, &
+                 'tol >= 0 (0: no step control)')
+    if (code /= 0) return
+    if (nprops >= nprops_normal) then
+      call require(code, message, props, any(props(ip_normal:ip_normal + 2) /= 0), ip_normal, &
+                   'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
+      if (code /= 0) return
+      if (ntens == 4) then
+        n3 = bedding_normal(props, nprops)
+        call require(code, message, props, abs(n3(3)) <= 1.0e-12_real64, ip_normal + 2, &
+                     'n3 = 0: with NTENS = 4 ' // 'the bedding normal must lie in the 1-2 plane')
+      end if
+    else if (ntens == 4 .and. props(ip_phi) > 0) then
+      ! (With phi = 0 the hard frame is not used and its normal does not matter.)
+      code = ip_normal
+      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: PROPS(21) to PROPS(23), the bedding normal, ' // &
+        'are missing (NPROPS = ', nprops, '): with NTENS = 4 and phi > 0 give NPROPS = 23 ' // &
+        'with a normal (n1, n2, 0) in the 1-2 plane'
+      return
+    end if
+
+  end subroutine check_props
+
+  !> NPROPS, NSTATV, NDI and NTENS (umat-interface.md): code -1, -2, -4, -3 and a message when not allowed.
+  pure recursive subroutine check_sizes(nprops, nstatv, ntens, ndi, code, message)
+    integer, intent(in) :: nprops, nstatv, ntens, ndi
+    integer, intent(inout) :: code
+    character(len=message_len), intent(inout) :: message
     if (nprops < nprops_min .or. nprops == 21 .or. nprops == 22) then
       code = -1
       write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: NPROPS = ', nprops, &
@@ -118,20 +165,14 @@ contains
         'Cam-Clay IX UMAT: NTENS = ', ntens, ': expected 6 (3D) or 4 (plane strain, axisymmetric)'
       return
     end if
-    ! All finite (NaN compares false), in one pass without branches; the slot only when one is not.
-    n = min(nprops, nprops_normal)
-    finite = .true.
-    do i = 1, n
-      finite = finite .and. abs(props(i)) <= huge(1.0_real64)
-    end do
-    if (.not. finite) then
-      do i = 1, n
-        call require(code, message, props, is_finite(props(i)), i, 'a finite number')
-      end do
-      return
-    end if
+  end subroutine check_sizes
 
-    ! Each check acts only while no earlier one has failed, so the first offending slot is reported.
+  !> phi and the hard frame's PROPS 2-13.
+  pure recursive subroutine check_hard(props, code, message)
+    real(real64), intent(in) :: props(*)
+    integer, intent(inout) :: code
+    character(len=message_len), intent(inout) :: message
+    real(real64) :: lam, mu_t, mu_l, a, b, c33
     call require(code, message, props, props(ip_phi) >= 0 .and. props(ip_phi) <= 1, ip_phi, &
                  'phi, the volume fraction of the hard frame, in [0, 1]')
     ! Hard frame: positive-definite TI stiffness. In bedding axes the Mandel stiffness splits into
@@ -161,6 +202,13 @@ contains
     call require(code, message, props, props(12) > 0, 12, 'pc0 > 0 (hard frame)')
     call require(code, message, props, props(13) >= 0, 13, &
                  'eta >= 0 (hard frame; 0 is rate independent)')
+  end subroutine check_hard
+
+  !> The soft frame's PROPS 14-19.
+  pure recursive subroutine check_soft(props, code, message)
+    real(real64), intent(in) :: props(*)
+    integer, intent(inout) :: code
+    character(len=message_len), intent(inout) :: message
     ! Soft frame: isotropic, positive definite iff mu > 0 and 3 lambda + 2 mu > 0.
     call require(code, message, props, props(15) > 0, 15, 'mu > 0 (soft frame shear modulus)')
     call require(code, message, props, 3 * props(14) + 2 * props(15) > 0, 14, &
@@ -170,29 +218,7 @@ contains
     call require(code, message, props, props(18) > 0, 18, 'pc0 > 0 (soft frame)')
     call require(code, message, props, props(19) >= 0, 19, &
                  'eta >= 0 (soft frame; 0 is rate independent)')
-    if (code /= 0) return
-    if (nprops >= ip_tol) call require(code, message, props, props(ip_tol) >= 0, ip_tol, &
-                 'tol >= 0 (0: no step control)')
-    if (code /= 0) return
-    if (nprops >= nprops_normal) then
-      call require(code, message, props, any(props(ip_normal:ip_normal + 2) /= 0), ip_normal, &
-                   'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
-      if (code /= 0) return
-      if (ntens == 4) then
-        n3 = bedding_normal(props, nprops)
-        call require(code, message, props, abs(n3(3)) <= 1.0e-12_real64, ip_normal + 2, &
-                     'n3 = 0: with NTENS = 4 ' // 'the bedding normal must lie in the 1-2 plane')
-      end if
-    else if (ntens == 4 .and. props(ip_phi) > 0) then
-      ! (With phi = 0 the hard frame is not used and its normal does not matter.)
-      code = ip_normal
-      write (message, '(a,i0,a)') 'Cam-Clay IX UMAT: PROPS(21) to PROPS(23), the bedding normal, ' // &
-        'are missing (NPROPS = ', nprops, '): with NTENS = 4 and phi > 0 give NPROPS = 23 ' // &
-        'with a normal (n1, n2, 0) in the 1-2 plane'
-      return
-    end if
-
-  end subroutine check_props
+  end subroutine check_soft
 
   !> If no check has failed yet (code = 0) and ok is false: code = slot and the message names the
   !> slot, its value and what was expected.
