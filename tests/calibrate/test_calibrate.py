@@ -136,14 +136,20 @@ def test_two_step_nano_then_micro_BN(tmp_path):
     assert abs(eta_hard / TRUE["eta_hard"] - 1) < 0.01, eta_hard
 
 
-def lab_scene(tmp_path, old, new):
-    text = (CAL / "triaxial_creep_lab.yaml").read_text()
-    text = text.replace("forward/triaxial_creep_fixed.yaml", str(CAL / "forward" / "triaxial_creep_fixed.yaml"))
-    text = text.replace("data/triaxial_creep_synthetic.csv", str(CAL / "data" / "triaxial_creep_synthetic.csv"))
+def edited_scene(tmp_path, scene, forward, data, old, new, data_file=None):
+    """input/calibrate/<scene> with its forward scene and data file made absolute (or the data file replaced by
+    data_file) and one edit (old -> new), as tmp_path/bad.yaml."""
+    text = (CAL / scene).read_text()
+    text = text.replace(f"forward/{forward}", str(CAL / "forward" / forward))
+    text = text.replace(f"data/{data}", str(data_file or CAL / "data" / data))
     assert old in text
     path = tmp_path / "bad.yaml"
     path.write_text(text.replace(old, new))
     return path
+
+
+def lab_scene(tmp_path, old, new):
+    return edited_scene(tmp_path, "triaxial_creep_lab.yaml", "triaxial_creep_fixed.yaml", "triaxial_creep_synthetic.csv", old, new)
 
 
 LAB_BAD = [
@@ -174,13 +180,7 @@ def test_point_bad_input(tmp_path, name, edit, message):
 
 
 def bad_scene(tmp_path, old, new, data=None):
-    text = (CAL / "nano_eta_soft.yaml").read_text()
-    text = text.replace("forward/nano_fast.yaml", str(CAL / "forward" / "nano_fast.yaml"))
-    text = text.replace("data/nano_synthetic.csv", str(data or CAL / "data" / "nano_synthetic.csv"))
-    assert old in text
-    path = tmp_path / "bad.yaml"
-    path.write_text(text.replace(old, new))
-    return path
+    return edited_scene(tmp_path, "nano_eta_soft.yaml", "nano_fast.yaml", "nano_synthetic.csv", old, new, data_file=data)
 
 
 def shifted_loads(tmp_path):

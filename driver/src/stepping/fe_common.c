@@ -38,10 +38,6 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
   v->event_start = g->until.kind == EVENT_P_ABOVE ? p : q;
 }
 
-PetscReal fe_common_umat_tol(const FeCommon *c, const StepRequest *rq) {
-  return umat_control_tol(&c->p->mat, rq->umat);
-}
-
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {
   const StageLoads *g = &c->sc->loads[rq->s];
   PetscFunctionBeginUser;

@@ -89,7 +89,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   }
   o->converged = reason > 0, o->its = (int)its, o->why = SNESConvergedReasons[reason];
   if (!o->converged) return 0;
-  PetscReal tol = fe_common_umat_tol(&f->c, rq);
+  PetscReal tol = umat_control_tol(&p->mat, rq->umat);
   PetscBool same = PETSC_FALSE;
   if (p->ddsdde_valid) VecEqual(f->U, p->ddsdde_u, &same);
   if (tol > 0 || !same) { /* the converged state again, with the UMAT's PNEWDT on */

@@ -41,7 +41,6 @@ PetscErrorCode fe_common_finish(FeCommon *c);
 void           fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v);
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq);
 /* The UMAT's own step control (worst_point) for the converged state: the step's, or PROPS tol; 0: off. */
-PetscReal      fe_common_umat_tol(const FeCommon *c, const StepRequest *rq);
 /* p, q and the viscoplastic rate of the solved state; the volume error if asked. */
 PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome *o);
 /* After a commit: the loads now in force, the supports' reactions (all ranks). */

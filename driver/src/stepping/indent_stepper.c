@@ -74,7 +74,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   }
   o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
   if (!o->converged) return 0;
-  PetscReal tol = fe_common_umat_tol(&d->c, rq), m;
+  PetscReal tol = umat_control_tol(&p->mat, rq->umat), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
     if (semismooth_evaluate(in, &m)) return 1;
