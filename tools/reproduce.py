@@ -193,9 +193,10 @@ def main(argv=None):
             ranks = ranks if (ranks > 1 and a.jobs >= ranks and mpiexec()) else 1
         jobs.append(Job(key, scene, out / key, a.driver, ranks))
     meta_path = out / "runs.json"
+    prev = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
+    rerun = sorted(set(prev.get("rerun", [])) | set(a.only)) if a.only else []
     if a.no_run:
-        prev = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
-        walls, t_runs = prev.get("walls", {}), prev.get("wall_runs", float("nan"))
+        walls, t_runs, rerun = prev.get("walls", {}), prev.get("wall_runs", float("nan")), prev.get("rerun", [])
     else:
         print(f"reproduce ({mode}): {len(jobs)} scenes, {a.jobs} at a time, driver {a.driver}, output {out}", flush=True)
         walls, failed = run_all(jobs, max(1, a.jobs))
@@ -203,18 +204,23 @@ def main(argv=None):
         if failed:
             print(f"reproduce: {len(failed)} scene(s) failed: {', '.join(failed)} (see DIR/<scene>/driver.log)")
             return 1
-        meta_path.write_text(json.dumps({"walls": walls, "wall_runs": t_runs}) + "\n", encoding="utf-8")
+        if a.only:  # the other scenes keep their runs and times; the whole run's time stays the last full run's
+            walls, t_runs = {**prev.get("walls", {}), **walls}, prev.get("wall_runs", float("nan"))
+        meta_path.write_text(json.dumps({"walls": walls, "wall_runs": t_runs, "rerun": rerun}) + "\n", encoding="utf-8")
     print(f"runs: {t_runs:.1f} s wall; plotting", flush=True)
     numbers = paper_numbers.collect(out)
     images = paper_figures.draw_all(out, numbers)
     trends = paper_numbers.check_trends(numbers)
     t_all = time.monotonic() - t_start
-    meta = {"mode": mode, "wall_runs": t_runs, "wall_total": t_all if not a.no_run else t_runs + t_all, "walls": walls, "out": str(out),
+    partial = bool(rerun) or a.no_run
+    meta = {"mode": mode, "wall_runs": t_runs, "wall_total": t_runs + t_all if partial else t_all, "walls": walls,
+            "out": str(out), "rerun": rerun,
             "scene_source": "input/*.yaml as shipped" if not a.quick else "coarse variants (out/.../scenes)"}
     paper_doc.write(out / "paper.md", numbers, trends, images, meta, image_dir=out / "figures")
     if docs:
         paper_doc.write(ROOT / "docs" / "paper.md", numbers, trends, images, meta, image_dir=ROOT / "docs" / "paper")
-        write_performance(meta, a.jobs)
+        if not partial:  # the timing section is a whole run's
+            write_performance(meta, a.jobs)
     print(f"reproduce ({mode}): runs {t_runs:.1f} s, total {meta['wall_total']:.1f} s wall; {out / 'paper.md'}"
           + (f", {ROOT / 'docs' / 'paper.md'}" if docs else ""))
     for t in trends:
