@@ -1,4 +1,6 @@
-/* The library from C, as the FE driver uses it: camclay9_check_props, camclay9_prop_name and umat_ (issue #2). */
+/* The library from C, as the FE driver uses it: camclay9_check_props, camclay9_prop_name, camclay9_prop_info,
+ * camclay9_statev_block and umat_ (issues #2, #24). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -33,6 +35,47 @@ int main(void) {
   check(camclay9_prop_name(23, name, sizeof name) == 0 && name[0] == '\0', "no PROPS slot 23");
   check(camclay9_prop_name(-1, name, sizeof name) == 0, "no PROPS slot -1");
   check(camclay9_prop_name(1, name, 4) == 3 && !strcmp(name, "lam"), "name truncated to the buffer");
+
+  /* The PROPS table (issue 24): each slot's name as camclay9_prop_name spells it, and its own bounds are exactly
+   * what camclay9_check_props enforces: a value on a closed bound passes, on an open bound or one step (nextafter)
+   * beyond either bound fails, naming that slot and the table's symbol. Every slot states a bound or a condition. */
+  camclay9_prop_info_t info;
+  const double woodford[23] = {0.5, 2900, 18000, 13000, 4100, 6900, 1.46, 0.00013, 0.73, -0.20, 0.40, 2.0, 1.3e13,
+                               4600, 3100, 1.46, 0.0026, 35.0, 1.3e10, 0.0, 0.0, 0.0, 1.0};
+  int np = 0, nbounded = 0;
+  for (int k = 0; camclay9_prop_info(k, &info); k++, np++) {
+    char what[96];
+    camclay9_prop_name(k, name, sizeof name);
+    snprintf(what, sizeof what, "PROPS slot %d (%s): name, bounds and their checks", k, name);
+    int ok = !strcmp(info.name, name) && info.unit[0] && info.meaning[0] && info.symbol[0] &&
+             (info.bounds & (CAMCLAY9_BOUND_LO | CAMCLAY9_BOUND_HI | CAMCLAY9_BOUND_COUPLED));
+    const int lo = info.bounds & CAMCLAY9_BOUND_LO, hi = info.bounds & CAMCLAY9_BOUND_HI;
+    ok = ok && (lo ? info.lo > -DBL_MAX : info.lo == -DBL_MAX) && (hi ? info.hi < DBL_MAX : info.hi == DBL_MAX);
+    struct { double v; int valid; } probe[4] = {
+      {info.lo, !!(info.bounds & CAMCLAY9_BOUND_LO_CLOSED)}, {nextafter(info.lo, -DBL_MAX), 0},
+      {info.hi, !!(info.bounds & CAMCLAY9_BOUND_HI_CLOSED)}, {nextafter(info.hi, DBL_MAX), 0}};
+    for (int j = 0; j < 4; j++) {
+      if (!(j < 2 ? lo : hi)) continue;
+      for (int i = 0; i < 23; i++) props[i] = woodford[i];
+      props[k] = probe[j].v;
+      camclay9_check_props(props, 23, 32, 6, 3, &code, msg, sizeof msg);
+      ok = ok && (probe[j].valid ? code == 0 : code == k + 1 && strstr(msg, info.symbol) != NULL);
+    }
+    nbounded += lo || hi;
+    check(ok, what);
+  }
+  for (int i = 0; i < 23; i++) props[i] = woodford[i];
+  check(np == CAMCLAY9_NPROPS_WITH_NORMAL && nbounded == 14, "23 PROPS slots, 14 with bounds of their own");
+  check(!camclay9_prop_info(23, &info) && !info.name[0] && !camclay9_prop_info(-1, &info), "no PROPS slot 23 or -1");
+  camclay9_prop_info(0, &info);
+  check(info.lo == 0 && info.hi == 1 && info.bounds == (CAMCLAY9_BOUND_LO | CAMCLAY9_BOUND_LO_CLOSED | CAMCLAY9_BOUND_HI |
+                                                        CAMCLAY9_BOUND_HI_CLOSED) && !strcmp(info.unit, "-"),
+        "phi in [0, 1], no unit");
+  camclay9_prop_info(12, &info);
+  check(info.lo == 0 && info.bounds == (CAMCLAY9_BOUND_LO | CAMCLAY9_BOUND_LO_CLOSED) && !strcmp(info.unit, "MPa^3 s"),
+        "eta_hard >= 0 in MPa^3 s");
+  camclay9_prop_info(11, &info);
+  check(info.lo == 0 && info.bounds == CAMCLAY9_BOUND_LO && !strcmp(info.unit, "MPa"), "pc0_hard > 0 in MPa");
 
   /* The STATEV blocks: the exported table and the header's constants name the same slots. */
   const struct { const char *name; int first, size; } blocks[] = {

@@ -27,6 +27,30 @@ void camclay9_check_props(const double *props, int nprops, int nstatv, int ntens
  * (docs/umat.md, PROPS). Returns its length, or 0 when slot is not a PROPS slot of the model. */
 int camclay9_prop_name(int slot, char *name, int capacity);
 
+/* One PROPS slot of the model's contract (ccix_props' prop_table; docs/umat.md, PROPS), MFront-style: its name
+ * (the one spelling of material.set and calibrate), the symbol the UMAT's messages write, its unit with
+ * stresses in MPa and time in s ("-": none; the routine takes any consistent units), its meaning in one line,
+ * and its own bounds as camclay9_check_props applies them: lo and hi (-DBL_MAX, DBL_MAX where there is none),
+ * and in bounds the CAMCLAY9_BOUND_* bits that apply. A slot with CAMCLAY9_BOUND_COUPLED also enters
+ * conditions with other slots (a positive-definite stiffness or projection tensor, a non-zero normal) that
+ * only camclay9_check_props of the whole vector decides. */
+typedef struct {
+  char   name[16], symbol[16], unit[16], meaning[80];
+  double lo, hi;
+  int    bounds;
+} camclay9_prop_info_t;
+
+enum {
+  CAMCLAY9_BOUND_LO        = 1,  /* value > lo ... */
+  CAMCLAY9_BOUND_LO_CLOSED = 2,  /* ... or value >= lo (set together with CAMCLAY9_BOUND_LO) */
+  CAMCLAY9_BOUND_HI        = 4,  /* value < hi ... */
+  CAMCLAY9_BOUND_HI_CLOSED = 8,  /* ... or value <= hi (set together with CAMCLAY9_BOUND_HI) */
+  CAMCLAY9_BOUND_COUPLED   = 16  /* and conditions with other slots */
+};
+
+/* PROPS slot (0-based) into *info. Returns 1, or 0 when slot is not a PROPS slot of the model (*info empty). */
+int camclay9_prop_info(int slot, camclay9_prop_info_t *info);
+
 /* STATEV block k (0-based: sig_hard, evp_hard, pc_hard, sig_soft, evp_soft, pc_soft, evp, iterations, flags,
  * f_hard, f_soft; docs/umat.md, STATEV): its name into name (NUL-terminated, at most capacity bytes), its first
  * slot (0-based) and its number of slots. Returns 1, or 0 when there is no block k. The enum below holds the same

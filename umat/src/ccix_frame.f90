@@ -190,9 +190,7 @@ contains
 
     type(step_t) :: st
     type(local_eval_t) :: ev
-    real(real64) :: sig_tr(6), f_tr, pc_r, denom, g, y, n_dir(6)
-    integer :: it2
-    logical :: ok
+    real(real64) :: sig_tr(6), f_tr, g, y
 
     flags = 0
     iterations = 0
@@ -215,8 +213,26 @@ contains
       return
     end if
 
-    ! Scaled consistency residual R_f = sf*f - sg*dgamma (sec. 3.3, division-free form):
-    ! sf = dt E_r / (dt E_r pc_r^2 + eta), sg = eta E_r / (dt E_r pc_r^2 + eta).
+    call step_new(fr, q, sig_tr, pc_n, dt, st)
+    call local_solve(fr, st, g, y, ev, iterations, status, flags)
+    if (status == frame_failed) then
+      f_end = f_tr
+      sig = sig_n
+      pc = pc_n
+      return
+    end if
+    call step_result(q, st, g, ev, sig, pc, devp, d, flags, f_end)
+    if (want_error) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
+  end subroutine frame_integrate
+
+  !> The fixed data of the viscoplastic step from sigma_tr (theory.md sec. 3.3): the scaled consistency
+  !> residual R_f = sf*f - sg*dgamma in division-free form, sf = dt E_r / (dt E_r pc_r^2 + eta),
+  !> sg = eta E_r / (dt E_r pc_r^2 + eta); the floor of y = ln(pc/pc_n); the pencil and a = V^-1 sigma_tr.
+  pure recursive subroutine step_new(fr, q, sig_tr, pc_n, dt, st)
+    type(frame_t), intent(in) :: fr
+    real(real64), intent(in) :: q(6, 6), sig_tr(6), pc_n, dt
+    type(step_t), intent(out) :: st
+    real(real64) :: pc_r, denom
     pc_r = max(pc_n, fr%p_floor)
     denom = dt * fr%e_ref * pc_r**2 + fr%eta
     st%sf = dt * fr%e_ref / denom
@@ -230,8 +246,22 @@ contains
     end if
     call v_inv_times(q, st%pe, sig_tr, st%a)
     st%floor_active = .false.
+  end subroutine step_new
 
-    ! Newton from the elastic predictor (sec. 3.4); pc bounded below by the floor while iterating.
+  !> The local problem of the step (theory.md sec. 3.4) solved for (dgamma, y) = (g, y), ev the
+  !> evaluation there: Newton from the elastic predictor, pc bounded below by the floor while
+  !> iterating; if it fails with pc at the floor, again with pc held there; if it still fails, the
+  !> bracketed fallback, then Newton from its solution for the exact root and the tangent. status:
+  !> frame_newton, frame_fallback (flag_fallback in flags) or frame_failed.
+  pure recursive subroutine local_solve(fr, st, g, y, ev, iterations, status, flags)
+    type(frame_t), intent(in) :: fr
+    type(step_t), intent(inout) :: st
+    real(real64), intent(out) :: g, y
+    type(local_eval_t), intent(out) :: ev
+    integer, intent(out) :: iterations, status
+    integer, intent(inout) :: flags
+    integer :: it2
+    logical :: ok
     status = frame_newton
     g = 0
     y = 0
@@ -245,7 +275,6 @@ contains
       iterations = iterations + it2
     end if
     if (.not. ok) then
-      ! Bracketed fallback (sec. 3.4), then Newton from its solution for the exact root and the tangent.
       status = frame_fallback
       flags = ior(flags, flag_fallback)
       call fallback_solve(fr, st, g, y, ok)
@@ -254,14 +283,18 @@ contains
         iterations = iterations + it2
       end if
     end if
-    if (.not. ok) then
-      status = frame_failed
-      f_end = f_tr
-      sig = sig_n
-      pc = pc_n
-      return
-    end if
+    if (.not. ok) status = frame_failed
+  end subroutine local_solve
 
+  !> The end of a converged step from its solution (g, ev): stress, pc, the viscoplastic strain
+  !> increment, the floor and tension flags, the yield function and the consistent tangent d.
+  pure recursive subroutine step_result(q, st, g, ev, sig, pc, devp, d, flags, f_end)
+    real(real64), intent(in) :: q(6, 6), g
+    type(step_t), intent(in) :: st
+    type(local_eval_t), intent(in) :: ev
+    real(real64), intent(out) :: sig(6), pc, devp(6), d(6, 6), f_end
+    integer, intent(inout) :: flags
+    real(real64) :: n_dir(6)
     pc = ev%pc
     call v_times(q, st%pe, ev%xi, sig)
     f_end = ev%f
@@ -271,8 +304,7 @@ contains
     if (st%floor_active) flags = ior(flags, flag_floor)
     if (dot_product(st%pe%b, ev%xi) > 0) flags = ior(flags, flag_tension)   ! p' = -b.xi/3 < 0
     d = consistent_tangent(q, st, g, ev)
-    if (want_error) err_est = start_rate_error(fr, sig_n, pc_n, dt, devp)
-  end subroutine frame_integrate
+  end subroutine step_result
 
   !> |deps_vp - dt * rate_vp(sig_n, pc_n)|: backward minus forward Euler increment, the local error
   !> indicator of theory.md sec. 3.6 (like Abaqus' CETOL for creep). Zero when eta = 0 (no rate exists).

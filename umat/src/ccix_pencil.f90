@@ -57,10 +57,8 @@ contains
     real(real64), intent(in) :: m_slope  !< M
     logical, intent(in) :: isotropic     !< C isotropic and P = I
     type(pencil_t), intent(out) :: pe
-    real(real64), parameter :: rsqrt3 = 0.5773502691896258_real64   ! 1/sqrt3
-    type(ti_t) :: kw, hw
-    real(real64) :: l11, l21, l22, i11, i22, g11, g12, g21, g22, lam2(2), c, s, r5, r6, i5, i6, sk, sg, &
-                    m2, k1, p1_b(2), h1_b(2), kappa
+    type(ti_t) :: kw
+    real(real64) :: m2, k1
     ! K = (2/9) 1(x)1 + (3/M^2) I_dev = (3/M^2) I + (2/9 - 1/M^2) 1(x)1, 1 = sqrt2 u1 + u2 (sec. 1.3)
     m2 = 1 / m_slope**2
     k1 = 2.0_real64 / 9.0_real64 - m2
@@ -69,32 +67,53 @@ contains
     kw%a22 = 3 * m2 + k1
     kw%a5 = 3 * m2
     kw%a6 = kw%a5
-    associate (w => pe%w, w_inv => pe%w_inv, r => pe%r, r_inv => pe%r_inv, lambda_h => pe%lambda_h, &
-               b => pe%b, h1 => pe%h1)
-      if (isotropic) then
-        kappa = (2 * cw%a11 + 2 * sqrt2 * cw%a12 + cw%a22) * (1.0_real64 / 9)   ! e_h.C_b.e_h/3
-        sk = sqrt(kappa)                        ! sqrt(3 kappa) e_h = sk (sqrt2, 1)
-        r5 = sqrt(cw%a5)                        ! sqrt(2 mu)
-        sg = r5 * rsqrt3                        ! sqrt(2 mu) e_d = sg (1, -sqrt2)
-        i5 = 1 / (sk * r5)                      ! one division for 1/sk and 1/r5
-        w(1, 1) = sqrt2 * sk
-        w(2, 1) = sk
-        w(1, 2) = sg
-        w(2, 2) = -sqrt2 * sg
-        w_inv(1, 1) = sqrt2 * (r5 * i5 / 3)
-        w_inv(1, 2) = r5 * i5 / 3
-        i5 = sk * i5
-        w_inv(2, 1) = i5 * rsqrt3
-        w_inv(2, 2) = -sqrt2 * (i5 * rsqrt3)
-        call set_shears(r5, r5, i5, i5, cw%a5 * kw%a5, cw%a5 * kw%a5, r, r_inv, lambda_h)
-        lambda_h(1) = 2 * kappa
-        lambda_h(2) = cw%a5 * kw%a5
-        b = 0
-        b(1) = 3 * sk
-        h1 = 0
-        h1(1) = 2 * sk
-        return
-      end if
+    if (isotropic) then
+      call isotropic_pencil(cw, kw, pe)
+    else
+      call ti_pencil(cw, pw, kw, pe)
+    end if
+  end subroutine pencil_diagonalise
+
+  !> pencil_diagonalise where C is isotropic and P = I: W, W^-1, lambda, b and h1 as written above.
+  pure recursive subroutine isotropic_pencil(cw, kw, pe)
+    type(ti_t), intent(in) :: cw, kw     !< C and K in Walpole's basis
+    type(pencil_t), intent(out) :: pe
+    real(real64), parameter :: rsqrt3 = 0.5773502691896258_real64   ! 1/sqrt3
+    real(real64) :: sk, sg, r5, i5, kappa
+    associate (w => pe%w, w_inv => pe%w_inv, lambda_h => pe%lambda_h, b => pe%b, h1 => pe%h1)
+      kappa = (2 * cw%a11 + 2 * sqrt2 * cw%a12 + cw%a22) * (1.0_real64 / 9)   ! e_h.C_b.e_h/3
+      sk = sqrt(kappa)                        ! sqrt(3 kappa) e_h = sk (sqrt2, 1)
+      r5 = sqrt(cw%a5)                        ! sqrt(2 mu)
+      sg = r5 * rsqrt3                        ! sqrt(2 mu) e_d = sg (1, -sqrt2)
+      i5 = 1 / (sk * r5)                      ! one division for 1/sk and 1/r5
+      w(1, 1) = sqrt2 * sk
+      w(2, 1) = sk
+      w(1, 2) = sg
+      w(2, 2) = -sqrt2 * sg
+      w_inv(1, 1) = sqrt2 * (r5 * i5 / 3)
+      w_inv(1, 2) = r5 * i5 / 3
+      i5 = sk * i5
+      w_inv(2, 1) = i5 * rsqrt3
+      w_inv(2, 2) = -sqrt2 * (i5 * rsqrt3)
+      call set_shears(r5, r5, i5, i5, cw%a5 * kw%a5, cw%a5 * kw%a5, pe%r, pe%r_inv, lambda_h)
+      lambda_h(1) = 2 * kappa
+      lambda_h(2) = cw%a5 * kw%a5
+      b = 0
+      b(1) = 3 * sk
+      h1 = 0
+      h1(1) = 2 * sk
+    end associate
+  end subroutine isotropic_pencil
+
+  !> pencil_diagonalise in general: H = P:K:P, the 2 x 2 problem on (u1, u2) by Cholesky and one Jacobi
+  !> rotation, the shear pairs from the coefficients.
+  pure recursive subroutine ti_pencil(cw, pw, kw, pe)
+    type(ti_t), intent(in) :: cw, pw, kw     !< C, P and K in Walpole's basis
+    type(pencil_t), intent(out) :: pe
+    type(ti_t) :: hw
+    real(real64) :: l11, l21, l22, i11, i22, g11, g12, g21, g22, lam2(2), c, s, r5, r6, i5, i6, &
+                    p1_b(2), h1_b(2)
+    associate (w => pe%w, w_inv => pe%w_inv, lambda_h => pe%lambda_h, b => pe%b, h1 => pe%h1)
       hw = ti_sandwich(pw, kw)                 ! H = P:K:P
       p1_b(1) = sqrt2 * pw%a11 + pw%a12        ! P:1 = P_b (sqrt2, 1)
       p1_b(2) = sqrt2 * pw%a12 + pw%a22
@@ -127,7 +146,7 @@ contains
       i6 = 1 / (r5 * r6)                     ! one division for 1/r5 and 1/r6
       i5 = r6 * i6
       i6 = r5 * i6
-      call set_shears(r5, r6, i5, i6, cw%a5 * hw%a5, cw%a6 * hw%a6, r, r_inv, lambda_h)
+      call set_shears(r5, r6, i5, i6, cw%a5 * hw%a5, cw%a6 * hw%a6, pe%r, pe%r_inv, lambda_h)
       ! H is positive semi-definite: drop round-off below 0.
       lambda_h(1) = max(lam2(1), 0.0_real64)
       lambda_h(2) = max(lam2(2), 0.0_real64)
@@ -138,7 +157,7 @@ contains
       h1(1) = w(1, 1) * h1_b(1) + w(2, 1) * h1_b(2)  ! W^T H_b (sqrt2, 1)
       h1(2) = w(1, 2) * h1_b(1) + w(2, 2) * h1_b(2)
     end associate
-  end subroutine pencil_diagonalise
+  end subroutine ti_pencil
 
   !> The shear pairs of pencil_diagonalise: r = B, r_inv = B^-1 and lambda_h on (3:6); r = r_inv = 1 on
   !> the block. Component by component: array constructors here cost a store-forwarding stall each.

@@ -1,7 +1,7 @@
 !> The PROPS and STATEV contract of the Cam-Clay IX UMAT (../shared/docs/umat-interface.md): slot
 !> numbers, the property checks with their messages, and the frames built from PROPS.
 module ccix_props
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use ccix_tensor, only: is_finite
   use ccix_walpole, only: walpole_basis
   use ccix_frame, only: frame_t, frame_new
@@ -28,12 +28,71 @@ module ccix_props
   integer, parameter, public :: statev_block_first(n_statev_blocks) = [is_sig_hard, is_evp_hard, &
     is_pc_hard, is_sig_soft, is_evp_soft, is_pc_soft, is_evp_total, is_iterations, is_flags, is_f_hard, is_f_soft]
   integer, parameter, public :: statev_block_size(n_statev_blocks) = [6, 6, 1, 6, 6, 1, 6, 1, 1, 1, 1]
-  !> The PROPS slots' names (docs/umat.md "PROPS"), in slot order: the one spelling of every host and
-  !> scene (material.set, -material_set, calibrate's parameters; C: camclay9_prop_name).
-  character(len=13), parameter, public :: prop_names(nprops_normal) = [character(len=13) :: &
-    'phi', 'lambda_hard', 'muT_hard', 'muL_hard', 'a_hard', 'b_hard', 'M_hard', 'lambda_p_hard', &
-    'c1', 'c2', 'c3', 'pc0_hard', 'eta_hard', 'lambda_soft', 'mu_soft', 'M_soft', 'lambda_p_soft', &
-    'pc0_soft', 'eta_soft', 'tol', 'n1', 'n2', 'n3']
+  !> How a PROPS slot is bounded (prop_t%bounds; C: CAMCLAY9_BOUND_*): it has a lower bound lo, closed
+  !> (value >= lo) or open (value > lo); likewise an upper bound hi; and it enters conditions with other
+  !> slots (check_props' named checks: positive-definite stiffness and projection tensor, the normal).
+  integer, parameter, public :: bound_lo = 1, bound_lo_closed = 2, bound_hi = 4, bound_hi_closed = 8, &
+                                bound_coupled = 16
+  integer, parameter :: gt = bound_lo, ge = bound_lo + bound_lo_closed, &
+                        closed01 = bound_lo + bound_lo_closed + bound_hi + bound_hi_closed, cp = bound_coupled
+  real(real64), parameter :: none = huge(1.0_real64)   ! lo = -none, hi = none: no bound of the slot's own
+  !> One PROPS slot of the contract (docs/umat.md "PROPS", MFront-style): its name, the symbol the
+  !> messages write, its unit (with stresses in MPa and time in s: the routine takes any consistent set),
+  !> its own bounds as check_props applies them, its meaning in one line, and what a message about it
+  !> adds after the range. C reads the same table through camclay9_prop_info.
+  type, public :: prop_t
+    character(len=13) :: name      !< the one spelling of hosts and scenes (material.set, calibrate)
+    character(len=8) :: symbol     !< as the messages write it
+    character(len=7) :: unit       !< '-': none
+    real(real64) :: lo, hi         !< -none, none where the slot has no bound of its own
+    integer :: bounds              !< bound_* bits
+    character(len=64) :: meaning   !< as docs/umat.md's PROPS table says it
+    character(len=48) :: note      !< a message's words after the range
+  end type prop_t
+  !> The PROPS contract, in slot order.
+  type(prop_t), parameter, public :: prop_table(nprops_normal) = [ &
+    prop_t('phi', 'phi', '-', 0.0_real64, 1.0_real64, closed01, &
+           'volume fraction of the hard frame (soft frame: 1 - phi)', 'the volume fraction of the hard frame'), &
+    prop_t('lambda_hard', 'lambda', 'MPa', -none, none, cp, 'hard frame, Lame constant', ''), &
+    prop_t('muT_hard', 'mu_T', 'MPa', 0.0_real64, none, gt + cp, 'hard frame, shear modulus in the bedding plane', &
+           'hard frame, shear modulus in the bedding plane'), &
+    prop_t('muL_hard', 'mu_L', 'MPa', 0.0_real64, none, gt + cp, 'hard frame, shear modulus normal to the bedding', &
+           'hard frame, shear modulus normal to the bedding'), &
+    prop_t('a_hard', 'a', 'MPa', -none, none, cp, 'hard frame, anisotropy constant (alpha)', ''), &
+    prop_t('b_hard', 'b', 'MPa', -none, none, cp, 'hard frame, anisotropy constant (beta)', ''), &
+    prop_t('M_hard', 'M', '-', 0.0_real64, none, gt, 'hard frame, slope of the critical state line', 'hard frame'), &
+    prop_t('lambda_p_hard', 'lambda_p', '-', 0.0_real64, none, gt, 'hard frame, plastic compressibility', &
+           'hard frame'), &
+    prop_t('c1', 'c1', '-', 0.0_real64, none, gt + cp, 'hard frame, projection tensor constant c1', &
+           'hard frame projection tensor positive definite'), &
+    prop_t('c2', 'c2', '-', -none, none, cp, 'hard frame, projection tensor constant c2', ''), &
+    prop_t('c3', 'c3', '-', -none, none, cp, 'hard frame, projection tensor constant c3', ''), &
+    prop_t('pc0_hard', 'pc0', 'MPa', 0.0_real64, none, gt, 'hard frame, initial preconsolidation pressure', &
+           'hard frame'), &
+    prop_t('eta_hard', 'eta', 'MPa^3 s', 0.0_real64, none, ge, 'hard frame, viscosity (0: rate independent)', &
+           'hard frame; 0 is rate independent'), &
+    prop_t('lambda_soft', 'lambda', 'MPa', -none, none, cp, 'soft frame, Lame constant', ''), &
+    prop_t('mu_soft', 'mu', 'MPa', 0.0_real64, none, gt + cp, 'soft frame, shear modulus', 'soft frame shear modulus'), &
+    prop_t('M_soft', 'M', '-', 0.0_real64, none, gt, 'soft frame, slope of the critical state line', 'soft frame'), &
+    prop_t('lambda_p_soft', 'lambda_p', '-', 0.0_real64, none, gt, 'soft frame, plastic compressibility', &
+           'soft frame'), &
+    prop_t('pc0_soft', 'pc0', 'MPa', 0.0_real64, none, gt, 'soft frame, initial preconsolidation pressure', &
+           'soft frame'), &
+    prop_t('eta_soft', 'eta', 'MPa^3 s', 0.0_real64, none, ge, 'soft frame, viscosity (0: rate independent)', &
+           'soft frame; 0 is rate independent'), &
+    prop_t('tol', 'tol', '-', 0.0_real64, none, ge, 'tolerance on the viscoplastic strain increment of a step', &
+           '0: no step control'), &
+    prop_t('n1', 'n1', '-', -none, none, cp, 'bedding-plane normal, component 1 (normalised inside)', ''), &
+    prop_t('n2', 'n2', '-', -none, none, cp, 'bedding-plane normal, component 2 (normalised inside)', ''), &
+    prop_t('n3', 'n3', '-', -none, none, cp, 'bedding-plane normal, component 3 (normalised inside)', '')]
+  ! The bounds as arrays, for check_props' one pass over all slots: value > lo_of or value == lo_eq,
+  ! where lo_eq is lo for a closed bound and none (no finite value above lo but none) for an open one;
+  ! a missing bound is a closed -none, which every finite value passes. Likewise above.
+  real(real64), parameter :: lo_of(nprops_normal) = prop_table%lo, hi_of(nprops_normal) = prop_table%hi
+  real(real64), parameter :: lo_eq(nprops_normal) = merge(prop_table%lo, none, &
+    iand(prop_table%bounds, bound_lo_closed) /= 0 .or. iand(prop_table%bounds, bound_lo) == 0)
+  real(real64), parameter :: hi_eq(nprops_normal) = merge(prop_table%hi, -none, &
+    iand(prop_table%bounds, bound_hi_closed) /= 0 .or. iand(prop_table%bounds, bound_hi) == 0)
 
   public :: check_props, bedding_normal, frames_from_props
 
@@ -88,17 +147,22 @@ contains
     character(len=message_len), intent(out) :: message
     real(real64) :: n3(3)
     integer :: i, n
-    logical :: finite
+    logical :: finite, within
 
     code = 0
     message = ''
     call check_sizes(nprops, nstatv, ntens, ndi, code, message)
     if (code /= 0) return
-    ! All finite (NaN compares false), in one pass without branches; the slot only when one is not.
+    ! All finite (NaN compares false) and within their own bounds (prop_table), the usual case, in one
+    ! pass without branches; each slot only when one is not: its finiteness first, then its bounds one
+    ! by one in the order of the messages (check_hard, check_soft).
     n = min(nprops, nprops_normal)
     finite = .true.
+    within = .true.
     do i = 1, n
       finite = finite .and. abs(props(i)) <= huge(1.0_real64)
+      within = within .and. (props(i) > lo_of(i) .or. props(i) == lo_eq(i)) .and. &
+                            (props(i) < hi_of(i) .or. props(i) == hi_eq(i))
     end do
     if (.not. finite) then
       do i = 1, n
@@ -108,12 +172,14 @@ contains
     end if
 
     ! Each check acts only while no earlier one has failed, so the first offending slot is reported.
-    call check_hard(props, code, message)
-    call check_soft(props, code, message)
-    if (code /= 0) return
-    if (nprops >= ip_tol) call require(code, message, props, props(ip_tol) >= 0, ip_tol, &
-                 'tol >= 0 (0: no step control)')
-    if (code /= 0) return
+    call check_hard(props, within, code, message)
+    call check_soft(props, within, code, message)
+    if (nprops >= ip_tol) call require_bounds(code, props, within, ip_tol)
+    if (code /= 0) then
+      ! A slot outside its own bounds has its code and no message yet (require_bounds).
+      if (message == '') call bounds_message(props, code, message)
+      return
+    end if
     if (nprops >= nprops_normal) then
       call require(code, message, props, any(props(ip_normal:ip_normal + 2) /= 0), ip_normal, &
                    'a non-zero bedding normal (n1, n2, n3) in PROPS 21-23')
@@ -167,58 +233,137 @@ contains
     end if
   end subroutine check_sizes
 
-  !> phi and the hard frame's PROPS 2-13.
-  pure recursive subroutine check_hard(props, code, message)
+  !> phi and the hard frame's PROPS 2-13: each slot's own bounds (prop_table), and the two conditions
+  !> across slots, a positive-definite stiffness and projection tensor, in the order of the messages.
+  pure recursive subroutine check_hard(props, within, code, message)
     real(real64), intent(in) :: props(*)
+    logical, intent(in) :: within   !< every slot within its own bounds
     integer, intent(inout) :: code
     character(len=message_len), intent(inout) :: message
     real(real64) :: lam, mu_t, mu_l, a, b, c33
-    call require(code, message, props, props(ip_phi) >= 0 .and. props(ip_phi) <= 1, ip_phi, &
-                 'phi, the volume fraction of the hard frame, in [0, 1]')
+    call require_bounds(code, props, within, ip_phi)
     ! Hard frame: positive-definite TI stiffness. In bedding axes the Mandel stiffness splits into
     ! 2 mu_T, 2 mu_T, 2 mu_L, 2 mu_L and the 2x2 block [[2(lam + mu_T), sqrt2 (lam + a)], [., C33]]
-    ! (theory.md sec. 4.2), so it is positive definite iff these are.
+    ! (theory.md sec. 4.2), so it is positive definite iff these are: mu_T, mu_L > 0 (their bounds) and
+    ! the block (slots 2 and 6).
     lam = props(2); mu_t = props(3); mu_l = props(4); a = props(5); b = props(6)
     c33 = lam + 2 * mu_t + 2 * a + b + 4 * (mu_l - mu_t)
-    call require(code, message, props, mu_t > 0, 3, &
-                 'mu_T > 0 (hard frame, shear modulus in the bedding plane)')
-    call require(code, message, props, mu_l > 0, 4, &
-                 'mu_L > 0 (hard frame, shear modulus normal to the bedding)')
+    call require_bounds(code, props, within, 3)
+    call require_bounds(code, props, within, 4)
     call require(code, message, props, lam + mu_t > 0, 2, &
                  'lambda > -mu_T (hard frame stiffness positive definite)')
     call require(code, message, props, c33 > 0 .and. 2 * (lam + mu_t) * c33 > 2 * (lam + a)**2, 6, &
                  'b such that the hard-frame stiffness is positive definite: ' // &
                  'C33 = lambda + 2 mu_T + 2a + b + 4(mu_L - mu_T) > 0 ' // &
                  'and (lambda + mu_T) C33 > (lambda + a)^2')
-    call require(code, message, props, props(7) > 0, 7, 'M > 0 (hard frame)')
-    call require(code, message, props, props(8) > 0, 8, 'lambda_p > 0 (hard frame)')
-    ! Projection tensor positive definite: c1 > 0, c1 + c2 + c3 > 0, c1 + c3/2 > 0 (theory.md sec. 1.2).
-    call require(code, message, props, props(9) > 0, 9, &
-                 'c1 > 0 (hard frame projection tensor positive definite)')
+    call require_bounds(code, props, within, 7)
+    call require_bounds(code, props, within, 8)
+    ! Projection tensor positive definite: c1 > 0 (its bound), c1 + c2 + c3 > 0, c1 + c3/2 > 0
+    ! (theory.md sec. 1.2).
+    call require_bounds(code, props, within, 9)
     call require(code, message, props, props(9) + props(10) + props(11) > 0, 10, &
                  'c1 + c2 + c3 > 0 ' // '(hard frame projection tensor positive definite)')
     call require(code, message, props, props(9) + props(11) / 2 > 0, 11, &
                  'c1 + c3/2 > 0 (hard frame projection tensor positive definite)')
-    call require(code, message, props, props(12) > 0, 12, 'pc0 > 0 (hard frame)')
-    call require(code, message, props, props(13) >= 0, 13, &
-                 'eta >= 0 (hard frame; 0 is rate independent)')
+    call require_bounds(code, props, within, 12)
+    call require_bounds(code, props, within, 13)
   end subroutine check_hard
 
-  !> The soft frame's PROPS 14-19.
-  pure recursive subroutine check_soft(props, code, message)
+  !> The soft frame's PROPS 14-19: their bounds (prop_table), and a positive bulk modulus across slots.
+  pure recursive subroutine check_soft(props, within, code, message)
     real(real64), intent(in) :: props(*)
+    logical, intent(in) :: within   !< every slot within its own bounds
     integer, intent(inout) :: code
     character(len=message_len), intent(inout) :: message
-    ! Soft frame: isotropic, positive definite iff mu > 0 and 3 lambda + 2 mu > 0.
-    call require(code, message, props, props(15) > 0, 15, 'mu > 0 (soft frame shear modulus)')
+    integer :: slot
+    ! Soft frame: isotropic, positive definite iff mu > 0 (its bound) and 3 lambda + 2 mu > 0.
+    call require_bounds(code, props, within, 15)
     call require(code, message, props, 3 * props(14) + 2 * props(15) > 0, 14, &
                  'lambda > -2 mu/3 (soft frame bulk modulus positive)')
-    call require(code, message, props, props(16) > 0, 16, 'M > 0 (soft frame)')
-    call require(code, message, props, props(17) > 0, 17, 'lambda_p > 0 (soft frame)')
-    call require(code, message, props, props(18) > 0, 18, 'pc0 > 0 (soft frame)')
-    call require(code, message, props, props(19) >= 0, 19, &
-                 'eta >= 0 (soft frame; 0 is rate independent)')
+    do slot = 16, 19
+      call require_bounds(code, props, within, slot)
+    end do
   end subroutine check_soft
+
+  !> If no check has failed yet (code = 0) and PROPS(slot) is outside the slot's own bounds
+  !> (prop_table): code = slot, and the message is left to bounds_message. Nothing to test when every
+  !> slot is within its bounds (check_props' one pass).
+  pure recursive subroutine require_bounds(code, props, within, slot)
+    integer, intent(inout) :: code
+    real(real64), intent(in) :: props(*)
+    logical, intent(in) :: within
+    integer, intent(in) :: slot
+    if (within .or. code /= 0) return
+    if (.not. within_bounds(slot, props(slot))) code = slot
+  end subroutine require_bounds
+
+  !> The message of require_bounds' slot, as require writes it, with the range from prop_table.
+  pure recursive subroutine bounds_message(props, slot, message)
+    real(real64), intent(in) :: props(*)
+    integer, intent(in) :: slot
+    character(len=message_len), intent(inout) :: message
+    character(len=message_len) :: range
+    integer :: code
+    call range_text(prop_table(slot), range)
+    code = 0
+    call require(code, message, props, .false., slot, trim(range))
+  end subroutine bounds_message
+
+  !> Whether x lies within the bounds of PROPS slot (NaN does not: check_props tests finiteness first).
+  pure recursive logical function within_bounds(slot, x) result(ok)
+    integer, intent(in) :: slot
+    real(real64), intent(in) :: x
+    ok = .true.
+    if (iand(prop_table(slot)%bounds, bound_lo_closed) /= 0) then
+      ok = x >= prop_table(slot)%lo
+    else if (iand(prop_table(slot)%bounds, bound_lo) /= 0) then
+      ok = x > prop_table(slot)%lo
+    end if
+    if (iand(prop_table(slot)%bounds, bound_hi_closed) /= 0) then
+      ok = ok .and. x <= prop_table(slot)%hi
+    else if (iand(prop_table(slot)%bounds, bound_hi) /= 0) then
+      ok = ok .and. x < prop_table(slot)%hi
+    end if
+  end function within_bounds
+
+  !> The range of the slot pr as a message says it: 'M > 0 (hard frame)', 'eta >= 0 (...)', or with two
+  !> bounds 'phi, the volume fraction of the hard frame, in [0, 1]'.
+  pure recursive subroutine range_text(pr, text)
+    type(prop_t), intent(in) :: pr
+    character(len=message_len), intent(out) :: text
+    logical :: lo, hi
+    lo = iand(pr%bounds, bound_lo) /= 0
+    hi = iand(pr%bounds, bound_hi) /= 0
+    if (lo .and. hi) then
+      text = trim(pr%symbol) // ', ' // trim(pr%note) // ', in ' // &
+             merge('[', '(', iand(pr%bounds, bound_lo_closed) /= 0) // trim(number_text(pr%lo)) // ', ' // &
+             trim(number_text(pr%hi)) // merge(']', ')', iand(pr%bounds, bound_hi_closed) /= 0)
+      return
+    end if
+    text = pr%symbol
+    if (lo .and. iand(pr%bounds, bound_lo_closed) /= 0) then
+      text = trim(text) // ' >= ' // number_text(pr%lo)
+    else if (lo) then
+      text = trim(text) // ' > ' // number_text(pr%lo)
+    else if (hi .and. iand(pr%bounds, bound_hi_closed) /= 0) then
+      text = trim(text) // ' <= ' // number_text(pr%hi)
+    else if (hi) then
+      text = trim(text) // ' < ' // number_text(pr%hi)
+    end if
+    if (len_trim(pr%note) > 0) text = trim(text) // ' (' // trim(pr%note) // ')'
+  end subroutine range_text
+
+  !> A bound as a message writes it: a whole number without a point (0, 1), else 1.500000E+00.
+  pure recursive function number_text(x) result(text)
+    real(real64), intent(in) :: x
+    character(len=24) :: text
+    if (abs(x) < 1.0e15_real64 .and. x == aint(x)) then
+      write (text, '(i0)') nint(x, kind=int64)
+    else
+      write (text, '(es13.6)') x
+      text = adjustl(text)
+    end if
+  end function number_text
 
   !> If no check has failed yet (code = 0) and ok is false: code = slot and the message names the
   !> slot, its value and what was expected.
