@@ -6,6 +6,7 @@
 #include "fe_problem.h"
 #include "../io/log_events.h"
 
+#include <string.h>
 #include <time.h>
 
 static inline KernelPoint kernel_point(const FeProblem *p, PetscInt k) {
@@ -13,35 +14,48 @@ static inline KernelPoint kernel_point(const FeProblem *p, PetscInt k) {
   return kp;
 }
 
-/* The UMAT call of point k (local cell c, quadrature point q) at total strain eps, from the committed state;
- * its results go to the trial state and the tangent cache. */
-static PetscErrorCode point_update(FeProblem *p, UmatMaterial *mat, PetscInt c, PetscInt q, const PetscReal eps[6], UmatCall *call) {
-  const PetscInt   k = SV(p, c, q), ntens = p->mat.ntens;
-  const PetscReal *st = &p->state[k * p->nsv];
-  PetscReal       *tr = &p->trial[k * p->nsv];
-  PetscFunctionBeginUser;
-  PetscCall(PetscArraycpy(call->stress, st + ST_STRESS, 6));
-  PetscCall(PetscArraycpy(call->statev, st + ST_STATEV, p->mat.nstatv));
-  PetscCall(PetscArraycpy(call->stran, st + ST_STRAN, 6));
-  for (PetscInt vI = 0; vI < ntens; vI++) call->dstran[vI] = eps[vI] - st[ST_STRAN + vI];
+/* The call of point k (local cell c, quadrature point q) at total strain eps, from its committed state. */
+static void call_from_state(const FeProblem *p, PetscInt c, PetscInt q, const PetscReal eps[6], UmatCall *call) {
+  const PetscReal *st = &p->state[SV(p, c, q) * p->nsv];
+  memcpy(call->stress, st + ST_STRESS, sizeof call->stress);
+  memcpy(call->statev, st + ST_STATEV, sizeof(double) * (size_t)p->mat.nstatv);
+  memcpy(call->stran, st + ST_STRAN, sizeof call->stran);
+  for (PetscInt vI = 0; vI < p->mat.ntens; vI++) call->dstran[vI] = eps[vI] - st[ST_STRAN + vI];
   call->time[0] = call->time[1] = p->time - p->dt;
   call->dtime                   = p->dt;
   call->noel                    = (int)c + 1;
   call->npt                     = (int)q + 1;
   call->kstep = call->kinc = 1;
   call->sse = call->spd = call->scd = 0;
-  umat_invoke(mat, call);
+}
+
+/* Its results: the trial state at eps, and the tangent cache. */
+static void call_to_trial(FeProblem *p, PetscInt c, PetscInt q, const PetscReal eps[6], const UmatCall *call) {
+  const PetscInt k  = SV(p, c, q);
+  PetscReal     *tr = &p->trial[k * p->nsv];
+  memcpy(tr + ST_STRESS, call->stress, sizeof call->stress);
+  memcpy(tr + ST_STRAN, eps, 6 * sizeof(PetscReal));
+  memcpy(tr + ST_STATEV, call->statev, sizeof(double) * (size_t)p->mat.nstatv);
+  memcpy(&p->ddsdde[k * 36], call->ddsdde, sizeof(double) * (size_t)(p->mat.ntens * p->mat.ntens));
+}
+
+/* The update of point (c, q) at total strain eps: gather its state, the material-point adapter with the cell's phi
+ * and the evaluation's step control, scatter to the trial state; the first call that asks for a shorter step is
+ * kept for a replay scene. Returns the stress at eps and the call's PNEWDT. */
+static void point_update(FeProblem *p, PetscInt c, PetscInt q, const PetscReal eps[6], PetscReal stress[6], PetscReal *pnewdt) {
+  const PetscReal   phi = p->phi[c - p->cStart];
+  UmatCall          call;
+  MaterialPointDiag diag;
+  call_from_state(p, c, q, eps, &call);
+  material_point_update(&p->mat, phi, p->umat, &call, &diag);
   p->umat_calls++;
-  if (call->pnewdt < 1 && !p->have_failed_call) { /* rare: rebuild the call's input from the state */
-    p->have_failed_call = 1, p->failed_out = *call, p->failed_mat = *mat, p->failed_in = *call;
-    PetscCall(PetscArraycpy(p->failed_in.stress, st + ST_STRESS, 6));
-    PetscCall(PetscArraycpy(p->failed_in.statev, st + ST_STATEV, p->mat.nstatv));
+  if (diag.rejected) {
+    const PetscReal *st = &p->state[SV(p, c, q) * p->nsv];
+    material_failed_call_keep(&p->failed, &p->mat, phi, p->umat, st + ST_STRESS, st + ST_STATEV, &call);
   }
-  PetscCall(PetscArraycpy(tr + ST_STRESS, call->stress, 6));
-  PetscCall(PetscArraycpy(tr + ST_STRAN, eps, 6));
-  PetscCall(PetscArraycpy(tr + ST_STATEV, call->statev, p->mat.nstatv));
-  PetscCall(PetscArraycpy(&p->ddsdde[k * 36], call->ddsdde, ntens * ntens));
-  PetscFunctionReturn(0);
+  call_to_trial(p, c, q, eps, &call);
+  memcpy(stress, call.stress, sizeof call.stress);
+  *pnewdt = diag.pnewdt;
 }
 
 /* The element loop: residual (F = F_int - F_ext) and, with the same UMAT calls, the tangent cache. */
@@ -59,26 +73,20 @@ PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   PetscCall(DMGetLocalVector(dm, &Floc));
   PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
   PetscCall(VecZeroEntries(Floc));
-  p->have_failed_call = 0;
+  p->failed.have = false;
   PetscCall(VecGetArray(Uloc, &ua));
   PetscCall(VecGetArray(Floc, &fa));
   PetscCall(fe_constraint_to_global(&p->con, ua)); /* the fixed components (zero values); nodal frames to global axes */
-  /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
-     p->umat) and, per cell, its phi; p->mat itself is never written. */
-  UmatMaterial local = p->mat, *mat = &local;
-  umat_control_apply(mat, p->umat);
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
     for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]], re[b] = 0;
-    if (mat->pr.phi >= 0) mat->props[mat->pr.phi] = p->phi[c - p->cStart];
     for (PetscInt q = 0; q < p->nq; q++) {
       const KernelPoint kp = kernel_point(p, SV(p, c, q));
-      PetscReal         eps[6];
-      UmatCall          call;
+      PetscReal         eps[6], sig[6], pnewdt;
       kernel_strain(&kp, ue, eps);
-      PetscCall(point_update(p, mat, c, q, eps, &call));
-      min_pnewdt = PetscMin(min_pnewdt, call.pnewdt);
-      kernel_force(&kp, call.stress, p->wdetJ[SV(p, c, q)], re);
+      point_update(p, c, q, eps, sig, &pnewdt);
+      min_pnewdt = PetscMin(min_pnewdt, pnewdt);
+      kernel_force(&kp, sig, p->wdetJ[SV(p, c, q)], re);
     }
     for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
   }

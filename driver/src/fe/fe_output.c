@@ -6,50 +6,48 @@
 
 #include <errno.h>
 #include <stdio.h>
-#include <stddef.h>
 #include <string.h>
 #include <unistd.h>
 
 /* Cell fields: name, number of components, where they come from in a point's state (fe_problem.h: stress, strain,
- * then the UMAT's STATEV, whose slots the material names: UmatMaterial.sv), and whether the Voigt values are strains
+ * then the UMAT's STATEV, read by quantity through material_point.h), and whether the Voigt values are strains
  * (engineering shear, halved in the tensor). */
 typedef enum { FROM_STRESS, FROM_STRAN, FROM_STATEV, FROM_PHI } FieldSource;
 typedef struct {
   const char *name;
   PetscInt    nc;
   FieldSource from;
-  size_t      slot; /* FROM_STATEV: the UmatStateSlots member */
+  MaterialQuantity q; /* FROM_STATEV */
   PetscBool   strain;
 } CellField;
 static const CellField cell_fields[] = {
   {"stress", 6, FROM_STRESS, 0, PETSC_FALSE},
   {"strain", 6, FROM_STRAN, 0, PETSC_TRUE},
-  {"evp_hard", 6, FROM_STATEV, offsetof(UmatStateSlots, evp_hard), PETSC_TRUE},
-  {"evp_soft", 6, FROM_STATEV, offsetof(UmatStateSlots, evp_soft), PETSC_TRUE},
-  {"evp", 6, FROM_STATEV, offsetof(UmatStateSlots, evp), PETSC_TRUE},
-  {"pc_hard", 1, FROM_STATEV, offsetof(UmatStateSlots, pc_hard), PETSC_FALSE},
-  {"pc_soft", 1, FROM_STATEV, offsetof(UmatStateSlots, pc_soft), PETSC_FALSE},
+  {"evp_hard", 6, FROM_STATEV, MATERIAL_EVP_HARD, PETSC_TRUE},
+  {"evp_soft", 6, FROM_STATEV, MATERIAL_EVP_SOFT, PETSC_TRUE},
+  {"evp", 6, FROM_STATEV, MATERIAL_EVP, PETSC_TRUE},
+  {"pc_hard", 1, FROM_STATEV, MATERIAL_PC_HARD, PETSC_FALSE},
+  {"pc_soft", 1, FROM_STATEV, MATERIAL_PC_SOFT, PETSC_FALSE},
   {"phi", 1, FROM_PHI, 0, PETSC_FALSE},
 };
 enum { NCELLFIELDS = sizeof cell_fields / sizeof cell_fields[0] };
 /* The row-major place of each Voigt component 11 22 33 12 13 23 in a 3x3 tensor (and of its mirror). */
 static const PetscInt voigt_row[6] = {0, 4, 8, 1, 2, 5}, voigt_mirror[6] = {0, 4, 8, 3, 6, 7};
-enum { FIELD_PER_CELL = -1, FIELD_ABSENT = -2 };
 
-/* Where a field starts in a point's state; FIELD_PER_CELL for phi, FIELD_ABSENT where the UMAT has no such slots. */
-static PetscInt field_offset(const FeProblem *p, const CellField *cf) {
-  switch (cf->from) {
-  case FROM_STRESS: return ST_STRESS;
-  case FROM_STRAN: return ST_STRAN;
-  case FROM_PHI: return FIELD_PER_CELL;
-  default: {
-    const int s = *(const int *)((const char *)&p->mat.sv + cf->slot);
-    return umat_has_slots(&p->mat, s, (int)cf->nc) ? ST_STATEV + s : FIELD_ABSENT;
-  }
-  }
+static PetscBool field_present(const FeProblem *p, const CellField *cf) {
+  return (PetscBool)(cf->from != FROM_STATEV || material_quantity_size(&p->mat, cf->q) == cf->nc);
 }
 
-static PetscBool field_present(const FeProblem *p, const CellField *cf) { return (PetscBool)(field_offset(p, cf) != FIELD_ABSENT); }
+/* Component j of the field at point k of local cell c. */
+static PetscReal field_value(const FeProblem *p, const CellField *cf, PetscInt c, PetscInt k, PetscInt j) {
+  const PetscReal *st = &p->state[k * p->nsv];
+  switch (cf->from) {
+  case FROM_STRESS: return st[ST_STRESS + j];
+  case FROM_STRAN: return st[ST_STRAN + j];
+  case FROM_PHI: return p->phi[c];
+  default: return material_quantity(&p->mat, st + ST_STATEV, cf->q, (int)j);
+  }
+}
 
 /* What the nine components of a tensor are, per kinematics (in 2D the zz slot is the out-of-plane or hoop
  * component, and xz, yz are zero). */
@@ -270,7 +268,7 @@ static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, const c
  * components. In 2D the 13 and 23 slots of stress and strain are not the UMAT's (NTENS = 4) and are written as the
  * zeros they are. */
 static PetscErrorCode cell_vec(FeProblem *p, const CellField *cf, FeOutput *o, const char *name, Vec *F) {
-  const PetscInt bs = cf->nc == 6 ? 9 : 1, off = field_offset(p, cf);
+  const PetscInt bs = cf->nc == 6 ? 9 : 1;
   PetscScalar   *a;
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(o->cells.n * bs + 1, &a));
@@ -281,7 +279,7 @@ static PetscErrorCode cell_vec(FeProblem *p, const CellField *cf, FeOutput *o, c
       for (PetscInt q = 0; q < p->nq; q++) {
         const PetscInt  pt = c * p->nq + q;
         const PetscReal w  = p->wdetJ[pt];
-        sum += w * (off == FIELD_PER_CELL ? p->phi[c] : p->state[pt * p->nsv + off + j]);
+        sum += w * field_value(p, cf, c, pt, j);
         vol += w;
       }
       v = p->dim == 2 && (cf->from == FROM_STRESS || cf->from == FROM_STRAN) && j >= 4 ? 0 : sum / vol;

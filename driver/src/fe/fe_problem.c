@@ -258,7 +258,7 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
                          p->npoint, &p->radius));
   PetscCall(cell_dofs_setup(p));
   PetscCall(point_geometry_setup(p));
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = mat->pr.phi >= 0 ? mat->props[mat->pr.phi] : 0;
+  for (PetscInt c = p->cStart; c < p->cEnd; c++) p->phi[c - p->cStart] = material_phi(mat);
   p->npressure = npressure;
   for (PetscInt g = 0; g < npressure; g++) {
     PetscCall(PetscStrncpy(p->pressure_group[g], pressure_groups[g], 64));

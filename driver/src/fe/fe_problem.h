@@ -9,7 +9,7 @@
 #include <petscfe.h>
 #include <petscsnes.h>
 
-#include "../material/umat_call.h"
+#include "../material/material_point.h"
 #include "fe_constraint.h"
 
 /* The state of a quadrature point: stress (6), total strain (6), then the UMAT's STATEV. */
@@ -67,9 +67,7 @@ typedef struct FeProblem {
   Vec             fext;
   /* the first UMAT call of the last residual that asked for a smaller step (for a replay file) */
   char            outdir[512];
-  int             have_failed_call;
-  UmatCall        failed_in, failed_out;
-  UmatMaterial    failed_mat;
+  MaterialFailedCall failed;
 } FeProblem;
 
 /* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */
@@ -88,6 +86,8 @@ static inline void fe_problem_set_step(FeProblem *p, PetscReal time, PetscReal d
 PetscErrorCode fe_problem_set_pressures(FeProblem *p, PetscInt n, const PetscReal pressure[]);
 /* The largest D_1111 of this rank's points' last tangents (DDSDDE), a stiffness scale of the material. */
 PetscReal fe_problem_stiffness_scale(const FeProblem *p);
+/* The first UMAT call of the last residual that asked for a shorter step (for a replay scene), NULL if none. */
+static inline const MaterialFailedCall *fe_problem_failed_call(const FeProblem *p) { return p->failed.have ? &p->failed : NULL; }
 /* The COO Jacobian set up by fe_jacobian_coo_setup is being destroyed: assemble by MatSetValues again. */
 static inline void fe_jacobian_coo_release(FeProblem *p) { p->coo_mat = NULL; }
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */

@@ -5,7 +5,12 @@
 
 #include "fe_natural.h"
 
-static PetscBool has_evp(const FeProblem *p) { return umat_has_slots(&p->mat, p->mat.sv.evp, 6) ? PETSC_TRUE : PETSC_FALSE; }
+static PetscBool has_evp(const FeProblem *p) { return material_quantity_size(&p->mat, MATERIAL_EVP) == 6 ? PETSC_TRUE : PETSC_FALSE; }
+
+/* Component i of quantity q (material_point.h) at point k of the state array a (the committed or the trial one). */
+static PetscReal point_quantity(const FeProblem *p, const PetscReal *a, PetscInt k, MaterialQuantity q, PetscInt i) {
+  return material_quantity(&p->mat, &a[k * p->nsv + ST_STATEV], q, (int)i);
+}
 
 PetscErrorCode fe_state_commit(FeProblem *p, PetscReal h) {
   PetscFunctionBeginUser;
@@ -13,7 +18,7 @@ PetscErrorCode fe_state_commit(FeProblem *p, PetscReal h) {
     if (!p->devp_prev) PetscCall(PetscCalloc1(6 * p->npoint + 1, &p->devp_prev));
     for (PetscInt k = 0; k < p->npoint; k++)
       for (PetscInt i = 0; i < 6; i++)
-        p->devp_prev[6 * k + i] = p->trial[k * p->nsv + ST_STATEV + p->mat.sv.evp + i] - p->state[k * p->nsv + ST_STATEV + p->mat.sv.evp + i];
+        p->devp_prev[6 * k + i] = point_quantity(p, p->trial, k, MATERIAL_EVP, i) - point_quantity(p, p->state, k, MATERIAL_EVP, i);
     p->have_devp = h > 0 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(fe_problem_commit(p));
@@ -27,11 +32,10 @@ PetscErrorCode fe_state_volume_error(FeProblem *p, PetscReal h, PetscReal h_prev
   if (!has_evp(p) || !p->have_devp || !(h > 0 && h_prev > 0)) PetscFunctionReturn(0);
   PetscReal r = h / h_prev;
   for (PetscInt k = 0; k < p->npoint; k++) {
-    const PetscReal *tr = &p->trial[k * p->nsv + ST_STATEV + p->mat.sv.evp], *st = &p->state[k * p->nsv + ST_STATEV + p->mat.sv.evp];
-    PetscReal        w  = p->wdetJ[k];
+    PetscReal w = p->wdetJ[k];
     for (PetscInt i = 0; i < 6; i++) {
-      PetscReal d = tr[i] - st[i];
-      loc[0] += w * PetscSqr(d - r * p->devp_prev[6 * k + i]), loc[1] += w * d * d, loc[2] += w * tr[i] * tr[i];
+      PetscReal tr = point_quantity(p, p->trial, k, MATERIAL_EVP, i), d = tr - point_quantity(p, p->state, k, MATERIAL_EVP, i);
+      loc[0] += w * PetscSqr(d - r * p->devp_prev[6 * k + i]), loc[1] += w * d * d, loc[2] += w * tr * tr;
     }
   }
   PetscCall(MPIU_Allreduce(loc, all, 3, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)p->dm)));
@@ -231,17 +235,17 @@ PetscErrorCode fe_problem_stats(FeProblem *p, PetscInt axis, FeStats *s, PetscBo
   PetscCall(PetscMalloc1(2 * p->npoint + 1, &vals));
   for (PetscInt c = p->cStart; c < p->cEnd; c++) {
     for (PetscInt q = 0; q < p->nq; q++) {
-      const PetscReal *st = &src[SV(p, c, q) * p->nsv], *old = &p->state[SV(p, c, q) * p->nsv];
-      PetscReal        w  = p->wdetJ[SV(p, c, q)];
+      const PetscInt   k  = SV(p, c, q);
+      const PetscReal *st = &src[k * p->nsv];
+      PetscReal        w  = p->wdetJ[k];
       loc[0] += w;
       for (PetscInt vI = 0; vI < 6; vI++) loc[1 + vI] += w * st[ST_STRAN + vI], loc[7 + vI] += w * st[ST_STRESS + vI];
       if (has_evp(p)) {
         PetscReal d2 = 0;
-        for (PetscInt vI = 0; vI < 6; vI++)
-          d2 += PetscSqr(st[ST_STATEV + p->mat.sv.evp + vI] - old[ST_STATEV + p->mat.sv.evp + vI]);
+        for (PetscInt vI = 0; vI < 6; vI++) d2 += PetscSqr(point_quantity(p, src, k, MATERIAL_EVP, vI) - point_quantity(p, p->state, k, MATERIAL_EVP, vI));
         loc[13] += w * PetscSqrtReal(d2);
-        vals[SV(p, c, q)]             = st[ST_STATEV + p->mat.sv.evp_hard + axis]; /* axial vp strain */
-        vals[p->npoint + SV(p, c, q)] = st[ST_STATEV + p->mat.sv.evp_soft + axis];
+        vals[k]             = point_quantity(p, src, k, MATERIAL_EVP_HARD, axis); /* axial vp strain */
+        vals[p->npoint + k] = point_quantity(p, src, k, MATERIAL_EVP_SOFT, axis);
       }
     }
   }

@@ -116,15 +116,15 @@ int fe_common_resume(FeCommon *c) {
 }
 
 void fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {
-  FeProblem *p = c->p;
-  if (!p->have_failed_call) return;
+  const MaterialFailedCall *f = fe_problem_failed_call(c->p);
+  if (!f) return;
   int rank;
-  MPI_Comm_rank(PetscObjectComm((PetscObject)p->dm), &rank);
+  MPI_Comm_rank(PetscObjectComm((PetscObject)c->p->dm), &rank);
   char rp[1100];
   snprintf(rp, sizeof rp, "%s/failed_call.rank%d.yaml", dir, rank);
-  if (!umat_write_replay(rp, &p->failed_mat, &p->failed_in, &p->failed_out, msg)) {
+  if (!material_failed_call_write(f, rp, msg)) {
     size_t len = strlen(msg);
-    snprintf(msg + len, n - len, "; the failing UMAT call (element %d, point %d) is replayed by: driver -input %s", p->failed_in.noel,
-             p->failed_in.npt, rp);
+    snprintf(msg + len, n - len, "; the failing UMAT call (element %d, point %d) is replayed by: driver -input %s", f->in.noel,
+             f->in.npt, rp);
   }
 }
