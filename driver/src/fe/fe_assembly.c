@@ -10,7 +10,8 @@
 #include <time.h>
 
 static inline KernelPoint kernel_point(const FeProblem *p, PetscInt k) {
-  KernelPoint kp = {p->space.dim, p->space.ns, &p->space.grad[k * p->space.ns * p->space.dim], p->space.shape_r ? &p->space.shape_r[k * p->space.ns] : NULL};
+  const FeSpace *s  = &p->space;
+  KernelPoint    kp = {s->dim, s->ns, &s->grad[k * s->ns * s->dim], s->shape_r ? &s->shape_r[k * s->ns] : NULL};
   return kp;
 }
 
