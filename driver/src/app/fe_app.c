@@ -111,15 +111,16 @@ static int mesh_geometry(FeScene *sc, const RunnerOptions *opt, char *err, size_
 }
 
 static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p) {
-  PetscInt ncell = p->cEnd - p->cStart, nall, ndof;
+  const FeSpace *sp    = fe_problem_space(p);
+  PetscInt       ncell = sp->cEnd - sp->cStart, nall, ndof;
   Vec      tmp;
   PetscFunctionBeginUser;
   PetscCall(MPIU_Allreduce(&ncell, &nall, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
-  PetscCall(DMCreateGlobalVector(p->dm, &tmp));
+  PetscCall(DMCreateGlobalVector(sp->dm, &tmp));
   PetscCall(VecGetSize(tmp, &ndof));
   PetscCall(VecDestroy(&tmp));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "fe scene %s: %d cells, P%d, %d quadrature points per cell, %d unknowns, %d UMAT state slots per point\n",
-              sc->name, (int)nall, sc->order, (int)p->nq, (int)ndof, (int)p->nsv));
+              sc->name, (int)nall, sc->order, (int)sp->nq, (int)ndof, (int)fe_problem_point_size(p)));
   PetscFunctionReturn(0);
 }
 
@@ -143,7 +144,6 @@ static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions 
   ierr = fe_problem_setup(&p, dm, sc->kin, sc->thickness, sc->order, &sc->mat, sc->fixed, sc->nfixed, (const char(*)[64])sc->pressure_group,
                           sc->npressure);
   if (ierr) return petsc_failure(ierr, err);
-  snprintf(p.outdir, sizeof p.outdir, "%s", sc->outdir);
   if ((ierr = print_sizes(sc, &p)) || (ierr = fe_problem_set_initial_stress(&p, sc->stress0)) ||
       (ierr = fe_problem_set_phi(&p, sc->phi_mean, sc->phi_std, sc->phi_lo, sc->phi_hi, sc->phi_seed, sc->phi_corr)))
     return petsc_failure(ierr, err);

@@ -8,9 +8,10 @@
    axisymmetric: int N_i 2 pi r ds, exact, so that a node on the axis keeps a weight): the nodal forces of a unit
    traction along the indentation axis on the group. */
 static PetscErrorCode contact_weights(FeProblem *p, const char *group, Vec *wvec, PetscInt *ustart) {
+  const FeSpace *sp = fe_problem_space(p);
   char load[80];
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(load, sizeof load, "%s.%c", group, 'x' + (int)p->dim - 1));
+  PetscCall(PetscSNPrintf(load, sizeof load, "%s.%c", group, 'x' + (int)sp->dim - 1));
   PetscCall(fe_problem_unit_load(p, load, wvec));
   PetscCall(VecGetOwnershipRange(*wvec, ustart, NULL));
   PetscFunctionReturn(0);
@@ -69,7 +70,8 @@ static PetscErrorCode contact_vertex_rim(DM dm, PetscInt dim, PetscInt v, const 
    with their plex points; their weights come later (contact_mortar_setup). */
 static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, const PetscInt mark[], const PetscReal nfacet[], Contact *ct,
                                     PetscReal *wsum) {
-  DM                 dm = p->dm;
+  const FeSpace *sp = fe_problem_space(p);
+  DM                 dm = sp->dm;
   PetscInt           pStart, pEnd, vStart, vEnd;
   PetscSection       cs, ls, gs;
   Vec                coords;
@@ -93,29 +95,29 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
       if (goff < 0) continue; /* owned by another rank */
       /* global rows of the vertex's components; constrained ones come back negative */
       PetscCall(DMPlexGetClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-      PetscCheck(nidx == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex with %d dofs", (int)nidx);
-      for (PetscInt d = 0; d < p->dim; d++) row[d] = idx[d];
+      PetscCheck(nidx == sp->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "vertex with %d dofs", (int)nidx);
+      for (PetscInt d = 0; d < sp->dim; d++) row[d] = idx[d];
       PetscCall(DMPlexRestoreClosureIndices(dm, ls, gs, v, PETSC_TRUE, &nidx, &idx, NULL, NULL));
-      const PetscInt ra = row[p->dim - 1]; /* the axial row carries the weight (free on a contact node) */
+      const PetscInt ra = row[sp->dim - 1]; /* the axial row carries the weight (free on a contact node) */
       if (ra < 0 || (wvec && !(PetscRealPart(wa[ra - ustart]) > 0))) continue;
       if (pass == 1) {
         PetscCall(PetscSectionGetOffset(cs, v, &off));
-        for (PetscInt d = 0; d < p->dim; d++) ct->X[n * p->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * p->dim + d] = row[d];
+        for (PetscInt d = 0; d < sp->dim; d++) ct->X[n * sp->dim + d] = PetscRealPart(ca[off + d]), ct->row[n * sp->dim + d] = row[d];
         ct->w[n] = wvec ? PetscRealPart(wa[ra - ustart]) : 0;
         PetscCall(PetscSectionGetOffset(ls, v, &loff)); /* a node on an inclined mirror plane has a frame of its own */
-        PetscCall(fe_constraint_node_frame(&p->con, loff, &ct->R[n * p->dim * p->dim]));
+        PetscCall(fe_constraint_node_frame(&sp->con, loff, &ct->R[n * sp->dim * sp->dim]));
         *wsum += ct->w[n];
         if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, v));
-        PetscCall(contact_vertex_rim(dm, p->dim, v, row, nfacet, pStart, &ct->rim[n]));
+        PetscCall(contact_vertex_rim(dm, sp->dim, v, row, nfacet, pStart, &ct->rim[n]));
       }
       n++;
     }
     if (pass == 0) {
       ct->n = n;
-      PetscCall(PetscMalloc5(n * p->dim, &ct->X, n, &ct->w, n * p->dim, &ct->row, n, &ct->g, n * p->dim, &ct->nrm));
+      PetscCall(PetscMalloc5(n * sp->dim, &ct->X, n, &ct->w, n * sp->dim, &ct->row, n, &ct->g, n * sp->dim, &ct->nrm));
       PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
       if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, -1)); /* room for n vertices */
-      PetscCall(PetscMalloc1(n * p->dim * p->dim, &ct->R));
+      PetscCall(PetscMalloc1(n * sp->dim * sp->dim, &ct->R));
     }
   }
   PetscCall(VecRestoreArrayRead(coords, &ca));
@@ -125,7 +127,8 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
 
 /* The blocks of eq. 15 with their nonzero pattern fixed once (preallocated exactly); nu: the local displacement rows. */
 static PetscErrorCode contact_matrices(FeProblem *p, PetscInt nu, PetscInt ustart, Contact *ct) {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
+  const FeSpace *sp = fe_problem_space(p);
+  MPI_Comm    comm = PetscObjectComm((PetscObject)sp->dm);
   PetscMPIInt rank;
   PetscInt    nr, *dnz;
   PetscFunctionBeginUser;
@@ -134,11 +137,11 @@ static PetscErrorCode contact_matrices(FeProblem *p, PetscInt nu, PetscInt ustar
   if (!ct->mortar) { /* P1: one node per multiplier (P2: Bt and B from contact_mortar_setup) */
     PetscCall(PetscCalloc1(PetscMax(nu, 1), &dnz));
     for (PetscInt i = 0; i < ct->n; i++)
-      for (PetscInt d = 0; d < p->dim; d++)
-        if (ct->row[i * p->dim + d] >= 0) dnz[ct->row[i * p->dim + d] - ustart] = 1;
+      for (PetscInt d = 0; d < sp->dim; d++)
+        if (ct->row[i * sp->dim + d] >= 0) dnz[ct->row[i * sp->dim + d] - ustart] = 1;
     PetscCall(MatCreateAIJ(comm, nu, ct->n, PETSC_DETERMINE, PETSC_DETERMINE, 0, dnz, 0, NULL, &ct->Bt));
     PetscCall(PetscFree(dnz));
-    PetscCall(MatCreateAIJ(comm, ct->n, nu, PETSC_DETERMINE, PETSC_DETERMINE, p->dim, NULL, 0, NULL, &ct->B));
+    PetscCall(MatCreateAIJ(comm, ct->n, nu, PETSC_DETERMINE, PETSC_DETERMINE, sp->dim, NULL, 0, NULL, &ct->B));
   }
   PetscCall(MatCreateAIJ(comm, nr, ct->n, 1, ct->N, ct->n, NULL, ct->N - ct->n, NULL, &ct->Ct));
   PetscCall(MatCreateAIJ(comm, ct->n, nr, ct->N, 1, 1, NULL, 1, NULL, &ct->C));
@@ -150,7 +153,8 @@ static PetscErrorCode contact_matrices(FeProblem *p, PetscInt nu, PetscInt ustar
 }
 
 PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterShape *shape, Contact *ct) {
-  DM         dm = p->dm;
+  const FeSpace *sp = fe_problem_space(p);
+  DM         dm = sp->dm;
   DMLabel    label;
   PetscInt   ustart, nu;
   MPI_Comm   comm = PetscObjectComm((PetscObject)dm);
@@ -159,13 +163,13 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(ct, sizeof *ct));
   ct->shape = *shape;
-  ct->dim   = p->dim;
-  PetscCheck(p->order == 1 || p->order == 2, comm, PETSC_ERR_SUP, "contact: P1 or P2 elements only (mesh.order 1 or 2)");
+  ct->dim   = sp->dim;
+  PetscCheck(sp->order == 1 || sp->order == 2, comm, PETSC_ERR_SUP, "contact: P1 or P2 elements only (mesh.order 1 or 2)");
   PetscCall(DMGetLabel(dm, group, &label));
   PetscCheck(label, comm, PETSC_ERR_ARG_WRONG, "contact: the mesh has no physical group '%s'", group);
   PetscCall(contact_weights(p, group, &wvec, &ustart));
   PetscCall(contact_facet_counts(dm, label, &nfacet));
-  if (p->order == 1) PetscCall(contact_nodes(p, wvec, ustart, NULL, nfacet, ct, &wsum));
+  if (sp->order == 1) PetscCall(contact_nodes(p, wvec, ustart, NULL, nfacet, ct, &wsum));
   else { /* P2: the facets' vertices, their weights below */
     PetscInt *mark;
     PetscCall(contact_mortar_mark(p, label, ct, &mark));
@@ -177,7 +181,7 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   PetscCall(MPIU_Allreduce(&ct->n, &ct->N, 1, MPIU_INT, MPI_SUM, comm));
   PetscCallMPI(MPI_Scan(&ct->n, &ct->rstart, 1, MPIU_INT, MPI_SUM, comm));
   ct->rstart -= ct->n;
-  PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, p->dim == 3 ? "faces" : "edges", p->dim == 3 ? "faces" : "edges");
+  PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, sp->dim == 3 ? "faces" : "edges", sp->dim == 3 ? "faces" : "edges");
   if (ct->mortar) PetscCall(contact_mortar_setup(p, label, ct, &wsum));
   PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
   PetscCall(VecGetLocalSize(wvec, &nu)); /* the displacement layout */

@@ -80,7 +80,8 @@ static PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscIn
 }
 
 PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, PetscInt **mark) {
-  DM       dm = p->dm;
+  const FeSpace *sp = fe_problem_space(p);
+  DM       dm = sp->dm;
   PetscInt pStart, pEnd, vStart, vEnd, nf, *facets;
   PetscSF  sf;
   PetscFunctionBeginUser;
@@ -115,10 +116,11 @@ PetscErrorCode contact_mortar_set_vertex(Contact *ct, PetscInt i, PetscInt v) {
    each) and the measure at each Gauss point; mpt: the multiplier index of every plex point (< 0: none). */
 static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt k, PetscInt f, const PetscInt mpt[], const PetscScalar ca[],
                                  PetscSection cs, const PetscReal qw[]) {
-  DM           dm = p->dm;
+  const FeSpace *sp = fe_problem_space(p);
+  DM           dm = sp->dm;
   PetscSection ls, gs;
   PetscInt    *cl = NULL, ncl, *gi = NULL, *li = NULL, ng, nl, nv = 0, nn = 0, vtx[MV];
-  const PetscInt dim = p->dim;
+  const PetscInt dim = sp->dim;
   PetscReal    meas, c[3], nrm[3];
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalSection(dm, &ls));
@@ -160,7 +162,7 @@ static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt
       m->dofs[(k * m->nn + nn) * dim + d] = li[nn * dim + d] < 0 ? -(li[nn * dim + d] + 1) : li[nn * dim + d];
     }
     /* vertex or edge node: on an inclined mirror plane its rows are the components in a frame of its own */
-    PetscCall(fe_constraint_node_frame(&p->con, m->dofs[(k * m->nn + nn) * dim], &m->R[(k * m->nn + nn) * dim * dim]));
+    PetscCall(fe_constraint_node_frame(&sp->con, m->dofs[(k * m->nn + nn) * dim], &m->R[(k * m->nn + nn) * dim * dim]));
     nn++;
   }
   PetscCall(DMPlexRestoreClosureIndices(dm, ls, ls, f, PETSC_TRUE, &nl, &li, NULL, NULL));
@@ -170,7 +172,7 @@ static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt
   for (PetscInt q = 0; q < m->nq; q++) { /* reference simplex of measure 2 (PetscDT); 2 pi r at the point's reference radius */
     PetscReal r = 0;
     for (PetscInt a = 0; a < nv; a++) r += m->L[q * nv + a] * m->Xv[(k * nv + a) * dim];
-    m->dA[k * m->nq + q] = qw[q] * meas / 2 * (p->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : p->kin == KIN_PLANE_STRAIN ? p->thickness : 1);
+    m->dA[k * m->nq + q] = qw[q] * meas / 2 * (sp->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : sp->kin == KIN_PLANE_STRAIN ? sp->thickness : 1);
   }
   PetscFunctionReturn(0);
 }
@@ -218,22 +220,23 @@ static PetscErrorCode multiplier_scatter(Contact *ct, MPI_Comm comm) {
 
 /* Bt's nonzero pattern, fixed once through a preallocator: every (node component, facet vertex) pair. */
 static PetscErrorCode coupling_pattern(FeProblem *p, Contact *ct) {
+  const FeSpace *sp = fe_problem_space(p);
   struct ContactMortar *m = ct->mortar;
-  MPI_Comm              comm = PetscObjectComm((PetscObject)p->dm);
+  MPI_Comm              comm = PetscObjectComm((PetscObject)sp->dm);
   PetscInt              nu;
   Mat                   pre;
   Vec                   u;
   PetscScalar           zero[MN * 3 * MV] = {0};
   PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(p->dm, &u));
+  PetscCall(DMGetGlobalVector(sp->dm, &u));
   PetscCall(VecGetLocalSize(u, &nu));
-  PetscCall(DMRestoreGlobalVector(p->dm, &u));
+  PetscCall(DMRestoreGlobalVector(sp->dm, &u));
   PetscCall(MatCreate(comm, &pre));
   PetscCall(MatSetType(pre, MATPREALLOCATOR));
   PetscCall(MatSetSizes(pre, nu, ct->n, PETSC_DETERMINE, ct->N));
   PetscCall(MatSetUp(pre));
   for (PetscInt k = 0; k < m->nf; k++)
-    PetscCall(MatSetValues(pre, m->nn * p->dim, &m->rows[k * m->nn * p->dim], m->nv, &m->mult[k * m->nv], zero, INSERT_VALUES));
+    PetscCall(MatSetValues(pre, m->nn * sp->dim, &m->rows[k * m->nn * sp->dim], m->nv, &m->mult[k * m->nv], zero, INSERT_VALUES));
   PetscCall(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreate(comm, &ct->Bt));
@@ -246,9 +249,10 @@ static PetscErrorCode coupling_pattern(FeProblem *p, Contact *ct) {
 }
 
 PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, PetscReal *wsum) {
+  const FeSpace *sp = fe_problem_space(p);
   struct ContactMortar *m    = ct->mortar;
-  MPI_Comm              comm = PetscObjectComm((PetscObject)p->dm);
-  const PetscInt        dim  = p->dim;
+  MPI_Comm              comm = PetscObjectComm((PetscObject)sp->dm);
+  const PetscInt        dim  = sp->dim;
   PetscInt             *facets, *mpt, nqp;
   PetscQuadrature       quad;
   const PetscReal      *qx, *qw;
@@ -268,14 +272,14 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
     for (PetscInt a = 1; a < m->nv; a++) s += m->L[q * m->nv + a] = (qx[q * (dim - 1) + a - 1] + 1) / 2;
     m->L[q * m->nv] = 1 - s;
   }
-  PetscCall(contact_facets(p->dm, label, &m->nf, &facets));
+  PetscCall(contact_facets(sp->dm, label, &m->nf, &facets));
   PetscInt nf = PetscMax(m->nf, 1);
   PetscCall(PetscMalloc5(nf * m->nv, &m->mult, nf * m->nv, &m->lmult, nf * m->nn * dim, &m->rows, nf * m->nn * dim, &m->dofs, nf * m->nn * 2, &m->ab));
   PetscCall(PetscMalloc4(nf * m->nv * dim, &m->Xv, nf * nqp, &m->dA, nf * nqp * dim, &m->nq_, nf * nqp, &m->gq));
   PetscCall(PetscMalloc1(nf * m->nn * dim * dim, &m->R));
   PetscCall(multiplier_points(ct, &mpt));
-  PetscCall(DMGetCoordinateSection(p->dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(p->dm, &coords));
+  PetscCall(DMGetCoordinateSection(sp->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(sp->dm, &coords));
   PetscCall(VecGetArrayRead(coords, &ca));
   for (PetscInt k = 0; k < m->nf; k++) PetscCall(facet_data(p, m, k, facets[k], mpt, ca, cs, qw));
   PetscCall(VecRestoreArrayRead(coords, &ca));
@@ -287,7 +291,7 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   PetscCall(VecSetOption(m->gn, VEC_IGNORE_NEGATIVE_INDICES, PETSC_TRUE)); /* vertices without a multiplier */
   PetscCall(VecCreateMPI(comm, ct->n, ct->N, &m->wv));
   PetscCall(VecDuplicate(m->wv, &m->act));
-  PetscCall(DMCreateLocalVector(p->dm, &m->Uloc));
+  PetscCall(DMCreateLocalVector(sp->dm, &m->Uloc));
   /* the weights w_j = int psi_j dA */
   PetscCall(VecZeroEntries(m->wv));
   for (PetscInt k = 0; k < m->nf; k++)

@@ -337,14 +337,15 @@ static PetscErrorCode assemble_tangent(void *ctx) {
 }
 
 PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
-  MPI_Comm comm = PetscObjectComm((PetscObject)p->dm);
+  const FeSpace *sp = fe_problem_space(p);
+  MPI_Comm comm = PetscObjectComm((PetscObject)sp->dm);
   PetscFunctionBeginUser;
   *bad = 0;
   PetscCall(PetscMemzero(in, sizeof *in));
   in->p = p;
   {
     PetscBool has;
-    PetscCall(DMHasLabel(p->dm, is->contact_group, &has));
+    PetscCall(DMHasLabel(sp->dm, is->contact_group, &has));
     if (!has) {
       snprintf(err, errlen, "%s: key 'indenter.contact': '%s' is not a physical group of the mesh %s", is->file, is->contact_group, msh);
       *bad = 2;
@@ -352,7 +353,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     }
   }
   PetscCall(contact_create(p, is->contact_group, &is->shape, &in->ct));
-  PetscCall(DMCreateGlobalVector(p->dm, &in->U));
+  PetscCall(DMCreateGlobalVector(sp->dm, &in->U));
   { /* K: AIJ in the displacement layout, its pattern from the cells by COO (fe_jacobian_coo_setup below; DMCreateMatrix's
        own preallocation was a fifth of a run's set-up), with the rigid-body modes for GAMG on the displacement block */
     PetscInt     n, N;
@@ -362,7 +363,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     PetscCall(MatCreate(comm, &in->K));
     PetscCall(MatSetSizes(in->K, n, n, N, N));
     PetscCall(MatSetType(in->K, MATAIJ));
-    PetscCall(DMPlexCreateRigidBody(p->dm, 0, &rbm));
+    PetscCall(DMPlexCreateRigidBody(sp->dm, 0, &rbm));
     PetscCall(MatSetNearNullSpace(in->K, rbm));
     PetscCall(MatNullSpaceDestroy(&rbm));
   }
@@ -392,7 +393,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     PetscReal E = fe_problem_stiffness_scale(p), Eall, ell = 0, lall;
     for (PetscInt i = 0; i < in->ct.n; i++) { /* a contact-node spacing from the weights */
       PetscReal w = in->ct.w[i], r = in->ct.X[i * in->ct.dim];
-      ell = PetscMax(ell, p->dim == 3 ? PetscSqrtReal(w) : p->kin == KIN_AXISYMMETRIC ? (r > 0 ? w / (2 * PETSC_PI * r) : 0) : w / p->thickness);
+      ell = PetscMax(ell, sp->dim == 3 ? PetscSqrtReal(w) : sp->kin == KIN_AXISYMMETRIC ? (r > 0 ? w / (2 * PETSC_PI * r) : 0) : w / sp->thickness);
     }
     PetscCall(MPIU_Allreduce(&E, &Eall, 1, MPIU_REAL, MPI_MAX, comm));
     PetscCall(MPIU_Allreduce(&ell, &lall, 1, MPIU_REAL, MPI_MAX, comm));

@@ -6,108 +6,124 @@
 #include "fe_problem.h"
 #include "../io/log_events.h"
 
+#include <string.h>
 #include <time.h>
 
 static inline KernelPoint kernel_point(const FeProblem *p, PetscInt k) {
-  KernelPoint kp = {p->dim, p->ns, &p->grad[k * p->ns * p->dim], p->shape_r ? &p->shape_r[k * p->ns] : NULL};
+  const FeSpace *s  = &p->space;
+  KernelPoint    kp = {s->dim, s->ns, &s->grad[k * s->ns * s->dim], s->shape_r ? &s->shape_r[k * s->ns] : NULL};
   return kp;
 }
 
-/* The UMAT call of point k (local cell c, quadrature point q) at total strain eps, from the committed state;
- * its results go to the trial state and the tangent cache. */
-static PetscErrorCode point_update(FeProblem *p, UmatMaterial *mat, PetscInt c, PetscInt q, const PetscReal eps[6], UmatCall *call) {
-  const PetscInt   k = SV(p, c, q), ntens = p->mat.ntens;
-  const PetscReal *st = &p->state[k * p->nsv];
-  PetscReal       *tr = &p->trial[k * p->nsv];
-  PetscFunctionBeginUser;
-  PetscCall(PetscArraycpy(call->stress, st + ST_STRESS, 6));
-  PetscCall(PetscArraycpy(call->statev, st + ST_STATEV, p->mat.nstatv));
-  PetscCall(PetscArraycpy(call->stran, st + ST_STRAN, 6));
-  for (PetscInt vI = 0; vI < ntens; vI++) call->dstran[vI] = eps[vI] - st[ST_STRAN + vI];
+/* The call of point k (local cell c, quadrature point q) at total strain eps, from its committed state. */
+static void call_from_state(const FeProblem *p, PetscInt c, PetscInt q, const PetscReal eps[6], UmatCall *call) {
+  const PetscReal *st = &p->pts.state[SV(p, c, q) * p->pts.nsv];
+  memcpy(call->stress, st + ST_STRESS, sizeof call->stress);
+  memcpy(call->statev, st + ST_STATEV, sizeof(double) * (size_t)p->pts.mat.nstatv);
+  memcpy(call->stran, st + ST_STRAN, sizeof call->stran);
+  for (PetscInt vI = 0; vI < p->pts.mat.ntens; vI++) call->dstran[vI] = eps[vI] - st[ST_STRAN + vI];
   call->time[0] = call->time[1] = p->time - p->dt;
   call->dtime                   = p->dt;
   call->noel                    = (int)c + 1;
   call->npt                     = (int)q + 1;
   call->kstep = call->kinc = 1;
   call->sse = call->spd = call->scd = 0;
-  umat_invoke(mat, call);
-  p->umat_calls++;
-  if (call->pnewdt < 1 && !p->have_failed_call) { /* rare: rebuild the call's input from the state */
-    p->have_failed_call = 1, p->failed_out = *call, p->failed_mat = *mat, p->failed_in = *call;
-    PetscCall(PetscArraycpy(p->failed_in.stress, st + ST_STRESS, 6));
-    PetscCall(PetscArraycpy(p->failed_in.statev, st + ST_STATEV, p->mat.nstatv));
+}
+
+/* Its results: the trial state at eps, and the tangent cache. */
+static void call_to_trial(FeProblem *p, PetscInt c, PetscInt q, const PetscReal eps[6], const UmatCall *call) {
+  const PetscInt k  = SV(p, c, q);
+  PetscReal     *tr = &p->pts.trial[k * p->pts.nsv];
+  memcpy(tr + ST_STRESS, call->stress, sizeof call->stress);
+  memcpy(tr + ST_STRAN, eps, 6 * sizeof(PetscReal));
+  memcpy(tr + ST_STATEV, call->statev, sizeof(double) * (size_t)p->pts.mat.nstatv);
+  memcpy(&p->pts.ddsdde[k * 36], call->ddsdde, sizeof(double) * (size_t)(p->pts.mat.ntens * p->pts.mat.ntens));
+}
+
+/* The update of point (c, q) at total strain eps: gather its state, the material-point adapter with the cell's phi
+ * and the evaluation's step control, scatter to the trial state; the first call that asks for a shorter step is
+ * kept for a replay scene. Returns the stress at eps and the call's PNEWDT. */
+static void point_update(FeProblem *p, PetscInt c, PetscInt q, const PetscReal eps[6], PetscReal stress[6], PetscReal *pnewdt) {
+  const PetscReal   phi = p->pts.phi[c - p->space.cStart];
+  UmatCall          call;
+  MaterialPointDiag diag;
+  call_from_state(p, c, q, eps, &call);
+  material_point_update(&p->pts.mat, phi, p->umat, &call, &diag);
+  p->diag.umat_calls++;
+  if (diag.rejected) {
+    const PetscReal *st = &p->pts.state[SV(p, c, q) * p->pts.nsv];
+    material_failed_call_keep(&p->diag.failed, &p->pts.mat, phi, p->umat, st + ST_STRESS, st + ST_STATEV, &call);
   }
-  PetscCall(PetscArraycpy(tr + ST_STRESS, call->stress, 6));
-  PetscCall(PetscArraycpy(tr + ST_STRAN, eps, 6));
-  PetscCall(PetscArraycpy(tr + ST_STATEV, call->statev, p->mat.nstatv));
-  PetscCall(PetscArraycpy(&p->ddsdde[k * 36], call->ddsdde, ntens * ntens));
-  PetscFunctionReturn(0);
+  call_to_trial(p, c, q, eps, &call);
+  memcpy(stress, call.stress, sizeof call.stress);
+  *pnewdt = diag.pnewdt;
 }
 
 /* The element loop: residual (F = F_int - F_ext) and, with the same UMAT calls, the tangent cache. */
 PetscErrorCode fe_residual(SNES snes, Vec U, Vec F, void *ctx) {
   FeProblem   *p  = (FeProblem *)ctx;
-  DM           dm = p->dm;
+  DM           dm = p->space.dm;
   Vec          Uloc, Floc;
   PetscScalar  ue[90], re[90], *ua, *fa;
   PetscReal    min_pnewdt = PETSC_MAX_REAL, reaction[3] = {0, 0, 0};
   clock_t      t0         = clock();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
-  PetscCheck(p->nq <= 64 && p->nb <= 90, PETSC_COMM_SELF, PETSC_ERR_SUP, "element too large");
+  PetscCheck(p->space.nq <= 64 && p->space.nb <= 90, PETSC_COMM_SELF, PETSC_ERR_SUP, "element too large");
   PetscCall(DMGetLocalVector(dm, &Uloc));
   PetscCall(DMGetLocalVector(dm, &Floc));
   PetscCall(DMGlobalToLocal(dm, U, INSERT_VALUES, Uloc));
   PetscCall(VecZeroEntries(Floc));
-  p->have_failed_call = 0;
+  p->diag.failed.have = false;
   PetscCall(VecGetArray(Uloc, &ua));
   PetscCall(VecGetArray(Floc, &fa));
-  PetscCall(fe_constraint_to_global(&p->con, ua)); /* the fixed components (zero values); nodal frames to global axes */
-  /* The material of this evaluation: the scene's PROPS with the step's control (an argument of the call,
-     p->umat) and, per cell, its phi; p->mat itself is never written. */
-  UmatMaterial local = p->mat, *mat = &local;
-  umat_control_apply(mat, p->umat);
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
-    for (PetscInt b = 0; b < p->nb; b++) ue[b] = ua[dofs[b]], re[b] = 0;
-    if (mat->pr.phi >= 0) mat->props[mat->pr.phi] = p->phi[c - p->cStart];
-    for (PetscInt q = 0; q < p->nq; q++) {
+  PetscCall(fe_constraint_to_global(&p->space.con, ua)); /* the fixed components (zero values); nodal frames to global axes */
+  for (PetscInt c = p->space.cStart; c < p->space.cEnd; c++) {
+    const PetscInt *dofs = &p->space.cell_dofs[(c - p->space.cStart) * p->space.nb];
+    for (PetscInt b = 0; b < p->space.nb; b++) ue[b] = ua[dofs[b]], re[b] = 0;
+    for (PetscInt q = 0; q < p->space.nq; q++) {
       const KernelPoint kp = kernel_point(p, SV(p, c, q));
-      PetscReal         eps[6];
-      UmatCall          call;
+      PetscReal         eps[6], sig[6], pnewdt;
       kernel_strain(&kp, ue, eps);
-      PetscCall(point_update(p, mat, c, q, eps, &call));
-      min_pnewdt = PetscMin(min_pnewdt, call.pnewdt);
-      kernel_force(&kp, call.stress, p->wdetJ[SV(p, c, q)], re);
+      point_update(p, c, q, eps, sig, &pnewdt);
+      min_pnewdt = PetscMin(min_pnewdt, pnewdt);
+      kernel_force(&kp, sig, p->space.wdetJ[SV(p, c, q)], re);
     }
-    for (PetscInt b = 0; b < p->nb; b++) fa[dofs[b]] += re[b];
+    for (PetscInt b = 0; b < p->space.nb; b++) fa[dofs[b]] += re[b];
   }
-  PetscCall(fe_constraint_to_frame(&p->con, fa, reaction)); /* internal force on the fixed components; into the frames */
+  PetscCall(fe_constraint_to_frame(&p->space.con, fa, reaction)); /* internal force on the fixed components; into the frames */
   PetscCall(VecRestoreArray(Uloc, &ua));
   PetscCall(VecRestoreArray(Floc, &fa));
   PetscCall(VecZeroEntries(F));
   PetscCall(DMLocalToGlobal(dm, Floc, ADD_VALUES, F));
-  PetscCall(VecAXPY(F, -1.0, p->fext));
+  PetscCall(VecAXPY(F, -1.0, p->loads.fext));
   PetscCall(DMRestoreLocalVector(dm, &Uloc));
   PetscCall(DMRestoreLocalVector(dm, &Floc));
-  PetscCall(MPIU_Allreduce(&min_pnewdt, &p->min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
-  for (PetscInt d = 0; d < 3; d++) p->reaction_local[d] = reaction[d];
-  p->ddsdde_valid = 1;
-  if (!p->ddsdde_u) PetscCall(VecDuplicate(U, &p->ddsdde_u));
-  PetscCall(VecCopy(U, p->ddsdde_u));
-  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  PetscCall(MPIU_Allreduce(&min_pnewdt, &p->diag.min_pnewdt, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)dm)));
+  for (PetscInt d = 0; d < 3; d++) p->diag.reaction_local[d] = reaction[d];
+  p->pts.ddsdde_valid = 1;
+  if (!p->pts.ddsdde_u) PetscCall(VecDuplicate(U, &p->pts.ddsdde_u));
+  PetscCall(VecCopy(U, p->pts.ddsdde_u));
+  p->diag.assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
   PetscCall(PetscLogEventEnd(driver_event(EV_RESIDUAL), 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_problem_evaluated_at(FeProblem *p, Vec U, PetscBool *same) {
+  PetscFunctionBeginUser;
+  *same = PETSC_FALSE;
+  if (p->pts.ddsdde_valid) PetscCall(VecEqual(U, p->pts.ddsdde_u, same));
   PetscFunctionReturn(0);
 }
 
 /* The cached tangents must belong to U: evaluate the residual there first if they do not. */
 static PetscErrorCode tangents_at(FeProblem *p, Vec U) {
-  PetscBool same = PETSC_FALSE;
+  PetscBool same;
   PetscFunctionBeginUser;
-  if (p->ddsdde_valid) PetscCall(VecEqual(U, p->ddsdde_u, &same));
+  PetscCall(fe_problem_evaluated_at(p, U, &same));
   if (!same) {
     Vec F;
-    p->tangent_recomputes++;
+    p->diag.tangent_recomputes++;
     PetscCall(VecDuplicate(U, &F));
     PetscCall(fe_residual(NULL, U, F, p));
     PetscCall(VecDestroy(&F));
@@ -124,18 +140,18 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
   PetscCall(tangents_at(p, U));
   const PetscBool coo = p->coo_mat == P; /* the values go to the COO array, all set at once at the end */
   if (!coo) PetscCall(MatZeroEntries(P));
-  if (!coo) PetscCall(PetscMalloc1(p->nb * p->nb, &Ke));
-  const PetscInt n = p->mat.ntens, nb = p->nb;
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    PetscScalar *K = coo ? &p->coo_v[(c - p->cStart) * nb * nb] : Ke;
+  if (!coo) PetscCall(PetscMalloc1(p->space.nb * p->space.nb, &Ke));
+  const PetscInt n = p->pts.mat.ntens, nb = p->space.nb;
+  for (PetscInt c = p->space.cStart; c < p->space.cEnd; c++) {
+    PetscScalar *K = coo ? &p->coo_v[(c - p->space.cStart) * nb * nb] : Ke;
     PetscCall(PetscArrayzero(K, nb * nb));
-    for (PetscInt q = 0; q < p->nq; q++) {
+    for (PetscInt q = 0; q < p->space.nq; q++) {
       const KernelPoint kp = kernel_point(p, SV(p, c, q));
-      kernel_tangent(&kp, n, &p->ddsdde[SV(p, c, q) * 36], p->wdetJ[SV(p, c, q)], K);
+      kernel_tangent(&kp, n, &p->pts.ddsdde[SV(p, c, q) * 36], p->space.wdetJ[SV(p, c, q)], K);
     }
-    PetscCall(fe_constraint_rotate_cell(&p->con, &p->cell_dofs[(c - p->cStart) * nb], nb, K)); /* nodal frames */
+    PetscCall(fe_constraint_rotate_cell(&p->space.con, &p->space.cell_dofs[(c - p->space.cStart) * nb], nb, K)); /* nodal frames */
     /* constrained dofs have negative rows: MatSetValues skips them */
-    const PetscInt *rows = &p->cell_rows[(c - p->cStart) * nb];
+    const PetscInt *rows = &p->space.cell_rows[(c - p->space.cStart) * nb];
     if (!coo) PetscCall(MatSetValues(P, nb, rows, nb, rows, Ke, ADD_VALUES));
   }
   PetscCall(PetscFree(Ke));
@@ -148,7 +164,7 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
     PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
   }
-  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  p->diag.assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
   PetscCall(PetscLogEventEnd(driver_event(EV_JACOBIAN), 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -157,14 +173,14 @@ PetscErrorCode fe_jacobian(SNES snes, Vec U, Mat Jac, Mat P, void *ctx) {
    matrix in one array, rows and columns from cell_rows (constrained ones negative, which PETSc ignores), set
    at once; fe_jacobian writes there when it assembles J. */
 PetscErrorCode fe_jacobian_coo_setup(FeProblem *p, Mat J) {
-  const PetscInt nb = p->nb, ncell = p->cEnd - p->cStart;
+  const PetscInt nb = p->space.nb, ncell = p->space.cEnd - p->space.cStart;
   PetscCount     n = (PetscCount)ncell * nb * nb, k = 0;
   PetscInt      *ci, *cj;
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(n, &ci, n, &cj));
   for (PetscInt c = 0; c < ncell; c++)
     for (PetscInt a = 0; a < nb; a++)
-      for (PetscInt b = 0; b < nb; b++, k++) ci[k] = p->cell_rows[c * nb + a], cj[k] = p->cell_rows[c * nb + b];
+      for (PetscInt b = 0; b < nb; b++, k++) ci[k] = p->space.cell_rows[c * nb + a], cj[k] = p->space.cell_rows[c * nb + b];
   PetscCall(MatSetPreallocationCOO(J, n, ci, cj));
   PetscCall(PetscFree2(ci, cj));
   PetscCall(PetscFree(p->coo_v));
@@ -185,36 +201,36 @@ static PetscErrorCode tangent_apply(Mat A, Vec X, Vec Y) {
   PetscFunctionBeginUser;
   PetscCall(MatShellGetContext(A, &p));
   PetscCall(PetscLogEventBegin(driver_event(EV_TANGENT_APPLY), 0, 0, 0, 0));
-  dm = p->dm;
+  dm = p->space.dm;
   PetscCall(DMGetLocalVector(dm, &Xloc));
   PetscCall(DMGetLocalVector(dm, &Yloc));
   PetscCall(DMGlobalToLocal(dm, X, INSERT_VALUES, Xloc));
   PetscCall(VecZeroEntries(Yloc));
   PetscCall(VecGetArray(Xloc, &xa));
   PetscCall(VecGetArray(Yloc, &ya));
-  PetscCall(fe_constraint_to_global(&p->con, xa));
-  const PetscInt n = p->mat.ntens;
-  for (PetscInt c = p->cStart; c < p->cEnd; c++) {
-    const PetscInt *dofs = &p->cell_dofs[(c - p->cStart) * p->nb];
-    for (PetscInt b = 0; b < p->nb; b++) xe[b] = xa[dofs[b]], ye[b] = 0;
-    for (PetscInt q = 0; q < p->nq; q++) {
+  PetscCall(fe_constraint_to_global(&p->space.con, xa));
+  const PetscInt n = p->pts.mat.ntens;
+  for (PetscInt c = p->space.cStart; c < p->space.cEnd; c++) {
+    const PetscInt *dofs = &p->space.cell_dofs[(c - p->space.cStart) * p->space.nb];
+    for (PetscInt b = 0; b < p->space.nb; b++) xe[b] = xa[dofs[b]], ye[b] = 0;
+    for (PetscInt q = 0; q < p->space.nq; q++) {
       const PetscInt    k  = SV(p, c, q);
       const KernelPoint kp = kernel_point(p, k);
       PetscReal         eps[6], sig[6];
       kernel_strain(&kp, xe, eps);
-      kernel_stress(n, &p->ddsdde[k * 36], eps, sig);
-      kernel_force(&kp, sig, p->wdetJ[k], ye);
+      kernel_stress(n, &p->pts.ddsdde[k * 36], eps, sig);
+      kernel_force(&kp, sig, p->space.wdetJ[k], ye);
     }
-    for (PetscInt b = 0; b < p->nb; b++) ya[dofs[b]] += ye[b];
+    for (PetscInt b = 0; b < p->space.nb; b++) ya[dofs[b]] += ye[b];
   }
-  PetscCall(fe_constraint_to_frame(&p->con, ya, NULL));
+  PetscCall(fe_constraint_to_frame(&p->space.con, ya, NULL));
   PetscCall(VecRestoreArray(Xloc, &xa));
   PetscCall(VecRestoreArray(Yloc, &ya));
   PetscCall(VecZeroEntries(Y));
   PetscCall(DMLocalToGlobal(dm, Yloc, ADD_VALUES, Y));
   PetscCall(DMRestoreLocalVector(dm, &Xloc));
   PetscCall(DMRestoreLocalVector(dm, &Yloc));
-  p->assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
+  p->diag.assembly_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC;
   PetscCall(PetscLogEventEnd(driver_event(EV_TANGENT_APPLY), 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -6,55 +6,53 @@
 
 #include <errno.h>
 #include <stdio.h>
-#include <stddef.h>
 #include <string.h>
 #include <unistd.h>
 
 /* Cell fields: name, number of components, where they come from in a point's state (fe_problem.h: stress, strain,
- * then the UMAT's STATEV, whose slots the material names: UmatMaterial.sv), and whether the Voigt values are strains
+ * then the UMAT's STATEV, read by quantity through material_point.h), and whether the Voigt values are strains
  * (engineering shear, halved in the tensor). */
 typedef enum { FROM_STRESS, FROM_STRAN, FROM_STATEV, FROM_PHI } FieldSource;
 typedef struct {
   const char *name;
   PetscInt    nc;
   FieldSource from;
-  size_t      slot; /* FROM_STATEV: the UmatStateSlots member */
+  MaterialQuantity q; /* FROM_STATEV */
   PetscBool   strain;
 } CellField;
 static const CellField cell_fields[] = {
   {"stress", 6, FROM_STRESS, 0, PETSC_FALSE},
   {"strain", 6, FROM_STRAN, 0, PETSC_TRUE},
-  {"evp_hard", 6, FROM_STATEV, offsetof(UmatStateSlots, evp_hard), PETSC_TRUE},
-  {"evp_soft", 6, FROM_STATEV, offsetof(UmatStateSlots, evp_soft), PETSC_TRUE},
-  {"evp", 6, FROM_STATEV, offsetof(UmatStateSlots, evp), PETSC_TRUE},
-  {"pc_hard", 1, FROM_STATEV, offsetof(UmatStateSlots, pc_hard), PETSC_FALSE},
-  {"pc_soft", 1, FROM_STATEV, offsetof(UmatStateSlots, pc_soft), PETSC_FALSE},
+  {"evp_hard", 6, FROM_STATEV, MATERIAL_EVP_HARD, PETSC_TRUE},
+  {"evp_soft", 6, FROM_STATEV, MATERIAL_EVP_SOFT, PETSC_TRUE},
+  {"evp", 6, FROM_STATEV, MATERIAL_EVP, PETSC_TRUE},
+  {"pc_hard", 1, FROM_STATEV, MATERIAL_PC_HARD, PETSC_FALSE},
+  {"pc_soft", 1, FROM_STATEV, MATERIAL_PC_SOFT, PETSC_FALSE},
   {"phi", 1, FROM_PHI, 0, PETSC_FALSE},
 };
 enum { NCELLFIELDS = sizeof cell_fields / sizeof cell_fields[0] };
 /* The row-major place of each Voigt component 11 22 33 12 13 23 in a 3x3 tensor (and of its mirror). */
 static const PetscInt voigt_row[6] = {0, 4, 8, 1, 2, 5}, voigt_mirror[6] = {0, 4, 8, 3, 6, 7};
-enum { FIELD_PER_CELL = -1, FIELD_ABSENT = -2 };
 
-/* Where a field starts in a point's state; FIELD_PER_CELL for phi, FIELD_ABSENT where the UMAT has no such slots. */
-static PetscInt field_offset(const FeProblem *p, const CellField *cf) {
-  switch (cf->from) {
-  case FROM_STRESS: return ST_STRESS;
-  case FROM_STRAN: return ST_STRAN;
-  case FROM_PHI: return FIELD_PER_CELL;
-  default: {
-    const int s = *(const int *)((const char *)&p->mat.sv + cf->slot);
-    return umat_has_slots(&p->mat, s, (int)cf->nc) ? ST_STATEV + s : FIELD_ABSENT;
-  }
-  }
+static PetscBool field_present(const FeProblem *p, const CellField *cf) {
+  return (PetscBool)(cf->from != FROM_STATEV || material_quantity_size(&p->pts.mat, cf->q) == cf->nc);
 }
 
-static PetscBool field_present(const FeProblem *p, const CellField *cf) { return (PetscBool)(field_offset(p, cf) != FIELD_ABSENT); }
+/* Component j of the field at point k of local cell c. */
+static PetscReal field_value(const FeProblem *p, const CellField *cf, PetscInt c, PetscInt k, PetscInt j) {
+  const PetscReal *st = &p->pts.state[k * p->pts.nsv];
+  switch (cf->from) {
+  case FROM_STRESS: return st[ST_STRESS + j];
+  case FROM_STRAN: return st[ST_STRAN + j];
+  case FROM_PHI: return p->pts.phi[c];
+  default: return material_quantity(&p->pts.mat, st + ST_STATEV, cf->q, (int)j);
+  }
+}
 
 /* What the nine components of a tensor are, per kinematics (in 2D the zz slot is the out-of-plane or hoop
  * component, and xz, yz are zero). */
 static const char *tensor_components(const FeProblem *p) {
-  switch (p->kin) {
+  switch (p->space.kin) {
   case KIN_PLANE_STRAIN: return "full 3x3 tensors row by row: xx xy 0 yx yy 0 0 0 zz (zz out of plane); strains as tensors (eps_xy = gamma_xy / 2)";
   case KIN_AXISYMMETRIC: return "full 3x3 tensors row by row: rr rz 0 zr zz 0 0 0 tt (tt: hoop); strains as tensors (eps_rz = gamma_rz / 2)";
   default: return "full 3x3 tensors row by row: 11 12 13 21 22 23 31 32 33; strains as tensors (eps_12 = gamma_12 / 2)";
@@ -95,19 +93,19 @@ static const PetscInt tet_edges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3},
 
 /* The vertices of cell c, positively oriented (as VTK expects: the first two swapped when not). */
 static PetscErrorCode cell_vertices(FeProblem *p, PetscInt c, const PetscScalar *x, PetscSection cs, PetscInt lv[4]) {
-  PetscInt *cl = NULL, ncl, m = 0, vStart, vEnd, off[4], nvc = p->dim + 1;
+  PetscInt *cl = NULL, ncl, m = 0, vStart, vEnd, off[4], nvc = p->space.dim + 1;
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
-  PetscCall(DMPlexGetTransitiveClosure(p->dm, c, PETSC_TRUE, &ncl, &cl));
+  PetscCall(DMPlexGetDepthStratum(p->space.dm, 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetTransitiveClosure(p->space.dm, c, PETSC_TRUE, &ncl, &cl));
   for (PetscInt j = 0; j < 2 * ncl; j += 2)
     if (cl[j] >= vStart && cl[j] < vEnd && m < nvc) lv[m++] = cl[j];
-  PetscCall(DMPlexRestoreTransitiveClosure(p->dm, c, PETSC_TRUE, &ncl, &cl));
+  PetscCall(DMPlexRestoreTransitiveClosure(p->space.dm, c, PETSC_TRUE, &ncl, &cl));
   PetscCheck(m == nvc, PETSC_COMM_SELF, PETSC_ERR_SUP, "fe_output: cell %d is not a simplex", (int)c);
   for (PetscInt j = 0; j < m; j++) PetscCall(PetscSectionGetOffset(cs, lv[j], &off[j]));
   PetscReal a[3][3] = {{0}}, det;
   for (PetscInt j = 1; j < m; j++)
-    for (PetscInt d = 0; d < p->dim; d++) a[j - 1][d] = PetscRealPart(x[off[j] + d] - x[off[0] + d]);
-  det = p->dim == 3 ? a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+    for (PetscInt d = 0; d < p->space.dim; d++) a[j - 1][d] = PetscRealPart(x[off[j] + d] - x[off[0] + d]);
+  det = p->space.dim == 3 ? a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                         a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
                     : a[0][0] * a[1][1] - a[0][1] * a[1][0];
   if (det < 0) {
@@ -119,7 +117,7 @@ static PetscErrorCode cell_vertices(FeProblem *p, PetscInt c, const PetscScalar 
 
 /* Cell connectivity in natural node numbers: the vertices, then (P2) the mid-side nodes of the edges. */
 static PetscErrorCode write_cells(FeProblem *p, FeOutput *o) {
-  const PetscInt  nvc = p->dim + 1;
+  const PetscInt  nvc = p->space.dim + 1;
   const PetscInt *nat;
   PetscInt       *leaf, *root;
   PetscSection    cs;
@@ -127,9 +125,9 @@ static PetscErrorCode write_cells(FeProblem *p, FeOutput *o) {
   const PetscScalar *x;
   IS              is;
   PetscFunctionBeginUser;
-  PetscCall(fe_natural_indices(p->dm, &nat));
-  PetscCall(DMGetCoordinateSection(p->dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(p->dm, &X));
+  PetscCall(fe_natural_indices(p->space.dm, &nat));
+  PetscCall(DMGetCoordinateSection(p->space.dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(p->space.dm, &X));
   PetscCall(VecGetArrayRead(X, &x));
   PetscCall(PetscMalloc1(o->cells.n * o->npc + 1, &leaf));
   PetscCall(PetscMalloc1(o->cells.nroot * o->npc + 1, &root));
@@ -138,12 +136,12 @@ static PetscErrorCode write_cells(FeProblem *p, FeOutput *o) {
     PetscCall(cell_vertices(p, o->cells.points[k], x, cs, lv));
     for (PetscInt j = 0; j < nvc; j++) row[j] = o->nodes.offset[0] + nat[lv[j]];
     for (PetscInt e = 0; e < o->npc - nvc; e++) {
-      const PetscInt *ev = p->dim == 3 ? tet_edges[e] : tri_edges[e], pair[2] = {lv[ev[0]], lv[ev[1]]}, *join;
+      const PetscInt *ev = p->space.dim == 3 ? tet_edges[e] : tri_edges[e], pair[2] = {lv[ev[0]], lv[ev[1]]}, *join;
       PetscInt        nj;
-      PetscCall(DMPlexGetJoin(p->dm, 2, pair, &nj, &join));
+      PetscCall(DMPlexGetJoin(p->space.dm, 2, pair, &nj, &join));
       PetscCheck(nj == 1, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: no edge between two vertices of a cell");
       row[nvc + e] = o->nodes.offset[1] + nat[join[0]];
-      PetscCall(DMPlexRestoreJoin(p->dm, 2, pair, &nj, &join));
+      PetscCall(DMPlexRestoreJoin(p->space.dm, 2, pair, &nj, &join));
     }
   }
   PetscCall(VecRestoreArrayRead(X, &x));
@@ -165,26 +163,26 @@ static PetscErrorCode write_mesh(FeProblem *p, FeOutput *o) {
   PetscScalar       *c;
   PetscInt           vStart, vEnd;
   PetscFunctionBeginUser;
-  PetscCall(DMGetCoordinateSection(p->dm, &cs));
-  PetscCall(DMGetCoordinatesLocal(p->dm, &X));
-  PetscCall(DMPlexGetDepthStratum(p->dm, 0, &vStart, &vEnd));
-  PetscCall(PetscMalloc1(o->nodes.n * p->dim + 1, &c));
+  PetscCall(DMGetCoordinateSection(p->space.dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(p->space.dm, &X));
+  PetscCall(DMPlexGetDepthStratum(p->space.dm, 0, &vStart, &vEnd));
+  PetscCall(PetscMalloc1(o->nodes.n * p->space.dim + 1, &c));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt k = 0; k < o->nodes.n; k++) {
     PetscInt        pt = o->nodes.points[k], ncone = 1, off;
     const PetscInt *cone = &pt;
     if (pt < vStart || pt >= vEnd) { /* an edge: its midpoint */
-      PetscCall(DMPlexGetConeSize(p->dm, pt, &ncone));
-      PetscCall(DMPlexGetCone(p->dm, pt, &cone));
+      PetscCall(DMPlexGetConeSize(p->space.dm, pt, &ncone));
+      PetscCall(DMPlexGetCone(p->space.dm, pt, &cone));
     }
-    for (PetscInt d = 0; d < p->dim; d++) c[k * p->dim + d] = 0;
+    for (PetscInt d = 0; d < p->space.dim; d++) c[k * p->space.dim + d] = 0;
     for (PetscInt j = 0; j < ncone; j++) {
       PetscCall(PetscSectionGetOffset(cs, cone[j], &off));
-      for (PetscInt d = 0; d < p->dim; d++) c[k * p->dim + d] += x[off + d] / ncone;
+      for (PetscInt d = 0; d < p->space.dim; d++) c[k * p->space.dim + d] += x[off + d] / ncone;
     }
   }
   PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(fe_natural_gather(&o->nodes, p->dim, c, "coordinates", &C));
+  PetscCall(fe_natural_gather(&o->nodes, p->space.dim, c, "coordinates", &C));
   PetscCall(PetscFree(c));
   PetscCall(view_in(o->viewer, "/mesh", (PetscObject)C));
   PetscCall(VecDestroy(&C));
@@ -193,7 +191,7 @@ static PetscErrorCode write_mesh(FeProblem *p, FeOutput *o) {
   PetscCall(PetscViewerHDF5WriteAttribute(o->viewer, "/fields", "cell_values", PETSC_STRING,
                                           "averages over the quadrature points of a cell, weighted by the volume"));
   PetscCall(PetscViewerHDF5WriteAttribute(o->viewer, "/fields", "displacement_values", PETSC_STRING,
-                                          p->order > 1 ? "at the nodes of the quadratic cells: vertices, then edge midpoints"
+                                          p->space.order > 1 ? "at the nodes of the quadratic cells: vertices, then edge midpoints"
                                                        : "at the vertices (P1)"));
   PetscFunctionReturn(0);
 }
@@ -205,14 +203,14 @@ static PetscErrorCode check_mesh(FeProblem *p, FeOutput *o, const char *path) {
   PetscCall(PetscViewerHDF5PushGroup(o->viewer, "/mesh"));
   PetscCall(PetscViewerHDF5ReadSizes(o->viewer, "cells", &bs, &n));
   PetscCall(PetscViewerHDF5PopGroup(o->viewer));
-  PetscCheck(n == o->cells.N * o->npc, PetscObjectComm((PetscObject)p->dm), PETSC_ERR_FILE_UNEXPECTED,
+  PetscCheck(n == o->cells.N * o->npc, PetscObjectComm((PetscObject)p->space.dm), PETSC_ERR_FILE_UNEXPECTED,
              "%s: /mesh/cells has %d entries, but this mesh has %d cells of %d nodes: the file is not this run's output",
              path, (int)n, (int)o->cells.N, (int)o->npc);
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append, FeOutput *o) {
-  MPI_Comm       comm = PetscObjectComm((PetscObject)p->dm);
+  MPI_Comm       comm = PetscObjectComm((PetscObject)p->space.dm);
   char           path[700];
   PetscMPIInt    rank;
   const PetscInt node_depths[2] = {0, 1};
@@ -221,9 +219,9 @@ PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append
   PetscCall(PetscSNPrintf(o->dir, sizeof o->dir, "%s", outdir));
   o->comm     = comm;
   o->promoted = append;
-  o->npc      = p->order > 1 ? (p->dim == 3 ? 10 : 6) : p->dim + 1;
-  PetscCall(fe_natural_create(p->dm, p->order > 1 ? 2 : 1, node_depths, PETSC_FALSE, &o->nodes));
-  PetscCall(fe_natural_create(p->dm, 1, &p->dim, PETSC_FALSE, &o->cells));
+  o->npc      = p->space.order > 1 ? (p->space.dim == 3 ? 10 : 6) : p->space.dim + 1;
+  PetscCall(fe_natural_create(p->space.dm, p->space.order > 1 ? 2 : 1, node_depths, PETSC_FALSE, &o->nodes));
+  PetscCall(fe_natural_create(p->space.dm, 1, &p->space.dim, PETSC_FALSE, &o->cells));
   PetscCall(file_path(o, "fields.h5", o->promoted, path, sizeof path));
   if (append) {
     int missing = 0;
@@ -245,22 +243,22 @@ static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, const c
   PetscSection s;
   PetscScalar *u, *d;
   PetscFunctionBeginUser;
-  PetscCall(DMGetLocalVector(p->dm, &Uloc));
+  PetscCall(DMGetLocalVector(p->space.dm, &Uloc));
   PetscCall(VecZeroEntries(Uloc));
-  PetscCall(DMGlobalToLocal(p->dm, U, INSERT_VALUES, Uloc));
-  PetscCall(DMGetLocalSection(p->dm, &s));
+  PetscCall(DMGlobalToLocal(p->space.dm, U, INSERT_VALUES, Uloc));
+  PetscCall(DMGetLocalSection(p->space.dm, &s));
   PetscCall(VecGetArray(Uloc, &u));
-  PetscCall(fe_constraint_to_global(&p->con, u)); /* the fixed components' zeros; nodal frames to global axes */
+  PetscCall(fe_constraint_to_global(&p->space.con, u)); /* the fixed components' zeros; nodal frames to global axes */
   PetscCall(PetscMalloc1(3 * o->nodes.n + 1, &d));
   for (PetscInt k = 0; k < o->nodes.n; k++) {
     PetscInt off, ndof;
     PetscCall(PetscSectionGetOffset(s, o->nodes.points[k], &off));
     PetscCall(PetscSectionGetDof(s, o->nodes.points[k], &ndof));
-    PetscCheck(ndof == p->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: %d dofs at a node", (int)ndof);
-    for (PetscInt c = 0; c < 3; c++) d[3 * k + c] = c < p->dim ? u[off + c] : 0;
+    PetscCheck(ndof == p->space.dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "fe_output: %d dofs at a node", (int)ndof);
+    for (PetscInt c = 0; c < 3; c++) d[3 * k + c] = c < p->space.dim ? u[off + c] : 0;
   }
   PetscCall(VecRestoreArray(Uloc, &u));
-  PetscCall(DMRestoreLocalVector(p->dm, &Uloc));
+  PetscCall(DMRestoreLocalVector(p->space.dm, &Uloc));
   PetscCall(fe_natural_gather(&o->nodes, 3, d, name, D));
   PetscCall(PetscFree(d));
   PetscFunctionReturn(0);
@@ -270,21 +268,21 @@ static PetscErrorCode displacement_vec(FeProblem *p, Vec U, FeOutput *o, const c
  * components. In 2D the 13 and 23 slots of stress and strain are not the UMAT's (NTENS = 4) and are written as the
  * zeros they are. */
 static PetscErrorCode cell_vec(FeProblem *p, const CellField *cf, FeOutput *o, const char *name, Vec *F) {
-  const PetscInt bs = cf->nc == 6 ? 9 : 1, off = field_offset(p, cf);
+  const PetscInt bs = cf->nc == 6 ? 9 : 1;
   PetscScalar   *a;
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(o->cells.n * bs + 1, &a));
   for (PetscInt k = 0; k < o->cells.n; k++) {
-    const PetscInt c = o->cells.points[k] - p->cStart;
+    const PetscInt c = o->cells.points[k] - p->space.cStart;
     for (PetscInt j = 0; j < cf->nc; j++) {
       PetscReal sum = 0, vol = 0, v;
-      for (PetscInt q = 0; q < p->nq; q++) {
-        const PetscInt  pt = c * p->nq + q;
-        const PetscReal w  = p->wdetJ[pt];
-        sum += w * (off == FIELD_PER_CELL ? p->phi[c] : p->state[pt * p->nsv + off + j]);
+      for (PetscInt q = 0; q < p->space.nq; q++) {
+        const PetscInt  pt = c * p->space.nq + q;
+        const PetscReal w  = p->space.wdetJ[pt];
+        sum += w * field_value(p, cf, c, pt, j);
         vol += w;
       }
-      v = p->dim == 2 && (cf->from == FROM_STRESS || cf->from == FROM_STRAN) && j >= 4 ? 0 : sum / vol;
+      v = p->space.dim == 2 && (cf->from == FROM_STRESS || cf->from == FROM_STRAN) && j >= 4 ? 0 : sum / vol;
       if (bs == 1) a[k] = v;
       else {
         if (j >= 3 && cf->strain) v /= 2; /* engineering shear to the tensor's */
@@ -324,12 +322,12 @@ static void data_item(FILE *fp, const char *h5, const char *type, int prec, Pets
 
 static void xmf_grid(FILE *fp, const FeProblem *p, const FeOutput *o, const char *h5, PetscInt k) {
   char        ds[96];
-  const char *topology = p->order > 1 ? (p->dim == 3 ? "Tetrahedron_10" : "Triangle_6") : (p->dim == 3 ? "Tetrahedron" : "Triangle");
+  const char *topology = p->space.order > 1 ? (p->space.dim == 3 ? "Tetrahedron_10" : "Triangle_6") : (p->space.dim == 3 ? "Tetrahedron" : "Triangle");
   fprintf(fp, "    <Grid Name=\"output %d\" GridType=\"Uniform\">\n      <Time Value=\"%.17g\"/>\n", (int)k, (double)o->times[k]);
   fprintf(fp, "      <Topology TopologyType=\"%s\" NumberOfElements=\"%d\">\n", topology, (int)o->cells.N);
   data_item(fp, h5, "Int", (int)sizeof(PetscInt), o->cells.N, o->npc, "/mesh/cells");
-  fprintf(fp, "      </Topology>\n      <Geometry GeometryType=\"%s\">\n", p->dim == 3 ? "XYZ" : "XY");
-  data_item(fp, h5, "Float", 8, o->nodes.N, p->dim, "/mesh/coordinates");
+  fprintf(fp, "      </Topology>\n      <Geometry GeometryType=\"%s\">\n", p->space.dim == 3 ? "XYZ" : "XY");
+  data_item(fp, h5, "Float", 8, o->nodes.N, p->space.dim, "/mesh/coordinates");
   fprintf(fp, "      </Geometry>\n      <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
   snprintf(ds, sizeof ds, "/fields/displacement/%06d", (int)k);
   data_item(fp, h5, "Float", 8, o->nodes.N, 3, ds);
@@ -353,7 +351,7 @@ static PetscErrorCode xmf_write(FeProblem *p, FeOutput *o) {
   int         err = 0;
   const char *h5  = o->promoted ? "fields.h5" : "fields.h5.part";
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)p->dm), &rank));
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)p->space.dm), &rank));
   PetscCall(file_path(o, "fields.xmf", o->promoted, path, sizeof path));
   PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s/.fields.xmf.tmp", o->dir));
   if (!rank) {
@@ -363,7 +361,7 @@ static PetscErrorCode xmf_write(FeProblem *p, FeOutput *o) {
       fprintf(fp, "    <Information Name=\"tensor_components\" Value=\"%s\"/>\n", tensor_components(p));
       fprintf(fp, "    <Information Name=\"cell_values\" Value=\"averages over the quadrature points\"/>\n");
       fprintf(fp, "    <Information Name=\"displacement\" Value=\"%s\"/>\n",
-              p->order > 1 ? "at the nodes of the quadratic cells (vertices, then edge midpoints)" : "vertex values (P1)");
+              p->space.order > 1 ? "at the nodes of the quadratic cells (vertices, then edge midpoints)" : "vertex values (P1)");
       fprintf(fp, "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
       for (PetscInt k = 0; k < o->nout; k++) xmf_grid(fp, p, o, h5, k);
       fprintf(fp, "    </Grid>\n  </Domain>\n</Xdmf>\n");
@@ -372,8 +370,8 @@ static PetscErrorCode xmf_write(FeProblem *p, FeOutput *o) {
       if (!err && rename(tmp, path)) err = errno;
     } else err = errno;
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, PetscObjectComm((PetscObject)p->dm)));
-  PetscCheck(!err, PetscObjectComm((PetscObject)p->dm), PETSC_ERR_FILE_WRITE, "fe_output: cannot write %s: %s", path, strerror(err));
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, PetscObjectComm((PetscObject)p->space.dm)));
+  PetscCheck(!err, PetscObjectComm((PetscObject)p->space.dm), PETSC_ERR_FILE_WRITE, "fe_output: cannot write %s: %s", path, strerror(err));
   PetscFunctionReturn(0);
 }
 

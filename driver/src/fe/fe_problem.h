@@ -9,13 +9,13 @@
 #include <petscfe.h>
 #include <petscsnes.h>
 
-#include "../material/umat_call.h"
+#include "../material/material_point.h"
 #include "fe_constraint.h"
 
 /* The state of a quadrature point: stress (6), total strain (6), then the UMAT's STATEV. */
 enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
 /* The index of quadrature point q of local cell c among the points of this rank. */
-#define SV(p, c, q) (((c) - (p)->cStart) * (p)->nq + (q))
+#define SV(p, c, q) (((c) - (p)->space.cStart) * (p)->space.nq + (q))
 
 #define FE_MAX_GROUPS 24 /* loads: pressures on groups, and traction components 'GROUP.x' etc. */
 
@@ -23,7 +23,9 @@ enum { ST_STRESS = 0, ST_STRAN = 6, ST_STATEV = 12 };
  * axisymmetric (NTENS 4: rr zz thetatheta rz with x1 = r, x2 = z, as Abaqus; eps_33 = u_r / r). */
 typedef enum { KIN_3D, KIN_PLANE_STRAIN, KIN_AXISYMMETRIC } Kinematics;
 
-typedef struct FeProblem {
+/* The space: the mesh, the vector field, quadrature and the geometry at the quadrature points; set up once by
+ * fe_problem_setup, then read only (contact/ reads it through fe_problem_space). */
+typedef struct {
   DM              dm;
   Kinematics      kin;
   PetscReal       thickness;         /* plane strain: forces and volumes per this thickness */
@@ -33,43 +35,60 @@ typedef struct FeProblem {
   PetscInt        dim, order, nq, nb, ns; /* nb: basis functions of the vector field on a cell, ns = nb / dim scalar ones */
   const PetscReal *qweights;
   PetscInt        cStart, cEnd;
-  UmatMaterial    mat;
-  PetscReal      *phi;     /* hard-frame fraction per local cell (PROPS(1) per cell) */
-  PetscInt        npoint;  /* quadrature points on this rank */
-  PetscInt        nsv;     /* doubles per point: stress(6), strain(6), statev */
-  PetscReal      *state, *trial, *ddsdde;
+  PetscInt        npoint;          /* quadrature points on this rank */
   PetscInt       *cell_dofs;       /* per cell: the local-vector index of each closure dof (nb) */
   PetscInt       *cell_rows;       /* per cell: global matrix index of each closure dof, < 0 if constrained */
   PetscReal      *grad, *shape_r;  /* per quadrature point: the scalar basis' physical gradients (ns x dim) and, in
                                       axisymmetry, its values over the radius (ns), for fe_kernel.h (fixed: small
                                       strain, and the geometry is computed once) */
-  PetscReal      *wdetJ, *radius;   /* per quadrature point: weight x detJ (x thickness or 2 pi r), radius x1 */
-  PetscInt        ddsdde_valid;         /* the tangent cache belongs to the last residual's U ... */
-  Vec             ddsdde_u;             /* ... which is this one */
-  PetscReal       time, dt;             /* end of the step being solved, its length */
-  PetscReal       min_pnewdt;           /* smallest PNEWDT of the last residual evaluation (all ranks) */
-  UmatControl     umat;                 /* the UMAT's own step control for this evaluation (umat_call.h;
-                                           fe_problem_set_umat_control) */
-  FeConstraint    con;                  /* fixed components and mirror planes (nodal frames) */
-  PetscReal       reaction_local[3];    /* the supports' force from this rank's cells at the last residual */
-  PetscReal       reaction[3];          /* ... summed over the ranks by fe_problem_reactions */
-  PetscReal      *devp_prev;            /* per point: the viscoplastic strain increment of the last step */
+  PetscReal      *wdetJ, *radius;  /* per quadrature point: weight x detJ (x thickness or 2 pi r), radius x1 */
+  FeConstraint    con;             /* fixed components and mirror planes (nodal frames) */
+} FeSpace;
+
+/* The material at the quadrature points: its PROPS, phi per cell, the committed and trial states, the tangents of
+ * the last residual, the last step's viscoplastic increments (fe_state.h). */
+typedef struct {
+  UmatMaterial    mat;
+  PetscReal      *phi;          /* hard-frame fraction per local cell (PROPS(1) per cell) */
+  PetscInt        nsv;          /* doubles per point: stress(6), strain(6), statev */
+  PetscReal      *state, *trial, *ddsdde;
+  PetscInt        ddsdde_valid; /* the tangent cache belongs to the last residual's U ... */
+  Vec             ddsdde_u;     /* ... which is this one (fe_problem_evaluated_at) */
+  PetscReal      *devp_prev;    /* per point: the viscoplastic strain increment of the last step */
   PetscBool       have_devp;
-  PetscInt        umat_calls, tangent_recomputes;
-  double          assembly_seconds;
-  Mat             coo_mat;              /* the Jacobian assembled by COO (fe_jacobian_coo_setup), not owned */
-  PetscScalar    *coo_v;                /* its element matrices, cell by cell */
-  /* pressure loads: unit-pressure force vectors per group, and the pressures at the step's end */
+} FeQuadState;
+
+/* The loads: unit-pressure force vectors per group, the pressures at the step's end (fe_problem_set_pressures),
+ * and the external force from them. */
+typedef struct {
   PetscInt        npressure;
   char            pressure_group[FE_MAX_GROUPS][64];
   Vec             unit_force[FE_MAX_GROUPS];
   PetscReal       pressure[FE_MAX_GROUPS];
   Vec             fext;
-  /* the first UMAT call of the last residual that asked for a smaller step (for a replay file) */
-  char            outdir[512];
-  int             have_failed_call;
-  UmatCall        failed_in, failed_out;
-  UmatMaterial    failed_mat;
+} FeLoads;
+
+/* What the evaluations report (read by stepping/ through fe_problem_diag). */
+typedef struct {
+  PetscReal          min_pnewdt;        /* smallest PNEWDT of the last residual evaluation (all ranks) */
+  PetscReal          reaction_local[3]; /* the supports' force from this rank's cells at the last residual */
+  PetscReal          reaction[3];       /* ... summed over the ranks by fe_problem_reactions */
+  PetscInt           umat_calls, tangent_recomputes;
+  double             assembly_seconds;
+  MaterialFailedCall failed;            /* the first UMAT call of the last residual that asked for a shorter step */
+} FeDiag;
+
+typedef struct FeProblem {
+  FeSpace     space;
+  FeQuadState pts;
+  FeLoads     loads;
+  FeDiag      diag;
+  /* the evaluation: the step being solved and the UMAT's step control (fe_problem_set_step, _set_umat_control) */
+  PetscReal   time, dt;     /* end of the step being solved, its length */
+  UmatControl umat;         /* the UMAT's own step control for this evaluation (umat_call.h) */
+  /* the Jacobian's COO assembly (fe_jacobian_coo_setup, fe_jacobian_coo_release) */
+  Mat          coo_mat;     /* the Jacobian assembled by COO, not owned */
+  PetscScalar *coo_v;       /* its element matrices, cell by cell */
 } FeProblem;
 
 /* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */
@@ -80,6 +99,18 @@ PetscErrorCode fe_problem_setup(FeProblem *p, DM dm, Kinematics kin, PetscReal t
                                 const UmatMaterial *mat, const FeFixed *fixed,
                                 PetscInt nfixed, const char pressure_groups[][64], PetscInt npressure);
 PetscErrorCode fe_problem_destroy(FeProblem *p);
+/* Read access for the other folders (contact/, stepping/, app/): they change the problem only through the
+ * functions below. */
+static inline const FeSpace      *fe_problem_space(const FeProblem *p) { return &p->space; }
+static inline DM                  fe_problem_dm(const FeProblem *p) { return p->space.dm; }
+static inline const FeDiag       *fe_problem_diag(const FeProblem *p) { return &p->diag; }
+static inline const UmatMaterial *fe_problem_material(const FeProblem *p) { return &p->pts.mat; }
+/* Doubles of state per quadrature point (stress, strain, STATEV). */
+static inline PetscInt  fe_problem_point_size(const FeProblem *p) { return p->pts.nsv; }
+static inline Vec       fe_problem_unit_force(const FeProblem *p, PetscInt g) { return p->loads.unit_force[g]; }
+static inline PetscReal fe_problem_pressure(const FeProblem *p, PetscInt g) { return p->loads.pressure[g]; }
+/* Whether the last residual was evaluated at U, so that the tangents it cached are U's. */
+PetscErrorCode fe_problem_evaluated_at(FeProblem *p, Vec U, PetscBool *same);
 /* The UMAT's own step control for the following evaluations (off while Newton iterates). */
 static inline void fe_problem_set_umat_control(FeProblem *p, UmatControl c) { p->umat = c; }
 /* The step the following evaluations solve: its end time and length (0: the initial state). */
@@ -88,6 +119,8 @@ static inline void fe_problem_set_step(FeProblem *p, PetscReal time, PetscReal d
 PetscErrorCode fe_problem_set_pressures(FeProblem *p, PetscInt n, const PetscReal pressure[]);
 /* The largest D_1111 of this rank's points' last tangents (DDSDDE), a stiffness scale of the material. */
 PetscReal fe_problem_stiffness_scale(const FeProblem *p);
+/* The first UMAT call of the last residual that asked for a shorter step (for a replay scene), NULL if none. */
+static inline const MaterialFailedCall *fe_problem_failed_call(const FeProblem *p) { return p->diag.failed.have ? &p->diag.failed : NULL; }
 /* The COO Jacobian set up by fe_jacobian_coo_setup is being destroyed: assemble by MatSetValues again. */
 static inline void fe_jacobian_coo_release(FeProblem *p) { p->coo_mat = NULL; }
 /* Initial state: both frames at stress0 at every point (the UMAT's uninitialised-state rule). */

@@ -206,10 +206,10 @@ static int read_material_phi(YdDoc *doc, YdNode *root, FeScene *sc, char *err, s
   if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
       material_read(doc, x, sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen))
     return 1;
-  sc->phi_mean = sc->mat.pr.phi >= 0 ? sc->mat.props[sc->mat.pr.phi] : 0;
+  sc->phi_mean = material_phi(&sc->mat);
   sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
   if ((x = yd_get(root, "phi"))) {
-    if (sc->mat.pr.phi < 0) FAIL("%s:%d: key 'phi': this UMAT has no hard-frame fraction", doc->file, x->line);
+    if (!material_has_phi(&sc->mat)) FAIL("%s:%d: key 'phi': this UMAT has no hard-frame fraction", doc->file, x->line);
     if (yd_double(doc, yd_get(x, "mean"), "phi.mean", &sc->phi_mean, err, errlen)) return 1;
     if ((v = yd_get(x, "std")) && yd_double(doc, v, "phi.std", &sc->phi_std, err, errlen)) return 1;
     if ((v = yd_get(x, "min")) && yd_double(doc, v, "phi.min", &sc->phi_lo, err, errlen)) return 1;
@@ -306,10 +306,9 @@ static int read_mirror(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t err
    frame is isotropic. Other UMATs are not checked. */
 static int check_mirror_symmetry(YdDoc *doc, const FeScene *sc, char *err, size_t errlen) {
   const UmatMaterial *mat = &sc->mat;
-  if (mat->pr.phi < 0 || !(sc->phi_mean > 0 || (sc->phi_std > 0 && sc->phi_hi > 0))) return 0;
+  if (!material_has_phi(mat) || !(sc->phi_mean > 0 || (sc->phi_std > 0 && sc->phi_hi > 0))) return 0;
   double b[3] = {0, 0, 1}, nb = 0;
-  if (mat->pr.normal >= 0 && mat->nprops >= mat->pr.normal + 3)
-    for (int d = 0; d < 3; d++) b[d] = mat->props[mat->pr.normal + d];
+  material_normal(mat, b);
   for (int d = 0; d < 3; d++) nb += b[d] * b[d];
   for (int d = 0; d < 3; d++) b[d] /= sqrt(nb);
   for (int k = 0; k < sc->nfixed; k++) {

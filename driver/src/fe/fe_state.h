@@ -9,6 +9,10 @@
 
 /* Commit the trial state; keeps each point's viscoplastic strain increment (h: the step's length). */
 PetscErrorCode fe_state_commit(FeProblem *p, PetscReal h);
+/* Whether the last committed step kept its viscoplastic increments (the 'volume' measure's previous step), for a
+ * checkpoint. */
+static inline PetscBool fe_state_have_devp(const FeProblem *p) { return p->pts.have_devp; }
+static inline void      fe_state_set_have_devp(FeProblem *p, PetscBool have) { p->pts.have_devp = have; }
 /* The 'volume' measure of the trial state against the committed one, for a step of length h after one of
  * h_prev: || d evp - (h / h_prev) d evp_prev ||_V / || d evp ||_V over all points of all ranks (the change of
  * the viscoplastic strain rate over the step, CETOL's local estimate, relative to the step's increment).

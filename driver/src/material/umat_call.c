@@ -20,7 +20,9 @@ void umat_material_set_name(UmatMaterial *mat, const char *name) {
   memcpy(mat->cmname, name, n < sizeof mat->cmname ? n : sizeof mat->cmname);
 }
 
-void umat_invoke(const UmatMaterial *mat, UmatCall *c) {
+void umat_invoke(const UmatMaterial *mat, UmatCall *c) { umat_invoke_props(mat, mat->props, c); }
+
+void umat_invoke_props(const UmatMaterial *mat, const double *props, UmatCall *c) {
   static const double drot[9]   = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   static const double coords[3] = {0, 0, 0}, f[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   double              rpl, ddsddt[6], drplde[6], drpldt, temp = 0, dtemp = 0, predef = 0, dpred = 0, celent = 1;
@@ -29,7 +31,7 @@ void umat_invoke(const UmatMaterial *mat, UmatCall *c) {
   c->pnewdt                    = DBL_MAX; /* Abaqus sets PNEWDT large before each call */
   umat_(c->stress, c->statev, c->ddsdde, &c->sse, &c->spd, &c->scd, &rpl, ddsddt, drplde, &drpldt, c->stran,
         c->dstran, c->time, &c->dtime, &temp, &dtemp, &predef, &dpred, mat->cmname, &ndi, &nshr, &mat->ntens,
-        &mat->nstatv, mat->props, &mat->nprops, coords, drot, &c->pnewdt, &celent, f, f, &c->noel, &c->npt, &layer,
+        &mat->nstatv, props, &mat->nprops, coords, drot, &c->pnewdt, &celent, f, f, &c->noel, &c->npt, &layer,
         &kspt, jstep, &c->kinc, sizeof mat->cmname);
 }
 

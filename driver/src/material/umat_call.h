@@ -10,7 +10,8 @@
 
 /* The STATEV slots the driver reads (0-based; the first of six Voigt components for tensors), -1 where the linked
  * UMAT has none. material_read fills them from the UMAT's own header (Cam-Clay IX: camclay9.h, docs/umat.md
- * "STATEV"), so that nothing outside material/ knows a UMAT's layout. */
+ * "STATEV"); only material/ reads them (material_point.h reads a state by name), so that nothing outside material/
+ * knows a UMAT's layout. */
 typedef struct {
   int sig_hard, evp_hard, pc_hard;  /* the hard frame's stress, viscoplastic strain, preconsolidation pressure */
   int sig_soft, evp_soft, pc_soft;  /* the soft frame's */
@@ -19,7 +20,7 @@ typedef struct {
 } UmatStateSlots;
 
 /* The PROPS slots the driver sets (0-based), -1 where the linked UMAT has none; filled by material_read (Cam-Clay IX:
- * docs/umat.md "PROPS"). */
+ * docs/umat.md "PROPS"), read by material/ (material_point.h sets phi and the step control per update). */
 typedef struct {
   int phi;                /* the hard frame's volume fraction */
   int eta_hard, eta_soft; /* the frames' viscosities */
@@ -37,13 +38,6 @@ typedef struct {
   UmatStateSlots sv;             /* the STATEV slots the driver reads */
 } UmatMaterial;
 
-/* Component i of the quantity at STATEV slot s (a UmatStateSlots entry) of a call's state, 0 where the UMAT has no
- * such slot (s < 0, or beyond NSTATV). */
-static inline double umat_statev(const UmatMaterial *mat, const double *statev, int s, int i) {
-  return s >= 0 && s + i < mat->nstatv ? statev[s + i] : 0.0;
-}
-/* Whether the UMAT holds the six components from slot s. */
-static inline int umat_has_slots(const UmatMaterial *mat, int s, int n) { return s >= 0 && s + n <= mat->nstatv; }
 
 /* What the host passes in and gets back for one integration point and one increment. */
 typedef struct {
@@ -78,14 +72,12 @@ static inline double umat_control_tol(const UmatMaterial *mat, UmatControl c) {
   if (c.mode == UMAT_CONTROL_OFF) return 0;
   return mat->pr.tol >= 0 && mat->pr.tol < mat->nprops ? mat->props[mat->pr.tol] : 0;
 }
-/* A copy of the material's PROPS set for c (mat is the copy). */
-static inline void umat_control_apply(UmatMaterial *mat, UmatControl c) {
-  if (c.mode != UMAT_CONTROL_AS_GIVEN && mat->pr.tol >= 0 && mat->pr.tol < mat->nprops) mat->props[mat->pr.tol] = umat_control_tol(mat, c);
-}
 
 void umat_material_set_name(UmatMaterial *mat, const char *name);
 /* Call the linked UMAT. call->pnewdt is set large before the call, as Abaqus does. */
 void umat_invoke(const UmatMaterial *mat, UmatCall *call);
+/* The same with these PROPS in place of mat->props (nprops of them): material_point_update's. */
+void umat_invoke_props(const UmatMaterial *mat, const double *props, UmatCall *call);
 
 /* Write a scene that replays this exact call (scene: replay), with the results the call gave, so the
  * replay can check itself bit for bit. in = the call as it was passed, out = as it came back. */

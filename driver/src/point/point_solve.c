@@ -79,9 +79,10 @@ static double residual_of(const Equation *eq, int i, int n, const double eps[6],
 
 /* One step of length dt from the committed state 'cur' to equation targets 'target': Newton on the
  * strain increment. On success 'next' holds the converged call. */
-int point_mixed_step(const UmatMaterial *mat, const Segment *sg, const UmatCall *cur, const double target[6],
-                      double dt, double deps[6], UmatCall *next, PointStepResult *res) {
-  int n = mat->ntens;
+int point_mixed_step(const UmatMaterial *mat, UmatControl c, const Segment *sg, const UmatCall *cur, const double target[6],
+                     double dt, double deps[6], UmatCall *next, PointStepResult *res) {
+  const int    n   = mat->ntens;
+  const double phi = material_phi(mat);
   memset(res, 0, sizeof *res);
   res->pnewdt = DBL_MAX;
   /* Strain-controlled components are known exactly. */
@@ -93,17 +94,13 @@ int point_mixed_step(const UmatMaterial *mat, const Segment *sg, const UmatCall 
     *next = *cur;
     memcpy(next->dstran, deps, sizeof(double) * n);
     next->dtime = dt;
-    umat_invoke(mat, next);
-    if (next->pnewdt < 1) {
-      res->pnewdt      = next->pnewdt;
-      res->umat_failed = 1;
-      res->failed_in   = *cur;
-      memcpy(res->failed_in.dstran, deps, sizeof(double) * n);
-      res->failed_in.dtime = dt;
-      res->failed_out      = *next;
+    MaterialPointDiag diag;
+    material_point_update(mat, phi, c, next, &diag);
+    res->pnewdt = diag.pnewdt;
+    if (diag.rejected) {
+      material_failed_call_keep(&res->failed, mat, phi, c, cur->stress, cur->statev, next);
       return 1;
     }
-    res->pnewdt = next->pnewdt;
     double eps[6], r[6], err = 0;
     for (int i = 0; i < n; i++) eps[i] = cur->stran[i] + deps[i];
     for (int i = 0; i < n; i++) {
@@ -136,9 +133,10 @@ int point_mixed_step(const UmatMaterial *mat, const Segment *sg, const UmatCall 
 }
 
 /* Worst relative difference between DDSDDE and central differences of STRESS in DSTRAN. */
-double point_tangent_check(const UmatMaterial *mat, const UmatCall *cur, const UmatCall *next) {
-  int    n = mat->ntens;
-  double worst = 0, dmax = 0;
+double point_tangent_check(const UmatMaterial *mat, UmatControl c, const UmatCall *cur, const UmatCall *next) {
+  int               n = mat->ntens;
+  double            worst = 0, dmax = 0;
+  MaterialPointDiag diag;
   for (int k = 0; k < n * n; k++) dmax = fmax(dmax, fabs(next->ddsdde[k]));
   for (int j = 0; j < n; j++) {
     double   h = 1e-7 * fmax(1e-3, fabs(next->dstran[j]));
@@ -148,8 +146,8 @@ double point_tangent_check(const UmatMaterial *mat, const UmatCall *cur, const U
     p.dtime = m.dtime = next->dtime;
     p.dstran[j] += h;
     m.dstran[j] -= h;
-    umat_invoke(mat, &p);
-    umat_invoke(mat, &m);
+    material_point_update(mat, material_phi(mat), c, &p, &diag);
+    material_point_update(mat, material_phi(mat), c, &m, &diag);
     for (int i = 0; i < n; i++)
       worst = fmax(worst, fabs((p.stress[i] - m.stress[i]) / (2 * h) - next->ddsdde[i + n * j]) / dmax);
   }
@@ -175,15 +173,15 @@ void point_history_header(FILE *fp) {
 
 void point_history_row(FILE *fp, const UmatMaterial *mat, const UmatCall *c, double t, int step, int seg, double dt,
                       int newton, int cutbacks) {
-  int n = mat->ntens;
-  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, (int)umat_statev(mat, c->statev, mat->sv.iterations, 0),
-          cutbacks);
+  int                n = mat->ntens;
+  MaterialPointState s;
+  material_point_state(mat, c->statev, &s);
+  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, s.local.iterations, cutbacks);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stran[i] : 0.0);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stress[i] : 0.0);
-  const int base[5] = {mat->sv.sig_hard, mat->sv.sig_soft, mat->sv.evp_hard, mat->sv.evp_soft, mat->sv.evp};
+  const double *six[5] = {s.sig_hard, s.sig_soft, s.evp_hard, s.evp_soft, s.evp};
   for (int g = 0; g < 5; g++)
-    for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", umat_statev(mat, c->statev, base[g], i));
-  fprintf(fp, ",%.12g,%.12g,%d\n", umat_statev(mat, c->statev, mat->sv.pc_hard, 0), umat_statev(mat, c->statev, mat->sv.pc_soft, 0),
-          (int)umat_statev(mat, c->statev, mat->sv.flags, 0));
+    for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", six[g][i]);
+  fprintf(fp, ",%.12g,%.12g,%d\n", s.pc_hard, s.pc_soft, s.local.flags);
 }
 

@@ -5,14 +5,14 @@
 
 #include <stdio.h>
 
+#include "../material/material_point.h"
 #include "point_scene.h"
 
 typedef struct {
   int      newton;
   double   control_error; /* largest relative residual of a controlled component at convergence */
-  double   pnewdt;
-  UmatCall failed_in, failed_out; /* the last call that asked for a smaller step */
-  int      umat_failed;
+  double             pnewdt;
+  MaterialFailedCall failed; /* the call that asked for a smaller step (failed.have) */
 } PointStepResult;
 
 /* The target of equation i at segment time t (lambda: fraction of the ramp done), from the segment's
@@ -20,12 +20,12 @@ typedef struct {
 double point_target(const Segment *sg, int i, const double start[6], double lambda, double t);
 /* Linear interpolation of a table column at time t (held constant outside the table). */
 double point_interp(const Segment *sg, int col, double t);
-/* One step of length dt from the committed call 'cur' to the targets: deps in (predictor) and out; 0 when
- * converged ('next' holds the converged call), 1 otherwise (res says why). */
-int point_mixed_step(const UmatMaterial *mat, const Segment *sg, const UmatCall *cur, const double target[6], double dt,
-                     double deps[6], UmatCall *next, PointStepResult *res);
+/* One step of length dt from the committed call 'cur' to the targets, the UMAT under step control c: deps in
+ * (predictor) and out; 0 when converged ('next' holds the converged call), 1 otherwise (res says why). */
+int point_mixed_step(const UmatMaterial *mat, UmatControl c, const Segment *sg, const UmatCall *cur, const double target[6],
+                     double dt, double deps[6], UmatCall *next, PointStepResult *res);
 /* Worst relative difference between DDSDDE and central differences of STRESS in DSTRAN. */
-double point_tangent_check(const UmatMaterial *mat, const UmatCall *cur, const UmatCall *next);
+double point_tangent_check(const UmatMaterial *mat, UmatControl c, const UmatCall *cur, const UmatCall *next);
 /* p = -tr(sigma)/3 and q (von Mises) of a stress with n components. */
 void point_invariants(const double s[6], int n, double *p, double *q);
 void point_history_header(FILE *fp);

@@ -63,7 +63,7 @@ PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome
 }
 
 void fe_common_accept(FeCommon *c, const StepRequest *rq) {
-  for (int k = 0; k < c->sc->npressure; k++) c->now[k] = c->p->pressure[k];
+  for (int k = 0; k < c->sc->npressure; k++) c->now[k] = fe_problem_pressure(c->p, k);
   fe_problem_reactions(c->p);
 }
 
@@ -85,7 +85,8 @@ int fe_common_save(FeCommon *c, BinFile *f) {
   PetscInt nout = c->fields ? c->out.nout : 0;
   binfile_write(f, &nout, sizeof nout, 1);
   if (nout) binfile_write(f, c->out.times, sizeof(PetscReal), (size_t)nout);
-  binfile_write(f, &c->p->have_devp, sizeof c->p->have_devp, 1);
+  PetscBool have_devp = fe_state_have_devp(c->p);
+  binfile_write(f, &have_devp, sizeof have_devp, 1);
   return !f->ok;
 }
 
@@ -99,13 +100,15 @@ int fe_common_load(FeCommon *c, BinFile *f) {
   if (PetscMalloc1(nout + 1, &c->saved_times)) return 1;
   c->nsaved = nout;
   binfile_read(f, c->saved_times, sizeof(PetscReal), (size_t)nout);
-  binfile_read(f, &c->p->have_devp, sizeof c->p->have_devp, 1);
+  PetscBool have_devp = PETSC_FALSE;
+  binfile_read(f, &have_devp, sizeof have_devp, 1);
+  fe_state_set_have_devp(c->p, have_devp);
   return !f->ok;
 }
 
 PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool write, PetscViewer *v) {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5Open(PetscObjectComm((PetscObject)c->p->dm), path, write ? FILE_MODE_WRITE : FILE_MODE_READ, v));
+  PetscCall(PetscViewerHDF5Open(PetscObjectComm((PetscObject)fe_problem_dm(c->p)), path, write ? FILE_MODE_WRITE : FILE_MODE_READ, v));
   PetscFunctionReturn(0);
 }
 
@@ -116,15 +119,15 @@ int fe_common_resume(FeCommon *c) {
 }
 
 void fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {
-  FeProblem *p = c->p;
-  if (!p->have_failed_call) return;
+  const MaterialFailedCall *f = fe_problem_failed_call(c->p);
+  if (!f) return;
   int rank;
-  MPI_Comm_rank(PetscObjectComm((PetscObject)p->dm), &rank);
+  MPI_Comm_rank(PetscObjectComm((PetscObject)fe_problem_dm(c->p)), &rank);
   char rp[1100];
   snprintf(rp, sizeof rp, "%s/failed_call.rank%d.yaml", dir, rank);
-  if (!umat_write_replay(rp, &p->failed_mat, &p->failed_in, &p->failed_out, msg)) {
+  if (!material_failed_call_write(f, rp, msg)) {
     size_t len = strlen(msg);
-    snprintf(msg + len, n - len, "; the failing UMAT call (element %d, point %d) is replayed by: driver -input %s", p->failed_in.noel,
-             p->failed_in.npt, rp);
+    snprintf(msg + len, n - len, "; the failing UMAT call (element %d, point %d) is replayed by: driver -input %s", f->in.noel,
+             f->in.npt, rp);
   }
 }

@@ -89,15 +89,15 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   }
   o->converged = reason > 0, o->its = (int)its, o->why = SNESConvergedReasons[reason];
   if (!o->converged) return 0;
-  PetscReal tol = umat_control_tol(&p->mat, rq->umat);
+  PetscReal tol = umat_control_tol(fe_problem_material(p), rq->umat);
   PetscBool same = PETSC_FALSE;
-  if (p->ddsdde_valid) VecEqual(f->U, p->ddsdde_u, &same);
+  fe_problem_evaluated_at(p, f->U, &same);
   if (tol > 0 || !same) { /* the converged state again, with the UMAT's PNEWDT on */
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
     if (fe_residual(f->snes, f->U, f->R, p)) return 1;
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   }
-  o->pnewdt = p->min_pnewdt;
+  o->pnewdt = fe_problem_diag(p)->min_pnewdt;
   if (fe_common_observe(&f->c, rq, o)) return 1;
   o->nout = 6;
   for (int k = 0; k < 6; k++) o->out[k] = f->c.stats.strain_mean[k], o->group[k] = 0;
@@ -129,7 +129,7 @@ static void history_header(void *ctx, FILE *fp) {
 static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   FeSolver      *f = ctx;
   const FeStats *s = &f->c.stats;
-  FeProblem     *p = f->c.p;
+  const FeDiag  *dg = fe_problem_diag(f->c.p);
   fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d", row->t, row->stage, row->step, row->dt, row->its, row->cutbacks);
   for (int k = 0; k < f->c.sc->npressure; k++) fprintf(fp, ",%.12g", f->c.now[k]);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.15g", s->strain_mean[i]);
@@ -137,7 +137,7 @@ static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   fprintf(fp, ",%.6g,%.6g", s->strain_spread, s->evp_rate);
   for (int i = 0; i < 2; i++)
     for (int k = 0; k < 6; k++) fprintf(fp, ",%.12g", s->frame_evp[i][k]);
-  fprintf(fp, ",%ld,%.4f,%.12g,%.12g,%.12g\n", (long)p->umat_calls, row->wall, p->reaction[0], p->reaction[1], p->reaction[2]);
+  fprintf(fp, ",%ld,%.4f,%.12g,%.12g,%.12g\n", (long)dg->umat_calls, row->wall, dg->reaction[0], dg->reaction[1], dg->reaction[2]);
 }
 
 static void progress(void *ctx, char *buf, size_t n) {
@@ -193,7 +193,7 @@ static int resume(void *ctx) {
 
 static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((FeSolver *)ctx)->c, dir, msg, n); }
 
-static long umat_calls(void *ctx) { return (long)((FeSolver *)ctx)->c.p->umat_calls; }
+static long umat_calls(void *ctx) { return (long)fe_problem_diag(((FeSolver *)ctx)->c.p)->umat_calls; }
 
 /* The linear solver (docs/performance.md, "FE solver: defaults by measurement"): GMRES (right
  * preconditioned: the true residual) around MUMPS' LU, kept across iterations and steps
@@ -243,14 +243,14 @@ PetscErrorCode fe_solver_options(MPI_Comm comm, FeSolverOptions *o) {
 static PetscErrorCode solver_setup(FeSolver *f) {
   FeScene    *sc = f->c.sc;
   FeProblem  *p  = f->c.p;
-  MPI_Comm    comm = PetscObjectComm((PetscObject)p->dm);
+  MPI_Comm    comm = PetscObjectComm((PetscObject)fe_problem_dm(p));
   KSP         ksp;
   FeSolverOptions o;
   PetscFunctionBeginUser;
   PetscCall(fe_solver_options(comm, &o));
   PetscCall(SNESCreate(comm, &f->snes));
-  PetscCall(DMCreateMatrix(p->dm, &f->J));
-  PetscCall(DMCreateGlobalVector(p->dm, &f->U));
+  PetscCall(DMCreateMatrix(fe_problem_dm(p), &f->J));
+  PetscCall(DMCreateGlobalVector(fe_problem_dm(p), &f->U));
   Vec *v[] = {&f->R, &f->U0, &f->dU, NULL};
   for (int k = 0; v[k]; k++) PetscCall(VecDuplicate(f->U, v[k]));
   PetscCall(VecZeroEntries(f->U));
@@ -258,7 +258,7 @@ static PetscErrorCode solver_setup(FeSolver *f) {
   PetscCall(VecZeroEntries(f->dU));
   { /* rigid-body modes as the near null space, for -pc_type gamg */
     MatNullSpace rbm;
-    PetscCall(DMPlexCreateRigidBody(p->dm, 0, &rbm));
+    PetscCall(DMPlexCreateRigidBody(fe_problem_dm(p), 0, &rbm));
     PetscCall(MatSetNearNullSpace(f->J, rbm));
     PetscCall(MatNullSpaceDestroy(&rbm));
   }
@@ -273,7 +273,7 @@ static PetscErrorCode solver_setup(FeSolver *f) {
       if (!isnan(sc->loads[i].pressure[g])) pmax = PetscMax(pmax, fabs(sc->loads[i].pressure[g]));
   for (int g = 0; g < sc->npressure; g++) {
     PetscReal nrm;
-    PetscCall(VecNorm(p->unit_force[g], NORM_2, &nrm));
+    PetscCall(VecNorm(fe_problem_unit_force(p, g), NORM_2, &nrm));
     fref += nrm;
   }
   SNESLineSearch ls;
@@ -326,7 +326,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
         fe_problem_reactions(p))
       return 1;
   }
-  StepSolver sv = {.ctx = &f, .kind = "fe", .nstage = sc->nstage, .comm = PetscObjectComm((PetscObject)p->dm),
+  StepSolver sv = {.ctx = &f, .kind = "fe", .nstage = sc->nstage, .comm = PetscObjectComm((PetscObject)fe_problem_dm(p)),
                    .stage_begin = stage_begin, .solve = solve, .accept = accept, .history_header = history_header,
                    .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
@@ -336,7 +336,7 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
   fe_common_finish(&f.c);
   solver_summary(&f, sv.comm);
   PetscPrintf(sv.comm, "fe scene %s: %d steps, %d Newton iterations, %d cutbacks (%d by the error measure), %ld UMAT calls, assembly %.2f s, wall %.2f s -> %s/history.csv\n",
-              sc->name, sum.steps, sum.its, sum.cutbacks, sum.rejected_error, sum.umat_calls, p->assembly_seconds, sum.wall, opt->outdir);
+              sc->name, sum.steps, sum.its, sum.cutbacks, sum.rejected_error, sum.umat_calls, fe_problem_diag(p)->assembly_seconds, sum.wall, opt->outdir);
   VecDestroy(&f.U), VecDestroy(&f.R), VecDestroy(&f.U0), VecDestroy(&f.dU);
   MatDestroy(&f.J);
   fe_jacobian_coo_release(p);

@@ -74,13 +74,13 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   }
   o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
   if (!o->converged) return 0;
-  PetscReal tol = umat_control_tol(&p->mat, rq->umat), m;
+  PetscReal tol = umat_control_tol(fe_problem_material(p), rq->umat), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
     if (semismooth_evaluate(in, &m)) return 1;
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   }
-  o->pnewdt = p->min_pnewdt;
+  o->pnewdt = fe_problem_diag(p)->min_pnewdt;
   if (fe_common_observe(&d->c, rq, o)) return 1;
   if (contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
   o->event[EVENT_DEPTH] = in->ur;
@@ -122,12 +122,12 @@ static void history_header(void *ctx, FILE *fp) {
 }
 
 static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
-  Indent    *d = ctx;
-  FeProblem *p = d->c.p;
+  Indent       *d  = ctx;
+  const FeDiag *dg = fe_problem_diag(d->c.p);
   fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g,%.6g\n", row->t, row->stage,
           row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks,
-          whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, whole(d, d->force), d->pen, d->lmin, (long)p->umat_calls, row->wall,
-          p->reaction[0], p->reaction[1], p->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
+          whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, whole(d, d->force), d->pen, d->lmin, (long)dg->umat_calls, row->wall,
+          dg->reaction[0], dg->reaction[1], dg->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
 }
 
 static void progress(void *ctx, char *buf, size_t n) {
@@ -171,7 +171,7 @@ static int save_shared(void *ctx, const char *path) {
   PetscViewer v;
   Vec         vecs[2] = {d->in.U0, d->in.rateU};
   return fe_common_shared_open(&d->c, path, PETSC_TRUE, &v) || fe_state_view(d->c.p, v, 2, vecs, shared_names) ||
-         contact_io_view(&d->in.ct, d->c.p->dm, v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
+         contact_io_view(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
 }
 
 static int load_shared(void *ctx, const char *path) {
@@ -179,7 +179,7 @@ static int load_shared(void *ctx, const char *path) {
   PetscViewer v;
   Vec         vecs[2] = {d->in.U0, d->in.rateU};
   return fe_common_shared_open(&d->c, path, PETSC_FALSE, &v) || fe_state_read(d->c.p, v, 2, vecs, shared_names) ||
-         contact_io_read(&d->in.ct, d->c.p->dm, v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
+         contact_io_read(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
 }
 
 static int resume(void *ctx) {
@@ -190,7 +190,7 @@ static int resume(void *ctx) {
 
 static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((Indent *)ctx)->c, dir, msg, n); }
 
-static long umat_calls(void *ctx) { return (long)((Indent *)ctx)->c.p->umat_calls; }
+static long umat_calls(void *ctx) { return (long)fe_problem_diag(((Indent *)ctx)->c.p)->umat_calls; }
 
 int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
   Indent d;
@@ -204,7 +204,7 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   }
   if (bad) return bad;
   if (fe_common_init(&d.c, sc, p, opt)) return 1;
-  MPI_Comm comm = PetscObjectComm((PetscObject)p->dm);
+  MPI_Comm comm = PetscObjectComm((PetscObject)fe_problem_dm(p));
   PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
                     "indenter-row shift %.4g\n",
               shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
@@ -220,7 +220,7 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
                     "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations, %d factorisations), wall %.2f s -> %s/history.csv\n",
               sc->name, sum.steps, (int)d.in.its_total, d.in.predictor ? "on" : "off", sum.cutbacks, sum.rejected_error, (int)d.in.cycles,
-              sum.umat_calls, p->assembly_seconds, d.in.sol.seconds, d.in.sol.fieldsplit ? "fieldsplit" : "direct", (int)d.in.sol.linear_its,
+              sum.umat_calls, fe_problem_diag(p)->assembly_seconds, d.in.sol.seconds, d.in.sol.fieldsplit ? "fieldsplit" : "direct", (int)d.in.sol.linear_its,
               (int)d.in.sol.setups, sum.wall, opt->outdir);
   semismooth_destroy(&d.in);
   return rc;

@@ -15,7 +15,7 @@
  * and the segment's start values. */
 typedef struct {
   const PointScene *sc;
-  UmatMaterial      mat; /* the scene's material with the step's control in PROPS (a copy) */
+  UmatControl       umat; /* the UMAT's step control of the last step solved */
   UmatCall          cur, next;
   PointStepResult   res;
   double            last_deps[6], last_dt, start[6], devp_prev[6], t;
@@ -24,7 +24,8 @@ typedef struct {
   PointSummary     *sum;
 } Point;
 
-static double sv_or_zero(const Point *pt, const UmatCall *c, int slot, int i) { return umat_statev(&pt->sc->mat, c->statev, slot, i); }
+/* Component i of the total viscoplastic strain of a call's state (0 where the UMAT keeps none). */
+static double evp_of(const Point *pt, const UmatCall *c, int i) { return material_quantity(&pt->sc->mat, c->statev, MATERIAL_EVP, i); }
 
 static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Point         *pt = ctx;
@@ -59,7 +60,7 @@ static void observe(Point *pt, const StepRequest *rq, StepOutcome *o) {
   int    n = pt->sc->mat.ntens;
   double p, q, devp[6];
   point_invariants(pt->next.stress, n, &p, &q);
-  for (int i = 0; i < 6; i++) devp[i] = sv_or_zero(pt, &pt->next, pt->sc->mat.sv.evp, i) - sv_or_zero(pt, &pt->cur, pt->sc->mat.sv.evp, i);
+  for (int i = 0; i < 6; i++) devp[i] = evp_of(pt, &pt->next, i) - evp_of(pt, &pt->cur, i);
   o->event[EVENT_P_ABOVE] = p, o->event[EVENT_Q_ABOVE] = o->event[EVENT_Q_BELOW] = q;
   o->event[EVENT_EVP_RATE_BELOW] = rq->h > 0 ? norm6(devp) / rq->h : INFINITY;
   o->nout = 2 * n;
@@ -69,7 +70,7 @@ static void observe(Point *pt, const StepRequest *rq, StepOutcome *o) {
   }
   if (rq->want_volume_error && pt->have_devp && rq->h > 0 && pt->last_dt > 0) {
     double d[6], evp[6];
-    for (int i = 0; i < 6; i++) d[i] = devp[i] - rq->h / pt->last_dt * pt->devp_prev[i], evp[i] = sv_or_zero(pt, &pt->next, pt->sc->mat.sv.evp, i);
+    for (int i = 0; i < 6; i++) d[i] = devp[i] - rq->h / pt->last_dt * pt->devp_prev[i], evp[i] = evp_of(pt, &pt->next, i);
     o->vol_err = norm6(d) / fmax(norm6(devp), 1e-9 * norm6(evp) + 1e-300);
   }
 }
@@ -81,12 +82,11 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   double         target[6], deps[6];
   for (int i = 0; i < n; i++) target[i] = point_target(sg, i, pt->start, rq->lambda, rq->ts0 + rq->h);
   for (int i = 0; i < n; i++) deps[i] = pt->last_dt > 0 && rq->h > 0 ? pt->last_deps[i] * rq->h / pt->last_dt : 0;
-  pt->mat = pt->sc->mat;
-  umat_control_apply(&pt->mat, rq->umat);
+  pt->umat        = rq->umat;
   pt->cur.time[0] = rq->ts0, pt->cur.time[1] = rq->t0;
-  int rc = point_mixed_step(&pt->mat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
+  int rc = point_mixed_step(&pt->sc->mat, pt->umat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
   /* a UMAT that asks for a smaller step: 'converged' with PNEWDT < 1, so the runner cuts by PNEWDT */
-  o->converged = !rc || pt->res.umat_failed;
+  o->converged = !rc || pt->res.failed.have;
   o->pnewdt    = pt->res.pnewdt;
   o->its       = pt->res.newton;
   o->why       = "the mixed-control Newton did not converge";
@@ -98,18 +98,20 @@ static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Point            *pt = ctx;
   const PointScene *sc = pt->sc;
   if (sc->check_tangent && rq->h > 0)
-    pt->sum->worst_tangent_error = fmax(pt->sum->worst_tangent_error, point_tangent_check(&pt->mat, &pt->cur, &pt->next));
+    pt->sum->worst_tangent_error = fmax(pt->sum->worst_tangent_error, point_tangent_check(&sc->mat, pt->umat, &pt->cur, &pt->next));
   pt->sum->worst_control_error = fmax(pt->sum->worst_control_error, pt->res.control_error);
   if (sc->replay_step > 0 && pt->sum->steps + 1 == sc->replay_step) {
-    UmatCall in = pt->cur;
+    UmatCall     in = pt->cur;
+    UmatMaterial mat;
     memcpy(in.dstran, pt->next.dstran, sizeof in.dstran);
     in.dtime = rq->h;
+    material_effective(&sc->mat, material_phi(&sc->mat), pt->umat, &mat);
     char rp[1100];
     snprintf(rp, sizeof rp, "%s/replay_step_%d.yaml", sc->outdir, sc->replay_step);
-    if (umat_write_replay(rp, &pt->mat, &in, &pt->next, "requested with -write_replay_at_step")) fprintf(stderr, "driver: could not write %s\n", rp);
+    if (umat_write_replay(rp, &mat, &in, &pt->next, "requested with -write_replay_at_step")) fprintf(stderr, "driver: could not write %s\n", rp);
   }
   for (int i = 0; i < 6; i++)
-    pt->devp_prev[i] = sv_or_zero(pt, &pt->next, pt->sc->mat.sv.evp, i) - sv_or_zero(pt, &pt->cur, pt->sc->mat.sv.evp, i);
+    pt->devp_prev[i] = evp_of(pt, &pt->next, i) - evp_of(pt, &pt->cur, i);
   pt->have_devp = rq->h > 0;
   memcpy(pt->last_deps, pt->next.dstran, sizeof pt->last_deps);
   pt->last_dt = rq->h;
@@ -131,7 +133,9 @@ static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
 
 static void progress(void *ctx, char *buf, size_t n) {
   Point *pt = ctx;
-  snprintf(buf, n, "local %d ", (int)sv_or_zero(pt, &pt->cur, pt->sc->mat.sv.iterations, 0));
+  MaterialPointState s;
+  material_point_state(&pt->sc->mat, pt->cur.statev, &s);
+  snprintf(buf, n, "local %d ", s.local.iterations);
 }
 
 /* The point's state for a checkpoint: the committed call (plain values only), the predictor, the
@@ -152,10 +156,10 @@ static int load(void *ctx, BinFile *f) { return state_io(ctx, f, 0); }
 
 static void replay(void *ctx, const char *dir, char *msg, size_t n) {
   Point *pt = ctx;
-  if (!pt->res.umat_failed) return;
+  if (!pt->res.failed.have) return;
   char rp[1100];
   snprintf(rp, sizeof rp, "%s/failed_call.yaml", dir);
-  if (!umat_write_replay(rp, &pt->mat, &pt->res.failed_in, &pt->res.failed_out, msg)) {
+  if (!material_failed_call_write(&pt->res.failed, rp, msg)) {
     size_t len = strlen(msg);
     snprintf(msg + len, n - len, "; the failing UMAT call is replayed by: driver -input %s", rp);
   }
@@ -167,12 +171,8 @@ static void write_json(const PointScene *sc, const double *t_start, const double
   FILE *fp = fopen(path, "w");
   if (!fp) return;
   fprintf(fp, "{\"name\": \"%s\", \"ntens\": %d, \"props\": [", sc->name, sc->mat.ntens);
-  /* PROPS up to the normal's slots, the normal e3 where none is given (the UMAT's default, docs/umat.md) */
-  const int n3 = sc->mat.pr.normal, np = n3 >= 0 ? n3 + 3 : sc->mat.nprops;
-  double    props[UMAT_MAX_PROPS] = {0}, b[3] = {0, 0, 1};
-  memcpy(props, sc->mat.props, sizeof(double) * (sc->mat.nprops < np ? sc->mat.nprops : np));
-  if (n3 >= 0 && sc->mat.nprops < np) props[n3 + 2] = 1;
-  if (n3 >= 0) memcpy(b, &props[n3], sizeof b);
+  double    props[UMAT_MAX_PROPS], b[3];
+  const int np = material_props_with_normal(&sc->mat, props, b);
   for (int i = 0; i < np; i++) fprintf(fp, "%s%.17g", i ? ", " : "", props[i]);
   double nn = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
   fprintf(fp, "], \"normal\": [%.17g, %.17g, %.17g], \"units\": {\"stress\": \"MPa\", \"time\": \"s\"}, \"segments\": [",
@@ -188,7 +188,7 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   Point pt;
   memset(&pt, 0, sizeof pt);
   memset(sum, 0, sizeof *sum);
-  pt.sc = sc, pt.sum = sum, pt.mat = sc->mat;
+  pt.sc = sc, pt.sum = sum, pt.umat = umat_control(UMAT_CONTROL_AS_GIVEN, 0);
   if (sc->outdir[0] && fs_make_directories(sc->outdir)) {
     snprintf(err, errlen, "output directory '%s': cannot create: %s", sc->outdir, strerror(errno));
     return 1;
@@ -198,8 +198,9 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   pt.cur.noel = pt.cur.npt = pt.cur.kstep = pt.cur.kinc = 1;
   /* A zero increment (DSTRAN = 0, DTIME = 0) first: the UMAT initialises its state from STRESS if it needs
    * to (Cam-Clay IX's uninitialised-state rule), so that row 0 shows the real initial state. */
-  umat_invoke(&pt.mat, &pt.cur);
-  if (pt.cur.pnewdt < 1) {
+  MaterialPointDiag diag;
+  material_point_update(&sc->mat, material_phi(&sc->mat), pt.umat, &pt.cur, &diag);
+  if (diag.rejected) {
     snprintf(err, errlen, "the UMAT rejected the initial state (a zero increment returned PNEWDT = %g)", pt.cur.pnewdt);
     return 1;
   }
