@@ -9,6 +9,7 @@
 
 #include "../io/fsutil.h"
 #include "../material/material_input.h"
+#include "../material/material_point.h"
 #include "../stepping/point_stepper.h"
 
 #define MAXV 16
@@ -47,10 +48,8 @@ static void start_state(int which, PointScene *sc) {
   double pc = which == START_TENSION ? 30 : 1e-5;
   memset(sc->statev0, 0, sizeof sc->statev0);
   for (int i = 0; i < 6; i++) sc->stress0[i] = i < 3 ? s : 0;
-  const UmatStateSlots *sv = &sc->mat.sv;
   if (which == START_CONFINED) return;
-  for (int i = 0; i < 3; i++) sc->statev0[sv->sig_hard + i] = sc->statev0[sv->sig_soft + i] = s;
-  sc->statev0[sv->pc_hard] = sc->statev0[sv->pc_soft] = pc;
+  material_state_isotropic(&sc->mat, sc->statev0, s, pc);
 }
 
 /* What a sweep scene gives: its name, the base material, the lists of the matrix, the reference steps, the output. */
@@ -71,12 +70,13 @@ static int read_sweep(YdDoc *doc, const char *outdir_override, SweepInput *in, c
   if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
       material_read(doc, x, 6, &in->base.mat, err, errlen))
     return 1;
-  if (in->base.mat.pr.normal < 0 || in->base.mat.sv.sig_hard < 0) {
+  if (!material_is_camclay9(&in->base.mat) || !material_has_phi(&in->base.mat)) {
     snprintf(err, errlen, "%s:%d: key 'material.umat': the extremes sweep sets Cam-Clay IX's PROPS and state; it runs "
              "with umat: camclay9 only", doc->file, x->line);
     return 1;
   }
-  if (in->base.mat.nprops > in->base.mat.pr.normal) {
+  double b[3];
+  if (material_normal(&in->base.mat, b)) {
     snprintf(err, errlen, "%s:%d: key 'material': the sweep sets the normal from matrix.bedding_angle: give no "
              "bedding_angle, normal or n1-n3 in the material", doc->file, x->line);
     return 1;
@@ -111,12 +111,10 @@ static int sweep_case(const SweepInput *in, int a, int f, int e, int s, int i, c
   Segment    sg;
   memset(&sg, 0, sizeof sg);
   double th = in->ang.v[a] * M_PI / 180, nn[3] = {sin(th), 0, cos(th)}, norm = 0;
-  const UmatPropSlots *pr = &sc.mat.pr;
-  memcpy(&sc.mat.props[pr->normal], nn, sizeof nn);
-  sc.mat.nprops  = pr->normal + 3;
-  sc.mat.props[pr->phi] = in->phi.v[f];
-  sc.mat.props[pr->eta_hard] = sc.mat.props[pr->eta_soft] = in->eta.v[e];
-  sc.mat.props[pr->tol] = 0; /* no accuracy control: the single step is judged, not resized */
+  material_set_normal(&sc.mat, nn);
+  material_set_phi(&sc.mat, in->phi.v[f]);
+  material_set_viscosity(&sc.mat, in->eta.v[e]);
+  material_set_tolerance(&sc.mat, 0); /* no accuracy control: the single step is judged, not resized */
   start_state(s, &sc);
   for (int k = 0; k < 6; k++) norm += dir[k] * dir[k];
   for (int k = 0; k < 6; k++) {

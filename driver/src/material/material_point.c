@@ -67,6 +67,25 @@ bool material_normal(const UmatMaterial *mat, double b[3]) {
   return true;
 }
 
+bool material_is_camclay9(const UmatMaterial *mat) {
+  return mat->pr.normal >= 0 && mat->pr.eta_hard >= 0 && mat->pr.eta_soft >= 0 && mat->pr.tol >= 0 &&
+         mat->sv.sig_hard >= 0 && mat->sv.sig_soft >= 0 && mat->sv.pc_hard >= 0 && mat->sv.pc_soft >= 0;
+}
+
+void material_set_normal(UmatMaterial *mat, const double b[3]) {
+  memcpy(&mat->props[mat->pr.normal], b, 3 * sizeof(double));
+  mat->nprops = mat->pr.normal + 3;
+}
+
+void material_set_phi(UmatMaterial *mat, double phi) { mat->props[mat->pr.phi] = phi; }
+void material_set_viscosity(UmatMaterial *mat, double eta) { mat->props[mat->pr.eta_hard] = mat->props[mat->pr.eta_soft] = eta; }
+void material_set_tolerance(UmatMaterial *mat, double tol) { mat->props[mat->pr.tol] = tol; }
+
+void material_state_isotropic(const UmatMaterial *mat, double *statev, double s, double pc) {
+  for (int i = 0; i < 3; i++) statev[mat->sv.sig_hard + i] = statev[mat->sv.sig_soft + i] = s;
+  statev[mat->sv.pc_hard] = statev[mat->sv.pc_soft] = pc;
+}
+
 int material_props_with_normal(const UmatMaterial *mat, double props[UMAT_MAX_PROPS], double b[3]) {
   const int n3 = mat->pr.normal, np = n3 >= 0 ? n3 + 3 : mat->nprops;
   memset(props, 0, sizeof(double) * UMAT_MAX_PROPS);

@@ -59,6 +59,18 @@ bool material_normal(const UmatMaterial *mat, double b[3]);
  * (docs/umat.md); returns their number (mat->nprops where the UMAT has no normal slots). b: the normal, e3 if none. */
 int material_props_with_normal(const UmatMaterial *mat, double props[UMAT_MAX_PROPS], double b[3]);
 
+/* Whether the linked UMAT keeps Cam-Clay IX's named slots (the frames' viscosities, the normal, the frames' state):
+ * what a study that varies them needs (app/sweep.c). */
+bool material_is_camclay9(const UmatMaterial *mat);
+/* Set, by name, the bedding normal b (unit) as the last three PROPS, the hard-frame fraction, both frames' viscosity
+ * eta and the step-control tolerance tol (0: no control). Only for a material with material_is_camclay9. */
+void material_set_normal(UmatMaterial *mat, const double b[3]);
+void material_set_phi(UmatMaterial *mat, double phi);
+void material_set_viscosity(UmatMaterial *mat, double eta);
+void material_set_tolerance(UmatMaterial *mat, double tol);
+/* A start state in statev: both frames' stresses isotropic at s (their stress sum is the point's) and their pc. */
+void material_state_isotropic(const UmatMaterial *mat, double *statev, double s, double pc);
+
 /* The material of one update: mat's PROPS with phi (where the UMAT has the slot) and the step control c. */
 void material_effective(const UmatMaterial *mat, double phi, UmatControl c, UmatMaterial *eff);
 
