@@ -129,9 +129,9 @@ static void print_failure(int rc, const char *err, PetscBool bad_option) {
     PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s; nothing was run\n", specific);
     return;
   }
-  PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s%s%s (-error_traceback shows where)\n",
-               specific && specific[0] && strcmp(specific, " ") ? specific : "", specific && specific[0] && text ? ": " : "",
-               text ? text : "a PETSc error");
+  PetscBool said = specific && specific[0] && strcmp(specific, " ") ? PETSC_TRUE : PETSC_FALSE;
+  PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s%s%s (-error_traceback shows where)\n", said ? specific : "",
+               said && text ? ": " : "", text ? text : said ? "" : "a PETSc error");
 }
 
 static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt replay_step, char *err, size_t errlen) {
