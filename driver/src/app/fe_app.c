@@ -168,7 +168,8 @@ int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen
   if (fe_scene_read(doc, &sc, err, errlen)) return 2;
   if (sc.indenter && indent_scene_read(doc, &sc, &isc, err, errlen)) return 2;
   if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
-  if (app_runner_options(&opt)) return 1;
+  PetscErrorCode ierr = app_runner_options(&opt);
+  if (ierr) return stage_runner_status(ierr, err);
   int rank, bad = apply_scene_options(doc->file, sc.solver_options, err, errlen);
   if (bad) return bad;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);

@@ -203,7 +203,8 @@ int main(int argc, char **argv) {
   else if (!m.given) {
     if (!help_asked) PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n");
     rc = help_asked ? 0 : 2;
-  } else if (options_forget_reads() || main_options(&m)) rc = 1; /* main's own are read (the others by the run) */
+  } else if ((ierr = options_forget_reads()) || (ierr = main_options(&m))) /* main's own are read (the others by the run) */
+    rc = 1, print_failure((int)ierr, "", PETSC_FALSE);
   else {
     YdDoc doc;
     if (yd_load(m.input, &doc, err, sizeof err)) rc = 2;
