@@ -326,7 +326,11 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     double ratio, kink_ratio;
     int    verdict = judge(r, &rq, &o, &ratio, &kink_ratio, &landed, err, errlen);
     if (verdict == STEP_FAILED) {
-      if (sv->replay && opt->outdir && opt->outdir[0]) SOLVER_CALL(sv->replay(sv->ctx, opt->outdir, err, errlen));
+      /* the step's failure is the message; a replay that could not be written only adds to it */
+      if (sv->replay && opt->outdir && opt->outdir[0] && sv->replay(sv->ctx, opt->outdir, err, errlen)) {
+        size_t len = strlen(err);
+        snprintf(err + len, errlen - len, " (a replay of the failing UMAT call could not be written)");
+      }
       return 1;
     }
     if (verdict == STEP_RETRY) continue;
@@ -358,7 +362,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     if (opt->checkpoint_every > 0 && st->step % opt->checkpoint_every == 0) {
       if (r->hist) fflush(r->hist);
       st->history_offset = r->hist ? ftell(r->hist) : 0;
-      if (checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen)) return 1;
+      if ((rc = checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen))) return rc;
     }
     if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, err, errlen)) ? rc : 3; /* its last step's fields too */
     if (stage_done) return 0;

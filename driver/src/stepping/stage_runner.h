@@ -87,7 +87,8 @@ typedef struct {
  *   with that message and exit status 1, never a PETSc traceback.
  * - The callbacks that write or read the run's files and take no err (promote, save, load, save_shared,
  *   load_shared, resume) return nonzero on any failure, and the runner reports it by the file's name; save and
- *   load may also say a checkpoint file is bad by its BinFile's ok. */
+ *   load may also say a checkpoint file is bad by its BinFile's ok.
+ * - replay runs after a step failed for good: its failure only adds a note to that message. */
 #define STEP_ERR_REPORTED PETSC_ERR_USER_INPUT
 #define STEP_FAIL(err, errlen, ...) \
   do { \
@@ -118,7 +119,8 @@ typedef struct {
   /* Checkpoint: the solver's state (this rank's file). */
   PetscErrorCode (*save)(void *ctx, BinFile *f);
   PetscErrorCode (*load)(void *ctx, BinFile *f);
-  /* After a step failed for good: write a replay of the failing UMAT call into dir; append to msg. */
+  /* After a step failed for good: write a replay of the failing UMAT call into dir; append to msg (the runner
+   * keeps msg, the failure's own message, whatever this returns). */
   PetscErrorCode (*replay)(void *ctx, const char *dir, char *msg, size_t n);
   /* Totals for the last line. */
   long (*umat_calls)(void *ctx);
