@@ -28,6 +28,10 @@
  *                whole; once with -checkpoint_every 3 stopped by -max_steps 7; then restarted: the restart reads
  *                checkpoint.latest = step 6 and its accepted times, steps and x are those of the whole run from
  *                step 6 on, bit for bit.
+ *  7 errors      (stage_runner.h, docs/driver.md "Error codes") a check that fails with STEP_FAIL after t = 0.45 (0.1 s
+ *                steps): status 1, err exactly the callback's message, 5 steps accepted; a solve that fails with a PETSc
+ *                error (PETSC_ERR_MEM) on its 3rd call: that code returned, err empty (main prints PETSc's message), 2
+ *                steps accepted.
  * Exit 0 when every check holds. */
 #include <math.h>
 #include <petscsys.h>
@@ -59,6 +63,8 @@ typedef struct {
   int    nstage;
   double tau, x0, x, x_trial, t; /* the committed state; t the mock's own clock (sum of accepted steps) */
   int    fail_solve;            /* this solve call (from 1) reports no convergence (0: none) */
+  int    petsc_error_solve;     /* this solve call fails with a PETSc error (0: none) */
+  double fail_after;            /* > 0: the check fails (STEP_FAIL) once t is past it */
   int    spike_solve;           /* this solve call's estimate is spike x tol */
   double spike, err_level;      /* otherwise err_level x tol, or ... */
   double err_coef;              /* ... when > 0: err_coef h (1 + 0.5 sin 5 t0), an estimate that varies */
@@ -72,7 +78,7 @@ static void mock_init(Mock *m) {
   m->tau = 2.0, m->x0 = m->x = 3.0;
 }
 
-static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Mock *m = ctx;
   stage_view_of(&m->stage[s], v);
   v->event_start = m->t; /* q = t */
@@ -80,10 +86,12 @@ static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, s
   return 0;
 }
 
-static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   Mock *m = ctx;
   int   call = ++m->nsolve;
+  PetscFunctionBeginUser;
   if (call <= MAXREC) m->solve_h[call - 1] = rq->h;
+  PetscCheck(call != m->petsc_error_solve, PETSC_COMM_SELF, PETSC_ERR_MEM, "mock: a PETSc error on purpose");
   m->x_trial   = m->x * exp(-rq->h / m->tau);
   o->converged = call != m->fail_solve;
   o->why       = "mock: not converged on purpose";
@@ -95,10 +103,10 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
     o->vol_err = m->err_coef > 0 ? m->err_coef * rq->h * (1 + 0.5 * sin(5 * rq->t0)) : m->err_level * tol;
     if (call == m->spike_solve) o->vol_err = m->spike * tol;
   }
-  return 0;
+  PetscFunctionReturn(0);
 }
 
-static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Mock *m = ctx;
   m->x = m->x_trial, m->t += rq->h;
   if (m->naccept < MAXREC) m->accept_t[m->naccept] = m->t, m->accept_h[m->naccept] = rq->h;
@@ -106,33 +114,42 @@ static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   return 0;
 }
 
-static int write_fields(void *ctx, double t, char *err, size_t errlen) {
+/* A failure the user must act on, past this time (the stage runner's STEP_FAIL). */
+static PetscErrorCode check(void *ctx, double t, char *err, size_t errlen) {
+  Mock *m = ctx;
+  PetscFunctionBeginUser;
+  if (m->fail_after > 0 && t > m->fail_after) STEP_FAIL(err, errlen, "mock.yaml: key 'limit': t = %g is past the limit %g", t, m->fail_after);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode write_fields(void *ctx, double t, char *err, size_t errlen) {
   Mock *m = ctx;
   if (m->nwrite < MAXREC) m->write_t[m->nwrite] = t;
   m->nwrite++;
   return 0;
 }
 
-static void history_header(void *ctx, FILE *fp) { fprintf(fp, "t,step,x\n"); }
-static void history_row(void *ctx, FILE *fp, const RunnerRow *row) { fprintf(fp, "%.17g,%d,%.17g\n", row->t, row->step, ((Mock *)ctx)->x); }
+static PetscErrorCode history_header(void *ctx, FILE *fp) { return fprintf(fp, "t,step,x\n") < 0; }
+static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) { return fprintf(fp, "%.17g,%d,%.17g\n", row->t, row->step, ((Mock *)ctx)->x) < 0; }
 
-/* The checkpoint holds the physics' state only: what the runner must restore is its own business. */
-static int save(void *ctx, BinFile *f) {
+/* The checkpoint holds the physics' state only: what the runner must restore is its own business. A write or
+   read that fails leaves f->ok 0. */
+static PetscErrorCode save(void *ctx, BinFile *f) {
   Mock *m = ctx;
   binfile_write(f, &m->x, sizeof m->x, 1);
   binfile_write(f, &m->t, sizeof m->t, 1);
-  return !f->ok;
+  return 0;
 }
-static int load(void *ctx, BinFile *f) {
+static PetscErrorCode load(void *ctx, BinFile *f) {
   Mock *m = ctx;
   binfile_read(f, &m->x, sizeof m->x, 1);
   binfile_read(f, &m->t, sizeof m->t, 1);
-  return !f->ok;
+  return 0;
 }
 
 static StepSolver mock_solver(Mock *m) {
   return (StepSolver){.ctx = m, .kind = "mock", .nstage = m->nstage, .comm = PETSC_COMM_SELF, .stage_begin = stage_begin,
-                      .solve = solve, .accept = accept, .history_header = history_header, .history_row = history_row,
+                      .solve = solve, .accept = accept, .check = check, .history_header = history_header, .history_row = history_row,
                       .write_fields = write_fields, .save = save, .load = load};
 }
 
@@ -342,6 +359,31 @@ static void case_checkpoint(const char *tmp) {
         "restart: x %.17g, t %.17g; whole run x %.17g, t %.17g (expected equal bit for bit, t = 2)", resumed.x, s_res.t, whole.x, s_whole.t);
 }
 
+/* ---------------------------------------------------------------------------------------------------- */
+/* Errors                                                                                               */
+
+static void case_errors(void) {
+  Mock          m;
+  RunnerSummary sum;
+  RunnerOptions opt = quiet_options();
+  char          err[2048] = "";
+  const char   *want = "mock.yaml: key 'limit': t = 0.5 is past the limit 0.45";
+  PetscPushErrorHandler(PetscReturnErrorHandler, NULL); /* as main does: no traceback */
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = fixed_stage(1.0, 10, 1), m.fail_after = 0.45;
+  StepSolver sv = mock_solver(&m);
+  int        rc = stage_runner_run(&sv, &opt, &sum, err, sizeof err);
+  CHECK(rc == 1 && !strcmp(err, want) && m.naccept == 5, "a check's STEP_FAIL: status %d, err '%s', %d steps (expected 1, '%s', 5)", rc, err,
+        m.naccept, want);
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = fixed_stage(1.0, 10, 1), m.petsc_error_solve = 3;
+  sv = mock_solver(&m);
+  rc = stage_runner_run(&sv, &opt, &sum, err, sizeof err);
+  CHECK(rc == PETSC_ERR_MEM && !err[0] && m.naccept == 2, "a solve's PETSc error: status %d, err '%s', %d steps (expected %d, '', 2)", rc, err,
+        m.naccept, PETSC_ERR_MEM);
+  PetscPopErrorHandler();
+}
+
 int main(int argc, char **argv) {
   PetscCall(PetscInitialize(&argc, &argv, NULL, "The stage runner with a mock StepSolver.\n"));
   char tmp[] = "/tmp/stage_runner_mock_XXXXXX";
@@ -352,6 +394,7 @@ int main(int argc, char **argv) {
   case_event();
   case_output_times();
   case_checkpoint(tmp);
+  case_errors();
   char cmd[128];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
   if (!failures && system(cmd)) fprintf(stderr, "note: could not remove %s\n", tmp);

@@ -14,6 +14,7 @@
 
 #include "../io/fsutil.h"
 #include "../material/material_input.h"
+#include "../stepping/stage_runner.h"
 
 extern char **environ;
 
@@ -389,23 +390,25 @@ static PetscErrorCode solve(Calib *c, double *u, PetscInt *its, char *reason, si
 }
 
 /* What each run's forward runs follow, and its full model: said in the log. */
-static void describe_run(Calib *c, const CalRun *run) {
+static PetscErrorCode describe_run(Calib *c, const CalRun *run) {
   char buf[4096];
+  PetscFunctionBeginUser;
   if (run->drive) {
     cal_protocol_describe(run, buf, sizeof buf);
-    PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the data's history (drive: data), %d stages from %s%s%s:\n%s\n"
-                "  forward scene %s: %s's stages replaced by the data's\n", run->name, run->nstage,
-                run->stages_from_column ? "the data's column '" : "the load curve (loading, hold within 1 % of the peak, unloading)",
-                run->stages_from_column ? run->stage_col : "", run->stages_from_column ? "'" : "", buf, run->driven, run->scene);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the data's history (drive: data), %d stages from %s%s%s:\n%s\n"
+                          "  forward scene %s: %s's stages replaced by the data's\n", run->name, run->nstage,
+                          run->stages_from_column ? "the data's column '" : "the load curve (loading, hold within 1 % of the peak, unloading)",
+                          run->stages_from_column ? run->stage_col : "", run->stages_from_column ? "'" : "", buf, run->driven, run->scene));
   } else
-    PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the stages of %s (drive: scene)\n", run->name, run->scene);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the stages of %s (drive: scene)\n", run->name, run->scene));
   if (run->reference[0])
-    PetscPrintf(PETSC_COMM_SELF, "  full model (reference%s): %s, run at the fit for the forward model's bias\n",
-                run->reference_default ? ", the default beside the forward scene" : "", run->reference);
-  else PetscPrintf(PETSC_COMM_SELF, "  no full model (reference): the forward model's bias is not measured\n");
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  full model (reference%s): %s, run at the fit for the forward model's bias\n",
+                          run->reference_default ? ", the default beside the forward scene" : "", run->reference));
+  else PetscCall(PetscPrintf(PETSC_COMM_SELF, "  no full model (reference): the forward model's bias is not measured\n"));
+  PetscFunctionReturn(0);
 }
 
-/* The first evaluation, at the start: every error here is the input's (fatal). */
+/* The first evaluation, at the start: every error here is the input's (fatal: 1), or a PETSc error code. */
 static int start(Calib *c, double *u, char *err, size_t errlen) {
   double *r = malloc(sizeof(double) * 1), p[CAL_MAX_PARAMS];
   int     m = 0;
@@ -413,7 +416,8 @@ static int start(Calib *c, double *u, char *err, size_t errlen) {
   for (int j = 0; j < c->nrun; j++) {
     CalRun *run = &c->run[j];
     char    dir[PATH_MAX + 200];
-    describe_run(c, run);
+    PetscErrorCode ierr = describe_run(c, run);
+    if (ierr) return free(r), stage_runner_status(ierr, err);
     snprintf(dir, sizeof dir, "%s/forward/start_%s", c->outdir, run->name);
     int rc = cal_forward(c, run, cal_run_scene(run, 0), p, dir);
     if (rc) {
@@ -444,9 +448,8 @@ static int start(Calib *c, double *u, char *err, size_t errlen) {
   cache_add(c, u, r); /* TAO's first evaluation is this one */
   free(r);
   if (m < c->np) FAIL("%s: key 'runs': %d data points for %d parameters: need at least as many points", c->doc->file, m, c->np);
-  PetscPrintf(PETSC_COMM_SELF, "calibrate %s: %d parameters, %d runs, %d residuals; misfit at the start %.6e\n", c->name,
-              c->np, c->nrun, m, f);
-  return 0;
+  return stage_runner_status(PetscPrintf(PETSC_COMM_SELF, "calibrate %s: %d parameters, %d runs, %d residuals; misfit at the start %.6e\n",
+                                         c->name, c->np, c->nrun, m, f), err);
 }
 
 /* drive: data: the forward scenes that follow each run's data, written into the output directory. */
@@ -457,12 +460,13 @@ static int write_protocols(Calib *c, char *err, size_t errlen) {
 }
 
 /* -calibrate_dry_run: say what each run's forward runs follow, write the scenes that follow the data, and stop. */
-static int dry_run(Calib *c) {
-  PetscBool dry = PETSC_FALSE;
-  PetscOptionsGetBool(NULL, NULL, "-calibrate_dry_run", &dry, NULL);
-  for (int j = 0; dry && j < c->nrun; j++) describe_run(c, &c->run[j]);
-  if (dry) PetscPrintf(PETSC_COMM_SELF, "calibrate %s: -calibrate_dry_run: nothing run; the scenes are in %s/protocol\n", c->name, c->outdir);
-  return dry;
+static PetscErrorCode dry_run(Calib *c, PetscBool *dry) {
+  PetscFunctionBeginUser;
+  *dry = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-calibrate_dry_run", dry, NULL));
+  for (int j = 0; *dry && j < c->nrun; j++) PetscCall(describe_run(c, &c->run[j]));
+  if (*dry) PetscCall(PetscPrintf(PETSC_COMM_SELF, "calibrate %s: -calibrate_dry_run: nothing run; the scenes are in %s/protocol\n", c->name, c->outdir));
+  PetscFunctionReturn(0);
 }
 
 int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
@@ -470,16 +474,19 @@ int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
   double   u[CAL_MAX_PARAMS];
   PetscInt its    = 0;
   char     reason[128], file[PATH_MAX + 32];
-  int      rc     = 2;
+  int      rc     = 2, bad;
+  PetscBool      dry;
+  PetscErrorCode ierr;
   c->doc          = doc;
   c->wall0        = MPI_Wtime();
   ssize_t len     = readlink("/proc/self/exe", c->exe, sizeof c->exe - 1);
   if (len <= 0) snprintf(err, errlen, "calibrate: cannot find the driver's own executable (/proc/self/exe)");
   else if (read_scene(doc, c, outdir, err, errlen)) {
   } else if (fs_prepare_output_dir(c->outdir, err, errlen) || write_protocols(c, err, errlen)) {
-  } else if (dry_run(c)) {
-    rc = 0;
-  } else if (start(c, u, err, errlen)) {
+  } else if ((ierr = dry_run(c, &dry)) || dry) {
+    rc = stage_runner_status(ierr, err);
+  } else if ((bad = start(c, u, err, errlen))) {
+    if (bad > 2) rc = bad; /* a PETSc error; else the input's (2) */
   } else {
     rc = 1;
     snprintf(file, sizeof file, "%s/evaluations.csv", c->outdir);
@@ -488,7 +495,8 @@ int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
       fprintf(c->evals, "evaluation,ok");
       for (int k = 0; k < c->np; k++) fprintf(c->evals, ",%s", c->p[k].name);
       fprintf(c->evals, ",misfit,forward_runs,wall\n");
-      if (!solve(c, u, &its, reason, sizeof reason) && !cal_report(c, u, its, reason, err, errlen)) rc = 0;
+      if ((ierr = solve(c, u, &its, reason, sizeof reason))) rc = stage_runner_status(ierr, err);
+      else rc = (bad = cal_report(c, u, its, reason, err, errlen)) > 2 ? bad : bad ? 1 : 0;
       fclose(c->evals);
     }
   }

@@ -65,7 +65,7 @@ int cal_evaluate_full(Calib *c, const double *u, double *r, const char *tag, cha
 int cal_forward(Calib *c, const CalRun *run, const char *scene, const double *p, const char *dir);
 
 /* The report after TAO: Jacobian at u by finite differences, standard errors, correlations, the fitted
- * curves, the reference runs, fit.yaml. */
+ * curves, the reference runs, fit.yaml. Returns 0, 1 (err filled) or a PETSc error code (err empty). */
 int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char *err, size_t errlen);
 /* Inverse of the n x n matrix a (row-major; overwritten) into b by Gauss-Jordan with partial pivoting; 1 if singular. */
 int cal_invert(int n, double *a, double *b);
@@ -77,6 +77,6 @@ int cal_bias(Calib *c, const double *u, const double *J, const double *inv, cons
 /* fit.yaml and the summary on stdout (calibrate_yaml.c). */
 void cal_write_yaml(Calib *c, FILE *fp, const double *u, const double *se, const double *cov, double ssr, PetscInt its,
                     const char *reason, const CalBias *b);
-void cal_print_summary(Calib *c, const double *u, const double *se, const CalBias *b);
+PetscErrorCode cal_print_summary(Calib *c, const double *u, const double *se, const CalBias *b);
 
 #endif

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../stepping/stage_runner.h"
 #include "calibrate.h"
 
 #define FAIL(...)                                                                                                   \
@@ -92,7 +93,8 @@ static int final_checks(Calib *c, const double *u, const CalBias *b, char *err, 
     const char     *w = at_bound(p, v);
     if (!w) continue;
     if (c->accept & CAL_ACCEPT_BOUND) {
-      PetscPrintf(PETSC_COMM_SELF, "warning: %s ended at its bound %s = %g (accepted: accept: [bound])\n", p->name, w, v);
+      PetscErrorCode ierr = PetscPrintf(PETSC_COMM_SELF, "warning: %s ended at its bound %s = %g (accepted: accept: [bound])\n", p->name, w, v);
+      if (ierr) return stage_runner_status(ierr, err);
       continue;
     }
     FAIL("%s:%d: key 'parameters[%d].%s': %s ended at its bound %s = %g: the data want a value beyond it. Widen the bounds, "
@@ -110,8 +112,9 @@ int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char
   double  se[CAL_MAX_PARAMS];
   CalBias b;
   char    msg[2048] = "";
-  PetscPrintf(PETSC_COMM_SELF, "TAO %s: %s after %d iterations; the Jacobian at the fit by central differences (%d runs)\n",
-              c->tao_type, reason, (int)its, 2 * n * c->nrun);
+  PetscErrorCode ierr = PetscPrintf(PETSC_COMM_SELF, "TAO %s: %s after %d iterations; the Jacobian at the fit by central differences (%d runs)\n",
+                                    c->tao_type, reason, (int)its, 2 * n * c->nrun);
+  if (ierr) return free(J), free(r), stage_runner_status(ierr, err);
   if (jacobian(c, u, J, err, errlen)) return free(J), free(r), 1;
   if (cal_evaluate(c, u, r, "fit", err, errlen)) return free(J), free(r), 1;
   for (int i = 0; i < m; i++) ssr += r[i] * r[i];
@@ -135,9 +138,10 @@ int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char
   if (!fp) return free(J), free(r), snprintf(err, errlen, "calibrate: cannot write %s", file), 1;
   cal_write_yaml(c, fp, u, se, cov, ssr, its, reason, &b);
   fclose(fp);
-  cal_print_summary(c, u, se, &b);
-  PetscPrintf(PETSC_COMM_SELF, "calibrate %s: misfit %.6e, %d evaluations (%d rejected), %d forward runs, wall %.1f s -> %s/fit.yaml\n",
-              c->name, ssr, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0, c->outdir);
   free(J), free(r);
-  return final_checks(c, u, &b, err, errlen);
+  ierr = cal_print_summary(c, u, se, &b);
+  if (!ierr)
+    ierr = PetscPrintf(PETSC_COMM_SELF, "calibrate %s: misfit %.6e, %d evaluations (%d rejected), %d forward runs, wall %.1f s -> %s/fit.yaml\n",
+                       c->name, ssr, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0, c->outdir);
+  return ierr ? stage_runner_status(ierr, err) : final_checks(c, u, &b, err, errlen);
 }

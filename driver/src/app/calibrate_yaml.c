@@ -92,23 +92,25 @@ void cal_write_yaml(Calib *c, FILE *fp, const double *u, const double *se, const
   fprintf(fp, "}\n");
 }
 
-void cal_print_summary(Calib *c, const double *u, const double *se, const CalBias *b) {
+PetscErrorCode cal_print_summary(Calib *c, const double *u, const double *se, const CalBias *b) {
   char why[256];
+  PetscFunctionBeginUser;
   for (int k = 0; k < c->np; k++) {
     double p = cal_param(&c->p[k], u[k]), v, s;
-    PetscPrintf(PETSC_COMM_SELF, "  %-14s = %.6g +- %.2g (%.2g %%): the forward model's fit\n", c->p[k].name, p, se[k],
-                100 * se[k] / fabs(p));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  %-14s = %.6g +- %.2g (%.2g %%): the forward model's fit\n", c->p[k].name, p, se[k],
+                          100 * se[k] / fabs(p)));
     if (b->have)
-      PetscPrintf(PETSC_COMM_SELF, "  %-14s   its bias (its fit less the full model's), from one full-model run: %+.4g "
-                  "(%+.2g %%, %.3g standard errors)\n", "", b->first[k], 100 * b->first[k] / p, fabs(b->first[k]) / se[k]);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  %-14s   its bias (its fit less the full model's), from one full-model run: %+.4g "
+                            "(%+.2g %%, %.3g standard errors)\n", "", b->first[k], 100 * b->first[k] / p, fabs(b->first[k]) / se[k]));
     if (b->refined)
-      PetscPrintf(PETSC_COMM_SELF, "  %-14s   refined on the full model: %.8g +- %.2g; the bias measured: %+.4g +- %.2g "
-                  "(%+.2g %%)\n", "", b->p[k], b->se[k], b->bias[k], b->bias_se[k], 100 * b->bias[k] / p);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  %-14s   refined on the full model: %.8g +- %.2g; the bias measured: %+.4g +- %.2g "
+                            "(%+.2g %%)\n", "", b->p[k], b->se[k], b->bias[k], b->bias_se[k], 100 * b->bias[k] / p));
     quote(c, u, se, b, k, &v, &s, why, sizeof why);
-    PetscPrintf(PETSC_COMM_SELF, "quote: %s = %.8g +- %.2g (%.2g %%): %s\n", c->p[k].name, v, s, 100 * s / fabs(v), why);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "quote: %s = %.8g +- %.2g (%.2g %%): %s\n", c->p[k].name, v, s, 100 * s / fabs(v), why));
   }
   for (int j = 0; j < c->nrun; j++)
     if (b->max_diff[j] >= 0)
-      PetscPrintf(PETSC_COMM_SELF, "  run %s: forward model %s against the full model %s at the fit: largest difference %.3g "
-                  "of a block's data range\n", c->run[j].name, c->run[j].scene, c->run[j].reference, b->max_diff[j]);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  run %s: forward model %s against the full model %s at the fit: largest difference %.3g "
+                            "of a block's data range\n", c->run[j].name, c->run[j].scene, c->run[j].reference, b->max_diff[j]));
+  PetscFunctionReturn(0);
 }

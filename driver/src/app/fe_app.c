@@ -18,7 +18,7 @@
 #include "../stepping/fe_stepper.h"
 
 /* The scene's PETSc options, each unless the command line already gives it; one that looks like a driver's option
-   but is none is refused (io/options.h). Returns 0, 1 (PETSc) or 2 (err filled). */
+   but is none is refused (io/options.h). Returns 0, 2 (err filled) or a PETSc error code (err empty). */
 static int apply_scene_options(const char *file, const char *options, char *err, size_t errlen) {
   char buf[1024], *tok, *save = NULL, *keys[64], *vals[64], where[1100];
   int  n = 0;
@@ -28,11 +28,14 @@ static int apply_scene_options(const char *file, const char *options, char *err,
     else if (n > 0 && !vals[n - 1]) vals[n - 1] = tok;
   }
   snprintf(where, sizeof where, "%s: key 'solver.options'", file);
-  if (options_check_unknown((const char *const *)keys, n, NULL, where, err, errlen)) return 2;
+  PetscBool      bad;
+  PetscErrorCode ierr = options_check_unknown((const char *const *)keys, n, NULL, where, err, errlen, &bad);
+  if (ierr || bad) return ierr ? stage_runner_status(ierr, err) : 2;
   for (int k = 0; k < n; k++) {
     PetscBool set;
-    if (PetscOptionsHasName(NULL, NULL, keys[k], &set)) return 1;
-    if (!set && PetscOptionsSetValue(NULL, keys[k], vals[k])) return 1;
+    ierr = PetscOptionsHasName(NULL, NULL, keys[k], &set);
+    if (!ierr && !set) ierr = PetscOptionsSetValue(NULL, keys[k], vals[k]);
+    if (ierr) return stage_runner_status(ierr, err);
   }
   return 0;
 }
@@ -64,36 +67,44 @@ PetscErrorCode app_runner_options(RunnerOptions *o) {
   PetscFunctionReturn(0);
 }
 
-static int petsc_failure(PetscErrorCode ierr, char *err);
-
-/* Every group the scene names must be a physical group of the mesh, of the kind its key needs (fe/fe_groups.h). */
-static int check_groups(YdDoc *doc, FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen) {
+/* Every group the scene names must be a physical group of the mesh, of the kind its key needs (fe/fe_groups.h):
+   else *bad = 2 with err filled. */
+static PetscErrorCode check_groups(YdDoc *doc, FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen, int *bad) {
   const char *missing = NULL;
   PetscBool   has;
   static char base[64];
-  if (contact_group && !DMHasLabel(dm, contact_group, &has) && !has) missing = contact_group;
-  for (int k = 0; k < sc->nfixed && !missing; k++)
-    if (!DMHasLabel(dm, sc->fixed[k].group, &has) && !has) missing = sc->fixed[k].group;
+  PetscFunctionBeginUser;
+  if (contact_group) PetscCall(DMHasLabel(dm, contact_group, &has));
+  if (contact_group && !has) missing = contact_group;
+  for (int k = 0; k < sc->nfixed && !missing; k++) {
+    PetscCall(DMHasLabel(dm, sc->fixed[k].group, &has));
+    if (!has) missing = sc->fixed[k].group;
+  }
   for (int k = 0; k < sc->npressure && !missing; k++) {
     snprintf(base, sizeof base, "%s", sc->pressure_group[k]);
     size_t len = strlen(base);
     if (len > 2 && base[len - 2] == '.' && strchr("xyz", base[len - 1])) base[len - 2] = '\0';
-    if (!DMHasLabel(dm, base, &has) && !has) missing = base;
+    PetscCall(DMHasLabel(dm, base, &has));
+    if (!has) missing = base;
   }
-  if (!missing) return fe_groups_check(doc, sc, contact_group, dm, err, errlen);
+  if (!missing) {
+    PetscCall(fe_groups_check(doc, sc, contact_group, dm, err, errlen, bad));
+    PetscFunctionReturn(0);
+  }
   char     groups[512] = "";
   PetscInt nl;
-  DMGetNumLabels(dm, &nl);
+  PetscCall(DMGetNumLabels(dm, &nl));
   for (PetscInt l = 0; l < nl; l++) {
     const char *ln;
-    DMGetLabelName(dm, l, &ln);
+    PetscCall(DMGetLabelName(dm, l, &ln));
     if (!strcmp(ln, "depth") || !strcmp(ln, "celltype")) continue;
     size_t len = strlen(groups);
     snprintf(groups + len, sizeof groups - len, "%s%s", len ? ", " : "", ln);
   }
   snprintf(err, errlen, "%s: key '%s': group '%s' is not a physical group of the mesh %s (it has: %s)", doc->file,
            missing == contact_group ? "indenter.contact" : "boundary", missing, sc->msh, groups);
-  return 2;
+  *bad = 2;
+  PetscFunctionReturn(0);
 }
 
 /* Mesh the scene's geometry with gmsh (no shell) into the output directory: mesh.part.msh for a fresh run
@@ -124,35 +135,30 @@ static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p) {
   PetscFunctionReturn(0);
 }
 
-/* A PETSc error: main prints PETSc's own message for it (err left empty). */
-static int petsc_failure(PetscErrorCode ierr, char *err) {
-  err[0] = '\0';
-  return (int)ierr;
-}
-
 static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, char *err, size_t errlen) {
   DM        dm;
   FeProblem p;
-  PetscMemzero(&p, sizeof p);
+  int       bad = 0;
+  memset(&p, 0, sizeof p);
   PetscErrorCode ierr = fe_mesh_create(PETSC_COMM_WORLD, sc->msh, sc->kin == KIN_3D ? 3 : 2, &dm);
-  if (ierr) return petsc_failure(ierr, err);
-  int rc = check_groups(doc, sc, sc->indenter ? isc->contact_group : NULL, dm, err, errlen);
-  if (rc) {
-    DMDestroy(&dm);
-    return rc;
+  if (ierr) return stage_runner_status(ierr, err);
+  ierr = check_groups(doc, sc, sc->indenter ? isc->contact_group : NULL, dm, err, errlen, &bad);
+  if (ierr || bad) {
+    DMDestroy(&dm); /* after a failure: its own is not the one to report */
+    return ierr ? stage_runner_status(ierr, err) : bad;
   }
   ierr = fe_problem_setup(&p, dm, sc->kin, sc->thickness, sc->order, &sc->mat, sc->fixed, sc->nfixed, (const char(*)[64])sc->pressure_group,
                           sc->npressure);
-  if (ierr) return petsc_failure(ierr, err);
+  if (ierr) return stage_runner_status(ierr, err);
   if ((ierr = print_sizes(sc, &p)) || (ierr = fe_problem_set_initial_stress(&p, sc->stress0)) ||
       (ierr = fe_problem_set_phi(&p, sc->phi_mean, sc->phi_std, sc->phi_lo, sc->phi_hi, sc->phi_seed, sc->phi_corr)))
-    return petsc_failure(ierr, err);
+    return stage_runner_status(ierr, err);
   opt->outdir = sc->outdir, opt->scene_file = doc->file, opt->fields_every = sc->fields_every;
   opt->part_file = sc->geometry[0] && !opt->restart ? sc->msh : NULL;
-  rc = sc->indenter ? indent_stepper_run(sc, isc, &p, opt, err, errlen) : fe_stepper_run(sc, &p, opt, err, errlen);
-  fe_problem_destroy(&p);
-  DMDestroy(&dm);
-  return rc;
+  int rc = sc->indenter ? indent_stepper_run(sc, isc, &p, opt, err, errlen) : fe_stepper_run(sc, &p, opt, err, errlen);
+  ierr   = fe_problem_destroy(&p);
+  if (!ierr) ierr = DMDestroy(&dm);
+  return rc ? rc : stage_runner_status(ierr, err);
 }
 
 int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
@@ -162,7 +168,8 @@ int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen
   if (fe_scene_read(doc, &sc, err, errlen)) return 2;
   if (sc.indenter && indent_scene_read(doc, &sc, &isc, err, errlen)) return 2;
   if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
-  if (app_runner_options(&opt)) return 1;
+  PetscErrorCode ierr = app_runner_options(&opt);
+  if (ierr) return stage_runner_status(ierr, err);
   int rank, bad = apply_scene_options(doc->file, sc.solver_options, err, errlen);
   if (bad) return bad;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);

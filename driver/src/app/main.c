@@ -103,20 +103,24 @@ static const char *const reserved_prefixes[] = {"-calibrate_", NULL};
 
 /* Options given but never read (a misspelling, or one the scene's kind ignores): a warning each, as
  * PETSc's -options_left does. */
-static void warn_unused_options(void) {
+static PetscErrorCode warn_unused_options(void) {
   PetscInt  n;
   char    **names, **values;
   PetscBool left = PETSC_FALSE;
-  PetscOptionsHasName(NULL, NULL, "-options_left", &left); /* PETSc reports them itself then */
-  if (left || PetscOptionsLeftGet(NULL, &n, &names, &values)) return;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-options_left", &left)); /* PETSc reports them itself then */
+  if (left) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt k = 0; k < n; k++)
-    PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: warning: option -%s%s%s was given but never used (misspelt, or not read by "
-                 "this kind of scene; driver -help lists them)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : "");
-  PetscOptionsLeftRestore(NULL, &n, &names, &values);
+    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: warning: option -%s%s%s was given but never used (misspelt, or not read "
+                           "by this kind of scene; driver -help lists them)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
 }
 
 /* The message of a failed run: the module's own, else PETSc's (the innermost error, without a traceback;
- * bad_option: only its specific message, one of the driver's about an option). */
+ * bad_option: only its specific message, one of the driver's about an option). The last word: its own PETSc
+ * calls have no one to report to. */
 static void print_failure(int rc, const char *err, PetscBool bad_option) {
   const char *text = NULL;
   char       *specific = NULL;
@@ -129,35 +133,49 @@ static void print_failure(int rc, const char *err, PetscBool bad_option) {
     PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s; nothing was run\n", specific);
     return;
   }
-  PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s%s%s (-error_traceback shows where)\n",
-               specific && specific[0] && strcmp(specific, " ") ? specific : "", specific && specific[0] && text ? ": " : "",
-               text ? text : "a PETSc error");
+  PetscBool said = specific && specific[0] && strcmp(specific, " ") ? PETSC_TRUE : PETSC_FALSE;
+  PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: %s%s%s (-error_traceback shows where)\n", said ? specific : "",
+               said && text ? ": " : "", text ? text : said ? "" : "a PETSc error");
+}
+
+static PetscErrorCode point_summary(const PointScene *sc, const PointSummary *sum, int rc) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative), %.4f s%s -> %s/history.csv\n",
+                        sc->name, sum->steps, sum->cutbacks, sum->worst_control_error, sum->wall, rc ? ", FAILED" : "", sc->outdir));
+  if (sc->check_tangent)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "tangent check: worst |DDSDDE - central differences| / |DDSDDE| = %.3e\n", sum->worst_tangent_error));
+  PetscFunctionReturn(0);
+}
+
+/* A material-point scene: its run, then its summary (also after a failure). The run's status (docs/driver.md, "Error codes"). */
+static int run_point(YdDoc *doc, const char *outdir, PetscBool check, PetscInt replay_step, char *err, size_t errlen) {
+  PointScene    sc;
+  PointSummary  sum;
+  RunnerOptions opt;
+  if (point_scene_read(doc, &sc, err, errlen)) return 2;
+  if (check) sc.check_tangent = 1;
+  if (outdir[0] && snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir) >= (int)sizeof sc.outdir) {
+    snprintf(err, errlen, "option -output_dir '%.200s...': a path of %zu characters; expected at most %d", outdir, strlen(outdir),
+             (int)sizeof sc.outdir - 1);
+    point_scene_free(&sc);
+    return 2;
+  }
+  sc.replay_step      = (int)replay_step;
+  PetscErrorCode ierr = app_runner_options(&opt);
+  int            rc   = 0;
+  if (!ierr) {
+    opt.scene_file = doc->file;
+    rc             = point_run(&sc, &opt, &sum, err, errlen);
+    ierr           = point_summary(&sc, &sum, rc);
+  }
+  point_scene_free(&sc);
+  return rc ? rc : stage_runner_status(ierr, err);
 }
 
 static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt replay_step, char *err, size_t errlen) {
   const char *kind = NULL;
-  int         rc   = 0;
   if (yd_string(doc, yd_get(doc->root, "scene"), "scene", &kind, err, errlen)) return 2;
-  if (!strcmp(kind, "point")) {
-    PointScene   sc;
-    PointSummary sum;
-    if (point_scene_read(doc, &sc, err, errlen)) return 2;
-    if (check) sc.check_tangent = 1;
-    if (outdir[0]) PetscStrncpy(sc.outdir, outdir, sizeof sc.outdir);
-    sc.replay_step = (int)replay_step;
-    RunnerOptions opt;
-    if (app_runner_options(&opt)) return 1;
-    opt.scene_file = doc->file;
-    rc = point_run(&sc, &opt, &sum, err, errlen);
-    PetscPrintf(PETSC_COMM_WORLD,
-                "point scene %s: %d steps, %d cutbacks, worst control residual %.2e (relative), %.4f s%s -> %s/history.csv\n",
-                sc.name, sum.steps, sum.cutbacks, sum.worst_control_error, sum.wall, rc ? ", FAILED" : "", sc.outdir);
-    if (sc.check_tangent)
-      PetscPrintf(PETSC_COMM_WORLD, "tangent check: worst |DDSDDE - central differences| / |DDSDDE| = %.3e\n",
-                  sum.worst_tangent_error);
-    point_scene_free(&sc);
-    return rc;
-  }
+  if (!strcmp(kind, "point")) return run_point(doc, outdir, check, replay_step, err, errlen);
   if (!strcmp(kind, "fe")) return fe_app_run(doc, outdir, err, errlen);
   if (!strcmp(kind, "sweep")) return sweep_run(doc, outdir, err, errlen);
   if (!strcmp(kind, "replay")) return replay_run(doc, err, errlen);
@@ -179,12 +197,14 @@ int main(int argc, char **argv) {
   if (!traceback) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   PetscErrorCode ierr = declare_options(&m);
   int            rc   = 0;
+  PetscBool      bad  = PETSC_FALSE;
   if (ierr) rc = 2, print_failure((int)ierr, "", PETSC_TRUE);
-  else if (options_check_unknown(NULL, 0, reserved_prefixes, NULL, err, sizeof err)) rc = 2, print_failure(2, err, PETSC_TRUE);
+  else if ((ierr = options_check_unknown(NULL, 0, reserved_prefixes, NULL, err, sizeof err, &bad)) || bad) rc = 2, print_failure((int)ierr, err, PETSC_TRUE);
   else if (!m.given) {
     if (!help_asked) PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n");
     rc = help_asked ? 0 : 2;
-  } else if (options_forget_reads() || main_options(&m)) rc = 1; /* main's own are read (the others by the run) */
+  } else if ((ierr = options_forget_reads()) || (ierr = main_options(&m))) /* main's own are read (the others by the run) */
+    rc = 1, print_failure((int)ierr, "", PETSC_FALSE);
   else {
     YdDoc doc;
     if (yd_load(m.input, &doc, err, sizeof err)) rc = 2;
@@ -194,7 +214,7 @@ int main(int argc, char **argv) {
     }
     if (rc) print_failure(rc, err, PETSC_FALSE);
     if (rc > 2) rc = 1; /* a PETSc error code: the run failed */
-    if (rc != 2) warn_unused_options(); /* not after a scene error: nothing was run */
+    if (rc != 2 && (ierr = warn_unused_options()) && !rc) rc = 1, print_failure((int)ierr, "", PETSC_FALSE); /* not after a scene error: nothing was run */
   }
   if (!traceback) PetscPopErrorHandler();
   PetscCall(PetscFinalize());

@@ -27,11 +27,12 @@ static PetscErrorCode global_support(DM dm, PetscInt **supp) {
 }
 
 /* Whether point p is a ghost here (another rank owns it). */
-static PetscBool is_ghost(PetscInt nleaves, const PetscInt *leaves, PetscInt p) {
+static PetscErrorCode is_ghost(PetscInt nleaves, const PetscInt *leaves, PetscInt p, PetscBool *ghost) {
   PetscInt loc = -1;
-  if (!leaves) return p < nleaves ? PETSC_TRUE : PETSC_FALSE;
-  PetscFindInt(p, nleaves, leaves, &loc);
-  return loc >= 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (leaves) PetscCall(PetscFindInt(p, nleaves, leaves, &loc));
+  *ghost = (leaves ? loc >= 0 : p < nleaves) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode fe_group_shape(DM dm, const char *group, const PetscReal n[], FeGroupShape *g) {
@@ -66,10 +67,12 @@ PetscErrorCode fe_group_shape(DM dm, const char *group, const PetscReal n[], FeG
   PetscCall(ISGetLocalSize(pointIS, &npts));
   PetscCall(ISGetIndices(pointIS, &pts));
   for (PetscInt k = 0; k < npts; k++) {
-    PetscInt depth, *cl = NULL, ncl;
+    PetscInt  depth, *cl = NULL, ncl;
+    PetscBool ghost = PETSC_TRUE;
     PetscCall(DMPlexGetPointDepth(dm, pts[k], &depth));
     top = PetscMax(top, depth);
-    if (depth == dim - 1 && !is_ghost(nleaves, sorted ? sorted : leaves, pts[k])) cnt[0]++, cnt[1] += supp[pts[k] - pStart] > 1;
+    if (depth == dim - 1) PetscCall(is_ghost(nleaves, sorted ? sorted : leaves, pts[k], &ghost));
+    if (depth == dim - 1 && !ghost) cnt[0]++, cnt[1] += supp[pts[k] - pStart] > 1;
     PetscCall(DMPlexGetTransitiveClosure(dm, pts[k], PETSC_TRUE, &ncl, &cl));
     for (PetscInt j = 0; j < 2 * ncl; j += 2) {
       PetscInt  off;
@@ -132,76 +135,79 @@ static int need_boundary_faces(YdDoc *doc, int line, const char *key, const char
   return 0;
 }
 
-static int check_mirrors(YdDoc *doc, const FeScene *sc, DM dm, PetscInt dim, char *err, size_t errlen) {
-  for (int k = 0; k < sc->nfixed; k++) {
+/* The checks below: bad input sets *bad = 2 with err filled (and stops); a PETSc failure is returned. */
+static PetscErrorCode check_mirrors(YdDoc *doc, const FeScene *sc, DM dm, PetscInt dim, char *err, size_t errlen, int *bad) {
+  PetscFunctionBeginUser;
+  for (int k = 0; k < sc->nfixed && !*bad; k++) {
     const FeFixed *m = &sc->fixed[k];
     FeGroupShape   g;
     char           key[64];
     if (!m->mirror) continue;
-    if (fe_group_shape(dm, m->group, m->normal, &g)) return 1;
+    PetscCall(fe_group_shape(dm, m->group, m->normal, &g));
     snprintf(key, sizeof key, "boundary.mirror[%d].group", m->index);
-    int rc = need_boundary_faces(doc, entry_line(doc, "mirror", (size_t)m->index), key, "a mirror plane", m->group, &g, dim, err, errlen);
-    if (rc) return rc;
-    if (g.spread > 1e-6 * g.size) {
+    *bad = need_boundary_faces(doc, entry_line(doc, "mirror", (size_t)m->index), key, "a mirror plane", m->group, &g, dim, err, errlen);
+    if (!*bad && g.spread > 1e-6 * g.size) {
       snprintf(err, errlen, "%s:%d: key 'boundary.mirror[%d].normal': the group '%s' is not a plane normal to [%.6g, %.6g, %.6g]: "
                "x . normal varies by %.3g over its nodes (the mesh %s is %.3g across; expected at most 1e-6 of that)", doc->file, m->line,
                m->index, m->group, m->normal[0], m->normal[1], m->normal[2], g.spread, sc->msh, g.size);
-      return 2;
+      *bad = 2;
     }
   }
-  return 0;
+  PetscFunctionReturn(0);
 }
 
-static int check_fixed(YdDoc *doc, const FeScene *sc, DM dm, PetscInt dim, char *err, size_t errlen) {
-  for (int k = 0, i = 0; k < sc->nfixed; k++) {
+static PetscErrorCode check_fixed(YdDoc *doc, const FeScene *sc, DM dm, PetscInt dim, char *err, size_t errlen, int *bad) {
+  PetscFunctionBeginUser;
+  for (int k = 0, i = 0; k < sc->nfixed && !*bad; k++) {
     const FeFixed *f = &sc->fixed[k];
     FeGroupShape   g;
     if (f->mirror) continue;
-    if (fe_group_shape(dm, f->group, NULL, &g)) return 1;
+    PetscCall(fe_group_shape(dm, f->group, NULL, &g));
     if (g.top_dim >= dim || g.top_dim < 0) {
       snprintf(err, errlen, "%s:%d: key 'boundary.fixed[%d].group': the group '%s' is %s: fixed components act on points, edges or "
                "faces (on a group of cells every node of it would be held)", doc->file, entry_line(doc, "fixed", (size_t)i), i, f->group,
                kind_of(g.top_dim, dim));
-      return 2;
+      *bad = 2;
     }
     i++;
   }
-  return 0;
+  PetscFunctionReturn(0);
 }
 
 /* boundary.pressure and boundary.traction: names straight from the scene (a traction loads GROUP.x, ...). */
-static int check_loads(YdDoc *doc, DM dm, PetscInt dim, char *err, size_t errlen) {
+static PetscErrorCode check_loads(YdDoc *doc, DM dm, PetscInt dim, char *err, size_t errlen, int *bad) {
   const char *lists[2] = {"pressure", "traction"};
   YdNode     *b        = yd_get(doc->root, "boundary");
-  for (int l = 0; l < 2; l++) {
+  PetscFunctionBeginUser;
+  for (int l = 0; l < 2 && !*bad; l++) {
     YdNode *x = b ? yd_get(b, lists[l]) : NULL;
-    for (size_t k = 0; x && x->kind == YD_SEQUENCE && k < x->n; k++) {
+    for (size_t k = 0; x && x->kind == YD_SEQUENCE && k < x->n && !*bad; k++) {
       FeGroupShape g;
       char         key[64], what[32];
       if (x->items[k]->kind != YD_SCALAR) continue;
-      if (fe_group_shape(dm, x->items[k]->text, NULL, &g)) return 1;
+      PetscCall(fe_group_shape(dm, x->items[k]->text, NULL, &g));
       snprintf(key, sizeof key, "boundary.%s[%zu]", lists[l], k);
       snprintf(what, sizeof what, "a %s", lists[l]);
-      int rc = need_boundary_faces(doc, x->items[k]->line, key, what, x->items[k]->text, &g, dim, err, errlen);
-      if (rc) return rc;
+      *bad = need_boundary_faces(doc, x->items[k]->line, key, what, x->items[k]->text, &g, dim, err, errlen);
     }
   }
-  return 0;
+  PetscFunctionReturn(0);
 }
 
-int fe_groups_check(YdDoc *doc, const FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen) {
+PetscErrorCode fe_groups_check(YdDoc *doc, const FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen, int *bad) {
   PetscInt dim;
-  int      rc;
-  if (DMGetDimension(dm, &dim)) return 1;
-  if ((rc = check_fixed(doc, sc, dm, dim, err, errlen)) || (rc = check_mirrors(doc, sc, dm, dim, err, errlen)) ||
-      (rc = check_loads(doc, dm, dim, err, errlen)))
-    return rc;
-  if (contact_group) {
+  PetscFunctionBeginUser;
+  *bad = 0;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(check_fixed(doc, sc, dm, dim, err, errlen, bad));
+  if (!*bad) PetscCall(check_mirrors(doc, sc, dm, dim, err, errlen, bad));
+  if (!*bad) PetscCall(check_loads(doc, dm, dim, err, errlen, bad));
+  if (!*bad && contact_group) {
     FeGroupShape g;
     YdNode      *ind = yd_get(doc->root, "indenter");
-    if (fe_group_shape(dm, contact_group, NULL, &g)) return 1;
-    return need_boundary_faces(doc, yd_key_line(ind, "contact"), "indenter.contact", "the potential contact surface", contact_group, &g,
+    PetscCall(fe_group_shape(dm, contact_group, NULL, &g));
+    *bad = need_boundary_faces(doc, yd_key_line(ind, "contact"), "indenter.contact", "the potential contact surface", contact_group, &g,
                                dim, err, errlen);
   }
-  return 0;
+  PetscFunctionReturn(0);
 }

@@ -20,7 +20,8 @@ typedef struct {
 PetscErrorCode fe_group_shape(DM dm, const char *group, const PetscReal n[], FeGroupShape *g);
 
 /* Every group of boundary.fixed, .mirror, .pressure, .traction and (contact_group non-NULL) indenter.contact,
- * each a label of dm (checked before). Returns 0, 2 (err filled) or a PETSc error code. Collective. */
-int fe_groups_check(YdDoc *doc, const FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen);
+ * each a label of dm (checked before). The first that does not fit its key sets *bad = 2 with err filled (else
+ * *bad = 0). Collective. */
+PetscErrorCode fe_groups_check(YdDoc *doc, const FeScene *sc, const char *contact_group, DM dm, char *err, size_t errlen, int *bad);
 
 #endif

@@ -13,7 +13,7 @@ static int  ndeclared;
 static void remember(const char *name) {
   for (int k = 0; k < ndeclared; k++)
     if (!strcmp(declared[k], name)) return;
-  if (ndeclared < MAX_DECLARED) PetscSNPrintf(declared[ndeclared++], sizeof declared[0], "%s", name);
+  if (ndeclared < MAX_DECLARED) snprintf(declared[ndeclared++], sizeof declared[0], "%s", name);
 }
 
 PetscErrorCode options_default(const char *name, const char *value) {
@@ -110,7 +110,7 @@ static int  npetsc_prefix;
 void options_petsc_prefix(const char *prefix) {
   for (int k = 0; k < npetsc_prefix; k++)
     if (!strcmp(petsc_prefix[k], prefix)) return;
-  if (npetsc_prefix < 4) PetscSNPrintf(petsc_prefix[npetsc_prefix++], sizeof petsc_prefix[0], "%s", prefix);
+  if (npetsc_prefix < 4) snprintf(petsc_prefix[npetsc_prefix++], sizeof petsc_prefix[0], "%s", prefix);
 }
 
 /* Whether name is an option of a PETSc object under a registered prefix. */
@@ -144,18 +144,19 @@ static int is_declared(const char *name) {
   return 0;
 }
 
-int options_check_unknown(const char *const *names, int n, const char *const *extra_prefixes, const char *source, char *err,
-                          size_t errlen) {
+PetscErrorCode options_check_unknown(const char *const *names, int n, const char *const *extra_prefixes, const char *source, char *err,
+                                     size_t errlen, PetscBool *bad) {
   PetscInt nleft = 0;
   char   **left = NULL, **values = NULL;
-  int      bad  = 0;
+  PetscFunctionBeginUser;
+  *bad = PETSC_FALSE;
   if (!names) {
-    if (PetscOptionsLeftGet(NULL, &nleft, &left, &values)) return 0;
+    PetscCall(PetscOptionsLeftGet(NULL, &nleft, &left, &values));
     names = (const char *const *)left, n = (int)nleft;
   }
-  for (int k = 0; k < n && !bad; k++) {
+  for (int k = 0; k < n && !*bad; k++) {
     char name[256];
-    PetscSNPrintf(name, sizeof name, "%s%s", names[k][0] == '-' ? "" : "-", names[k]);
+    snprintf(name, sizeof name, "%s%s", names[k][0] == '-' ? "" : "-", names[k]);
     if (is_declared(name) || petsc_object_option(name) || !driver_like(name, extra_prefixes)) continue;
     int best = 9, which = -1;
     for (int j = 0; j < ndeclared; j++) {
@@ -163,13 +164,13 @@ int options_check_unknown(const char *const *names, int n, const char *const *ex
       if (d < best) best = d, which = j;
     }
     char hint[96] = "";
-    if (which >= 0 && best <= 3) PetscSNPrintf(hint, sizeof hint, " (misspelt %s?)", declared[which]);
-    PetscSNPrintf(err, errlen, "%s%soption %s: not an option of the driver%s; nothing was run (driver -help lists the options)",
-                  source ? source : "", source ? ": " : "", name, hint);
-    bad = 1;
+    if (which >= 0 && best <= 3) snprintf(hint, sizeof hint, " (misspelt %s?)", declared[which]);
+    snprintf(err, errlen, "%s%soption %s: not an option of the driver%s; nothing was run (driver -help lists the options)",
+             source ? source : "", source ? ": " : "", name, hint);
+    *bad = PETSC_TRUE;
   }
-  if (left) PetscOptionsLeftRestore(NULL, &nleft, &left, &values);
-  return bad;
+  if (left) PetscCall(PetscOptionsLeftRestore(NULL, &nleft, &left, &values));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode options_forget_reads(void) {

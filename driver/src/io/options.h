@@ -30,10 +30,10 @@ void options_petsc_prefix(const char *prefix);
 /* After every module's block has run: an option given (on the command line or, source non-NULL, in a scene's
  * solver.options) that starts like one of the driver's options (its first word: -indent_, -fe_, -checkpoint_,
  * ..., or one of extra_prefixes) but is none of them is an error: fills err ("option -checkpoint_evry: not an
- * option of the driver (misspelt -checkpoint_every?) ...") and returns 1. names: the options to check (NULL:
+ * option of the driver (misspelt -checkpoint_every?) ...") and sets *bad. names: the options to check (NULL:
  * every option never read so far). */
-int options_check_unknown(const char *const *names, int n, const char *const *extra_prefixes, const char *source, char *err,
-                          size_t errlen);
+PetscErrorCode options_check_unknown(const char *const *names, int n, const char *const *extra_prefixes, const char *source, char *err,
+                                     size_t errlen, PetscBool *bad);
 
 /* After the blocks' first reading (main): the driver's options given are marked as not read again, so that
  * the warning at the end of a run still names one that this kind of scene never reads (-indent_rtol for a point

@@ -76,10 +76,10 @@ static int write_shared(StepSolver *sv, const RunnerOptions *opt, int step, char
 static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
 
 int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
-  PetscLogEventBegin(driver_event(EV_CHECKPOINT), 0, 0, 0, 0);
-  int rc = write_set(sv, opt, st, last, err, errlen);
-  PetscLogEventEnd(driver_event(EV_CHECKPOINT), 0, 0, 0, 0);
-  return rc;
+  PetscErrorCode ierr = PetscLogEventBegin(driver_event(EV_CHECKPOINT), 0, 0, 0, 0);
+  int            rc   = ierr ? stage_runner_status(ierr, err) : write_set(sv, opt, st, last, err, errlen);
+  ierr                = PetscLogEventEnd(driver_event(EV_CHECKPOINT), 0, 0, 0, 0);
+  return rc ? rc : stage_runner_status(ierr, err);
 }
 
 static int write_set(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {

@@ -62,24 +62,30 @@ PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome
   PetscFunctionReturn(0);
 }
 
-void fe_common_accept(FeCommon *c, const StepRequest *rq) {
+PetscErrorCode fe_common_accept(FeCommon *c, const StepRequest *rq) {
+  PetscFunctionBeginUser;
   for (int k = 0; k < c->sc->npressure; k++) c->now[k] = fe_problem_pressure(c->p, k);
-  fe_problem_reactions(c->p);
+  PetscCall(fe_problem_reactions(c->p));
+  PetscFunctionReturn(0);
 }
 
-int fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen) {
-  if (!c->fields) return 0;
-  if (c->out.nout > 0 && c->out.times[c->out.nout - 1] == t) return 0; /* already written at this time */
-  if (fe_output_write(c->p, U, t, &c->out)) {
-    snprintf(err, errlen, "%s: cannot write the fields at t = %g s", c->out.dir, t);
-    return 1;
-  }
-  return 0;
+PetscErrorCode fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen) {
+  PetscFunctionBeginUser;
+  if (!c->fields) PetscFunctionReturn(0);
+  if (c->out.nout > 0 && c->out.times[c->out.nout - 1] == t) PetscFunctionReturn(0); /* already written at this time */
+  if (fe_output_write(c->p, U, t, &c->out)) STEP_FAIL(err, errlen, "%s: cannot write the fields at t = %g s", c->out.dir, t);
+  PetscFunctionReturn(0);
 }
 
-int fe_common_promote(FeCommon *c) { return c->fields ? (int)fe_output_promote(c->p, &c->out) : 0; }
+PetscErrorCode fe_common_promote(FeCommon *c) {
+  PetscFunctionBeginUser;
+  if (c->fields) PetscCall(fe_output_promote(c->p, &c->out));
+  PetscFunctionReturn(0);
+}
 
-int fe_common_save(FeCommon *c, BinFile *f) {
+/* A write or read that fails leaves f->ok 0 (the runner names the file). */
+PetscErrorCode fe_common_save(FeCommon *c, BinFile *f) {
+  PetscFunctionBeginUser;
   binfile_write(f, c->start, sizeof(double), FE_MAX_GROUPS);
   binfile_write(f, c->now, sizeof(double), FE_MAX_GROUPS);
   PetscInt nout = c->fields ? c->out.nout : 0;
@@ -87,23 +93,27 @@ int fe_common_save(FeCommon *c, BinFile *f) {
   if (nout) binfile_write(f, c->out.times, sizeof(PetscReal), (size_t)nout);
   PetscBool have_devp = fe_state_have_devp(c->p);
   binfile_write(f, &have_devp, sizeof have_devp, 1);
-  return !f->ok;
+  PetscFunctionReturn(0);
 }
 
-int fe_common_load(FeCommon *c, BinFile *f) {
+PetscErrorCode fe_common_load(FeCommon *c, BinFile *f) {
   PetscInt nout = 0;
+  PetscFunctionBeginUser;
   binfile_read(f, c->start, sizeof(double), FE_MAX_GROUPS);
   binfile_read(f, c->now, sizeof(double), FE_MAX_GROUPS);
   binfile_read(f, &nout, sizeof nout, 1);
-  if (!f->ok || nout < 0 || nout > 10000000) return 1;
-  PetscFree(c->saved_times);
-  if (PetscMalloc1(nout + 1, &c->saved_times)) return 1;
+  if (!f->ok || nout < 0 || nout > 10000000) {
+    f->ok = 0;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscFree(c->saved_times));
+  PetscCall(PetscMalloc1(nout + 1, &c->saved_times));
   c->nsaved = nout;
   binfile_read(f, c->saved_times, sizeof(PetscReal), (size_t)nout);
   PetscBool have_devp = PETSC_FALSE;
   binfile_read(f, &have_devp, sizeof have_devp, 1);
   fe_state_set_have_devp(c->p, have_devp);
-  return !f->ok;
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool write, PetscViewer *v) {
@@ -112,17 +122,21 @@ PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool wr
   PetscFunctionReturn(0);
 }
 
-int fe_common_resume(FeCommon *c) {
-  if (c->fields && fe_output_resume(&c->out, c->nsaved, c->saved_times)) return 1;
-  PetscFree(c->saved_times);
-  return fe_problem_set_pressures(c->p, FE_MAX_GROUPS, c->now) != 0 || fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE, c->quantiles) != 0;
+PetscErrorCode fe_common_resume(FeCommon *c) {
+  PetscFunctionBeginUser;
+  if (c->fields) PetscCall(fe_output_resume(&c->out, c->nsaved, c->saved_times));
+  PetscCall(PetscFree(c->saved_times));
+  PetscCall(fe_problem_set_pressures(c->p, FE_MAX_GROUPS, c->now));
+  PetscCall(fe_problem_stats(c->p, c->sc->axis, &c->stats, PETSC_FALSE, c->quantiles));
+  PetscFunctionReturn(0);
 }
 
-void fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {
+PetscErrorCode fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {
   const MaterialFailedCall *f = fe_problem_failed_call(c->p);
-  if (!f) return;
-  int rank;
-  MPI_Comm_rank(PetscObjectComm((PetscObject)fe_problem_dm(c->p)), &rank);
+  PetscMPIInt               rank;
+  PetscFunctionBeginUser;
+  if (!f) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)fe_problem_dm(c->p)), &rank));
   char rp[1100];
   snprintf(rp, sizeof rp, "%s/failed_call.rank%d.yaml", dir, rank);
   if (!material_failed_call_write(f, rp, msg)) {
@@ -130,4 +144,5 @@ void fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n) {
     snprintf(msg + len, n - len, "; the failing UMAT call (element %d, point %d) is replayed by: driver -input %s", f->in.noel,
              f->in.npt, rp);
   }
+  PetscFunctionReturn(0);
 }

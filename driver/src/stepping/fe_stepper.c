@@ -30,12 +30,13 @@ typedef struct {
   clock_t   cpu0; /* the process's CPU clock at the start of the run */
 } FeSolver;
 
-static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   FeSolver *f = ctx;
+  PetscFunctionBeginUser;
   fe_common_stage_begin(&f->c, s, resumed, v);
   if (!resumed) f->have_rate = PETSC_FALSE; /* no extrapolation across a change of loading */
   f->refactor = PETSC_TRUE;                 /* a new load: a new tangent */
-  return 0;
+  PetscFunctionReturn(0);
 }
 
 /* One SNES solve of the step from the (extrapolated) committed state. With a lagged preconditioner it is
@@ -75,48 +76,47 @@ static PetscErrorCode lagged_solve(FeSolver *f, const StepRequest *rq, SNESConve
   PetscFunctionReturn(0);
 }
 
-static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   FeSolver           *f = ctx;
   FeProblem          *p = f->c.p;
   SNESConvergedReason reason;
   PetscInt            its;
-  if (fe_common_set_loads(&f->c, rq)) return 1;
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_set_loads(&f->c, rq));
   fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
-  PetscErrorCode ierr;
-  if ((ierr = lagged_solve(f, rq, &reason, &its))) {
-    err[0] = '\0'; /* main prints PETSc's message */
-    return (int)ierr;
-  }
+  PetscCall(lagged_solve(f, rq, &reason, &its));
   o->converged = reason > 0, o->its = (int)its, o->why = SNESConvergedReasons[reason];
-  if (!o->converged) return 0;
+  if (!o->converged) PetscFunctionReturn(0);
   PetscReal tol = umat_control_tol(fe_problem_material(p), rq->umat);
   PetscBool same = PETSC_FALSE;
-  fe_problem_evaluated_at(p, f->U, &same);
+  PetscCall(fe_problem_evaluated_at(p, f->U, &same));
   if (tol > 0 || !same) { /* the converged state again, with the UMAT's PNEWDT on */
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
-    if (fe_residual(f->snes, f->U, f->R, p)) return 1;
+    PetscCall(fe_residual(f->snes, f->U, f->R, p));
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   }
   o->pnewdt = fe_problem_diag(p)->min_pnewdt;
-  if (fe_common_observe(&f->c, rq, o)) return 1;
+  PetscCall(fe_common_observe(&f->c, rq, o));
   o->nout = 6;
   for (int k = 0; k < 6; k++) o->out[k] = f->c.stats.strain_mean[k], o->group[k] = 0;
-  return 0;
+  PetscFunctionReturn(0);
 }
 
-static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   FeSolver *f = ctx;
-  if (fe_state_commit(f->c.p, rq->h)) return 1;
-  VecWAXPY(f->dU, -1.0, f->U0, f->U);
-  VecCopy(f->U, f->U0);
+  PetscFunctionBeginUser;
+  PetscCall(fe_state_commit(f->c.p, rq->h));
+  PetscCall(VecWAXPY(f->dU, -1.0, f->U0, f->U));
+  PetscCall(VecCopy(f->U, f->U0));
   f->have_rate = rq->h > 0;
-  fe_common_accept(&f->c, rq);
-  return 0;
+  PetscCall(fe_common_accept(&f->c, rq));
+  PetscFunctionReturn(0);
 }
 
-static void history_header(void *ctx, FILE *fp) {
+static PetscErrorCode history_header(void *ctx, FILE *fp) {
   FeSolver *f  = ctx;
   FeScene  *sc = f->c.sc;
+  PetscFunctionBeginUser;
   fprintf(fp, "time,stage,step,dt,newton_its,cutbacks");
   for (int g = 0; g < sc->npressure; g++) fprintf(fp, ",%s_%s", strchr(sc->pressure_group[g], '.') ? "traction" : "pressure", sc->pressure_group[g]);
   fprintf(fp, ",eps_11,eps_22,eps_33,eps_12,eps_13,eps_23,sig_11,sig_22,sig_33,sig_12,sig_13,sig_23,eps_spread,evp_rate");
@@ -124,12 +124,14 @@ static void history_header(void *ctx, FILE *fp) {
   for (int i = 0; i < 2; i++)
     for (int k = 0; k < 6; k++) fprintf(fp, ",evp33_%s_%s", fr[i], st[k]);
   fprintf(fp, ",umat_calls,wall,reaction_x,reaction_y,reaction_z\n");
+  PetscFunctionReturn(0);
 }
 
-static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
+static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   FeSolver      *f = ctx;
   const FeStats *s = &f->c.stats;
   const FeDiag  *dg = fe_problem_diag(f->c.p);
+  PetscFunctionBeginUser;
   fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d", row->t, row->stage, row->step, row->dt, row->its, row->cutbacks);
   for (int k = 0; k < f->c.sc->npressure; k++) fprintf(fp, ",%.12g", f->c.now[k]);
   for (int i = 0; i < 6; i++) fprintf(fp, ",%.15g", s->strain_mean[i]);
@@ -138,60 +140,86 @@ static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   for (int i = 0; i < 2; i++)
     for (int k = 0; k < 6; k++) fprintf(fp, ",%.12g", s->frame_evp[i][k]);
   fprintf(fp, ",%ld,%.4f,%.12g,%.12g,%.12g\n", (long)dg->umat_calls, row->wall, dg->reaction[0], dg->reaction[1], dg->reaction[2]);
+  PetscFunctionReturn(0);
 }
 
-static void progress(void *ctx, char *buf, size_t n) {
+static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   FeSolver *f = ctx;
   PetscReal rnorm = 0;
-  SNESGetFunctionNorm(f->snes, &rnorm);
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetFunctionNorm(f->snes, &rnorm));
   snprintf(buf, n, "|R| %.2e ", (double)rnorm);
+  PetscFunctionReturn(0);
 }
 
-static int write_fields(void *ctx, double t, char *err, size_t errlen) {
+static PetscErrorCode write_fields(void *ctx, double t, char *err, size_t errlen) {
   FeSolver *f = ctx;
-  return fe_common_fields(&f->c, f->U0, t, err, errlen);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_fields(&f->c, f->U0, t, err, errlen));
+  PetscFunctionReturn(0);
 }
 
-static int promote(void *ctx) { return fe_common_promote(&((FeSolver *)ctx)->c); }
+static PetscErrorCode promote(void *ctx) {
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_promote(&((FeSolver *)ctx)->c));
+  PetscFunctionReturn(0);
+}
 
-static int save(void *ctx, BinFile *b) {
+static PetscErrorCode save(void *ctx, BinFile *b) {
   FeSolver *f = ctx;
+  PetscFunctionBeginUser;
   f->refactor = PETSC_TRUE; /* the next solve factors afresh, as a run restarted from here does */
-  if (fe_common_save(&f->c, b)) return 1;
+  PetscCall(fe_common_save(&f->c, b));
   binfile_write(b, &f->have_rate, sizeof f->have_rate, 1);
-  return !b->ok;
+  PetscFunctionReturn(0);
 }
 
-static int load(void *ctx, BinFile *b) {
+static PetscErrorCode load(void *ctx, BinFile *b) {
   FeSolver *f = ctx;
-  if (fe_common_load(&f->c, b)) return 1;
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_load(&f->c, b));
   binfile_read(b, &f->have_rate, sizeof f->have_rate, 1);
-  return !b->ok;
+  PetscFunctionReturn(0);
 }
 
 /* The committed displacement and the predictor's last increment, with the points' state (fe/fe_state.h). */
 static const char *const shared_names[2] = {"displacement", "increment"};
 
-static int save_shared(void *ctx, const char *path) {
+static PetscErrorCode save_shared(void *ctx, const char *path) {
   FeSolver   *f = ctx;
   PetscViewer v;
   Vec         vecs[2] = {f->U0, f->dU};
-  return fe_common_shared_open(&f->c, path, PETSC_TRUE, &v) || fe_state_view(f->c.p, v, 2, vecs, shared_names) || PetscViewerDestroy(&v);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_shared_open(&f->c, path, PETSC_TRUE, &v));
+  PetscCall(fe_state_view(f->c.p, v, 2, vecs, shared_names));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
 }
 
-static int load_shared(void *ctx, const char *path) {
+static PetscErrorCode load_shared(void *ctx, const char *path) {
   FeSolver   *f = ctx;
   PetscViewer v;
   Vec         vecs[2] = {f->U0, f->dU};
-  return fe_common_shared_open(&f->c, path, PETSC_FALSE, &v) || fe_state_read(f->c.p, v, 2, vecs, shared_names) || PetscViewerDestroy(&v);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_shared_open(&f->c, path, PETSC_FALSE, &v));
+  PetscCall(fe_state_read(f->c.p, v, 2, vecs, shared_names));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
 }
 
-static int resume(void *ctx) {
+static PetscErrorCode resume(void *ctx) {
   FeSolver *f = ctx;
-  return VecCopy(f->U0, f->U) || fe_common_resume(&f->c);
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(f->U0, f->U));
+  PetscCall(fe_common_resume(&f->c));
+  PetscFunctionReturn(0);
 }
 
-static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((FeSolver *)ctx)->c, dir, msg, n); }
+static PetscErrorCode replay(void *ctx, const char *dir, char *msg, size_t n) {
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_replay(&((FeSolver *)ctx)->c, dir, msg, n));
+  PetscFunctionReturn(0);
+}
 
 static long umat_calls(void *ctx) { return (long)fe_problem_diag(((FeSolver *)ctx)->c.p)->umat_calls; }
 
@@ -289,7 +317,7 @@ static PetscErrorCode solver_setup(FeSolver *f) {
 }
 
 /* The linear solver's work and the memory high-water mark (largest and summed over the ranks). */
-static void solver_summary(FeSolver *f, MPI_Comm comm) {
+static PetscErrorCode solver_summary(FeSolver *f, MPI_Comm comm) {
   KSP         ksp;
   PC          pc;
   KSPType     kt;
@@ -297,35 +325,61 @@ static void solver_summary(FeSolver *f, MPI_Comm comm) {
   MatSolverType st = NULL;
   struct rusage ru;
   double      mb[2], cpu = (double)(clock() - f->cpu0) / CLOCKS_PER_SEC;
-  SNESGetKSP(f->snes, &ksp);
-  KSPGetType(ksp, &kt);
-  KSPGetPC(ksp, &pc);
-  PCGetType(pc, &pt);
-  if (pt && !strcmp(pt, PCLU)) PCFactorGetMatSolverType(pc, &st);
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(f->snes, &ksp));
+  PetscCall(KSPGetType(ksp, &kt));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetType(pc, &pt));
+  if (pt && !strcmp(pt, PCLU)) PetscCall(PCFactorGetMatSolverType(pc, &st));
   getrusage(RUSAGE_SELF, &ru);
   mb[0] = mb[1] = ru.ru_maxrss / 1024.0; /* kB on Linux */
-  MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_MAX, comm);
-  PetscPrintf(comm, "fe solver: %s/%s%s%s, %ld Krylov iterations, %ld preconditioner set-ups, max RSS %.1f MB per rank, %.1f MB in all, CPU %.2f s (the slowest rank)\n",
-              kt, pt, st ? "/" : "", st ? st : "", f->lin_its, f->setups, mb[0], mb[1], cpu);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCall(PetscPrintf(comm, "fe solver: %s/%s%s%s, %ld Krylov iterations, %ld preconditioner set-ups, max RSS %.1f MB per rank, %.1f MB in all, CPU %.2f s (the slowest rank)\n",
+                        kt, pt, st ? "/" : "", st ? st : "", f->lin_its, f->setups, mb[0], mb[1], cpu));
+  PetscFunctionReturn(0);
+}
+
+/* The initial state: the UMAT initialises its state on a zero increment. */
+static PetscErrorCode initial_state(FeSolver *f) {
+  FeProblem *p = f->c.p;
+  PetscFunctionBeginUser;
+  fe_problem_set_step(p, 0, 0), fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
+  PetscCall(fe_residual(f->snes, f->U, f->R, p));
+  PetscCall(fe_problem_commit(p));
+  PetscCall(fe_problem_stats(p, f->c.sc->axis, &f->c.stats, PETSC_FALSE, f->c.quantiles));
+  PetscCall(fe_problem_reactions(p));
+  PetscFunctionReturn(0);
+}
+
+/* After the run: the output closed, the summary lines, the solver's objects freed. */
+static PetscErrorCode finish(FeSolver *f, MPI_Comm comm, const RunnerSummary *sum, const RunnerOptions *opt) {
+  FeProblem *p = f->c.p;
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_finish(&f->c));
+  PetscCall(solver_summary(f, comm));
+  PetscCall(PetscPrintf(comm, "fe scene %s: %d steps, %d Newton iterations, %d cutbacks (%d by the error measure), %ld UMAT calls, assembly %.2f s, wall %.2f s -> %s/history.csv\n",
+                        f->c.sc->name, sum->steps, sum->its, sum->cutbacks, sum->rejected_error, sum->umat_calls, fe_problem_diag(p)->assembly_seconds, sum->wall,
+                        opt->outdir));
+  PetscCall(VecDestroy(&f->U));
+  PetscCall(VecDestroy(&f->R));
+  PetscCall(VecDestroy(&f->U0));
+  PetscCall(VecDestroy(&f->dU));
+  PetscCall(MatDestroy(&f->J));
+  fe_jacobian_coo_release(p);
+  PetscCall(SNESDestroy(&f->snes));
+  PetscFunctionReturn(0);
 }
 
 int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
   FeSolver f;
-  PetscMemzero(&f, sizeof f);
+  PetscErrorCode ierr = PetscMemzero(&f, sizeof f);
   f.cpu0 = clock();
-  PetscErrorCode ierr = fe_common_init(&f.c, sc, p, opt);
-  if (ierr || (ierr = solver_setup(&f))) {
-    err[0] = '\0'; /* main prints PETSc's message */
-    return (int)ierr;
-  }
-  if (!opt->restart) { /* the initial state: the UMAT initialises its state on a zero increment */
-    fe_problem_set_step(p, 0, 0), fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
-    if (fe_residual(f.snes, f.U, f.R, p) || fe_problem_commit(p) || fe_problem_stats(p, sc->axis, &f.c.stats, PETSC_FALSE, f.c.quantiles) ||
-        fe_problem_reactions(p))
-      return 1;
-  }
+  if (!ierr) ierr = fe_common_init(&f.c, sc, p, opt);
+  if (!ierr) ierr = solver_setup(&f);
+  if (!ierr && !opt->restart) ierr = initial_state(&f);
+  if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &f, .kind = "fe", .nstage = sc->nstage, .comm = PetscObjectComm((PetscObject)fe_problem_dm(p)),
                    .stage_begin = stage_begin, .solve = solve, .accept = accept, .history_header = history_header,
                    .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
@@ -333,13 +387,6 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
                    .save_shared = save_shared, .load_shared = load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
-  fe_common_finish(&f.c);
-  solver_summary(&f, sv.comm);
-  PetscPrintf(sv.comm, "fe scene %s: %d steps, %d Newton iterations, %d cutbacks (%d by the error measure), %ld UMAT calls, assembly %.2f s, wall %.2f s -> %s/history.csv\n",
-              sc->name, sum.steps, sum.its, sum.cutbacks, sum.rejected_error, sum.umat_calls, fe_problem_diag(p)->assembly_seconds, sum.wall, opt->outdir);
-  VecDestroy(&f.U), VecDestroy(&f.R), VecDestroy(&f.U0), VecDestroy(&f.dU);
-  MatDestroy(&f.J);
-  fe_jacobian_coo_release(p);
-  SNESDestroy(&f.snes);
-  return rc;
+  ierr             = finish(&f, sv.comm, &sum, opt);
+  return rc ? rc : stage_runner_status(ierr, err);
 }

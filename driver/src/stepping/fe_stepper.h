@@ -44,16 +44,16 @@ PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq);
 /* p, q and the viscoplastic rate of the solved state; the volume error if asked. */
 PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome *o);
 /* After a commit: the loads now in force, the supports' reactions (all ranks). */
-void           fe_common_accept(FeCommon *c, const StepRequest *rq);
-int            fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen);
-int            fe_common_promote(FeCommon *c);
+PetscErrorCode fe_common_accept(FeCommon *c, const StepRequest *rq);
+PetscErrorCode fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen); /* STEP_FAIL: a file that cannot be written */
+PetscErrorCode fe_common_promote(FeCommon *c);
 /* A checkpoint: the loads and output times (the same on every rank: in each rank's file), and the shared
  * file (PETSc HDF5) that holds the fields and states in the serial mesh's order (fe/fe_state.h), so that a run
  * restarts on any number of ranks. */
-int            fe_common_save(FeCommon *c, BinFile *f);
-int            fe_common_load(FeCommon *c, BinFile *f); /* reads only (no collective call) */
+PetscErrorCode fe_common_save(FeCommon *c, BinFile *f); /* a file that cannot be written or read: f->ok 0 */
+PetscErrorCode fe_common_load(FeCommon *c, BinFile *f); /* reads only (no collective call) */
 PetscErrorCode fe_common_shared_open(FeCommon *c, const char *path, PetscBool write, PetscViewer *v);
-int            fe_common_resume(FeCommon *c);                  /* collective: loads and statistics */
-void           fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n);
+PetscErrorCode fe_common_resume(FeCommon *c);           /* collective: loads and statistics */
+PetscErrorCode fe_common_replay(FeCommon *c, const char *dir, char *msg, size_t n);
 
 #endif

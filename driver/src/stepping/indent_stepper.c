@@ -26,189 +26,233 @@ static const char *shape_name(const IndentScene *is) {
 /* A load of the model as the whole indenter's (indenter.copies: the model is one of that many mirror copies). */
 static inline double whole(const Indent *d, double model_load) { return model_load * d->is->copies; }
 
-static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Indent      *d  = ctx;
   IndentStage *st = &d->is->stage[s];
   Stage       *g  = &d->c.sc->stage[s];
+  PetscFunctionBeginUser;
   fe_common_stage_begin(&d->c, s, resumed, v);
   semismooth_set_stage(&d->in, indent_stage_depth_control(st), !resumed);
   if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load;
-  if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE) {
-    snprintf(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
-             d->is->file, s, g->name);
-    return 1;
-  }
+  if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE)
+    STEP_FAIL(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
+              d->is->file, s, g->name);
   if (st->until_load > 0) { /* the time the load reaches the event, known in advance */
     double te = indent_stage_time_of_load(st, d->stage_start, g->duration, st->until_load);
-    if (te < 0) {
-      snprintf(err, errlen, "%s: key 'stages[%d].indenter.until.load': stage '%s': the load never reaches %g within the stage's "
-               "duration %g s", d->is->file, s, g->name, whole(d, st->until_load), g->duration);
-      return 1;
-    }
+    if (te < 0)
+      STEP_FAIL(err, errlen, "%s: key 'stages[%d].indenter.until.load': stage '%s': the load never reaches %g within the stage's "
+                "duration %g s", d->is->file, s, g->name, whole(d, st->until_load), g->duration);
     v->duration = te;
   }
   if (st->until_depth > 0) {
     snprintf(d->until_key, sizeof d->until_key, "stages[%d].indenter.until.depth", s);
     v->until.kind = EVENT_DEPTH, v->until.value = st->until_depth, v->must_reach = 1, v->event_start = d->in.ur, v->until_key = d->until_key;
   }
-  return 0;
+  PetscFunctionReturn(0);
 }
 
-static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   Indent      *d  = ctx;
   Semismooth  *in = &d->in;
   FeProblem   *p  = d->c.p;
   IndentStage *st = &d->is->stage[rq->s];
   double       ts = rq->ts0 + rq->h;
-  if (fe_common_set_loads(&d->c, rq)) return 1;
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_set_loads(&d->c, rq));
   double target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
   if (st->until_load > 0 && rq->lambda >= 1) target = st->until_load; /* the event time is the stage's end */
   semismooth_set_target(in, target, d->load_max, rq->newton_etol);
   int      status;
   PetscInt its = 0;
   fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
-  PetscErrorCode ierr = semismooth_step(in, rq->h, &status, &its);
-  if (ierr) {
-    err[0] = '\0'; /* main prints PETSc's message */
-    return (int)ierr;
-  }
+  PetscCall(semismooth_step(in, rq->h, &status, &its));
   o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
-  if (!o->converged) return 0;
+  if (!o->converged) PetscFunctionReturn(0);
   PetscReal tol = umat_control_tol(fe_problem_material(p), rq->umat), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_AT, tol));
-    if (semismooth_evaluate(in, &m)) return 1;
+    PetscCall(semismooth_evaluate(in, &m));
     fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
   }
   o->pnewdt = fe_problem_diag(p)->min_pnewdt;
-  if (fe_common_observe(&d->c, rq, o)) return 1;
-  if (contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
+  PetscCall(fe_common_observe(&d->c, rq, o));
+  PetscCall(contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin));
   o->event[EVENT_DEPTH] = in->ur;
   o->event[EVENT_LOAD]  = whole(d, in->depth_control ? d->force : in->target);
   o->progress           = st->until_depth > 0 ? in->ur / st->until_depth : -1;
   o->kink               = in->changes > 0; /* a node entered or left contact: the depth rate jumps */
   o->nout = 2, o->out[0] = in->ur, o->group[0] = 0, o->out[1] = d->force, o->group[1] = 1;
-  return 0;
+  PetscFunctionReturn(0);
 }
 
-static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Indent     *d  = ctx;
   Semismooth *in = &d->in;
+  PetscFunctionBeginUser;
   if (semismooth_released(in) && in->nactive == 0) { /* the indenter rests on the surface: its gaps change */
-    if (semismooth_rest_on_surface(in) || contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin)) return 1;
+    PetscCall(semismooth_rest_on_surface(in));
+    PetscCall(contact_summary(&in->ct, in->lam, &d->force, &d->pen, &d->lmin));
   }
-  if (semismooth_commit(in, rq->h, PETSC_TRUE)) return 1;
+  PetscCall(semismooth_commit(in, rq->h, PETSC_TRUE));
   d->load = in->depth_control ? d->force : in->target;
   if (!in->depth_control) d->load_max = PetscMax(d->load_max, in->target);
-  fe_common_accept(&d->c, rq);
-  return 0;
+  PetscCall(fe_common_accept(&d->c, rq));
+  PetscFunctionReturn(0);
 }
 
 /* Beyond the potential contact surface the nodes are not checked: the results would be wrong from here. */
-static int check(void *ctx, double t, char *err, size_t errlen) {
+static PetscErrorCode check(void *ctx, double t, char *err, size_t errlen) {
   Indent  *d = ctx;
   PetscInt on_rim;
-  if (contact_on_rim(&d->in.ct, &on_rim)) return 1;
-  if (!on_rim) return 0;
-  snprintf(err, errlen, "%s: at t = %.6g s (depth %.6g) the contact reached the edge of the potential contact surface '%s' (%d active "
-                        "nodes on its rim): enlarge it (the mesh's contact region), then rerun; the history up to here is kept",
-           d->is->file, t, (double)d->in.ur, d->is->contact_group, (int)on_rim);
-  return 1;
+  PetscFunctionBeginUser;
+  PetscCall(contact_on_rim(&d->in.ct, &on_rim));
+  if (on_rim)
+    STEP_FAIL(err, errlen, "%s: at t = %.6g s (depth %.6g) the contact reached the edge of the potential contact surface '%s' (%d active "
+              "nodes on its rim): enlarge it (the mesh's contact region), then rerun; the history up to here is kept",
+              d->is->file, t, (double)d->in.ur, d->is->contact_group, (int)on_rim);
+  PetscFunctionReturn(0);
 }
 
-static void history_header(void *ctx, FILE *fp) {
+static PetscErrorCode history_header(void *ctx, FILE *fp) {
+  PetscFunctionBeginUser;
   fprintf(fp, "time,stage,stage_name,step,dt,newton_its,cutbacks,load,depth,active_nodes,active_changes,contact_force,"
               "max_penetration,min_lambda,umat_calls,wall,reaction_x,reaction_y,reaction_z,evp_rate\n");
+  PetscFunctionReturn(0);
 }
 
-static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
+static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) {
   Indent       *d  = ctx;
   const FeDiag *dg = fe_problem_diag(d->c.p);
+  PetscFunctionBeginUser;
   fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g,%.6g\n", row->t, row->stage,
           row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks,
           whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, whole(d, d->force), d->pen, d->lmin, (long)dg->umat_calls, row->wall,
           dg->reaction[0], dg->reaction[1], dg->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
+  PetscFunctionReturn(0);
 }
 
-static void progress(void *ctx, char *buf, size_t n) {
+static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   Indent *d = ctx;
+  PetscFunctionBeginUser;
   snprintf(buf, n, "load %-10.5g depth %-10.5g active %4d (%3d changes) ", whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes);
+  PetscFunctionReturn(0);
 }
 
-static int write_fields(void *ctx, double t, char *err, size_t errlen) {
+static PetscErrorCode write_fields(void *ctx, double t, char *err, size_t errlen) {
   Indent *d = ctx;
-  return fe_common_fields(&d->c, d->in.U0, t, err, errlen);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_fields(&d->c, d->in.U0, t, err, errlen));
+  PetscFunctionReturn(0);
 }
 
-static int promote(void *ctx) { return fe_common_promote(&((Indent *)ctx)->c); }
+static PetscErrorCode promote(void *ctx) {
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_promote(&((Indent *)ctx)->c));
+  PetscFunctionReturn(0);
+}
 
 /* The indenter's state, with the predictor's (the last converged increments), so a restart is exact: the values
-   every rank holds alike here, the multipliers and the active set (per node) in the shared file (contact_io.h). */
-static int state_io(Indent *d, BinFile *f, int write) {
+   every rank holds alike here, the multipliers and the active set (per node) in the shared file (contact_io.h).
+   A write or read that fails leaves f->ok 0. */
+static void state_io(Indent *d, BinFile *f, int write) {
   double vals[3] = {d->load, d->load_max, d->stage_start};
-  if (semismooth_state_io(&d->in, f, write)) return 1;
+  if (semismooth_state_io(&d->in, f, write)) return;
   if (write) binfile_write(f, vals, sizeof(double), 3);
   else binfile_read(f, vals, sizeof(double), 3), d->load = vals[0], d->load_max = vals[1], d->stage_start = vals[2];
-  return !f->ok;
 }
 
-static int save(void *ctx, BinFile *f) {
+static PetscErrorCode save(void *ctx, BinFile *f) {
   Indent *d = ctx;
+  PetscFunctionBeginUser;
   indent_solver_refresh(&d->in.sol); /* the next solve factors afresh, as a run restarted from here does */
-  return fe_common_save(&d->c, f) || state_io(d, f, 1);
+  PetscCall(fe_common_save(&d->c, f));
+  if (f->ok) state_io(d, f, 1);
+  PetscFunctionReturn(0);
 }
 
-static int load(void *ctx, BinFile *f) {
+static PetscErrorCode load(void *ctx, BinFile *f) {
   Indent *d = ctx;
-  return fe_common_load(&d->c, f) || state_io(d, f, 0);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_load(&d->c, f));
+  if (f->ok) state_io(d, f, 0);
+  PetscFunctionReturn(0);
 }
 
 /* The committed displacement and its last increment, the points' state (fe/fe_state.h), the multipliers. */
 static const char *const shared_names[2] = {"displacement", "increment"};
 
-static int save_shared(void *ctx, const char *path) {
+static PetscErrorCode save_shared(void *ctx, const char *path) {
   Indent     *d = ctx;
   PetscViewer v;
   Vec         vecs[2] = {d->in.U0, d->in.rateU};
-  return fe_common_shared_open(&d->c, path, PETSC_TRUE, &v) || fe_state_view(d->c.p, v, 2, vecs, shared_names) ||
-         contact_io_view(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_shared_open(&d->c, path, PETSC_TRUE, &v));
+  PetscCall(fe_state_view(d->c.p, v, 2, vecs, shared_names));
+  PetscCall(contact_io_view(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
 }
 
-static int load_shared(void *ctx, const char *path) {
+static PetscErrorCode load_shared(void *ctx, const char *path) {
   Indent     *d = ctx;
   PetscViewer v;
   Vec         vecs[2] = {d->in.U0, d->in.rateU};
-  return fe_common_shared_open(&d->c, path, PETSC_FALSE, &v) || fe_state_read(d->c.p, v, 2, vecs, shared_names) ||
-         contact_io_read(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam) || PetscViewerDestroy(&v);
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_shared_open(&d->c, path, PETSC_FALSE, &v));
+  PetscCall(fe_state_read(d->c.p, v, 2, vecs, shared_names));
+  PetscCall(contact_io_read(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
 }
 
-static int resume(void *ctx) {
+static PetscErrorCode resume(void *ctx) {
   Indent *d = ctx;
-  return VecCopy(d->in.U0, d->in.U) || VecCopy(d->in.lam0, d->in.lam) || contact_update_gaps(&d->in.ct, d->in.U, d->in.ur) ||
-         fe_common_resume(&d->c);
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(d->in.U0, d->in.U));
+  PetscCall(VecCopy(d->in.lam0, d->in.lam));
+  PetscCall(contact_update_gaps(&d->in.ct, d->in.U, d->in.ur));
+  PetscCall(fe_common_resume(&d->c));
+  PetscFunctionReturn(0);
 }
 
-static void replay(void *ctx, const char *dir, char *msg, size_t n) { fe_common_replay(&((Indent *)ctx)->c, dir, msg, n); }
+static PetscErrorCode replay(void *ctx, const char *dir, char *msg, size_t n) {
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_replay(&((Indent *)ctx)->c, dir, msg, n));
+  PetscFunctionReturn(0);
+}
 
 static long umat_calls(void *ctx) { return (long)fe_problem_diag(((Indent *)ctx)->c.p)->umat_calls; }
+
+/* After the run: the output closed, the summary line, the contact solver freed. */
+static PetscErrorCode finish(Indent *d, MPI_Comm comm, const RunnerSummary *sum, const RunnerOptions *opt) {
+  FeProblem *p = d->c.p;
+  PetscFunctionBeginUser;
+  PetscCall(fe_common_finish(&d->c));
+  PetscCall(PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
+                              "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations, %d factorisations), wall %.2f s -> %s/history.csv\n",
+                        d->c.sc->name, sum->steps, (int)d->in.its_total, d->in.predictor ? "on" : "off", sum->cutbacks, sum->rejected_error,
+                        (int)d->in.cycles, sum->umat_calls, fe_problem_diag(p)->assembly_seconds, d->in.sol.seconds, d->in.sol.fieldsplit ? "fieldsplit" : "direct",
+                        (int)d->in.sol.linear_its, (int)d->in.sol.setups, sum->wall, opt->outdir));
+  PetscCall(semismooth_destroy(&d->in));
+  PetscFunctionReturn(0);
+}
 
 int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen) {
   Indent d;
   int    bad = 0;
-  PetscMemzero(&d, sizeof d);
-  d.is = is;
-  PetscErrorCode ierr = semismooth_create(p, is, sc->msh, &d.in, err, errlen, &bad);
-  if (ierr) {
-    err[0] = '\0'; /* main prints PETSc's message */
-    return (int)ierr;
-  }
-  if (bad) return bad;
-  if (fe_common_init(&d.c, sc, p, opt)) return 1;
   MPI_Comm comm = PetscObjectComm((PetscObject)fe_problem_dm(p));
-  PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
-                    "indenter-row shift %.4g\n",
-              shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
-              (double)d.in.ct.c, (double)d.in.ct.kn);
+  PetscErrorCode ierr = PetscMemzero(&d, sizeof d);
+  d.is = is;
+  if (!ierr) ierr = semismooth_create(p, is, sc->msh, &d.in, err, errlen, &bad);
+  if (ierr) return stage_runner_status(ierr, err);
+  if (bad) return bad;
+  ierr = fe_common_init(&d.c, sc, p, opt);
+  if (!ierr)
+    ierr = PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
+                             "indenter-row shift %.4g\n",
+                       shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
+                       (double)d.in.ct.c, (double)d.in.ct.kn);
+  if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &d, .kind = "indentation", .nstage = sc->nstage, .comm = comm, .stage_begin = stage_begin,
                    .solve = solve, .accept = accept, .check = check, .history_header = history_header,
                    .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
@@ -216,12 +260,6 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
                    .save_shared = save_shared, .load_shared = load_shared};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
-  fe_common_finish(&d.c);
-  PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
-                    "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations, %d factorisations), wall %.2f s -> %s/history.csv\n",
-              sc->name, sum.steps, (int)d.in.its_total, d.in.predictor ? "on" : "off", sum.cutbacks, sum.rejected_error, (int)d.in.cycles,
-              sum.umat_calls, fe_problem_diag(p)->assembly_seconds, d.in.sol.seconds, d.in.sol.fieldsplit ? "fieldsplit" : "direct", (int)d.in.sol.linear_its,
-              (int)d.in.sol.setups, sum.wall, opt->outdir);
-  semismooth_destroy(&d.in);
-  return rc;
+  ierr             = finish(&d, comm, &sum, opt);
+  return rc ? rc : stage_runner_status(ierr, err);
 }

@@ -27,7 +27,9 @@ typedef struct {
 /* Component i of the total viscoplastic strain of a call's state (0 where the UMAT keeps none). */
 static double evp_of(const Point *pt, const UmatCall *c, int i) { return material_quantity(&pt->sc->mat, c->statev, MATERIAL_EVP, i); }
 
-static int stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
+/* The callbacks (stage_runner.h): the point's Newton calls no PETSc, and a step that does not converge is no
+   error, so they return 0. */
+static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Point         *pt = ctx;
   const Segment *sg = &pt->sc->seg[s];
   int            n  = pt->sc->mat.ntens;
@@ -75,7 +77,7 @@ static void observe(Point *pt, const StepRequest *rq, StepOutcome *o) {
   }
 }
 
-static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
+static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   Point         *pt = ctx;
   const Segment *sg = &pt->sc->seg[rq->s];
   int            n  = pt->sc->mat.ntens;
@@ -94,7 +96,7 @@ static int solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, si
   return 0;
 }
 
-static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
+static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Point            *pt = ctx;
   const PointScene *sc = pt->sc;
   if (sc->check_tangent && rq->h > 0)
@@ -124,23 +126,29 @@ static int accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   return 0;
 }
 
-static void history_header(void *ctx, FILE *fp) { point_history_header(fp); }
-
-static void history_row(void *ctx, FILE *fp, const RunnerRow *row) {
-  Point *pt = ctx;
-  point_history_row(fp, &pt->sc->mat, &pt->cur, row->t, row->step, row->stage, row->dt, row->its, row->cutbacks);
+static PetscErrorCode history_header(void *ctx, FILE *fp) {
+  point_history_header(fp);
+  return 0;
 }
 
-static void progress(void *ctx, char *buf, size_t n) {
+static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) {
+  Point *pt = ctx;
+  point_history_row(fp, &pt->sc->mat, &pt->cur, row->t, row->step, row->stage, row->dt, row->its, row->cutbacks);
+  return 0;
+}
+
+static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   Point *pt = ctx;
   MaterialPointState s;
   material_point_state(&pt->sc->mat, pt->cur.statev, &s);
   snprintf(buf, n, "local %d ", s.local.iterations);
+  return 0;
 }
 
 /* The point's state for a checkpoint: the committed call (plain values only), the predictor, the
-   segment's start values, the times of the segments and the summary so far. */
-static int state_io(Point *pt, BinFile *f, int write) {
+   segment's start values, the times of the segments and the summary so far. A write or read that fails leaves
+   f->ok 0. */
+static PetscErrorCode state_io(Point *pt, BinFile *f, int write) {
   void  *parts[] = {&pt->cur, pt->last_deps, &pt->last_dt, pt->start, pt->devp_prev, &pt->have_devp, &pt->t, pt->t_start, pt->t_end, pt->sum};
   size_t sizes[] = {sizeof pt->cur, 6 * sizeof(double), sizeof(double), 6 * sizeof(double), 6 * sizeof(double), sizeof(int),
                     sizeof(double), (size_t)pt->sc->nseg * sizeof(double), (size_t)pt->sc->nseg * sizeof(double), sizeof *pt->sum};
@@ -148,21 +156,22 @@ static int state_io(Point *pt, BinFile *f, int write) {
     if (write) binfile_write(f, parts[k], sizes[k], 1);
     else binfile_read(f, parts[k], sizes[k], 1);
   }
-  return !f->ok;
+  return 0;
 }
 
-static int save(void *ctx, BinFile *f) { return state_io(ctx, f, 1); }
-static int load(void *ctx, BinFile *f) { return state_io(ctx, f, 0); }
+static PetscErrorCode save(void *ctx, BinFile *f) { return state_io(ctx, f, 1); }
+static PetscErrorCode load(void *ctx, BinFile *f) { return state_io(ctx, f, 0); }
 
-static void replay(void *ctx, const char *dir, char *msg, size_t n) {
+static PetscErrorCode replay(void *ctx, const char *dir, char *msg, size_t n) {
   Point *pt = ctx;
-  if (!pt->res.failed.have) return;
+  if (!pt->res.failed.have) return 0;
   char rp[1100];
   snprintf(rp, sizeof rp, "%s/failed_call.yaml", dir);
   if (!material_failed_call_write(&pt->res.failed, rp, msg)) {
     size_t len = strlen(msg);
     snprintf(msg + len, n - len, "; the failing UMAT call is replayed by: driver -input %s", rp);
   }
+  return 0;
 }
 
 static void write_json(const PointScene *sc, const double *t_start, const double *t_end) {

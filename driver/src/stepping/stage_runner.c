@@ -20,6 +20,20 @@ static int event_direction(EventKind k) {
 /* ---------------------------------------------------------------------------------------------------- */
 /* The run                                                                                              */
 
+int stage_runner_status(PetscErrorCode ierr, char *err) {
+  if (!ierr) return 0;
+  if (ierr == STEP_ERR_REPORTED && err[0]) return 1;
+  err[0] = '\0';
+  return (int)ierr;
+}
+
+/* A callback of the solver: on an error, return from the calling function with the run's status. */
+#define SOLVER_CALL(call) \
+  do { \
+    PetscErrorCode ierr_ = (call); \
+    if (ierr_) return stage_runner_status(ierr_, err); \
+  } while (0)
+
 typedef struct {
   StepSolver          *sv;
   const RunnerOptions *opt;
@@ -63,7 +77,7 @@ static int history_open(Run *r, char *err, size_t errlen) {
     snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
     return 1;
   }
-  r->sv->history_header(r->sv->ctx, r->hist);
+  SOLVER_CALL(r->sv->history_header(r->sv->ctx, r->hist));
   return 0;
 }
 
@@ -87,29 +101,31 @@ static int promote(Run *r) {
       if (rename(r->opt->part_file, final)) return 1;
     }
   }
-  return r->sv->promote ? r->sv->promote(r->sv->ctx) : 0;
+  return r->sv->promote && r->sv->promote(r->sv->ctx);
 }
 
-static void history_row(Run *r, int its, double dt, int cut) {
-  if (!r->hist) return;
+static int history_row(Run *r, int its, double dt, int cut, char *err) {
+  if (!r->hist) return 0;
   RunnerRow row = {r->st.t, dt, wall_since(&r->w0), r->st.stage, r->st.step, its, cut, r->view.name};
-  r->sv->history_row(r->sv->ctx, r->hist, &row);
+  SOLVER_CALL(r->sv->history_row(r->sv->ctx, r->hist, &row));
   fflush(r->hist);
+  return 0;
 }
 
-static void progress_line(Run *r, const StepOutcome *o, double h) {
+static int progress_line(Run *r, const StepOutcome *o, double h, char *err) {
   const RunnerOptions *opt = r->opt;
-  if (r->rank || opt->quiet || (opt->progress_every > 1 && r->st.step % opt->progress_every)) return;
+  if (r->rank || opt->quiet || (opt->progress_every > 1 && r->st.step % opt->progress_every)) return 0;
   double frac = o->progress >= 0 ? o->progress : r->view.duration > 0 ? r->st.t_stage / r->view.duration : 1;
   frac        = fmin(fmax(frac, 0), 1);
   double wall = wall_since(&r->w0), spent = wall - r->stage_wall0;
   char   left[64] = "", part[256] = "";
   if (frac >= 0.02 && frac < 1 && spent > 0.2) snprintf(left, sizeof left, ", about %.0f s left", spent * (1 - frac) / frac);
-  if (r->sv->progress) r->sv->progress(r->sv->ctx, part, sizeof part);
+  if (r->sv->progress) SOLVER_CALL(r->sv->progress(r->sv->ctx, part, sizeof part));
   printf("step %5d  %-8s t = %-11.5g dt = %-10.4g newton %2d  %s cutbacks %d  wall %7.2f s  stage %3.0f%%%s%s\n",
          r->st.step, r->view.name, r->st.t, h, o->its, part, r->st.cutbacks, wall, 100 * frac, left,
          r->view.until.kind == EVENT_EVP_RATE_BELOW ? " (or less: it ends at steady state)" : "");
   fflush(stdout);
+  return 0;
 }
 
 /* The error estimate of a converged step relative to tol ('output', 'volume'), or -1 when there is none
@@ -277,17 +293,18 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
 }
 
 static int write_fields(Run *r, char *err, size_t errlen) {
-  if (!r->sv->write_fields) return 0;
-  return r->sv->write_fields(r->sv->ctx, r->st.t, err, errlen);
+  if (r->sv->write_fields) SOLVER_CALL(r->sv->write_fields(r->sv->ctx, r->st.t, err, errlen));
+  return 0;
 }
 
-/* One stage from where the state says. Returns 0 (done), 1 (failed), 3 (stopped by -max_steps). */
+/* One stage from where the state says. Returns 0 (done), 1 (failed), 3 (stopped by -max_steps) or a PETSc error
+ * code (> 3). */
 static int run_stage(Run *r, char *err, size_t errlen) {
   StepSolver          *sv = r->sv;
   RunState            *st = &r->st;
   const RunnerOptions *opt = r->opt;
   int                  resumed = st->in_stage;
-  if (sv->stage_begin(sv->ctx, st->stage, resumed, &r->view, err, errlen)) return 1;
+  SOLVER_CALL(sv->stage_begin(sv->ctx, st->stage, resumed, &r->view, err, errlen));
   if (!resumed) {
     st->t_stage = 0, st->k_planned = 0, st->cut_in_plan = 0, st->landing = 0, st->first_in_stage = 1, st->next_stage_time = 0;
     st->ratio_prev = -1;
@@ -305,29 +322,33 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     plan_step(r, &rq, &at_output);
     memset(&o, 0, sizeof o);
     o.pnewdt = 1e300, o.progress = -1, o.vol_err = -1;
-    if (sv->solve(sv->ctx, &rq, &o, err, errlen)) return 1;
+    SOLVER_CALL(sv->solve(sv->ctx, &rq, &o, err, errlen));
     double ratio, kink_ratio;
     int    verdict = judge(r, &rq, &o, &ratio, &kink_ratio, &landed, err, errlen);
     if (verdict == STEP_FAILED) {
-      if (sv->replay && opt->outdir && opt->outdir[0]) sv->replay(sv->ctx, opt->outdir, err, errlen);
+      /* the step's failure is the message; a replay that could not be written only adds to it */
+      if (sv->replay && opt->outdir && opt->outdir[0] && sv->replay(sv->ctx, opt->outdir, err, errlen)) {
+        size_t len = strlen(err);
+        snprintf(err + len, errlen - len, " (a replay of the failing UMAT call could not be written)");
+      }
       return 1;
     }
     if (verdict == STEP_RETRY) continue;
     int was_instant = st->pending_instant, cut = st->cut_in_step;
-    if (sv->accept(sv->ctx, &rq, err, errlen)) return 1;
+    SOLVER_CALL(sv->accept(sv->ctx, &rq, err, errlen));
     st->t += rq.h, st->t_stage += rq.h, st->step++, st->its += o.its;
     after_accept(r, &rq, &o, ratio, kink_ratio);
     if (promote(r)) {
       snprintf(err, errlen, "%s: cannot rename the new output files into place", opt->outdir);
       return 1;
     }
-    history_row(r, o.its, rq.h, cut);
-    progress_line(r, &o, rq.h);
-    if (sv->check && sv->check(sv->ctx, st->t, err, errlen)) return 1;
+    int rc = history_row(r, o.its, rq.h, cut, err);
+    if (rc || (rc = progress_line(r, &o, rq.h, err))) return rc;
+    if (sv->check) SOLVER_CALL(sv->check(sv->ctx, st->t, err, errlen));
     rate_done = !was_instant && r->view.until.kind == EVENT_EVP_RATE_BELOW && o.event[EVENT_EVP_RATE_BELOW] < r->view.until.value;
     int stage_done = landed || rate_done || (!st->pending_instant && st->t_stage >= r->view.duration * (1 - 1e-12));
     if (at_output || (opt->fields_every > 0 && st->step % opt->fields_every == 0) || stage_done)
-      if (write_fields(r, err, errlen)) return 1;
+      if ((rc = write_fields(r, err, errlen))) return rc;
     if (stage_done && !landed && r->view.must_reach && r->view.until.kind != EVENT_NONE) {
       char key[128];
       if (r->view.until_key) snprintf(key, sizeof key, "%s", r->view.until_key);
@@ -341,9 +362,9 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     if (opt->checkpoint_every > 0 && st->step % opt->checkpoint_every == 0) {
       if (r->hist) fflush(r->hist);
       st->history_offset = r->hist ? ftell(r->hist) : 0;
-      if (checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen)) return 1;
+      if ((rc = checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen))) return rc;
     }
-    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return write_fields(r, err, errlen) ? 1 : 3; /* its last step's fields too */
+    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, err, errlen)) ? rc : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
   st->stage++, st->in_stage = 0;
@@ -365,14 +386,13 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
     int rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen);
     if (rc) return rc;
   }
-  if (history_open(&r, err, errlen)) return 1;
+  int rc = history_open(&r, err, errlen);
+  if (rc) return rc;
   clock_gettime(CLOCK_MONOTONIC, &r.w0);
   if (!opt->restart) {
     r.view.name = NULL; /* row 0: the solver names it */
-    history_row(&r, 0, 0, 0);
-    if (write_fields(&r, err, errlen)) return 1;
+    if ((rc = history_row(&r, 0, 0, 0, err)) || (rc = write_fields(&r, err, errlen))) return rc;
   }
-  int rc = 0;
   while (!rc && r.st.stage < sv->nstage) {
     rc = opt->max_steps >= 0 && r.st.step >= opt->max_steps ? 3 : run_stage(&r, err, errlen);
     if (rc == 3) {
@@ -386,7 +406,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
   sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
-  if (rc && opt->outdir && opt->outdir[0] && !r.promoted && !opt->restart) {
+  if (rc && err[0] && opt->outdir && opt->outdir[0] && !r.promoted && !opt->restart) {
     size_t len = strlen(err);
     snprintf(err + len, errlen - len, " (nothing of an earlier run in %s was replaced; this run's files end in .part)", opt->outdir);
   }

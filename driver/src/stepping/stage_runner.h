@@ -13,7 +13,7 @@
 #ifndef STAGE_RUNNER_H
 #define STAGE_RUNNER_H
 
-#include <mpi.h>
+#include <petscsys.h>
 #include <stdio.h>
 
 #include "../io/binfile.h"
@@ -78,41 +78,60 @@ typedef struct {
   const char *stage_name;
 } RunnerRow;
 
+/* Errors of the callbacks (docs/driver.md, "Error codes"): every callback but umat_calls returns a PetscErrorCode.
+ * - A PETSc failure propagates as PETSc's own code (PetscCall): the runner returns it with err empty, and main
+ *   prints PETSc's message (exit status 1).
+ * - A failure the user must act on (a key of the scene, a file, a contact reaching the edge of its surface) is
+ *   reported by the callbacks that take err with STEP_FAIL: the project's message, naming the file, the key, the
+ *   value and what was expected, goes into err and the callback returns STEP_ERR_REPORTED; the runner ends the run
+ *   with that message and exit status 1, never a PETSc traceback.
+ * - The callbacks that write or read the run's files and take no err (promote, save, load, save_shared,
+ *   load_shared, resume) return nonzero on any failure, and the runner reports it by the file's name; save and
+ *   load may also say a checkpoint file is bad by its BinFile's ok.
+ * - replay runs after a step failed for good: its failure only adds a note to that message. */
+#define STEP_ERR_REPORTED PETSC_ERR_USER_INPUT
+#define STEP_FAIL(err, errlen, ...) \
+  do { \
+    snprintf((err), (errlen), __VA_ARGS__); \
+    SETERRQ(PETSC_COMM_SELF, STEP_ERR_REPORTED, "%s", (err)); \
+  } while (0)
+
 typedef struct {
   void       *ctx;
   const char *kind; /* for messages: "fe", "indentation", "point" */
   int         nstage;
   MPI_Comm    comm;
   /* Stage s begins (resumed: from a checkpoint, midway): the solver records its start values. */
-  int (*stage_begin)(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen);
-  /* Solve the step from the committed state; o->converged says whether it did. Return nonzero only on a
-   * fatal error (err filled). */
-  int (*solve)(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen);
+  PetscErrorCode (*stage_begin)(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen);
+  /* Solve the step from the committed state; o->converged says whether it did (a step that did not converge is
+   * no error: the runner cuts it back). */
+  PetscErrorCode (*solve)(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen);
   /* Commit the converged step. */
-  int (*accept)(void *ctx, const StepRequest *rq, char *err, size_t errlen);
-  /* Optional: after each accepted step, a check that can stop the run (err filled, nonzero). */
-  int (*check)(void *ctx, double t, char *err, size_t errlen);
+  PetscErrorCode (*accept)(void *ctx, const StepRequest *rq, char *err, size_t errlen);
+  /* Optional: after each accepted step, a check that can stop the run (STEP_FAIL). */
+  PetscErrorCode (*check)(void *ctx, double t, char *err, size_t errlen);
   /* Output: history columns (rank 0 writes), the solver's part of the progress line, fields. */
-  void (*history_header)(void *ctx, FILE *fp);
-  void (*history_row)(void *ctx, FILE *fp, const RunnerRow *row);
-  void (*progress)(void *ctx, char *buf, size_t n);
-  int (*write_fields)(void *ctx, double t, char *err, size_t errlen); /* may be NULL */
-  int (*promote)(void *ctx);                                           /* the solver's .part files; may be NULL */
+  PetscErrorCode (*history_header)(void *ctx, FILE *fp);
+  PetscErrorCode (*history_row)(void *ctx, FILE *fp, const RunnerRow *row);
+  PetscErrorCode (*progress)(void *ctx, char *buf, size_t n);
+  PetscErrorCode (*write_fields)(void *ctx, double t, char *err, size_t errlen); /* may be NULL */
+  PetscErrorCode (*promote)(void *ctx);                                           /* the solver's .part files; may be NULL */
   /* Checkpoint: the solver's state (this rank's file). */
-  int (*save)(void *ctx, BinFile *f);
-  int (*load)(void *ctx, BinFile *f);
-  /* After a step failed for good: write a replay of the failing UMAT call into dir; append to msg. */
-  void (*replay)(void *ctx, const char *dir, char *msg, size_t n);
+  PetscErrorCode (*save)(void *ctx, BinFile *f);
+  PetscErrorCode (*load)(void *ctx, BinFile *f);
+  /* After a step failed for good: write a replay of the failing UMAT call into dir; append to msg (the runner
+   * keeps msg, the failure's own message, whatever this returns). */
+  PetscErrorCode (*replay)(void *ctx, const char *dir, char *msg, size_t n);
   /* Totals for the last line. */
   long (*umat_calls)(void *ctx);
   /* After every rank has loaded its checkpoint file (load reads only, so a rank whose file is bad cannot
    * leave the others in a collective call): the collective work of a resumed state. May be NULL. */
-  int (*resume)(void *ctx);
+  PetscErrorCode (*resume)(void *ctx);
   /* Optional, collective: the solver's distributed state in a file of its own (path), in an order that does not
    * depend on the partition, and its reading; with them a run restarts on any number of ranks (save and load then
    * hold only what every rank has alike). FE and indentation scenes: a PETSc HDF5 file. */
-  int (*save_shared)(void *ctx, const char *path);
-  int (*load_shared)(void *ctx, const char *path);
+  PetscErrorCode (*save_shared)(void *ctx, const char *path);
+  PetscErrorCode (*load_shared)(void *ctx, const char *path);
 } StepSolver;
 
 typedef struct {
@@ -129,8 +148,13 @@ typedef struct {
   double t, wall;
 } RunnerSummary;
 
-/* Run every stage. Returns 0, or 1 (a step failed for good, an event was missed, a file could not be
- * written) or 2 (bad input found at run time: a restart that does not match) with err filled. */
+/* Run every stage. Returns the run's status: 0; 1 (a step failed for good, an event was missed, a file could not
+ * be written, a callback's STEP_FAIL) or 2 (bad input found at run time: a restart that does not match) with err
+ * filled; or a PETSc error code (> 2) with err empty. */
 int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *sum, char *err, size_t errlen);
+
+/* The run status of an error code: 0 for 0, 1 for a failure reported in err (STEP_ERR_REPORTED), else the PETSc
+ * code itself with err emptied (main prints PETSc's message). */
+int stage_runner_status(PetscErrorCode ierr, char *err);
 
 #endif
