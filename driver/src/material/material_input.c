@@ -38,9 +38,10 @@ int material_slot(const char *name) {
 
 /* Set a named slot, growing nprops as 'set' does; *normal set when it is one of n1..n3. */
 static void set_slot(UmatMaterial *mat, int slot, double v, int *normal) {
+  const int n1 = mat->pr.normal >= 0 ? mat->pr.normal : UMAT_MAX_PROPS; /* the normal's first slot */
   mat->props[slot] = v;
-  if (slot >= 20) *normal = 1;
-  if (slot + 1 > mat->nprops) mat->nprops = slot + 1 <= 20 ? slot + 1 : 23; /* 21, 22: a partial normal */
+  if (slot >= n1) *normal = 1;
+  if (slot + 1 > mat->nprops) mat->nprops = slot < n1 ? slot + 1 : n1 + 3; /* one component: the whole normal */
 }
 
 PetscErrorCode material_options(char *set, size_t n, PetscBool *given) {
@@ -121,7 +122,7 @@ static int read_props_set(const YdDoc *doc, YdNode *node, UmatMaterial *mat, YdN
   }
   if (props->kind == YD_SCALAR && !strcmp(props->text, "woodford")) {
     memcpy(mat->props, woodford, sizeof woodford);
-    mat->nprops = 19; /* no normal: the UMAT's material 3-axis, unless given below */
+    mat->nprops = (int)(sizeof woodford / sizeof woodford[0]); /* no normal: the UMAT's material 3-axis, unless given below */
   } else if (props->kind == YD_SCALAR) {
     snprintf(err, errlen, "%s:%d: key 'material.props': unknown preset '%s': expected woodford or a list of numbers",
              doc->file, props->line, props->text);
@@ -163,7 +164,7 @@ static int read_bedding(const YdDoc *doc, YdNode *node, int ntens, int camclay, 
              yd_key_line(node, "normal"));
     return 1;
   }
-  if (mat->nprops > 20) normal_in_props = 1;
+  if (mat->pr.normal >= 0 && mat->nprops > mat->pr.normal) normal_in_props = 1;
   *nprops_given = mat->nprops; /* before a normal from bedding_angle fills PROPS(21-23) */
   if (bed && normal_in_props) {
     snprintf(err, errlen, "%s:%d: key 'material.bedding_angle': the normal (n1, n2, n3: PROPS(21-23)) is already given "
@@ -186,7 +187,7 @@ static int read_bedding(const YdDoc *doc, YdNode *node, int ntens, int camclay, 
   } else if (normal) {
     if (yd_doubles(doc, normal, "material.normal", &mat->props[mat->pr.normal], 3, NULL, err, errlen)) return 1;
     mat->nprops = mat->pr.normal + 3;
-  } else if (camclay && ntens == 4 && mat->nprops < 23) {
+  } else if (camclay && ntens == 4 && mat->nprops < mat->pr.normal + 3) {
     /* 2D without a normal: theta = 0 with the load along x2, n = e2 (the UMAT needs it in-plane) */
     mat->props[mat->pr.normal] = 0, mat->props[mat->pr.normal + 1] = 1, mat->props[mat->pr.normal + 2] = 0;
     mat->nprops    = mat->pr.normal + 3;
@@ -238,9 +239,10 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   if ((nd = yd_get(node, "nstatv")) && yd_int_range(doc, nd, "material.nstatv", 0, UMAT_MAX_STATEV, &mat->nstatv, err, errlen)) return 1;
   if (yd_check_unused(doc, node, "material", "umat, name, props, set, bedding_angle, normal, nstatv", err, errlen))
     return 1;
-  if (camclay && nprops_given < 19) {
-    snprintf(err, errlen, "%s:%d: key 'material.props': %d PROPS given, at least 19 needed by camclay9 (20: with tol; "
-             "23: with the normal n1, n2, n3)", doc->file, props->line, nprops_given);
+  if (camclay && nprops_given < mat->pr.tol) { /* the slots before tol are the material's */
+    snprintf(err, errlen, "%s:%d: key 'material.props': %d PROPS given, at least %d needed by camclay9 (%d: with tol; "
+             "%d: with the normal n1, n2, n3)", doc->file, props->line, nprops_given, mat->pr.tol, mat->pr.tol + 1,
+             mat->pr.normal + 3);
     return 1;
   }
   if (camclay) {
