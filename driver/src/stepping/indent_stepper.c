@@ -181,29 +181,26 @@ static PetscErrorCode load(void *ctx, BinFile *f) {
 /* The committed displacement and its last increment, the points' state (fe/fe_state.h), the multipliers. */
 static const char *const shared_names[2] = {"displacement", "increment"};
 
-static PetscErrorCode save_shared(void *ctx, const char *path) {
-  Indent     *d = ctx;
+/* The run's shared state (displacements, rates, multipliers) written to or read from one HDF5 file. */
+static PetscErrorCode shared_io(Indent *d, const char *path, PetscBool write) {
   PetscViewer v;
   Vec         vecs[2] = {d->in.U0, d->in.rateU};
+  DM          dm      = fe_problem_dm(d->c.p);
   PetscFunctionBeginUser;
-  PetscCall(fe_common_shared_open(&d->c, path, PETSC_TRUE, &v));
-  PetscCall(fe_state_view(d->c.p, v, 2, vecs, shared_names));
-  PetscCall(contact_io_view(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam));
+  PetscCall(fe_common_shared_open(&d->c, path, write, &v));
+  if (write) {
+    PetscCall(fe_state_view(d->c.p, v, 2, vecs, shared_names));
+    PetscCall(contact_io_view(&d->in.ct, dm, v, d->in.lam0, d->in.ratelam));
+  } else {
+    PetscCall(fe_state_read(d->c.p, v, 2, vecs, shared_names));
+    PetscCall(contact_io_read(&d->in.ct, dm, v, d->in.lam0, d->in.ratelam));
+  }
   PetscCall(PetscViewerDestroy(&v));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode load_shared(void *ctx, const char *path) {
-  Indent     *d = ctx;
-  PetscViewer v;
-  Vec         vecs[2] = {d->in.U0, d->in.rateU};
-  PetscFunctionBeginUser;
-  PetscCall(fe_common_shared_open(&d->c, path, PETSC_FALSE, &v));
-  PetscCall(fe_state_read(d->c.p, v, 2, vecs, shared_names));
-  PetscCall(contact_io_read(&d->in.ct, fe_problem_dm(d->c.p), v, d->in.lam0, d->in.ratelam));
-  PetscCall(PetscViewerDestroy(&v));
-  PetscFunctionReturn(0);
-}
+static PetscErrorCode save_shared(void *ctx, const char *path) { return shared_io(ctx, path, PETSC_TRUE); }
+static PetscErrorCode load_shared(void *ctx, const char *path) { return shared_io(ctx, path, PETSC_FALSE); }
 
 static PetscErrorCode resume(void *ctx) {
   Indent *d = ctx;
