@@ -59,6 +59,7 @@ SCENES = {"lr": ("loading_rate_a1", 1.0, (-0.125, 0.125, -0.25, 0.0), None),
           "bed": ("bedding_theta45", 25.0, (-1.35, 1.35, -2.7, 0.0), None)}
 KEYS = ("h_max", "creep", "h_res", "sig_load", "sig_hold", "dsig")
 LIMIT = {"h_max": 0.01, "creep": 0.01, "h_res": 0.01, "sig_hold": 0.05}   # the shipped model's budget
+REPORTED = ("h_max", "creep", "sig_hold")   # what the shipped 2D scenes report (they have no unload: no h_res)
 LABEL = {"h_max": "h_max [nm]", "creep": "creep [nm]", "h_res": "h_res [nm]", "sig_load": "σ̄ load [MPa]",
          "sig_hold": "σ̄ hold [MPa]", "dsig": "Δσ̄ [MPa]"}
 # ladder: (label, scene, order, what varies, the fixed value, the ladder in loading-rate units (x scale for bed))
@@ -248,13 +249,14 @@ def section(res, command, note):
             L += [f"**{SCENES[skey][0]}: the converged 2D answer** (the P2 ladder's limit, ± the larger of its own band and half "
                   "its distance to the P1 ladder's limit): " + ", ".join(f"{LABEL[k].split(' [')[0]} {fmt(k, ref[k])} ± {hw[k]:.1%}" for k in KEYS), ""]
             cand = sorted((r for r in res.values() if r.get("scene") == skey and "failed" not in r), key=lambda r: r["cpu"])
-            L += ["| model | h_tip | r_fine | unknowns | CPU [s] | " + " | ".join(LABEL[k].split(" [")[0] for k in LIMIT) + " | within |",
+            L += ["Within: ✓ all four within their limits (1 %, 5 % for σ̄); ◐ those the scenes report (h_max, creep, σ̄ hold).", "",
+                  "| model | h_tip | r_fine | unknowns | CPU [s] | " + " | ".join(LABEL[k].split(" [")[0] for k in LIMIT) + " | within |",
                   "|---" * (6 + len(LIMIT)) + "|"]
             for r in cand:
                 e = {k: r["o"][k] / ref[k] - 1 for k in LIMIT}
-                ok = all(abs(e[k]) <= LIMIT[k] for k in LIMIT)
+                ok = "✓" if all(abs(e[k]) <= LIMIT[k] for k in LIMIT) else "◐" if all(abs(e[k]) <= LIMIT[k] for k in REPORTED) else ""
                 L.append(f"| P{r['order']} | {r['h_tip']:.4g} | {r['r_fine']:.4g} | {r['unknowns']} | {r['cpu']:.0f} | "
-                         + " | ".join(f"{e[k]:+.1%}" for k in LIMIT) + f" | {'✓' if ok else ''} |")
+                         + " | ".join(f"{e[k]:+.1%}" for k in LIMIT) + f" | {ok} |")
             L.append("")
     if CONCLUSIONS.exists():
         L += [CONCLUSIONS.read_text()]
