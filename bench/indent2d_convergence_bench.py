@@ -70,7 +70,7 @@ LADDERS = {
     "lr2r": ("loading rate, P2, h_tip 0.02", "lr", 2, "r_fine", 0.02, [0.4, 0.6, 0.9]),
     "lr1r": ("loading rate, P1, h_tip 0.02", "lr", 1, "r_fine", 0.02, [0.4, 0.6, 0.9]),
     "lr1old": ("loading rate, P1, r_fine 0.4 (as shipped)", "lr", 1, "h_tip", 0.4, [0.02, 0.01, 0.005]),
-    "lr2f": ("loading rate, P2, r_fine 0.9", "lr", 2, "h_tip", 0.9, [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01]),
+    "lr2f": ("loading rate, P2, r_fine 0.9", "lr", 2, "h_tip", 0.9, [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01, 0.01 / R2]),
     "lr2n": ("loading rate, P2, r_fine 0.9, other meshes near h_tip 0.02 (mesh noise)", "lr", 2, "h_tip", 0.9, [0.0206, 0.0194]),
     "lr2t": ("loading rate, P2, h_tip 0.02, r_fine 0.9, time-step tol", "lr", 2, "tol", (0.02, 0.9), [5e-3]),
     "lrphi1": ("loading rate with the hard frame (φ = 0.5), P1, r_fine 0.6", "lrphi", 1, "h_tip", 0.6, [0.02]),
