@@ -21,7 +21,7 @@ the rungs already there, from any ladder), so the study can be cut and resumed. 
 indentation: mesh and element study" of docs/performance.md from that file, followed by the reading written by hand
 in bench/indent2d_convergence_conclusions.md.
 
-Usage: bench/indent2d_convergence_bench.py [--ladders lr2,lr1,...] [--hmin H] [--max-cpu S] [--doc] [--quick]
+Usage: bench/indent2d_convergence_bench.py [--ladders lr2,lr1,...] [--hmin H] [--max-unknowns N] [--doc [--no-run]] [--quick]
 """
 import argparse
 import json
@@ -272,6 +272,7 @@ def main(argv=None):
     ap.add_argument("--doc", action="store_true", help="write the section of docs/performance.md from --results")
     ap.add_argument("--note", default="shared machine, 2 cores, loaded", help="machine load, for the section")
     ap.add_argument("--quick", action="store_true", help="the two coarsest P1 rungs of each scene, in a temporary file")
+    ap.add_argument("--no-run", action="store_true", help="run no rung: with --doc, the section from the rungs in --results alone")
     a = ap.parse_args(argv)
     quick = tempfile.TemporaryDirectory() if a.quick else None
     path = Path(quick.name) / "quick.json" if a.quick else Path(a.results)
@@ -285,13 +286,14 @@ def main(argv=None):
             s = SCENES[LADDERS[lad][1]][1]
             todo += [g for g in rungs(lad) if g[2] >= a.hmin * s * (1 - 1e-9) and g not in todo]
         todo.sort(key=lambda g: g[1] ** 2 * (g[3] / g[2]) ** 2)   # cheapest first: unknowns about order^2 (r_fine / h_tip)^2
-    t_call = umat_time_per_call()
-    print(f"UMAT benchmark: {t_call[0] * 1e9:.0f} ns per viscoplastic plane-strain call (median; min {t_call[1] * 1e9:.0f})"
-          if t_call[0] else "UMAT benchmark: not built (no ratio)", flush=True)
+    t_call = umat_time_per_call() if not a.no_run else (0, 0)
+    if not a.no_run:
+        print(f"UMAT benchmark: {t_call[0] * 1e9:.0f} ns per viscoplastic plane-strain call (median; min {t_call[1] * 1e9:.0f})"
+              if t_call[0] else "UMAT benchmark: not built (no ratio)", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         for g in todo:
             k = key(*g)
-            if k in res:
+            if k in res or a.no_run:
                 continue
             try:
                 r = run_rung(*g, tmp, t_call)

@@ -7,13 +7,16 @@
 PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   const char *solvers[] = {"direct", "fieldsplit"}, *parts[] = {"", "u", "r", "lambda"};
   PetscFunctionBeginUser;
-  o->rtol = 1e-10, o->max_it = 30, o->predictor = PETSC_TRUE, o->monitor = PETSC_FALSE, o->line_search = PETSC_TRUE;
+  o->rtol = 1e-10, o->max_it = 30, o->stall_window = 8, o->predictor = PETSC_TRUE, o->monitor = PETSC_FALSE, o->line_search = PETSC_TRUE;
   o->newton_estimate = PETSC_TRUE, o->check_tangent = PETSC_FALSE, o->solver = 0, o->tangent_part = 0;
   o->refactor_its = 20, o->rtol_tight = 1e-10, o->check_solve = PETSC_FALSE;
   options_petsc_prefix("indent_"); /* the contact solver's KSP (indent_solver.c) */
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1; docs/contact.md)", NULL);
   PetscCall(options_real(PetscOptionsObject, "-indent_rtol", "residual tolerance relative to the load", o->rtol, &o->rtol, NULL));
   PetscCall(options_int(PetscOptionsObject, "-indent_max_it", "Newton iterations per step", o->max_it, 1, 10000, &o->max_it, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-indent_stall_window",
+                        "give a step up (cut it back) once the merit has not fallen tenfold over this many iterations on an "
+                        "unchanged active set (0: only at -indent_max_it)", o->stall_window, 0, 10000, &o->stall_window, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-indent_predictor", "start each step from the extrapolated last increment", o->predictor,
                          &o->predictor, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-indent_monitor", "print every Newton iteration", o->monitor, &o->monitor, NULL));

@@ -8,6 +8,7 @@
 typedef struct {
   PetscReal rtol;            /* residual tolerance relative to the load */
   PetscInt  max_it;          /* Newton iterations per step */
+  PetscInt  stall_window;    /* give a step up when its merit did not fall tenfold in this many iterations; 0: never */
   PetscBool predictor, monitor, line_search, newton_estimate, check_tangent;
   PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit */
   PetscInt  refactor_its;    /* direct: the cost of a factorisation in Krylov iterations; 0: factor at every iteration */

@@ -55,7 +55,8 @@ static PetscErrorCode active_signature(Semismooth *in, unsigned long long *sig) 
   PetscFunctionReturn(0);
 }
 
-const char *semismooth_failure[] = {"", "Newton did not converge", "the active set cycles", "the linear solver failed"};
+const char *semismooth_failure[] = {"", "Newton did not converge", "the active set cycles", "the linear solver failed",
+                                    "Newton stalled (the merit did not fall tenfold over -indent_stall_window iterations)"};
 
 /* The residual (R_u, R_r, R_lambda) at (U, ur, lam) + e (du, dur, dlam), into (ru, rr, rl); the active set
    stays the one the tangent was built for. */
@@ -205,6 +206,21 @@ static PetscBool met_again(const ActiveSetHistory *h) {
   return PETSC_FALSE;
 }
 
+/* Stalled: the active set unchanged over the last stall_window iterations and the merit not below a tenth of its
+ * value stall_window iterations before. Newton on a settled set contracts the merit at every step (the line search
+ * sees to it), so such a step is mostly one the iteration limit ends anyway. Measured with a window of 8
+ * (docs/performance.md, "2D contact solve"): the 11 steps of loading_rate_a1 that failed at 30 iterations stop at
+ * iteration 8 to 11; of the converged steps of loading_rate_a1 and bedding_theta45 (at most 12 iterations) one
+ * is given up, and redone shorter. The stepper cuts a stalled step back as it does at the limit. */
+static PetscBool stalled(const Semismooth *in) {
+  const ActiveSetHistory *h = &in->history;
+  const PetscInt          w = in->stall_window, k = h->n - 1;
+  if (w <= 0 || k < w) return PETSC_FALSE;
+  for (PetscInt j = k - w + 1; j <= k; j++)
+    if (h->changes[j] != 0) return PETSC_FALSE;
+  return h->merit[k] > 0.1 * h->merit[k - w] ? PETSC_TRUE : PETSC_FALSE;
+}
+
 /* Converged: the set did not change and the residual is small (every part below rtol of the force scale), or,
  * under an error measure, the estimated remaining error is (error_small). */
 static PetscErrorCode converged(Semismooth *in, PetscInt k, PetscInt changes, PetscReal merit, PetscReal merit_prev, PetscBool *done) {
@@ -272,6 +288,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
     PetscReal dur, m;
     PetscCall(update_active_set(in, &changes));
     if (!in->depth_control && !semismooth_released(in) && in->nactive == 0 && in->target > 0) PetscCall(approach(in, &merit));
+    in->history.changes[in->history.n] = changes, in->history.merit[in->history.n] = merit;
     PetscCall(active_signature(in, &in->history.sig[in->history.n++]));
     PetscCall(converged(in, k, changes, merit, merit_prev, &done));
     if (done) {
@@ -279,6 +296,10 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
       break;
     }
     if (k == in->max_it) break;
+    if (stalled(in)) {
+      *status = STEP_STALLED;
+      break;
+    }
     if (changes > 0 && met_again(&in->history)) {
       in->cycles++;
       if (++damp > 2) { /* damped twice and still cycling: let the stepper cut the step back */
@@ -378,7 +399,8 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   PetscCall(indent_options(comm, &o));
   in->rtol = o.rtol, in->max_it = o.max_it, in->predictor = o.predictor, in->monitor = o.monitor, in->line_search = o.line_search;
   in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent, in->tangent_part = o.tangent_part;
-  PetscCall(PetscMalloc1(in->max_it + 1, &in->history.sig));
+  in->stall_window = o.stall_window;
+  PetscCall(PetscMalloc3(in->max_it + 1, &in->history.sig, in->max_it + 1, &in->history.changes, in->max_it + 1, &in->history.merit));
   PetscCall(fe_jacobian_coo_setup(p, in->K));
   PetscCall(fe_tangent_operator(p, in->K, &in->Kmf));
   PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
@@ -423,7 +445,7 @@ PetscErrorCode semismooth_destroy(Semismooth *in) {
   for (int k = 0; all[k]; k++) PetscCall(VecDestroy(all[k]));
   PetscCall(MatDestroy(&in->K));
   PetscCall(MatDestroy(&in->Kmf));
-  PetscCall(PetscFree(in->history.sig));
+  PetscCall(PetscFree3(in->history.sig, in->history.changes, in->history.merit));
   PetscFunctionReturn(0);
 }
 

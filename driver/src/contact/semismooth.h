@@ -13,9 +13,12 @@
 #include "indent_scene.h"
 #include "indent_solver.h"
 
-/* The active sets of a step's iterations, by their signatures (a hash over all ranks), to notice one met again. */
+/* A step's iterations: their active sets, by signature (a hash over all ranks), to notice one met again (a cycle),
+ * the set's changes and the merit at each iterate, to notice a stall. */
 typedef struct {
-  unsigned long long *sig; /* max_it + 1 */
+  unsigned long long *sig;     /* max_it + 1 */
+  PetscInt           *changes; /* max_it + 1 */
+  PetscReal          *merit;   /* max_it + 1 */
   PetscInt            n;
 } ActiveSetHistory;
 
@@ -33,6 +36,7 @@ typedef struct {
   PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate;
   PetscReal    rtol, fref;
   PetscInt     max_it, tangent_part;              /* tangent_part: -indent_check_tangent_part (contact_options.h) */
+  PetscInt     stall_window;                      /* -indent_stall_window (stalled in semismooth.c); 0: off */
   /* the step being solved */
   PetscBool    depth_control;
   PetscReal    target;                           /* load or depth at the step's end */
@@ -45,7 +49,7 @@ typedef struct {
   ActiveSetHistory history;
 } Semismooth;
 
-enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR };
+enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR, STEP_STALLED };
 extern const char *semismooth_failure[];
 
 /* Contact nodes, vectors, the eq. 15 solver and the options (-indent_*), the initial state (the UMAT's

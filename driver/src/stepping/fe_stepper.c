@@ -243,7 +243,8 @@ static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp, const FeSolverOp
   PetscCall(options_default("-ksp_pc_side", "right"));
   PetscCall(options_default("-ksp_rtol", "1e-10"));
   PetscCall(options_default("-ksp_max_it", "100"));
-  PetscCall(options_default("-mat_mumps_icntl_7", "5")); /* METIS ordering (measured) */
+  /* the ordering: MUMPS' automatic choice (ICNTL(7) = 7), the one measured (docs/performance.md, "FE solver:
+     defaults by measurement") */
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
