@@ -42,6 +42,12 @@ def depth_then_release(tol=0.03, depth=0.1):
             f"  - {{name: unload, duration: 5, indenter: {{load: 0}}, steps: {adaptive(tol)}}}")
 
 
+def outputs(h):
+    """The depth at the end of loading, the creep depth over the hold and the residual depth."""
+    load, hold = h[h["stage_name"] == "load"], h[h["stage_name"] == "hold"]
+    return np.array([load["depth"][-1], hold["depth"][-1] - load["depth"][-1], h["depth"][-1]])
+
+
 def assert_exercised(h, newton, factorisations):
     """The kept factorisation served more than one solve, nodes entered and left contact, and the run ended
     released (nothing in contact at zero load)."""
@@ -80,10 +86,6 @@ def test_loose_run_ends_where_fresh_lu_ends(tmp_path):
     kept = run(scene, tmp_path / "kept")
     lu = run(scene, tmp_path / "lu", args=["-indent_refactor_its", "0"])
 
-    def outputs(h):
-        load, hold = h[h["stage_name"] == "load"], h[h["stage_name"] == "hold"]
-        return np.array([load["depth"][-1], hold["depth"][-1] - load["depth"][-1], h["depth"][-1]])
-
     rel = np.abs(outputs(kept) / outputs(lu) - 1)
     print(f"kept against fresh LU: depth at the end of loading, creep depth, residual depth differ by {rel}")
     assert np.all(rel < 0.03 / 20)
@@ -105,10 +107,6 @@ def test_stalled_steps_are_cut_back(tmp_path):
         m = re.search(r"(\d+) Newton iterations .* (\d+) cutbacks \((\d+) by the error measure\)", proc.stdout)
         assert m, proc.stdout[-2000:]
         return run.__globals__["history"](out), int(m.group(1)), int(m.group(2)) - int(m.group(3))
-
-    def outputs(h):
-        load, hold = h[h["stage_name"] == "load"], h[h["stage_name"] == "hold"]
-        return np.array([load["depth"][-1], hold["depth"][-1] - load["depth"][-1], h["depth"][-1]])
 
     h_off, newton_off, cut_off = summary(tmp_path / "off", "0")
     h_on, newton_on, cut_on = summary(tmp_path / "on", "8")

@@ -206,8 +206,8 @@ static PetscBool met_again(const ActiveSetHistory *h) {
   return PETSC_FALSE;
 }
 
-/* Stalled: the active set unchanged over the last stall_window iterations and the merit not below a tenth of its
- * value stall_window iterations before. Newton on a settled set contracts the merit at every step (the line search
+/* Stalled: the active set unchanged over the last stall_window iterations (each signature that of the iteration
+ * before) and the merit not below a tenth of its value stall_window iterations before. Newton on a settled set contracts the merit at every step (the line search
  * sees to it), so such a step is mostly one the iteration limit ends anyway. Measured with a window of 8
  * (docs/performance.md, "2D contact solve"): the 11 steps of loading_rate_a1 that failed at 30 iterations stop at
  * iteration 8 to 11; of the converged steps of loading_rate_a1 and bedding_theta45 (at most 12 iterations) one
@@ -217,17 +217,17 @@ static PetscBool stalled(const Semismooth *in) {
   const PetscInt          w = in->stall_window, k = h->n - 1;
   if (w <= 0 || k < w) return PETSC_FALSE;
   for (PetscInt j = k - w + 1; j <= k; j++)
-    if (h->changes[j] != 0) return PETSC_FALSE;
+    if (h->sig[j] != h->sig[j - 1]) return PETSC_FALSE;
   return h->merit[k] > 0.1 * h->merit[k - w] ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* Converged: the set did not change and the residual is small (every part below rtol of the force scale), or,
  * under an error measure, the estimated remaining error is (error_small). */
-static PetscErrorCode converged(Semismooth *in, PetscInt k, PetscInt changes, PetscReal merit, PetscReal merit_prev, PetscBool *done) {
+static PetscErrorCode converged(Semismooth *in, PetscInt k, PetscInt changes, PetscReal merit, PetscBool *done) {
   const PetscReal f = in->rtol * in->fref;
   PetscBool       small = in->ru <= f && in->ncp <= f && PetscAbsReal(in->Rr) <= f;
   PetscFunctionBeginUser;
-  if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, merit_prev, &small));
+  if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, in->history.merit[k - 1], &small));
   if (in->monitor)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n", (int)k,
                           (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes, (double)in->ur));
@@ -277,7 +277,7 @@ static PetscErrorCode line_search(Semismooth *in, PetscReal dur, PetscBool searc
  * again two iterations or more later is a cycle: the next step is damped, and after the third the stepper cuts
  * the step back. */
 PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscInt *its_out) {
-  PetscReal merit, merit_prev = 0;
+  PetscReal merit;
   PetscInt  k, changes, damp = 0;
   PetscFunctionBeginUser;
   *status = STEP_DIVERGED, in->changes = 0, in->history.n = 0;
@@ -285,12 +285,12 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
   PetscCall(semismooth_evaluate(in, &merit));
   for (k = 0; k <= in->max_it; k++) {
     PetscBool done = PETSC_FALSE, ok, shift;
-    PetscReal dur, m;
+    PetscReal dur;
     PetscCall(update_active_set(in, &changes));
     if (!in->depth_control && !semismooth_released(in) && in->nactive == 0 && in->target > 0) PetscCall(approach(in, &merit));
-    in->history.changes[in->history.n] = changes, in->history.merit[in->history.n] = merit;
+    in->history.merit[in->history.n] = merit;
     PetscCall(active_signature(in, &in->history.sig[in->history.n++]));
-    PetscCall(converged(in, k, changes, merit, merit_prev, &done));
+    PetscCall(converged(in, k, changes, merit, &done));
     if (done) {
       *status = STEP_OK;
       break;
@@ -313,9 +313,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
       *status = STEP_LINEAR;
       break;
     }
-    m = merit;
-    PetscCall(line_search(in, dur, in->line_search && changes == 0 && !shift, damp > 0, &m));
-    merit_prev = merit, merit = m;
+    PetscCall(line_search(in, dur, in->line_search && changes == 0 && !shift, damp > 0, &merit));
   }
   *its_out = k, in->its_total += k;
   PetscFunctionReturn(0);
@@ -400,7 +398,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   in->rtol = o.rtol, in->max_it = o.max_it, in->predictor = o.predictor, in->monitor = o.monitor, in->line_search = o.line_search;
   in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent, in->tangent_part = o.tangent_part;
   in->stall_window = o.stall_window;
-  PetscCall(PetscMalloc3(in->max_it + 1, &in->history.sig, in->max_it + 1, &in->history.changes, in->max_it + 1, &in->history.merit));
+  PetscCall(PetscMalloc2(in->max_it + 1, &in->history.sig, in->max_it + 1, &in->history.merit));
   PetscCall(fe_jacobian_coo_setup(p, in->K));
   PetscCall(fe_tangent_operator(p, in->K, &in->Kmf));
   PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
@@ -445,7 +443,7 @@ PetscErrorCode semismooth_destroy(Semismooth *in) {
   for (int k = 0; all[k]; k++) PetscCall(VecDestroy(all[k]));
   PetscCall(MatDestroy(&in->K));
   PetscCall(MatDestroy(&in->Kmf));
-  PetscCall(PetscFree3(in->history.sig, in->history.changes, in->history.merit));
+  PetscCall(PetscFree2(in->history.sig, in->history.merit));
   PetscFunctionReturn(0);
 }
 

@@ -14,11 +14,10 @@
 #include "indent_solver.h"
 
 /* A step's iterations: their active sets, by signature (a hash over all ranks), to notice one met again (a cycle),
- * the set's changes and the merit at each iterate, to notice a stall. */
+ * and the merit at each iterate, for the contraction (error_small) and to notice a stall. */
 typedef struct {
-  unsigned long long *sig;     /* max_it + 1 */
-  PetscInt           *changes; /* max_it + 1 */
-  PetscReal          *merit;   /* max_it + 1 */
+  unsigned long long *sig;   /* max_it + 1 */
+  PetscReal          *merit; /* max_it + 1 */
   PetscInt            n;
 } ActiveSetHistory;
 
