@@ -192,7 +192,8 @@ def test_fields_for_paraview(tmp_path):
         stress = f["/fields/stress"][sorted(f["/fields/stress"])[-1]][()]
         times = f["/time"][:, 0]
     assert types == {"displacement": "Vector", "stress": "Tensor", "strain": "Tensor", "evp_hard": "Tensor",
-                     "evp_soft": "Tensor", "evp": "Tensor", "pc_hard": "Scalar", "pc_soft": "Scalar", "phi": "Scalar"}
+                     "evp_soft": "Tensor", "evp": "Tensor", "pc_hard": "Scalar", "pc_soft": "Scalar", "phi": "Scalar",
+                     "error_indicator": "Scalar", "error_indicator_max": "Scalar"}
     assert np.allclose(stress[:, [0, 4, 8]].mean(axis=0), [-38, -41, -50], rtol=1e-10)
     assert [float(t.get("Value")) for t in tree.iter("Time")] == [0.0, 1.0] == list(times)  # start and end of the stage
 

@@ -103,6 +103,9 @@ def read_series(xmf):
         return pts, cells, [r.read_data(k) for k in range(r.num_steps)]
 
 
+INDICATOR = ("error_indicator", "error_indicator_max")   # docs/adapt.md
+
+
 def check_series(out, dim, cell_type, names, hist_times):
     pts, cells, frames = read_series(out / "fields.xmf")
     assert pts.shape[1] == dim and len(cells) == 1 and cells[0].type == cell_type
@@ -131,7 +134,7 @@ def test_uniaxial_bar(tmp_path, kind, order, ranks):
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
     assert hist.size == NSTEPS + 1              # the initial state and one row per step; fields: the same
     cell_type = {(3, 1): "tetra", (3, 2): "tetra10", (2, 1): "triangle", (2, 2): "triangle6"}[dim, order]
-    pts, frames = check_series(out, dim, cell_type, {"stress", "strain", "phi"}, hist["time"])
+    pts, frames = check_series(out, dim, cell_type, {"stress", "strain", "phi", *INDICATOR}, hist["time"])
     corner = int(np.argmin(np.sum((pts - np.array([LX, LY, LZ][:dim])) ** 2, axis=1)))
     assert np.allclose(pts[corner], [LX, LY, LZ][:dim], atol=1e-12)
     for t, pd, cd in frames:
@@ -167,7 +170,7 @@ output: {fields_every: 1}
 """, out, ranks=2)
     hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
     _, frames = check_series(out, 2, "triangle", {"stress", "strain", "evp_hard", "evp_soft", "evp", "pc_hard",
-                                                  "pc_soft", "phi"}, hist["time"])
+                                                  "pc_soft", "phi", *INDICATOR}, hist["time"])
     assert np.all(frames[-1][2]["phi"][0] == 0.5)
     uy = frames[-1][1]["displacement"][:, 1]
     assert abs(uy.min() + 0.02) < 1e-9          # the tip vertex follows the indenter to the depth 0.02

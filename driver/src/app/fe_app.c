@@ -7,15 +7,19 @@
 #include <petscsnes.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "../contact/indent_scene.h"
+#include "../fe/fe_estimate.h"
 #include "../fe/fe_groups.h"
 #include "../fe/fe_problem.h"
 #include "../fe/fe_scene.h"
 #include "../io/fsutil.h"
 #include "../io/gmsh_mesh.h"
 #include "../io/options.h"
+#include "../stepping/checkpoint.h"
 #include "../stepping/fe_stepper.h"
+#include "fe_adapt.h"
 
 /* The scene's PETSc options, each unless the command line already gives it; one that looks like a driver's option
    but is none is refused (io/options.h). Returns 0, 2 (err filled) or a PETSc error code (err empty). */
@@ -107,21 +111,22 @@ static PetscErrorCode check_groups(YdDoc *doc, FeScene *sc, const char *contact_
   PetscFunctionReturn(0);
 }
 
-/* Mesh the scene's geometry with gmsh (no shell) into the output directory: mesh.part.msh for a fresh run
- * (renamed once the run has produced its first step, so an earlier run's mesh stays until then),
- * mesh.msh for a restart (the same scene gives the same mesh). */
-static int mesh_geometry(FeScene *sc, const RunnerOptions *opt, char *err, size_t errlen) {
+/* Mesh the scene's geometry (or geo, a .geo that includes it with another size field) with gmsh (no shell) into the
+ * output directory: mesh.part.msh for a fresh run (renamed once the run has produced its first step, so an earlier
+ * run's mesh stays until then); for a restart mesh.restart.msh, which the checkpoint's hash of the mesh must match
+ * (stepping/checkpoint.c: the earlier mesh.msh is never touched) and which is removed after the run. */
+static int mesh_geometry(FeScene *sc, const char *geo, const RunnerOptions *opt, char *err, size_t errlen) {
   int rank, rc = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  snprintf(sc->msh, sizeof sc->msh, "%s/mesh%s.msh", sc->outdir, opt->restart ? "" : ".part");
-  if (!rank) rc = gmsh_mesh(sc->geometry, sc->kin == KIN_3D ? 3 : 2, sc->ngmsh, (const char(*)[64])sc->gmsh_name, sc->gmsh_value, sc->msh,
-                            err, errlen);
+  snprintf(sc->msh, sizeof sc->msh, "%s/mesh%s.msh", sc->outdir, opt->restart ? ".restart" : ".part");
+  if (!rank) rc = gmsh_mesh(geo ? geo : sc->geometry, sc->kin == KIN_3D ? 3 : 2, sc->ngmsh, (const char(*)[64])sc->gmsh_name, sc->gmsh_value,
+                            sc->msh, err, errlen);
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
   return rc;
 }
 
-static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p) {
+static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p, RunInfo *info) {
   const FeSpace *sp    = fe_problem_space(p);
   PetscInt       ncell = sp->cEnd - sp->cStart, nall, ndof;
   Vec      tmp;
@@ -130,12 +135,24 @@ static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p) {
   PetscCall(DMCreateGlobalVector(sp->dm, &tmp));
   PetscCall(VecGetSize(tmp, &ndof));
   PetscCall(VecDestroy(&tmp));
+  info->cells = (long)nall, info->unknowns = (long)ndof;
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "fe scene %s: %d cells, P%d, %d quadrature points per cell, %d unknowns, %d UMAT state slots per point\n",
               sc->name, (int)nall, sc->order, (int)sp->nq, (int)ndof, (int)fe_problem_point_size(p)));
   PetscFunctionReturn(0);
 }
 
-static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, char *err, size_t errlen) {
+/* After the stages: the indicator's norm and, when asked, the size field for the next mesh (fe/fe_estimate.h). */
+static PetscErrorCode after_run(FeProblem *p, const char *sizes, double growth, double base, RunInfo *info) {
+  PetscReal max2, now2;
+  PetscFunctionBeginUser;
+  PetscCall(fe_estimate_totals(p, &max2, &now2));
+  info->eta = PetscSqrtReal(max2), info->predicted = 0;
+  if (sizes && p->est.nupdates > 0) PetscCall(fe_estimate_write_sizes(p, growth * (base > 0 ? base : (double)info->cells), sizes, &info->predicted));
+  PetscFunctionReturn(0);
+}
+
+static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, const char *sizes, double growth, double base, RunInfo *info,
+                       char *err, size_t errlen) {
   DM        dm;
   FeProblem p;
   int       bad = 0;
@@ -150,33 +167,76 @@ static int run_problem(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions 
   ierr = fe_problem_setup(&p, dm, sc->kin, sc->thickness, sc->order, &sc->mat, sc->fixed, sc->nfixed, (const char(*)[64])sc->pressure_group,
                           sc->npressure);
   if (ierr) return stage_runner_status(ierr, err);
-  if ((ierr = print_sizes(sc, &p)) || (ierr = fe_problem_set_initial_stress(&p, sc->stress0)) ||
+  if ((ierr = print_sizes(sc, &p, info)) || (ierr = fe_problem_set_initial_stress(&p, sc->stress0)) ||
       (ierr = fe_problem_set_phi(&p, sc->phi_mean, sc->phi_std, sc->phi_lo, sc->phi_hi, sc->phi_seed, sc->phi_corr)))
     return stage_runner_status(ierr, err);
-  opt->outdir = sc->outdir, opt->scene_file = doc->file, opt->fields_every = sc->fields_every;
+  opt->outdir = sc->outdir, opt->scene_file = doc->file, opt->fields_every = sc->fields_every, opt->summary = &info->sum;
   opt->part_file = sc->geometry[0] && !opt->restart ? sc->msh : NULL;
+  opt->mesh_file = sc->msh;
   int rc = sc->indenter ? indent_stepper_run(sc, isc, &p, opt, err, errlen) : fe_stepper_run(sc, &p, opt, err, errlen);
-  ierr   = fe_problem_destroy(&p);
+  ierr   = rc ? 0 : after_run(&p, sizes, growth, base, info);
+  if (!ierr) ierr = fe_problem_destroy(&p);
   if (!ierr) ierr = DMDestroy(&dm);
   return rc ? rc : stage_runner_status(ierr, err);
+}
+
+/* CPU seconds of this process so far (user and system). */
+static double cpu_seconds(void) {
+  struct rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+int fe_app_run_once(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, const char *geo, const char *sizes, double growth, double base,
+                    RunInfo *info, char *err, size_t errlen) {
+  double t0 = cpu_seconds();
+  int    rank, bad = 0;
+  memset(info, 0, sizeof *info);
+  snprintf(info->dir, sizeof info->dir, "%s", sc->outdir);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (!rank) bad = fs_prepare_output_dir(sc->outdir, err, errlen);
+  MPI_Bcast(&bad, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
+  if (bad) return 2;
+  if (sc->geometry[0] && mesh_geometry(sc, geo, opt, err, errlen)) return 1;
+  if (opt->restart) { /* the checkpoint is this scene's and this mesh's, before the earlier fields are opened */
+    RunnerOptions check = *opt;
+    check.outdir = sc->outdir, check.scene_file = doc->file, check.mesh_file = sc->msh;
+    if (!rank) bad = checkpoint_precheck(&check, err, errlen);
+    MPI_Bcast(&bad, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+    MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
+    if (bad) {
+      if (!rank && sc->geometry[0]) remove(sc->msh);
+      return bad;
+    }
+  }
+  int rc = run_problem(doc, sc, isc, opt, sizes, growth, base, info, err, errlen);
+  if (!rank && opt->restart && sc->geometry[0]) remove(sc->msh); /* mesh.restart.msh: mesh.msh, by the checkpoint's hash */
+  double cpu = cpu_seconds() - t0;
+  MPI_Allreduce(&cpu, &info->cpu, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return rc;
 }
 
 int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen) {
   static FeScene     sc; /* large: kept off the stack */
   static IndentScene isc;
   RunnerOptions      opt;
+  RunInfo            info;
   if (fe_scene_read(doc, &sc, err, errlen)) return 2;
   if (sc.indenter && indent_scene_read(doc, &sc, &isc, err, errlen)) return 2;
   if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
   PetscErrorCode ierr = app_runner_options(&opt);
+  int rank, bad = 0;
+  if (!ierr) ierr = fe_adapt_options(doc, &sc, opt.restart, err, errlen, &bad);
   if (ierr) return stage_runner_status(ierr, err);
-  int rank, bad = apply_scene_options(doc->file, sc.solver_options, err, errlen);
-  if (bad) return bad;
+  if (bad || (bad = apply_scene_options(doc->file, sc.solver_options, err, errlen))) return bad;
+  if (sc.adapt.levels > 0) return fe_adapt_run(doc, &sc, &isc, &opt, err, errlen);
+  int rc = fe_app_run_once(doc, &sc, &isc, &opt, NULL, NULL, 0, 0, &info, err, errlen);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (!rank) bad = fs_prepare_output_dir(sc.outdir, err, errlen);
-  MPI_Bcast(&bad, 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
-  if (bad) return 2;
-  if (sc.geometry[0] && mesh_geometry(&sc, &opt, err, errlen)) return 1;
-  return run_problem(doc, &sc, &isc, &opt, err, errlen);
+  if (!rc && !rank) {
+    run_summary_print(&sc, &info, NULL);
+    rc = run_summary_write(&sc, sc.indenter ? "indentation" : "fe", &info, 1, NULL, err, errlen);
+  }
+  MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  return rc;
 }

@@ -11,6 +11,7 @@
 #include "../material/material_input.h"
 #include "../stepping/fe_stepper.h"
 #include "../stepping/point_stepper.h"
+#include "fe_adapt.h"
 #include "fe_app.h"
 #include "../point/replay.h"
 #include "sweep.h"
@@ -95,6 +96,9 @@ static PetscErrorCode declare_options(MainOptions *m) {
   PetscCall(fe_solver_options(PETSC_COMM_WORLD, &fe));
   PetscCall(indent_options(PETSC_COMM_WORLD, &indent));
   PetscCall(material_options(set, sizeof set, &given));
+  PetscInt  levels = 0;
+  PetscReal growth = 2;
+  PetscCall(fe_adapt_declare(&levels, &growth, &given, &given));
   PetscFunctionReturn(0);
 }
 

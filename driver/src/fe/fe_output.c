@@ -1,4 +1,5 @@
 #include "fe_output.h"
+#include "fe_estimate.h"
 #include "../io/log_events.h"
 
 #include <petsclayouthdf5.h>
@@ -12,7 +13,7 @@
 /* Cell fields: name, number of components, where they come from in a point's state (fe_problem.h: stress, strain,
  * then the UMAT's STATEV, read by quantity through material_point.h), and whether the Voigt values are strains
  * (engineering shear, halved in the tensor). */
-typedef enum { FROM_STRESS, FROM_STRAN, FROM_STATEV, FROM_PHI } FieldSource;
+typedef enum { FROM_STRESS, FROM_STRAN, FROM_STATEV, FROM_PHI, FROM_ETA, FROM_ETA_MAX } FieldSource;
 typedef struct {
   const char *name;
   PetscInt    nc;
@@ -29,6 +30,8 @@ static const CellField cell_fields[] = {
   {"pc_hard", 1, FROM_STATEV, MATERIAL_PC_HARD, PETSC_FALSE},
   {"pc_soft", 1, FROM_STATEV, MATERIAL_PC_SOFT, PETSC_FALSE},
   {"phi", 1, FROM_PHI, 0, PETSC_FALSE},
+  {"error_indicator", 1, FROM_ETA, 0, PETSC_FALSE},     /* fe_estimate.h: at this output */
+  {"error_indicator_max", 1, FROM_ETA_MAX, 0, PETSC_FALSE}, /* ... its largest over the outputs so far */
 };
 enum { NCELLFIELDS = sizeof cell_fields / sizeof cell_fields[0] };
 /* The row-major place of each Voigt component 11 22 33 12 13 23 in a 3x3 tensor (and of its mirror). */
@@ -45,6 +48,8 @@ static PetscReal field_value(const FeProblem *p, const CellField *cf, PetscInt c
   case FROM_STRESS: return st[ST_STRESS + j];
   case FROM_STRAN: return st[ST_STRAN + j];
   case FROM_PHI: return p->pts.phi[c];
+  case FROM_ETA: return p->est.eta[c];
+  case FROM_ETA_MAX: return p->est.eta_max[c];
   default: return material_quantity(&p->pts.mat, st + ST_STATEV, cf->q, (int)j);
   }
 }
@@ -395,6 +400,7 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   PetscCall(displacement_vec(p, U, o, name, &v));
   PetscCall(view_in(o->viewer, "/fields/displacement", (PetscObject)v));
   PetscCall(VecDestroy(&v));
+  PetscCall(fe_estimate_update(p));
   for (PetscInt f = 0; f < NCELLFIELDS; f++) {
     const CellField *cf = &cell_fields[f];
     if (!field_present(p, cf)) continue;

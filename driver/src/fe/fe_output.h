@@ -13,7 +13,8 @@
  *   /fields/<name>/<k>         (ncells, 9) or (ncells,)  cell averages over the quadrature points of stress,
  *                                                  strain, evp_hard, evp_soft, evp as full 3x3 tensors, row by
  *                                                  row (11 12 13 21 22 23 31 32 33; strains as tensors,
- *                                                  eps_12 = gamma_12 / 2), and of pc_hard, pc_soft, phi
+ *                                                  eps_12 = gamma_12 / 2), and of pc_hard, pc_soft, phi,
+ *                                                  error_indicator, error_indicator_max (fe_estimate.h)
  * with <k> the output number as six digits. The .xmf is rewritten after every output.
  *
  * Output files of a fresh run are first written as fields.h5.part and fields.xmf.part (this index names

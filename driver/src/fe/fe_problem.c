@@ -1,4 +1,5 @@
 #include "fe_problem.h"
+#include "fe_estimate.h"
 #include "../io/log_events.h"
 
 
@@ -284,6 +285,7 @@ PetscErrorCode fe_problem_destroy(FeProblem *p) {
   PetscCall(PetscFree(p->coo_v));
   PetscCall(VecDestroy(&p->pts.ddsdde_u));
   PetscCall(PetscFEDestroy(&p->space.fe));
+  PetscCall(fe_estimate_destroy(p));
   PetscFunctionReturn(0);
 }
 

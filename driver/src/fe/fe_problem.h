@@ -78,11 +78,19 @@ typedef struct {
   MaterialFailedCall failed;            /* the first UMAT call of the last residual that asked for a shorter step */
 } FeDiag;
 
+/* The error indicator per local cell (fe_estimate.h): of the last field output, and its largest over the outputs. */
+typedef struct {
+  PetscReal *eta, *eta_max;
+  PetscInt   nupdates; /* outputs folded into eta_max */
+  DM         dmv;      /* the mesh with 7 values per vertex (a stress and a weight), for the recovery */
+} FeEstimate;
+
 typedef struct FeProblem {
   FeSpace     space;
   FeQuadState pts;
   FeLoads     loads;
   FeDiag      diag;
+  FeEstimate  est;
   /* the evaluation: the step being solved and the UMAT's step control (fe_problem_set_step, _set_umat_control) */
   PetscReal   time, dt;     /* end of the step being solved, its length */
   UmatControl umat;         /* the UMAT's own step control for this evaluation (umat_call.h) */

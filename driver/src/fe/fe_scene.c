@@ -170,6 +170,31 @@ static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t 
   return 0;
 }
 
+/* mesh.adapt: {levels, growth, tol} (fe_scene.h); only with mesh.geometry, which adaptation meshes again. */
+static int read_adapt(YdDoc *doc, YdNode *mesh, FeScene *sc, char *err, size_t errlen) {
+  YdNode *x = yd_get(mesh, "adapt"), *v;
+  sc->adapt = (MeshAdapt){.levels = 0, .growth = 2, .tol = 0, .line = 0};
+  if (!x) return 0;
+  if (yd_expect(doc, x, YD_MAPPING, "mesh.adapt", err, errlen)) return 1;
+  sc->adapt.line = x->line, sc->adapt.levels = 2;
+  if (!yd_get(mesh, "geometry"))
+    FAIL("%s:%d: key 'mesh.adapt': adaptation meshes the geometry again: give mesh.geometry (a gmsh .geo), not mesh.file (a .msh "
+         "without its geometry)", doc->file, x->line);
+  if ((v = yd_get(x, "levels")) && yd_int_range(doc, v, "mesh.adapt.levels", 1, 8, &sc->adapt.levels, err, errlen)) return 1;
+  if ((v = yd_get(x, "growth"))) {
+    if (yd_double(doc, v, "mesh.adapt.growth", &sc->adapt.growth, err, errlen)) return 1;
+    if (!(sc->adapt.growth >= 1.2 && sc->adapt.growth <= 8))
+      FAIL("%s:%d: key 'mesh.adapt.growth': expected the ratio of cells from one level to the next, 1.2 to 8, got %g", doc->file, v->line,
+           sc->adapt.growth);
+  }
+  if ((v = yd_get(x, "tol"))) {
+    if (yd_double(doc, v, "mesh.adapt.tol", &sc->adapt.tol, err, errlen)) return 1;
+    if (!(sc->adapt.tol > 0 && sc->adapt.tol < 1))
+      FAIL("%s:%d: key 'mesh.adapt.tol': expected a relative error > 0 and < 1 (0.01 is 1 %%), got %g", doc->file, v->line, sc->adapt.tol);
+  }
+  return yd_check_unused(doc, x, "mesh.adapt", "levels, growth, tol", err, errlen);
+}
+
 /* mesh: a gmsh geometry (meshed now, with parameters), a .msh file; its order, kinematics and thickness. */
 static int read_mesh(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
   YdNode     *v;
@@ -196,8 +221,8 @@ static int read_mesh(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t er
     if (!(sc->thickness > 0) || sc->kin != KIN_PLANE_STRAIN)
       FAIL("%s:%d: key 'mesh.thickness': expected > 0, and only with kinematics: plane_strain", doc->file, v->line);
   }
-  if (read_mesh_source(doc, mesh, geo, file, sc, err, errlen)) return 1;
-  return yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness", err, errlen);
+  if (read_mesh_source(doc, mesh, geo, file, sc, err, errlen) || read_adapt(doc, mesh, sc, err, errlen)) return 1;
+  return yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness, adapt", err, errlen);
 }
 
 /* material (the UMAT's properties) and phi (the hard-frame fraction's field). */

@@ -25,12 +25,21 @@ typedef struct {
   YdNode   *indenter;                /* the stage's indenter settings (read by the contact module), or NULL */
 } StageLoads;
 
+/* mesh.adapt (docs/adapt.md): reruns of the scene on meshes made from the error indicator. */
+typedef struct {
+  int    levels;     /* reruns after the first run (0: none) */
+  double growth;     /* cells of a level over the previous level's */
+  double tol;        /* stop once every reported quantity's estimated mesh error is below this (relative); 0: never */
+  int    line;       /* the key's line in the scene (0: not given) */
+} MeshAdapt;
+
 typedef struct {
   char         name[128], outdir[512], msh[1024]; /* input paths resolved against the scene's folder */
   char         geometry[1024];               /* a gmsh .geo meshed at run time (io/gmsh_mesh.h), or "" */
   int          ngmsh;                        /* its parameters, each one the .geo defines */
   char         gmsh_name[GMSH_MAX_PARAMS][64];
   double       gmsh_value[GMSH_MAX_PARAMS];
+  MeshAdapt    adapt;
   int          order;
   Kinematics   kin;
   double       thickness;

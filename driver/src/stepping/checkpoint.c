@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC 0x43433952 /* "CC9R" */
-#define CKPT_VERSION 4 /* 4: the indenter's counters as integers (semismooth_state_io) */
+#define CKPT_VERSION 5 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState */
 
 static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
   snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);
@@ -148,6 +148,46 @@ static int latest_step(StepSolver *sv, const RunnerOptions *opt, int *step, int 
   return v[0] >= 0;
 }
 
+/* The message of a checkpoint that is not this run's: code 2 another scene, 4 another mesh. */
+static void mismatch_message(int code, int step, const RunnerOptions *opt, char *err, size_t errlen) {
+  if (code == 2)
+    snprintf(err, errlen, "-restart: the scene %s differs from the one the checkpoint in %s was written for (material, loads or "
+                          "stages changed): run it afresh, without -restart; nothing was written", opt->scene_file, opt->outdir);
+  else
+    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written on another mesh than %s (the mesh file differs: a "
+                          "changed .geo, other gmsh parameters or another gmsh): run the scene afresh, without -restart; nothing was written",
+             step, opt->outdir, opt->mesh_file ? opt->mesh_file : "this run's");
+}
+
+int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen) {
+  char               path[1100];
+  int                step = -1, nranks = 0, version = 0, code = 0;
+  unsigned long long hash = 0;
+  static RunState    st;
+  snprintf(path, sizeof path, "%s/checkpoint.latest", opt->outdir);
+  FILE *fp = fopen(path, "r");
+  if (!fp) return 0; /* checkpoint_read says what is missing */
+  if (fscanf(fp, "%d %d", &step, &nranks) != 2) step = -1;
+  fclose(fp);
+  if (step < 0) return 0;
+  set_path(opt, step, 0, path, sizeof path);
+  BinFile f;
+  if (binfile_open(&f, path, "rb")) return 0;
+  binfile_expect_int(&f, CKPT_MAGIC);
+  binfile_read(&f, &version, sizeof version, 1);
+  if (f.ok && version == CKPT_VERSION) {
+    binfile_expect_int(&f, nranks);
+    binfile_expect_int(&f, 0);
+    binfile_read(&f, &hash, sizeof hash, 1);
+    binfile_read(&f, &st, sizeof st, 1);
+    if (f.ok && hash != binfile_hash(opt->scene_file)) code = 2;
+    else if (f.ok && st.mesh_hash != binfile_hash(opt->mesh_file)) code = 4;
+  }
+  binfile_close(&f, 0);
+  if (code) mismatch_message(code, step, opt, err, errlen);
+  return code ? 2 : 0;
+}
+
 int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
   int rank, size, step, nranks;
   MPI_Comm_rank(sv->comm, &rank);
@@ -167,7 +207,8 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
   char               path[1100];
   BinFile            f;
   unsigned long long hash = 0;
-  int                code = 0, version = CKPT_VERSION; /* code: 0 ok, 1 missing or damaged, 2 another scene, 3 another format */
+  int                code = 0, version = CKPT_VERSION; /* code: 0 ok, 1 missing or damaged, 2 another scene, 3 another format, 4 another mesh */
+  unsigned long long mesh_hash = binfile_hash(opt->mesh_file);
   set_path(opt, step, from, path, sizeof path);
   if (binfile_open(&f, path, "rb")) code = 1;
   else {
@@ -183,22 +224,21 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
     binfile_expect_int(&f, CKPT_MAGIC);
     if (binfile_close(&f, 0) && !code) code = 1;
     if (!code && st->step != step) code = 1;
+    if (!code && st->mesh_hash != mesh_hash) code = 4;
   }
   int worst = 0, mine = code ? from : nranks, first_bad = nranks, found = code == 3 ? version : 0, other = 0;
   MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);
   MPI_Allreduce(&mine, &first_bad, 1, MPI_INT, MPI_MIN, sv->comm);
   MPI_Allreduce(&found, &other, 1, MPI_INT, MPI_MAX, sv->comm);
-  if (worst == 3)
+  if (worst == 4 || worst == 2) mismatch_message(worst, step, opt, err, errlen);
+  else if (worst == 3)
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written by another version of the driver (checkpoint "
                           "format %d; this driver reads format %d): run the scene afresh, without -restart; nothing was written",
              step, opt->outdir, other, CKPT_VERSION);
-  else if (worst == 2)
-    snprintf(err, errlen, "-restart: the scene %s differs from the one the checkpoint in %s was written for (material, loads or "
-                          "stages changed): run it afresh, without -restart", opt->scene_file, opt->outdir);
   else if (worst)
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
                           "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, first_bad, step, first_bad);
-  if (worst) return worst == 3 ? 2 : worst;
+  if (worst) return worst >= 2 ? 2 : worst;
   if (sv->load_shared) {
     shared_path(opt, step, path, sizeof path);
     if (sv->load_shared(sv->ctx, path)) {

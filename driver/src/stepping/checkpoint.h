@@ -17,10 +17,16 @@ typedef struct {
   double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio, ratio_prev;
   double out_prev[STEP_MAX_OUT], dout_prev[STEP_MAX_OUT], out_scale[STEP_MAX_OUT];
   long   history_offset;
+  double report[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT]; /* the reported quantities at the start and stage ends */
+  unsigned long long mesh_hash;                            /* of the run's mesh file (0: none): a restart needs the same */
 } RunState;
 
 /* Write the set for st->step; *last: the step of the previous set (deleted once the new one is in place). */
 int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
+/* Before anything of a restarted run is set up or opened (rank 0): whether the latest checkpoint was written for
+ * this scene file and this mesh file (opt->scene_file, opt->mesh_file). 0 (also when there is none or it cannot be
+ * read: checkpoint_read says so), or 2 with err filled. */
+int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen);
 /* Read the latest set into st and the solver. Returns 0, 1 (missing or damaged) or 2 (another scene). */
 int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
 

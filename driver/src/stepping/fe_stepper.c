@@ -355,6 +355,14 @@ static PetscErrorCode initial_state(FeSolver *f) {
 }
 
 /* After the run: the output closed, the summary lines, the solver's objects freed. */
+/* What an FE scene reports (StepSolver.report): the volume-mean strain along the scene's axis and its trace. */
+static PetscErrorCode report(void *ctx, double *v) {
+  FeSolver *f = ctx;
+  v[0] = f->c.stats.strain_mean[f->c.sc->axis];
+  v[1] = f->c.stats.strain_mean[0] + f->c.stats.strain_mean[1] + f->c.stats.strain_mean[2];
+  return 0;
+}
+
 static PetscErrorCode finish(FeSolver *f, MPI_Comm comm, const RunnerSummary *sum, const RunnerOptions *opt) {
   FeProblem *p = f->c.p;
   PetscFunctionBeginUser;
@@ -385,7 +393,8 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
                    .stage_begin = stage_begin, .solve = solve, .accept = accept, .history_header = history_header,
                    .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
-                   .save_shared = save_shared, .load_shared = load_shared};
+                   .save_shared = save_shared, .load_shared = load_shared,
+                   .nreport = 2, .report_names = {"strain_axial", "strain_volumetric"}, .report = report};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   ierr             = finish(&f, sv.comm, &sum, opt);

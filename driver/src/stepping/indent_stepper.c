@@ -220,6 +220,13 @@ static PetscErrorCode replay(void *ctx, const char *dir, char *msg, size_t n) {
 
 static long umat_calls(void *ctx) { return (long)fe_problem_diag(((Indent *)ctx)->c.p)->umat_calls; }
 
+/* What an indentation reports (StepSolver.report): the indenter's depth and the whole indenter's load. */
+static PetscErrorCode report(void *ctx, double *v) {
+  Indent *d = ctx;
+  v[0] = (double)d->in.ur, v[1] = whole(d, d->load);
+  return 0;
+}
+
 /* After the run: the output closed, the summary line, the contact solver freed. */
 static PetscErrorCode finish(Indent *d, MPI_Comm comm, const RunnerSummary *sum, const RunnerOptions *opt) {
   FeProblem *p = d->c.p;
@@ -254,7 +261,8 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
                    .solve = solve, .accept = accept, .check = check, .history_header = history_header,
                    .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
-                   .save_shared = save_shared, .load_shared = load_shared};
+                   .save_shared = save_shared, .load_shared = load_shared,
+                   .nreport = 2, .report_names = {"depth", "load"}, .report = report};
   RunnerSummary sum;
   int           rc = stage_runner_run(&sv, opt, &sum, err, errlen);
   ierr             = finish(&d, comm, &sum, opt);

@@ -292,6 +292,12 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   if (ratio >= 0 || o->its > 0) st->reject_ratio = 0;
 }
 
+/* The scene's reported quantities at the start (k = 0) or at the end of stage k - 1. */
+static int keep_report(Run *r, int k) {
+  if (!r->sv->report || k > RUNNER_MAX_STAGES) return 0;
+  return (int)r->sv->report(r->sv->ctx, r->st.report[k]);
+}
+
 static int write_fields(Run *r, char *err, size_t errlen) {
   if (r->sv->write_fields) SOLVER_CALL(r->sv->write_fields(r->sv->ctx, r->st.t, err, errlen));
   return 0;
@@ -358,7 +364,10 @@ static int run_stage(Run *r, char *err, size_t errlen) {
                r->view.until.value, st->t, stage_list(r), st->stage, r->view.duration);
       return 1;
     }
-    if (stage_done) st->stage++, st->in_stage = 0;
+    if (stage_done) {
+      if ((rc = keep_report(r, st->stage + 1))) return rc;
+      st->stage++, st->in_stage = 0;
+    }
     if (opt->checkpoint_every > 0 && st->step % opt->checkpoint_every == 0) {
       if (r->hist) fflush(r->hist);
       st->history_offset = r->hist ? ftell(r->hist) : 0;
@@ -367,8 +376,9 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, err, errlen)) ? rc : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
+  int rc = keep_report(r, st->stage + 1);
   st->stage++, st->in_stage = 0;
-  return 0;
+  return rc;
 }
 
 int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *sum, char *err, size_t errlen) {
@@ -386,12 +396,13 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
     int rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen);
     if (rc) return rc;
   }
+  if (!opt->restart) r.st.mesh_hash = binfile_hash(opt->mesh_file);
   int rc = history_open(&r, err, errlen);
   if (rc) return rc;
   clock_gettime(CLOCK_MONOTONIC, &r.w0);
   if (!opt->restart) {
     r.view.name = NULL; /* row 0: the solver names it */
-    if ((rc = history_row(&r, 0, 0, 0, err)) || (rc = write_fields(&r, err, errlen))) return rc;
+    if ((rc = history_row(&r, 0, 0, 0, err)) || (rc = write_fields(&r, err, errlen)) || (rc = keep_report(&r, 0))) return rc;
   }
   while (!rc && r.st.stage < sv->nstage) {
     rc = opt->max_steps >= 0 && r.st.step >= opt->max_steps ? 3 : run_stage(&r, err, errlen);
@@ -406,6 +417,10 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
   sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
+  sum->nreport = sv->report ? sv->nreport : 0, sum->nstages_done = PetscMin(r.st.stage, RUNNER_MAX_STAGES);
+  for (int k = 0; k < sum->nreport; k++) sum->report_names[k] = sv->report_names[k];
+  memcpy(sum->report, r.st.report, sizeof sum->report);
+  if (opt->summary) *opt->summary = *sum;
   if (rc && err[0] && opt->outdir && opt->outdir[0] && !r.promoted && !opt->restart) {
     size_t len = strlen(err);
     snprintf(err + len, errlen - len, " (nothing of an earlier run in %s was replaced; this run's files end in .part)", opt->outdir);

@@ -56,6 +56,8 @@ typedef struct {
 #define NEWTON_KAPPA 0.01
 
 #define STEP_MAX_OUT 12
+#define RUNNER_MAX_REPORT 4  /* reported quantities of a scene (StepSolver.report) */
+#define RUNNER_MAX_STAGES 32 /* stages whose reported quantities are kept */
 typedef struct {
   int         converged;
   const char *why;     /* when not converged */
@@ -132,6 +134,12 @@ typedef struct {
    * hold only what every rank has alike). FE and indentation scenes: a PETSc HDF5 file. */
   PetscErrorCode (*save_shared)(void *ctx, const char *path);
   PetscErrorCode (*load_shared)(void *ctx, const char *path);
+  /* Optional: what the scene reports (nreport values, named report_names: an indenter's depth and load, an FE
+   * scene's mean strain), at the committed state; the runner keeps them at the start and at every stage's end
+   * (RunnerSummary), the quantities whose mesh error a run states (docs/adapt.md). */
+  int         nreport;
+  const char *report_names[RUNNER_MAX_REPORT];
+  PetscErrorCode (*report)(void *ctx, double *v);
 } StepSolver;
 
 typedef struct {
@@ -140,12 +148,19 @@ typedef struct {
   int                checkpoint_every, restart, max_steps, progress_every, fields_every, quiet;
   StepGains          gains;       /* the step controller's exponents (step_control.h); alpha 0: the PI default */
   const char        *part_file;   /* another new file of the run, named *.part until its first step (the mesh) */
+  struct RunnerSummary_ *summary; /* if set: a copy of the run's summary */
+  const char        *mesh_file;   /* the run's mesh file, hashed into checkpoints: a restart needs the same mesh (NULL: none) */
 } RunnerOptions;
 
-typedef struct {
+typedef struct RunnerSummary_ {
   int    steps, cutbacks, its, rejected_error, failed, stopped;
   long   umat_calls; /* all ranks */
   double t, wall;
+  /* the scene's reported quantities (StepSolver.report) at the start (0) and at the end of stage s (s + 1), for
+     the stages done (nstages_done) */
+  int         nreport, nstages_done;
+  const char *report_names[RUNNER_MAX_REPORT];
+  double      report[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
 } RunnerSummary;
 
 /* Run every stage. Returns the run's status: 0; 1 (a step failed for good, an event was missed, a file could not

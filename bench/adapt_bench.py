@@ -1,0 +1,168 @@
+#!/usr/bin/env python3
+"""Meshes made for the answer (issue 32; docs/adapt.md): each case adapted from a coarse start, every level's
+reported quantities against the case's converged answer, the mesh error each level states beside its true error
+(the effectivity), cells, unknowns and CPU. Writes the section "Adapted meshes" of docs/performance.md.
+
+    bench/adapt_bench.py [--cases lr1,sector,axi,sphere,bn] [--levels N] [--results out/adapt_bench.json] [--no-run] [--doc]
+
+Converged answers (where each comes from):
+- lr1: loading_rate_a1 with an unload to zero in 20 s added: the 2D study's P2 ladder to h_tip 0.0071 (docs/performance.md,
+  "2D indentation: mesh and element study"): depth at the end of loading 194.91 nm and residual depth 125.64 nm (its finest
+  rung, 302 k unknowns), creep depth 35.47 nm (that rung and an independent P2 run at h_tip 0.011 with a wider fine zone
+  agree to 0.03 %).
+- sector: nanoindent_kerogen_sector: the converged 3D answer (the P2 sector ladder to h_tip 0.0354, 169 692 unknowns):
+  P 537.5 uN, creep depth 15.35 nm, residual depth 137.3 nm.
+- axi, sphere: a fine run in the same invocation: the case on P2 with its size field four levels finer than the last adapted
+  level of P1 ("reference" rows), i.e. another element order on its own meshes.
+- bn: microindent_BN_sector: no 3D answer is known; its axisymmetric twin converges to a residual depth of 2.112 um
+  (docs/performance.md, the 3D mesh study), which the 3D value should approach.
+"""
+import argparse
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
+DRIVER = ROOT / "build" / "bin" / "driver"
+TITLE = "## Adapted meshes: error indicator, adaptation by rerun, the stated mesh error"
+UNLOAD = """  - name: unload
+    duration: 20
+    indenter: {load: 0}
+    steps: {adaptive: true, first: 1, min: 1.0e-9, max: 1, error: {measure: output, tol: 0.1}}
+"""
+
+# case: (scene in input/, parameter replacements for the coarse start, add an unload, the reference or None)
+CASES = {
+    "lr1": ("loading_rate_a1.yaml", {"h_tip: 0.01414, h_far: 0.106": "h_tip: 0.04, h_far: 0.3"}, True,
+            {"h_max": 194.91, "creep": 35.47, "h_res": 125.64}),
+    "sector": ("nanoindent_kerogen_sector.yaml", {"h_tip: 0.12, h_far: 0.48": "h_tip: 0.2, h_far: 0.8"}, False,
+               {"P": 537.5, "creep": 15.35, "h_res": 137.3}),
+    "axi": ("nanoindent_kerogen_axi.yaml", {}, False, None),
+    "sphere": ("nanoindent_kerogen_axi.yaml", {"indenter: {shape: cone, half_angle: 70.3, contact: contact}":
+                                               "indenter: {shape: sphere, radius: 2, contact: contact}",
+                                               "until: {depth: 0.2}": "until: {depth: 0.1}"}, False, None),
+    "bn": ("microindent_BN_sector.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, {"h_res_twin": 2112.0}),
+}
+
+
+def scene_text(case, order=None):
+    name, repl, unload, _ = CASES[case]
+    text = (ROOT / "input" / name).read_text().replace("../meshes/", f"{ROOT}/meshes/")
+    for a, b in repl.items():
+        assert a in text, f"{case}: '{a}' not in {name}"
+        text = text.replace(a, b)
+    if unload:
+        text = text.replace("output:\n  directory", UNLOAD + "output:\n  directory", 1)
+    if order:
+        text = text.replace("  kinematics:", f"  order: {order}\n  kinematics:", 1) if "order:" not in text else \
+            text.replace("order: 1", f"order: {order}").replace("order: 2", f"order: {order}")
+    return text
+
+
+def run(case, out, levels, order=None, extra=()):
+    out.mkdir(parents=True, exist_ok=True)
+    scene = out.parent / f"{out.name}.yaml"
+    scene.write_text(scene_text(case, order))
+    t0 = time.time()
+    proc = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out), "-adapt_levels", str(levels), *extra],
+                          capture_output=True, text=True, timeout=7200)
+    (out.parent / f"{out.name}.log").write_text(proc.stdout + proc.stderr)
+    if proc.returncode:
+        raise SystemExit(f"{case}: driver failed ({proc.returncode}): {proc.stderr[-2000:]}")
+    print(f"{case}: {time.time() - t0:.0f} s wall", flush=True)
+
+
+def quantities(summary):
+    """depth at the end of the first stage (h_max, nm), the load then (P), the depth change over the second (creep, nm)
+    and the depth at the end of the last (h_res, nm) when the scene unloads to zero."""
+    st = summary["stages"]
+    q = {"h_max": 1000 * st[1]["end"]["depth"], "P": st[1]["end"]["load"], "creep": 1000 * st[2]["change"]["depth"]}
+    e = {"h_max": 1000 * st[1].get("mesh_error", {}).get("end", {}).get("depth", float("nan")),
+         "P": st[1].get("mesh_error", {}).get("end", {}).get("load", float("nan")),
+         "creep": 1000 * st[2].get("mesh_error", {}).get("change", {}).get("depth", float("nan"))}
+    if len(st) > 3 and abs(st[-1]["end"]["load"]) < 1e-9:
+        q["h_res"] = 1000 * st[-1]["end"]["depth"]
+        e["h_res"] = 1000 * st[-1].get("mesh_error", {}).get("end", {}).get("depth", float("nan"))
+    return q, e
+
+
+def levels_of(out):
+    rows = []
+    for d in sorted((out / "adapt").glob("level*"), key=lambda p: int(p.name[5:])):
+        if (d / "summary.json").exists():
+            s = json.loads((d / "summary.json").read_text())
+            q, e = quantities(s)
+            rows.append({"level": int(d.name[5:]), "cells": s["mesh"]["cells"], "unknowns": s["mesh"]["unknowns"],
+                         "cpu": s["levels"][-1]["cpu_s"], "umat_calls": s["levels"][-1]["umat_calls"], "q": q, "e": e})
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cases", default="lr1,sector,axi,sphere")
+    ap.add_argument("--levels", type=int, default=3)
+    ap.add_argument("--results", default="out/adapt_bench.json")
+    ap.add_argument("--no-run", action="store_true")
+    ap.add_argument("--doc", action="store_true")
+    a = ap.parse_args()
+    base = Path("out/adapt_bench")
+    results = json.loads(Path(a.results).read_text()) if Path(a.results).exists() else {}
+    for case in a.cases.split(","):
+        out = base / case
+        if not a.no_run:
+            run(case, out, a.levels)
+            if CASES[case][3] is None:   # the reference: P2 on its own meshes, a level more
+                run(case, base / f"{case}_ref", a.levels + 1, order=2)
+        ref = CASES[case][3]
+        if ref is None and (base / f"{case}_ref" / "summary.json").exists():
+            ref = quantities(json.loads((base / f"{case}_ref" / "summary.json").read_text()))[0]
+        results[case] = {"levels": levels_of(out), "reference": ref}
+    Path(a.results).parent.mkdir(parents=True, exist_ok=True)
+    Path(a.results).write_text(json.dumps(results, indent=1))
+    text = doc(results, a)
+    print(text)
+    if a.doc:
+        replace_section(TITLE, text)
+
+
+def cell(q, e, ref, k):
+    if k not in q:
+        return "—"
+    s = f"{q[k]:.5g}"
+    if ref and k in ref:
+        err = q[k] - ref[k]
+        s += f" ({err / ref[k]:+.2%}"
+        if e.get(k) == e.get(k):   # not NaN
+            s += f"; est. ±{abs(e[k]) / abs(ref[k]):.2%}, eff. {abs(e[k]) / abs(err):.2g}" if err else f"; est. ±{abs(e[k]) / abs(ref[k]):.2%}"
+        s += ")"
+    elif e.get(k) == e.get(k):
+        s += f" (est. ±{abs(e[k]) / abs(q[k]):.2%})"
+    return s
+
+
+def doc(results, a):
+    lines = [TITLE, "", f"Command: `bench/adapt_bench.py --cases {a.cases} --levels {a.levels} --doc` "
+             f"({time.strftime('%Y-%m-%d')}; shared 2-core machine, CPU of one rank). Each case starts from a coarse mesh "
+             "and is rerun on meshes made from its error indicator (docs/adapt.md), about twice the cells per level. In brackets: "
+             "the error against the case's converged answer (the bench's docstring says where each comes from), the mesh error "
+             "the level states (est., relative) and the effectivity (eff. = stated / true error; the issue asks for 0.5 to 2).", ""]
+    for case, r in results.items():
+        ref = r["reference"]
+        keys = [k for k in ("h_max", "P", "creep", "h_res") if any(k in lv["q"] for lv in r["levels"])]
+        lines += [f"**{case}** (reference: {json.dumps(ref) if ref else 'none'})", "",
+                  "| level | cells | unknowns | CPU [s] | UMAT calls | " + " | ".join(keys) + " |",
+                  "|---|---|---|---|---|" + "---|" * len(keys)]
+        for lv in r["levels"]:
+            lines.append(f"| {lv['level']} | {lv['cells']} | {lv['unknowns']} | {lv['cpu']:.0f} | {lv['umat_calls'] / 1e6:.1f} M | "
+                         + " | ".join(cell(lv["q"], lv["e"], ref, k) for k in keys) + " |")
+        lines.append("")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    main()

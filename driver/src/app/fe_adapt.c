@@ -1,0 +1,272 @@
+/* Adaptation by rerun (fe_adapt.h; docs/adapt.md). */
+#include "fe_adapt.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "../io/binfile.h"
+#include "../io/fsutil.h"
+#include "../io/options.h"
+
+/* The options block (declared with the others by main, read again here over the scene's mesh.adapt). */
+PetscErrorCode fe_adapt_declare(PetscInt *levels, PetscReal *growth, PetscBool *set_levels, PetscBool *set_growth) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Mesh adaptation by rerun (FE and indentation scenes; docs/adapt.md)", NULL);
+  PetscCall(options_int(PetscOptionsObject, "-adapt_levels", "reruns on meshes made from the error indicator, over mesh.adapt.levels (0: none)",
+                        *levels, 0, 8, levels, set_levels));
+  PetscCall(options_real(PetscOptionsObject, "-adapt_growth", "cells of a level over the previous level's, over mesh.adapt.growth (1.2 to 8)",
+                         *growth, growth, set_growth));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_adapt_options(YdDoc *doc, FeScene *sc, PetscBool restart, char *err, size_t errlen, int *bad) {
+  PetscInt  levels = sc->adapt.levels;
+  PetscReal growth = sc->adapt.growth;
+  PetscBool set_levels, set_growth;
+  PetscFunctionBeginUser;
+  *bad = 0;
+  PetscCall(fe_adapt_declare(&levels, &growth, &set_levels, &set_growth));
+  if (set_growth && !(growth >= 1.2 && growth <= 8)) {
+    snprintf(err, errlen, "option -adapt_growth %g: expected the ratio of cells from one level to the next, 1.2 to 8", (double)growth);
+    *bad = 2;
+  } else if (levels > 0 && !sc->geometry[0]) {
+    snprintf(err, errlen, "%s: option -adapt_levels %d: adaptation meshes the geometry again, but the scene gives mesh.file (a .msh without its "
+             "geometry): give mesh.geometry (a gmsh .geo)", doc->file, (int)levels);
+    *bad = 2;
+  } else if (levels > 0 && restart) {
+    snprintf(err, errlen, "%s: -restart with mesh adaptation (%s %d): a level is always run from its start; rerun without -restart", doc->file,
+             set_levels ? "-adapt_levels" : "mesh.adapt.levels", (int)levels);
+    *bad = 2;
+  }
+  sc->adapt.levels = (int)levels, sc->adapt.growth = growth;
+  PetscFunctionReturn(0);
+}
+
+/* The .geo of level k: the scene's own, its physical groups and parameters unchanged, with the size field of
+   the level before as its background field (a gmsh PostView field of the view in sizes). */
+static int write_level_geo(const FeScene *sc, const char *geo, const char *sizes, char *err, size_t errlen) {
+  if (strchr(sc->geometry, '"') || strchr(sizes, '"')) {
+    snprintf(err, errlen, "%s: mesh.adapt: a path with a double quote cannot be named in a .geo", sc->geometry);
+    return 1;
+  }
+  FILE *fp = fopen(geo, "w");
+  if (!fp) {
+    snprintf(err, errlen, "%s: cannot write the adapted geometry", geo);
+    return 1;
+  }
+  fprintf(fp, "// The scene's geometry with the element sizes made from the error indicator of the level before (docs/adapt.md).\n"
+              "Include \"%s\";\nMerge \"%s\";\nField[901] = PostView;\nField[901].ViewIndex = PostProcessing.NbViews - 1;\n"
+              "Background Field = 901;\n", sc->geometry, sizes);
+  return fclose(fp) ? (snprintf(err, errlen, "%s: cannot write the adapted geometry", geo), 1) : 0;
+}
+
+/* Copy a file (rank 0), through dst.part renamed into place. Missing src: nothing (0). */
+static int copy_file(const char *src, const char *dst) {
+  char  part[1200], buf[1 << 16];
+  FILE *in = fopen(src, "rb"), *out;
+  size_t n;
+  if (!in) return 0;
+  snprintf(part, sizeof part, "%s.part", dst);
+  if (!(out = fopen(part, "wb"))) return fclose(in), 1;
+  while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+    if (fwrite(buf, 1, n, out) != n) break;
+  int bad = ferror(in) || ferror(out);
+  fclose(in);
+  bad |= fclose(out) != 0;
+  return bad || rename(part, dst);
+}
+
+/* The answer's files into OUT (rank 0), once the last level is done. */
+static int publish(const char *outdir, const char *level_dir, char *err, size_t errlen) {
+  static const char *const files[] = {"history.csv", "fields.h5", "fields.xmf", "mesh.msh"};
+  char                     src[1200], dst[1200];
+  for (int i = 0; i < 4; i++) {
+    snprintf(src, sizeof src, "%s/%s", level_dir, files[i]);
+    snprintf(dst, sizeof dst, "%s/%s", outdir, files[i]);
+    if (copy_file(src, dst)) {
+      snprintf(err, errlen, "%s: cannot copy the last level's %s into the output directory", dst, files[i]);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* One quantity's error from its values on the levels (docs/adapt.md, "The error estimate"): the last change over
+   the predicted ratio of errors, with the rate r assumed; from three levels, the rate the last two changes show
+   when they fall, kept within [r/2, 2r]. */
+static double quantity_error(const double *q, const double *cells, int n, double r) {
+  const double d1 = fabs(q[n - 1] - q[n - 2]), rho = cells[n - 1] / cells[n - 2];
+  double       rate = r;
+  if (n >= 3) {
+    const double d0 = fabs(q[n - 2] - q[n - 3]), rho0 = cells[n - 2] / cells[n - 3];
+    if (d0 > 0 && d1 > 0 && d1 < d0) rate = PetscMin(PetscMax(log(d0 / d1) / log(0.5 * (rho + rho0)), 0.5 * r), 2 * r);
+  }
+  return d1 / (pow(rho, rate) - 1);
+}
+
+void fe_adapt_estimate(const RunInfo *levels, int n, int order, int dim, MeshError *me) {
+  double cells[16], end[16], change[16];
+  memset(me, 0, sizeof *me);
+  if (n < 2 || n > 16) return;
+  const RunnerSummary *a = &levels[n - 1].sum;
+  me->have = 1, me->rate = (double)order / dim;
+  me->how  = n >= 3 ? "from the last three levels: the last change over the ratio of errors their changes show (docs/adapt.md)"
+                    : "from the last two levels: their change over the ratio of errors at the assumed rate (docs/adapt.md)";
+  for (int l = 0; l < n; l++) cells[l] = (double)levels[l].cells;
+  for (int k = 0; k <= a->nstages_done; k++)
+    for (int q = 0; q < a->nreport; q++) {
+      for (int l = 0; l < n; l++) {
+        const RunnerSummary *s = &levels[l].sum;
+        end[l]    = k <= s->nstages_done ? s->report[k][q] : NAN;
+        change[l] = k > 0 && k <= s->nstages_done ? s->report[k][q] - s->report[k - 1][q] : 0;
+      }
+      me->end[k][q]    = quantity_error(end, cells, n, me->rate);
+      me->change[k][q] = quantity_error(change, cells, n, me->rate);
+    }
+}
+
+/* Whether every reported quantity's estimated error is within tol of its size (the changes over the stages, and
+   the values at the stages' ends). */
+static int within(const RunnerSummary *s, const MeshError *me, double tol) {
+  for (int k = 1; k <= s->nstages_done; k++)
+    for (int q = 0; q < s->nreport; q++) {
+      const double change = fabs(s->report[k][q] - s->report[k - 1][q]), end = fabs(s->report[k][q]);
+      if (me->end[k][q] > tol * end || (change > 1e-12 * end && me->change[k][q] > tol * change)) return 0;
+    }
+  return 1;
+}
+
+/* Level k into OUT/adapt/level<k>: meshed from the scene (k = 0) or from the sizes of level k - 1. */
+static int run_level(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, const char *outdir, int k, const RunInfo *prev, RunInfo *info,
+                     char *err, size_t errlen) {
+  char dir[512], geo[700], sizes[700], prev_sizes[700];
+  int  rank, rc = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  snprintf(dir, sizeof dir, "%.480s/adapt/level%d", outdir, k);
+  snprintf(sc->outdir, sizeof sc->outdir, "%s", dir);
+  snprintf(sizes, sizeof sizes, "%s/sizes.pos", dir);
+  snprintf(geo, sizeof geo, "%s/adapted.geo", dir);
+  if (k > 0) {
+    char cwd[400] = ".";
+    if (prev->dir[0] != '/' && !getcwd(cwd, sizeof cwd)) snprintf(cwd, sizeof cwd, ".");
+    if (prev->dir[0] == '/') snprintf(prev_sizes, sizeof prev_sizes, "%s/sizes.pos", prev->dir); /* gmsh reads it from the .geo's folder */
+    else snprintf(prev_sizes, sizeof prev_sizes, "%s/%.280s/sizes.pos", cwd, prev->dir);
+    if (!rank) rc = fs_prepare_output_dir(dir, err, errlen) ? 2 : write_level_geo(sc, geo, prev_sizes, err, errlen);
+    MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+    MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
+    if (rc) return rc;
+  }
+  PetscPrintf(PETSC_COMM_WORLD, "adapt: level %d of %d into %s\n", k, sc->adapt.levels, dir);
+  /* gmsh makes more cells than a size field predicts (its gradation, the boundary's sizes), by a ratio that
+     changes little from level to level: the targets grow by growth from the last prediction, not from the cells
+     made, so that the levels grow by about growth */
+  const double base = k > 0 ? prev->predicted : 0;
+  rc = fe_app_run_once(doc, sc, isc, opt, k > 0 ? geo : NULL, k < sc->adapt.levels ? sizes : NULL, sc->adapt.growth, base, info, err, errlen);
+  return rc;
+}
+
+/* What shapes the levels' meshes (docs/adapt.md, "Kept meshes"): the scene file, its .geo, the driver's executable
+   (with the UMAT linked into it), the growth and the PROPS overrides of the command line. A level kept from an earlier run with the same key is reused, not run again. */
+static unsigned long long level_key(const YdDoc *doc, const FeScene *sc) {
+  char               set[2048] = "", text[2200];
+  PetscBool          given;
+  unsigned long long h = (binfile_hash(doc->file) * 1099511628211ULL ^ binfile_hash(sc->geometry)) * 1099511628211ULL ^ binfile_hash("/proc/self/exe");
+  if (PetscOptionsGetString(NULL, NULL, "-material_set", set, sizeof set, &given)) set[0] = '\0';
+  snprintf(text, sizeof text, "%.6g|%s", sc->adapt.growth, set);
+  for (const char *c = text; *c; c++) h = (h ^ (unsigned char)*c) * 1099511628211ULL;
+  return h;
+}
+
+/* level.txt of a level (rank 0): its key, its RunInfo's numbers and reported quantities. */
+static void level_save(const RunInfo *r, unsigned long long key) {
+  char  path[700];
+  snprintf(path, sizeof path, "%s/level.txt", r->dir);
+  FILE *fp = fopen(path, "w");
+  if (!fp) return; /* only a cache: the next run runs the level again */
+  const RunnerSummary *s = &r->sum;
+  fprintf(fp, "camclay9-adapt-level 1 %llu\n%ld %ld %.17g %.17g %.17g %.17g %d %d %d %ld %d %d\n", key, r->cells, r->unknowns, r->eta, r->cpu,
+          r->predicted, s->wall, s->steps, s->cutbacks, s->its, s->umat_calls, s->nstages_done, s->nreport);
+  for (int k = 0; k <= s->nstages_done; k++)
+    for (int q = 0; q < s->nreport; q++) fprintf(fp, "%.17g%s", s->report[k][q], q + 1 < s->nreport ? " " : "\n");
+  fclose(fp);
+}
+
+/* A level kept with this key (and its size field, when a level follows it): 1 and r filled, else 0. */
+static int level_load(const char *dir, unsigned long long key, int need_sizes, RunInfo *r) {
+  char               path[700];
+  unsigned long long got = 0;
+  int                ok = 1, version = 0;
+  RunnerSummary     *s = &r->sum;
+  memset(r, 0, sizeof *r);
+  snprintf(r->dir, sizeof r->dir, "%s", dir);
+  snprintf(path, sizeof path, "%s/sizes.pos", dir);
+  if (need_sizes && access(path, R_OK)) return 0;
+  snprintf(path, sizeof path, "%s/level.txt", dir);
+  FILE *fp = fopen(path, "r");
+  if (!fp) return 0;
+  ok = fscanf(fp, "camclay9-adapt-level %d %llu", &version, &got) == 2 && version == 1 && got == key;
+  ok = ok && fscanf(fp, "%ld %ld %lg %lg %lg %lg %d %d %d %ld %d %d", &r->cells, &r->unknowns, &r->eta, &r->cpu, &r->predicted, &s->wall, &s->steps,
+                    &s->cutbacks, &s->its, &s->umat_calls, &s->nstages_done, &s->nreport) == 12;
+  ok = ok && s->nstages_done >= 0 && s->nstages_done <= RUNNER_MAX_STAGES && s->nreport >= 0 && s->nreport <= RUNNER_MAX_REPORT;
+  for (int k = 0; ok && k <= s->nstages_done; k++)
+    for (int q = 0; ok && q < s->nreport; q++) ok = fscanf(fp, "%lg", &s->report[k][q]) == 1;
+  fclose(fp);
+  return ok;
+}
+
+/* Level k kept from an earlier run (rank 0 decides, every rank gets it): 1 and lv filled. */
+static int reuse_level(const char *outdir, int k, int last, unsigned long long key, RunInfo *lv) {
+  int  rank, ok = 0;
+  char dir[512];
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  snprintf(dir, sizeof dir, "%.480s/adapt/level%d", outdir, k);
+  if (!rank) ok = k < last && level_load(dir, key, 1, lv);
+  MPI_Bcast(&ok, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  if (ok) MPI_Bcast(lv, (int)sizeof *lv, MPI_BYTE, 0, PETSC_COMM_WORLD);
+  return ok;
+}
+
+int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, char *err, size_t errlen) {
+  static RunInfo lv[9];
+  char           outdir[512];
+  MeshError      me;
+  int            rank, rc = 0, n = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  snprintf(outdir, sizeof outdir, "%s", sc->outdir);
+  memset(&me, 0, sizeof me);
+  unsigned long long key = level_key(doc, sc);
+  int                fresh = 0; /* a level was run: the levels after it are run too */
+  for (int k = 0; k <= sc->adapt.levels && !rc; k++) {
+    int stop, kept = !fresh && reuse_level(outdir, k, sc->adapt.levels, key, &lv[k]);
+    if (kept) {
+      fe_adapt_estimate(lv, k + 1, sc->order, sc->kin == KIN_3D ? 3 : 2, &me);
+      stop = me.have && sc->adapt.tol > 0 && within(&lv[k].sum, &me, sc->adapt.tol);
+      PetscPrintf(PETSC_COMM_WORLD, "adapt: level %d kept from an earlier run of this scene (%s, %ld cells; docs/adapt.md, \"Kept meshes\")%s\n", k,
+                  lv[k].dir, lv[k].cells, stop ? ": the answer, run again" : "");
+      n = k + 1;
+      if (!stop) continue;
+    }
+    fresh = 1;
+    rc    = run_level(doc, sc, isc, opt, outdir, k, k ? &lv[k - 1] : NULL, &lv[k], err, errlen);
+    if (rc) break;
+    if (!rank) level_save(&lv[k], key);
+    n = k + 1;
+    fe_adapt_estimate(lv, n, sc->order, sc->kin == KIN_3D ? 3 : 2, &me);
+    if (!rank) {
+      printf("adapt: level %d: %ld cells, %ld unknowns, %.1f s CPU\n", k, lv[k].cells, lv[k].unknowns, lv[k].cpu);
+      run_summary_print(sc, &lv[k], me.have ? &me : NULL);
+      snprintf(sc->outdir, sizeof sc->outdir, "%s", lv[k].dir); /* the level's own summary.json, its estimate from the levels so far */
+      if (run_summary_write(sc, sc->indenter ? "indentation" : "fe", lv, n, &me, err, errlen)) printf("adapt: %s\n", err);
+    }
+    if (me.have && sc->adapt.tol > 0 && within(&lv[k].sum, &me, sc->adapt.tol)) break;
+  }
+  snprintf(sc->outdir, sizeof sc->outdir, "%s", outdir);
+  if (rc) return rc;
+  if (!rank) rc = publish(outdir, lv[n - 1].dir, err, errlen) || run_summary_write(sc, sc->indenter ? "indentation" : "fe", lv, n, &me, err, errlen);
+  MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
+  return rc;
+}

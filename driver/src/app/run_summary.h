@@ -1,0 +1,37 @@
+/* summary.json: what an FE or indentation run reports, machine-readable (docs/adapt.md, "summary.json"): the
+ * reported quantities at every stage's end and their change over it, with their estimated mesh error when the
+ * run adapted its mesh; the mesh, the counters and the cost. */
+#ifndef RUN_SUMMARY_H
+#define RUN_SUMMARY_H
+
+#include "../fe/fe_scene.h"
+#include "../stepping/stage_runner.h"
+
+/* One run on one mesh. */
+typedef struct {
+  RunnerSummary sum;
+  long          cells, unknowns;
+  double        eta;       /* the error indicator's norm: sqrt(sum over cells of eta_max^2) (fe/fe_estimate.h) */
+  double        cpu;       /* CPU seconds of the run, all ranks (set-up, stages, output) */
+  double        predicted; /* cells the size field written after it predicts (0: none written) */
+  char          dir[512];  /* where its files are */
+} RunInfo;
+
+/* The estimated mesh error of each reported quantity (docs/adapt.md): at the start and each stage's end (end[s + 1])
+   and of its change over stage s (change[s + 1]); have 0: no estimate (one mesh). */
+typedef struct {
+  int    have;
+  double rate;                                              /* the convergence rate used, error ~ cells^-rate */
+  const char *how;                                          /* how it was made, for the log and the summary */
+  double end[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
+  double change[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
+} MeshError;
+
+/* Write outdir/summary.json (rank 0; through summary.json.part, renamed once complete). levels: the runs, the last
+   one the answer (several when the mesh was adapted). 0, or 1 with err filled. */
+int run_summary_write(const FeScene *sc, const char *kind, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen);
+
+/* Print the reported quantities of the last level with their mesh errors (rank 0). */
+void run_summary_print(const FeScene *sc, const RunInfo *last, const MeshError *me);
+
+#endif

@@ -1,0 +1,39 @@
+/* The mesh's error indicator per cell and the size field made from it (docs/adapt.md).
+ *
+ * Indicator: Zienkiewicz & Zhu's recovery estimate (Int. J. Numer. Meth. Eng. 24, 337-357, 1987) on the
+ * stress. Each cell's stress, linear in the cell for P2 (the least-squares plane through its quadrature
+ * points, exact for the 3 or 4 points of the P2 rule) and constant for P1, is evaluated at the cell's
+ * vertices; the values are averaged over the cells that share a vertex (weights: the cells' volumes), which
+ * gives a continuous P1 stress sigma*. The indicator of cell K is
+ *     eta_K = ( int_K |sigma* - sigma_h|^2 dV )^(1/2),   |s|^2 = s_11^2 + s_22^2 + s_33^2 + 2 (s_12^2 + s_13^2 + s_23^2),
+ * with the scene's volume weight (thickness, 2 pi r). Where the solution is smooth it falls as h^(k + d/2) per
+ * cell (k the element order) and its sum of squares as h^k, the energy error's rate.
+ *
+ * History: the fields of a run are written at its output times; each writes the indicator of the committed
+ * state and keeps the largest value of every cell over those times (eta_max), the quantity the size field
+ * equidistributes, since the mesh must serve every time the run reports. */
+#ifndef FE_ESTIMATE_H
+#define FE_ESTIMATE_H
+
+#include "fe_problem.h"
+
+/* The indicator of the committed state (per local cell, into p->est.eta) and its running maximum (eta_max).
+   Collective. */
+PetscErrorCode fe_estimate_update(FeProblem *p);
+
+/* The sum over all cells of eta_max^2 and of eta^2 (collective), for the log and the summary. */
+PetscErrorCode fe_estimate_totals(FeProblem *p, PetscReal *sum_max2, PetscReal *sum2);
+
+/* A size field that equidistributes eta_max over about 'target_cells' cells (Zienkiewicz & Zhu 1987, sec. 5;
+ * docs/adapt.md): with eta_K ~ h_K^s, s = order + dim/2, the new size of cell K is
+ *     h'_K = h_K (eta_t / eta_K)^(1/s),   eta_t = ( sum_K eta_K^(d/s) / target )^(s/d),
+ * so that the predicted number of cells sum_K (h_K / h'_K)^d is the target; the change per cell is kept within
+ * [1/4, 2]. Written as a gmsh view (path, a .pos file: one scalar triangle or tetrahedron per cell, the size at
+ * each vertex the smallest of its cells'), which a .geo reads as a PostView background field. Collective; rank
+ * 0 writes. *predicted: the predicted number of cells. */
+PetscErrorCode fe_estimate_write_sizes(FeProblem *p, PetscReal target_cells, const char *path, PetscReal *predicted);
+
+/* Free what fe_estimate_update allocated. */
+PetscErrorCode fe_estimate_destroy(FeProblem *p);
+
+#endif

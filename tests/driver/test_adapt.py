@@ -1,0 +1,134 @@
+"""Meshes made for the answer (docs/adapt.md): the Zienkiewicz-Zhu indicator, adaptation by rerun, the mesh error
+a run states in summary.json, the restart's mesh check and the bad inputs of mesh.adapt.
+
+Expected numbers and where they come from:
+- the indicator's rate under uniform refinement: for an elastic problem whose displacement is in H^(1+s) the energy
+  error of order-k elements falls as h^min(k, s) (Strang & Fix; Ciarlet), and a recovery indicator is equivalent to it
+  (Zienkiewicz & Zhu 1987; Ainsworth & Oden 2000, ch. 4). Hertz's contact pressure p = p0 sqrt(1 - r^2/a^2) has an
+  infinite gradient at the contact's edge, so the displacement is in H^(5/2 - eps) there: P1 falls as h^1 and P2 as
+  h^(3/2).
+- the effectivity of the stated mesh error: against a fine uniform run of the same block (the test's own reference,
+  four times the cells of the adapted mesh's finest level), estimated / true error in [0.5, 2] as the issue asks.
+"""
+import json
+import math
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from test_contact import ELASTIC, ROLLERS, ROOT, run
+
+BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
+SPHERE = "{shape: sphere, radius: 1, contact: contact, gap: vertical}"
+
+
+def hertz_scene(order, h_tip, h_far, adapt="", W=8, H=4):
+    """An elastic block under a rigid sphere (R = 1) pushed to h = 0.01 (contact radius 0.1), axisymmetric."""
+    return f"""scene: fe
+mesh:
+  geometry: {ROOT}/meshes/indent_block2d.geo
+  parameters: {{W: {W}, H: {H}, half: 1, h_tip: {h_tip}, h_far: {h_far}, r_fine: 0.3, r_contact: 0.4}}
+  kinematics: axisymmetric
+  order: {order}{adapt}
+material: {ELASTIC}
+boundary:
+  fixed: {ROLLERS}
+indenter: {SPHERE}
+stages:
+  - {{name: push, duration: 1, indenter: {{depth: 0.01}}, steps: {{count: 2}}}}
+"""
+
+
+def summary(out):
+    return json.loads((out / "summary.json").read_text())
+
+
+def test_indicator_rate_hertz(tmp_path):
+    """The indicator's norm on a uniform ladder (the whole mesh halved two or three times): rate 1 on P1 and 3/2 on
+    P2 (module docstring), each within 0.25 of the least-squares slope. Measured: 0.98 (P1, h 0.04 to 0.01) and 1.36
+    (P2, h 0.08 to 0.01; the single steps 1.58, 0.94, 1.56: the contact's edge falls between nodes differently on
+    each mesh). An indicator that recovered P2's stress from the cell means (first order) gives about 1."""
+    rates = {}
+    for order in (1, 2):
+        h = np.array([0.04, 0.02, 0.01]) if order == 1 else np.array([0.08, 0.04, 0.02, 0.01])
+        eta = []
+        for k, hk in enumerate(h):
+            out = tmp_path / f"p{order}_{k}"
+            run(hertz_scene(order, hk, 8 * hk), out, exe="driver_elastic")
+            eta.append(summary(out)["mesh"]["error_indicator"])
+        rates[order] = np.polyfit(np.log(h), np.log(eta), 1)[0]
+        print(f"P{order}: h {h}, indicator {eta}, rate {rates[order]:.3f}")
+    assert abs(rates[1] - 1.0) < 0.25 and abs(rates[2] - 1.5) < 0.25, rates
+
+
+def drive(scene_text, out, args=(), exe="driver_elastic"):
+    """Run a scene without asserting success: (exit status, stdout + stderr)."""
+    scene = out.parent / (out.name + ".yaml")
+    scene.write_text(scene_text)
+    proc = subprocess.run([str(BIN / exe), "-input", str(scene), "-output_dir", str(out), *args], capture_output=True, text=True,
+                          timeout=300)
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+BAD = [
+    ("\n  adapt: {levels: 0}", (), ["mesh.adapt.levels", "0"]),
+    ("\n  adapt: {levels: 9}", (), ["mesh.adapt.levels", "9"]),
+    ("\n  adapt: {growth: 1}", (), ["mesh.adapt.growth", "1.2 to 8", "got 1"]),
+    ("\n  adapt: {tol: 0}", (), ["mesh.adapt.tol", "got 0"]),
+    ("\n  adapt: {level: 2}", (), ["mesh.adapt", "level"]),
+    ("\n  adapt: 3", (), ["mesh.adapt"]),
+    ("", ("-adapt_growth", "0.5"), ["-adapt_growth", "0.5", "1.2 to 8"]),
+    ("", ("-adapt_levels", "1", "-restart"), ["-restart", "-adapt_levels", "without -restart"]),
+    ("", ("-adapt_levels", "9"), ["-adapt_levels", "9"]),
+]
+
+
+@pytest.mark.parametrize("adapt,args,words", BAD)
+def test_bad_adapt_input(tmp_path, adapt, args, words):
+    """Each bad mesh.adapt key or option: exit status 2, a message naming the key or option and the value, and an
+    earlier run's files untouched."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "history.csv").write_text("earlier run\n")
+    code, text = drive(hertz_scene(1, 0.05, 0.4, adapt=adapt), out, args)
+    print(text.strip().splitlines()[-1])
+    assert code == 2 and all(w in text for w in words), text
+    assert (out / "history.csv").read_text() == "earlier run\n" and not (out / "adapt").exists()
+
+
+def test_adapt_needs_geometry(tmp_path):
+    """mesh.adapt (or -adapt_levels) on a scene given as a .msh without its geometry: refused, naming the key."""
+    first = tmp_path / "first"
+    run(hertz_scene(1, 0.05, 0.4), first, exe="driver_elastic")
+    text = hertz_scene(1, 0.05, 0.4).replace(f"  geometry: {ROOT}/meshes/indent_block2d.geo\n", f"  file: {first}/mesh.msh\n")
+    text = re.sub(r"  parameters: \{[^}]*\}\n", "", text)
+    for adapt, args, key in [("\n  adapt: {levels: 1}", (), "mesh.adapt"), ("", ("-adapt_levels", "1"), "-adapt_levels")]:
+        code, out = drive(text.replace("  order: 1", "  order: 1" + adapt), tmp_path / "msh", args)
+        assert code == 2 and key in out and "mesh.geometry" in out, out
+
+
+def test_restart_refuses_another_mesh(tmp_path):
+    """A checkpoint carries its mesh's hash: the same scene file restarted after its .geo changed (so the same scene
+    hash, another mesh) is refused with the checkpoint's own message, exit status 2, and the earlier history and mesh
+    are untouched. Before the hash the run read another mesh's state ("cannot be read into this run's mesh", or an
+    HDF5 error)."""
+    geo = tmp_path / "block.geo"
+    geo.write_text((ROOT / "meshes" / "indent_block2d.geo").read_text())
+    text = hertz_scene(1, 0.05, 0.4).replace(f"{ROOT}/meshes/indent_block2d.geo", str(geo))
+    out = tmp_path / "out"
+    code, log = drive(text, out, ("-checkpoint_every", "1", "-max_steps", "1"))
+    assert code == 0, log
+    history, mesh = (out / "history.csv").read_bytes(), (out / "mesh.msh").read_bytes()
+    code, log = drive(text, out, ("-restart",))   # the same mesh: the restart goes on
+    assert code == 0 and "restart" in log.lower(), log
+    code, log = drive(text, out, ("-checkpoint_every", "1", "-max_steps", "1"))
+    geo.write_text(geo.read_text().replace("Mesh.MeshSizeMax = h_far;", "Mesh.MeshSizeMax = 0.9 * h_far;"))
+    history, mesh = (out / "history.csv").read_bytes(), (out / "mesh.msh").read_bytes()
+    code, log = drive(text, out, ("-restart",))
+    print(log.strip().splitlines()[-1])
+    assert code == 2 and "another mesh" in log, log
+    assert (out / "history.csv").read_bytes() == history and (out / "mesh.msh").read_bytes() == mesh
