@@ -3,8 +3,9 @@
 # the same routine:
 #   library    build/umat/libcamclay9.a, as the driver and C hosts link it: the material of the last
 #              PROPS is kept per thread (ccix_material_cache, compiled with OpenMP: thread-local storage);
-#   host file  build/umat/camclay9_umat.f90 compiled as docs/umat.md tells a host (gfortran -O2 -fPIC, no
-#              OpenMP): no module state, the material is derived from PROPS in every call;
+#   host file  build/umat/camclay9_umat.f90 compiled with a host's plain line (gfortran -O2 -fPIC, no
+#              OpenMP): no module state, the material is derived from PROPS in every call (the flags
+#              docs/umat.md recommends, and the cost of each: bench/umat_build_routes.sh);
 #   no cache   the same file compiled with the library's flags (-O3 -funroll-loops -fPIC, no OpenMP): the
 #              library as it would be without its cache, for deciding whether the cache is worth keeping.
 # With --against REV, the UMAT of git revision REV is built in a scratch folder and measured the same
@@ -170,8 +171,8 @@ with other jobs. Compiler: $fc. Measured $(date -u +%Y-%m-%d).
 Three builds of the same routine. *Library*: \`libcamclay9.a\` as the driver and C hosts link it
 (\`-O3 -funroll-loops\`, the default Release build): each thread keeps the material of the last PROPS it
 saw (ccix_material_cache, compiled with OpenMP into thread-local storage), as does \`camclay9_umat.o\`.
-*Host file*: \`camclay9_umat.f90\` compiled as docs/umat.md tells a host (\`gfortran -O2 -fPIC\`, no
-OpenMP flag): it keeps no module state, so that no host flag can make threads share it, and derives
+*Host file*: \`camclay9_umat.f90\` compiled with a host's plain line (\`gfortran -O2 -fPIC\`, no
+OpenMP flag; docs/umat.md, "Cost of each build route", for other flags): it keeps no module state, so that no host flag can make threads share it, and derives
 the material from PROPS in every call. *Library without cache*: the same file compiled with the
 library's flags, the library as it would be without its cache.
 $compare

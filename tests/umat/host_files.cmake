@@ -21,6 +21,9 @@
 #            Asserts: every compile succeeds; the C preprocessor changes nothing in either file (its
 #            output equals the file but for blank lines); no object has writable static data (nm: no
 #            B/D/C/G/S symbol but gfortran's constant type descriptors __vtab_*, __def_init_*).
+#            And tests/umat/host_nonfinite.f90 with floating-point traps on (-ffpe-trap=invalid,zero,
+#            overflow) linked with host and abaqus, for umat.nonfinite_host_file and
+#            umat.nonfinite_abaqus_file (host_nonfinite.cmake).
 #   threads  host_driver threads with host, hazard, abaqus and the installed camclay9_umat.o (whose
 #            per-thread cache is thread-local storage): 8 POSIX threads, 8 materials, every
 #            STRESS/STATEV/DDSDDE/PNEWDT bit for bit the serial run's.
@@ -130,6 +133,13 @@ if(STEP STREQUAL "compile")
           ${extra} -o ${WORK}/jacobi_${v} -J ${WORK}/${v})
     endif()
   endforeach()
+  # Issue 34: a host with floating-point traps on (host_nonfinite.f90, host_nonfinite.cmake) around the
+  # host file (-O2) and the Abaqus file (Abaqus' flags, unoptimised) with the mock Abaqus.
+  set(traps -cpp -O2 -ffpe-trap=invalid,zero,overflow)
+  run("link host_nonfinite with host" 0 ${FC} ${traps} ${here}/host_nonfinite.f90 ${WORK}/host/umat.o
+      -o ${WORK}/nonfinite_host -J ${WORK}/host)
+  run("link host_nonfinite with abaqus" 0 ${FC} ${traps} -DHOST_NONFINITE_MOCK_ABAQUS ${here}/host_nonfinite.f90
+      ${WORK}/abaqus/umat.o ${WORK}/mock_abaqus.o -o ${WORK}/nonfinite_abaqus -J ${WORK}/abaqus)
   # The installed object (the per-thread cache, compiled by the build with OpenMP), linked as it is.
   run("link the installed camclay9_umat.o" 0 ${FC} -pthread ${WORK}/host_driver.o
       ${WORK}/prefix/share/camclay9/camclay9_umat.o -o ${WORK}/host_object)

@@ -39,7 +39,7 @@ program test_rejected_calls
   call expect_rejected('step control, DROT /= I', props, 100.0_real64, &
                        [-1.0e-3_real64, 0.0_real64, -2.0e-3_real64, 0.0_real64, 0.0_real64, 0.0_real64], rot)
   props(20) = 0
-  ! 1b. Rejected as a failed local solve: a non-finite strain increment.
+  ! 1b. Rejected as an unusable argument (issue 34; before: as a failed local solve): a NaN in DSTRAN.
   call expect_rejected('NaN DSTRAN, DROT /= I', props, 10.0_real64, &
                        [ieee_value(1.0_real64, ieee_quiet_nan), 0.0_real64, 0.0_real64, 0.0_real64, &
                         0.0_real64, 0.0_real64], rot)

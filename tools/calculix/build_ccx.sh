@@ -7,7 +7,8 @@
 #   UMAT_OBJECT defaults to camclay9_umat.o of a build: $CAMCLAY9_BUILD/umat/ or $CAMCLAY9_BUILD/ when
 #   CAMCLAY9_BUILD is set, else build/umat/ (the whole project) or build-umat/ (the UMAT alone,
 #   cmake -S umat -B build-umat).
-# Prints the directory holding the executables on the last line of stdout:
+# Prints the directory holding the executables on the last line of stdout ($cache/bin/<hash of the
+# object>/, one per object, so that concurrent checkouts never share or relink one):
 #   ccx_camclay9        CalculiX with camclay9_umat.o placed before ccx_2.20.a (replaces the stub umat)
 #   ccx_camclay9_trace  the same, with umat_trace.f90 in front: logs every UMAT call (see that file)
 # Exit 77 (with the reason on stderr) when CalculiX cannot be had here: the tests then skip.
@@ -96,25 +97,34 @@ if [ ! -f "$cache/archive.ok" ]; then
 fi
 
 # Link (cheap): the user object before ccx_2.20.a replaces the archive's stub umat. Same line as
-# the Makefile's. Relinked when the UMAT object (or the trace wrapper) changes.
+# the Makefile's. One folder of executables per UMAT object, named by the hash of what is linked
+# (the object, the trace wrapper, the archive's size and time): checkouts that test at once with
+# different objects each get their own, and never relink one another's (issue 34; before, one folder
+# per user was relinked whenever another checkout called this script with another object). A folder
+# is complete once its "linked" file exists (written last, under the lock); folders not used for 7
+# days are removed.
 libs=(-lspooles -lpthread -larpack -llapack -lblas -lm -lc -fopenmp $(cat "$cache/ldflags"))
-stamp=$(cat "$umat_obj" "$here/umat_trace.f90" | sha256sum | cut -c1-16)
-if [ "$(cat "$cache/bin/link.stamp" 2>/dev/null)" != "$stamp" ]; then
-  log "linking ccx_camclay9 and ccx_camclay9_trace with $umat_obj"
+stamp=$( (cat "$umat_obj" "$here/umat_trace.f90"; stat -c '%s %Y' "$src/$ccx.a") | sha256sum | cut -c1-16)
+bin="$cache/bin/$stamp"
+if [ ! -f "$bin/linked" ]; then
+  log "linking ccx_camclay9 and ccx_camclay9_trace with $umat_obj in $bin"
+  rm -rf "$bin" && mkdir -p "$bin"
   work=$(mktemp -d)
   # The trace wrapper calls the real routine under another name: rename umat_ in a copy.
   objcopy --redefine-sym umat_=camclay9_umat_ "$umat_obj" "$work/renamed.o"
   gfortran -O2 -c "$here/umat_trace.f90" -o "$work/umat_trace.o" -J "$work"
-  gfortran -Wall -O2 -o "$cache/bin/ccx_camclay9" "$src/$ccx.o" "$umat_obj" "$src/$ccx.a" "${libs[@]}"
-  gfortran -Wall -O2 -o "$cache/bin/ccx_camclay9_trace" "$src/$ccx.o" "$work/umat_trace.o" "$work/renamed.o" \
+  gfortran -Wall -O2 -o "$bin/ccx_camclay9" "$src/$ccx.o" "$umat_obj" "$src/$ccx.a" "${libs[@]}"
+  gfortran -Wall -O2 -o "$bin/ccx_camclay9_trace" "$src/$ccx.o" "$work/umat_trace.o" "$work/renamed.o" \
     "$src/$ccx.a" "${libs[@]}"
   # The stub umat of ccx_2.20.a (isotropic elasticity from PROPS 1-2) must not be the one linked:
   # it would run without a word and give wrong results.
   for exe in ccx_camclay9 ccx_camclay9_trace; do
-    nm "$cache/bin/$exe" > "$work/symbols"
+    nm "$bin/$exe" > "$work/symbols"
     grep -q ccix_mixture "$work/symbols" || { echo "build_ccx: the UMAT is not linked into $exe" >&2; exit 1; }
   done
   rm -rf "$work"
-  echo "$stamp" > "$cache/bin/link.stamp"
+  echo "$umat_obj" > "$bin/linked"
 fi
-echo "$cache/bin"
+touch "$bin/linked"
+find "$cache/bin" -mindepth 1 -maxdepth 1 -type d ! -newermt '7 days ago' -exec rm -rf {} + 2>/dev/null || true
+echo "$bin"

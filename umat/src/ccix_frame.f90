@@ -20,8 +20,8 @@
 !> The simultaneous diagonalisation is in closed form (ccix_pencil): C, P and H are transversely
 !> isotropic about the bedding normal. Only a step that leaves the surface needs it.
 module ccix_frame
-  use, intrinsic :: iso_fortran_env, only: real64
-  use ccix_tensor, only: sqrt2, one6, is_finite
+  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use ccix_tensor, only: sqrt2, one6, is_finite, exponent_bits
   use ccix_walpole, only: ti_t, ti_mandel, ti_apply, ti_trace
   use ccix_pencil, only: pencil_t, pencil_diagonalise, v_times, v_inv_times, v_inv_t_times
   use ccix_elasticity, only: ti_stiffness
@@ -388,10 +388,10 @@ contains
     iterations = 0
     do it = 1, max_newton + 1
       ev = local_eval(fr, st, g, y)
-      ! is_finite of the sum, written inline in this loop (NaN compares false): a call to the public
-      ! function is not inlined under -fPIC and cost about 2 % of a viscoplastic call (measured).
+      ! is_finite of the sum, written inline in this loop (its bits: no comparison of a NaN): a call
+      ! to the public function is not inlined under -fPIC and cost about 2 % of a viscoplastic call.
       z = ev%err + ev%j_yg + ev%j_yy + ev%j_fg + ev%j_fy
-      if (.not. (abs(z) <= huge(z))) return
+      if (iand(transfer(z, 0_int64), exponent_bits) == exponent_bits) return
       if (converged) then
         ok = ev%err <= 1.0e3_real64 * newton_tol
         return

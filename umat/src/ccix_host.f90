@@ -24,15 +24,21 @@ module ccix_host
 contains
 
   !> One line for the host's user about a call the UMAT rejected (PNEWDT < 1); the analysis goes on.
+  !> Flushed: gfortran buffers standard error when it is not a terminal, and the host's own messages
+  !> (C's stderr, unbuffered) would otherwise come before it.
   recursive subroutine host_warning(message)
     character(len=*), intent(in) :: message
     write (message_unit, '(a)') message
+    flush (message_unit)
   end subroutine host_warning
 
-  !> message where the host shows it, then the host's way to stop: here the hook, then error stop.
+  !> message where the host shows it, then the host's way to stop: here the hook, then error stop. The
+  !> message unit is flushed first: error stop writes its own line straight to standard error, so with
+  !> standard error redirected to a file (buffered) that line came before the message.
   recursive subroutine host_stop(message)
     character(len=*), intent(in) :: message
     call CAMCLAY9_STOP_HOOK(message)
+    flush (message_unit)
     error stop 'Cam-Clay IX UMAT: analysis stopped (the message above says why)'
   end subroutine host_stop
 
@@ -40,6 +46,7 @@ contains
   recursive subroutine camclay9_stop_hook(message)
     character(len=*), intent(in) :: message
     write (message_unit, '(a)') message
+    flush (message_unit)
   end subroutine camclay9_stop_hook
 
 end module ccix_host

@@ -2,7 +2,7 @@
 !> numbers, the property checks with their messages, and the frames built from PROPS.
 module ccix_props
   use, intrinsic :: iso_fortran_env, only: real64, int64
-  use ccix_tensor, only: is_finite
+  use ccix_tensor, only: first_not_finite
   use ccix_walpole, only: walpole_basis
   use ccix_frame, only: frame_t, frame_new
   implicit none
@@ -147,29 +147,27 @@ contains
     character(len=message_len), intent(out) :: message
     real(real64) :: n3(3)
     integer :: i, n
-    logical :: finite, within
+    logical :: within
 
     code = 0
     message = ''
     call check_sizes(nprops, nstatv, ntens, ndi, code, message)
     if (code /= 0) return
-    ! All finite (NaN compares false) and within their own bounds (prop_table), the usual case, in one
-    ! pass without branches; each slot only when one is not: its finiteness first, then its bounds one
-    ! by one in the order of the messages (check_hard, check_soft).
+    ! All finite, then all within their own bounds (prop_table), the usual case, each in one pass
+    ! without branches; each slot only when one is not: its bounds one by one in the order of the
+    ! messages (check_hard, check_soft). Finiteness first and by a quiet test (first_not_finite): an
+    ! ordered comparison of a NaN raises the invalid exception, SIGFPE in a host with traps on.
     n = min(nprops, nprops_normal)
-    finite = .true.
+    i = first_not_finite(n, props)
+    if (i > 0) then
+      call require(code, message, props, .false., i, 'a finite number')
+      return
+    end if
     within = .true.
     do i = 1, n
-      finite = finite .and. abs(props(i)) <= huge(1.0_real64)
       within = within .and. (props(i) > lo_of(i) .or. props(i) == lo_eq(i)) .and. &
                             (props(i) < hi_of(i) .or. props(i) == hi_eq(i))
     end do
-    if (.not. finite) then
-      do i = 1, n
-        call require(code, message, props, is_finite(props(i)), i, 'a finite number')
-      end do
-      return
-    end if
 
     ! Each check acts only while no earlier one has failed, so the first offending slot is reported.
     call check_hard(props, within, code, message)

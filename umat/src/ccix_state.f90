@@ -5,12 +5,12 @@
 !>
 !> Re-entrant: RECURSIVE procedures (pure but for the warning of a rejected call), no module variables.
 module ccix_state
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
                          rotate_mandel, mandel_w
   use ccix_props, only: is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, is_evp_soft, is_pc_soft, &
                         is_evp_total, nstatv_min, message_len
-  use ccix_tensor, only: is_finite
+  use ccix_tensor, only: is_nan, first_not_finite, exponent_bits
   use ccix_host, only: host_warning
   use ccix_frame, only: flag_floor, flag_tension, flag_fallback
   use ccix_mixture, only: step_info_t, hard, soft
@@ -87,12 +87,14 @@ contains
 
   !> PNEWDT asks at most ratio of the increment. Hosts differ in what PNEWDT holds on entry: Abaqus sets
   !> it large and takes the smallest request; CalculiX passes -1 ("no request") and redoes the increment
-  !> for ANY positive value, above 1 too (docs/calculix.md). So with PNEWDT <= 0 on entry only a cutback
-  !> (< 1) is written.
+  !> for ANY positive value, above 1 too (docs/calculix.md). So with PNEWDT <= 0 (or NaN) on entry only
+  !> a cutback (< 1) is written.
   pure recursive subroutine suggest_step(pnewdt, ratio)
     real(real64), intent(inout) :: pnewdt
     real(real64), intent(in) :: ratio
-    if (pnewdt > 0) then
+    if (is_nan(pnewdt)) then   ! no request (a quiet test: a NaN must not meet an ordered comparison)
+      if (ratio < 1) pnewdt = ratio
+    else if (pnewdt > 0) then
       pnewdt = min(pnewdt, ratio)
     else if (ratio < 1) then
       pnewdt = ratio
@@ -115,48 +117,91 @@ contains
 
 
   !> True, with one line to the host (host_warning) naming the argument, its value and what was
-  !> expected, when DTIME is negative or not finite, or the stored state is not usable: a slot 1-32 not
-  !> finite (unless slot 13 <= 0 marks the state as uninitialised), or pc of a frame in use (slot 26)
-  !> not positive.
-  recursive logical function arguments_rejected(dtime, statev, phi, noel, npt) result(bad)
-    real(real64), intent(in) :: dtime, statev(:), phi
-    integer, intent(in) :: noel, npt
-    character(len=*), parameter :: rejected = '; increment rejected (PNEWDT < 1) at element '
-    character(len=message_len) :: line
-    integer :: slot
+  !> expected, when an argument of the increment cannot be used (docs/umat.md "Rejected calls"): DTIME
+  !> negative or not finite; DSTRAN not finite; DROT, when read (not the identity), not finite; the
+  !> stored state not usable, a slot 1-32 not finite or pc of a frame in use (slot 26) not positive;
+  !> or, for an uninitialised state (slot 13 finite and <= 0, started from STRESS), STRESS not finite.
+  !> No test here signals on a NaN or an Inf (finite, first_not_finite: bit tests; the ordered
+  !> comparisons only of finite numbers), so that a host with floating-point traps on gets the line,
+  !> not SIGFPE.
+  recursive logical function arguments_rejected(dtime, ntens, dstran, rotated, drot, stress, statev, phi, &
+                                                noel, npt) result(bad)
+    integer, intent(in) :: ntens, noel, npt
+    real(real64), intent(in) :: dtime, dstran(ntens), drot(3, 3), stress(ntens), statev(nstatv_min), phi
+    logical, intent(in) :: rotated   ! DROT is not the identity (compared quietly: /=), so it is read
+    character(len=*), parameter :: a_finite_number = 'a finite number'
+    integer :: k
+
     bad = .true.
-    if (.not. (dtime >= 0 .and. dtime <= huge(dtime))) then
-      write (line, '(a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: DTIME = ', dtime, &
-        ': expected a finite time increment >= 0', rejected, noel, ', integration point ', npt
-      call host_warning(trim(line))
+    if (.not. finite(dtime)) then
+      call reject('DTIME', [integer ::], dtime, 'a finite time increment >= 0', noel, npt)
+      return
+    else if (dtime < 0) then
+      call reject('DTIME', [integer ::], dtime, 'a finite time increment >= 0', noel, npt)
       return
     end if
-    if (is_finite(statev(is_pc_hard)) .and. statev(is_pc_hard) <= 0) then
-      bad = .false.   ! uninitialised: every stored slot is set from PROPS and STRESS
+    k = first_not_finite(ntens, dstran)
+    if (k > 0) then
+      call reject('DSTRAN', [k], dstran(k), 'a finite strain increment', noel, npt)
       return
     end if
-    if (all(abs(statev(1:nstatv_min)) <= huge(dtime))) then   ! all finite (NaN compares false)
-      slot = nstatv_min + 1
-    else
-      slot = 1
-    end if
-    do slot = slot, nstatv_min
-      if (.not. is_finite(statev(slot))) then
-        write (line, '(a,i0,a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: STATEV(', slot, ') = ', &
-          statev(slot), ': expected a finite number', rejected, noel, ', integration point ', npt
-        call host_warning(trim(line))
+    if (rotated) then
+      k = first_not_finite(9, drot)
+      if (k > 0) then
+        call reject('DROT', [mod(k - 1, 3) + 1, (k - 1) / 3 + 1], drot(mod(k - 1, 3) + 1, (k - 1) / 3 + 1), &
+                    'a finite rotation increment', noel, npt)
         return
       end if
-    end do
+    end if
+    if (finite(statev(is_pc_hard))) then
+      if (statev(is_pc_hard) <= 0) then   ! uninitialised: started from STRESS (and PROPS)
+        k = first_not_finite(ntens, stress)
+        if (k > 0) call reject('STRESS', [k], stress(k), a_finite_number // &
+                               ' (STATEV(13) <= 0: the state is started from STRESS)', noel, npt)
+        bad = k > 0
+        return
+      end if
+    end if
+    k = first_not_finite(nstatv_min, statev)
+    if (k > 0) then
+      call reject('STATEV', [k], statev(k), a_finite_number, noel, npt)
+      return
+    end if
     if (phi < 1 .and. .not. (statev(is_pc_soft) > 0)) then
-      write (line, '(a,i0,a,es14.6e3,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: STATEV(', is_pc_soft, ') = ', &
-        statev(is_pc_soft), ': expected the soft-frame pc > 0 ' // &
-        '(slot 13 > 0: the state is initialised)', &
-        rejected, noel, ', integration point ', npt
-      call host_warning(trim(line))
+      call reject('STATEV', [is_pc_soft], statev(is_pc_soft), 'the soft-frame pc > 0 ' // &
+                  '(slot 13 > 0: the state is initialised)', noel, npt)
       return
     end if
     bad = .false.
   end function arguments_rejected
+
+  !> is_finite (ccix_tensor), here where it is inlined: its bits, never a comparison of x.
+  pure recursive logical function finite(x)
+    real(real64), intent(in) :: x
+    finite = iand(transfer(x, 0_int64), exponent_bits) /= exponent_bits
+  end function finite
+
+  !> The line of a rejected call: the argument, with its indices if any (name(i) or name(i,j)), its
+  !> value, what was expected, where.
+  recursive subroutine reject(name, index, value, expected, noel, npt)
+    character(len=*), intent(in) :: name, expected
+    integer, intent(in) :: index(:), noel, npt
+    real(real64), intent(in) :: value
+    character(len=message_len) :: line
+    character(len=32) :: argument, number
+    select case (size(index))
+    case (0)
+      argument = name
+    case (1)
+      write (argument, '(a,a,i0,a)') name, '(', index(1), ')'
+    case default
+      write (argument, '(a,a,i0,a,i0,a)') name, '(', index(1), ',', index(2), ')'
+    end select
+    write (number, '(es14.6e3)') value   ! NaN, Infinity, -Infinity: written, never compared
+    write (line, '(a,a,a,a,a,a,a,i0,a,i0)') 'Cam-Clay IX UMAT: ', trim(argument), ' = ', &
+      trim(adjustl(number)), ': expected ', expected, '; increment rejected (PNEWDT < 1) at element ', &
+      noel, ', integration point ', npt
+    call host_warning(trim(line))
+  end subroutine reject
 
 end module ccix_state

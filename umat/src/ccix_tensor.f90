@@ -5,7 +5,7 @@
 !> (theory.md sec. 1.1). The Abaqus boundary uses Voigt order 11, 22, 33, 12, 13, 23 with engineering
 !> shear strains; the conversions live here and nowhere else.
 module ccix_tensor
-  use, intrinsic :: iso_fortran_env, only: real64
+  use, intrinsic :: iso_fortran_env, only: real64, int64
   implicit none
   private
 
@@ -16,12 +16,20 @@ module ccix_tensor
   !> Voigt (i,j) index pairs of the six Mandel slots.
   integer, parameter, public :: voigt_i(6) = [1, 2, 3, 1, 1, 2]
   integer, parameter, public :: voigt_j(6) = [1, 2, 3, 2, 3, 3]
+  !> The exponent field of an IEEE binary64 number (bits 52-62), all ones for +-Inf and NaN. The tests
+  !> of finiteness below read the bits (transfer to an integer), never compare the number: an ordered
+  !> comparison of a NaN (abs(x) <= huge(x), x >= 0) raises the invalid exception, which a host with
+  !> floating-point traps on (gfortran -ffpe-trap=invalid) turns into SIGFPE. Not ieee_arithmetic's
+  !> ieee_is_finite, quiet too: gfortran then saves and restores the floating-point state around every
+  !> external procedure that uses a module using it (the UMAT: 2 calls into libgfortran per call).
+  integer(int64), parameter, public :: exponent_bits = shiftl(2047_int64, 52)
   !> Mandel weight of each slot: 1 for normal components, sqrt(2) for shears.
   real(real64), parameter, public :: mandel_w(6) = [1.0_real64, 1.0_real64, 1.0_real64, &
                                                     sqrt2, sqrt2, sqrt2]
 
   public :: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
-            tangent_to_abaqus, mandel_to_matrix33, matrix33_to_mandel, rotate_mandel, is_finite
+            tangent_to_abaqus, mandel_to_matrix33, matrix33_to_mandel, rotate_mandel, is_finite, &
+            is_nan, first_not_finite
 
 contains
 
@@ -98,13 +106,44 @@ contains
     mr = matrix33_to_mandel(matmul(r, art))
   end function rotate_mandel
 
-  !> True for a finite x (NaN compares false). Scalar and RECURSIVE, not ELEMENTAL: a function result
-  !> is a local, which -fno-automatic (or ifort's -save) makes static in a non-recursive procedure,
-  !> shared by the host's threads; Fortran 2008 does not allow RECURSIVE ELEMENTAL.
+  !> True for a finite x; never signals, whatever x (its bits, exponent_bits). Scalar and RECURSIVE, not
+  !> ELEMENTAL: a function result is a local, which -fno-automatic (or ifort's -save) makes static in a
+  !> non-recursive procedure, shared by the host's threads; Fortran 2008 does not allow RECURSIVE
+  !> ELEMENTAL.
   pure recursive function is_finite(x) result(ok)
     real(real64), intent(in) :: x
     logical :: ok
-    ok = (x == x) .and. abs(x) <= huge(x)
+    ok = iand(transfer(x, 0_int64), exponent_bits) /= exponent_bits
   end function is_finite
+
+  !> True for a NaN (exponent all ones, fraction not zero: its bits without the sign above those of
+  !> +Inf); never signals.
+  pure recursive function is_nan(x) result(nan)
+    real(real64), intent(in) :: x
+    logical :: nan
+    nan = iand(transfer(x, 0_int64), huge(0_int64)) > exponent_bits
+  end function is_nan
+
+  !> The index of the first of x(1:n) that is NaN or +-Inf, 0 if all are finite; never signals. Explicit
+  !> shape, so that a matrix (DROT) is passed as it is stored. The usual case in one pass without
+  !> branches that vectorises: the exponent field plus one, ORed over x, has its bit 11 set only if a
+  !> field is all ones (2047 + 1 = 2048; no field + 1 exceeds 2048, and nothing overflows).
+  pure recursive function first_not_finite(n, x) result(k)
+    integer, intent(in) :: n
+    real(real64), intent(in) :: x(n)
+    integer :: k
+    integer(int64) :: fields
+    fields = 0
+    do k = 1, n
+      fields = ior(fields, iand(shiftr(transfer(x(k), 0_int64), 52), 2047_int64) + 1)
+    end do
+    if (.not. btest(fields, 11)) then
+      k = 0
+      return
+    end if
+    do k = 1, n
+      if (.not. is_finite(x(k))) return
+    end do
+  end function first_not_finite
 
 end module ccix_tensor

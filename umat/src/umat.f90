@@ -39,7 +39,7 @@ recursive subroutine umat( &
   real(real64) :: sig_n(6, 2), pc_n(2), sig_frames(6, 2), pc(2), devp(6, 2), devp_total(6)
   real(real64) :: sv(nstatv_min)   ! STATEV 1-32 at the start, rotated: STATEV itself changes only on success
   integer :: code
-  logical :: rejected
+  logical :: rejected, rotated
   character(len=message_len) :: message
 
   rpl = 0
@@ -55,17 +55,24 @@ recursive subroutine umat( &
   tol = 0
   if (nprops >= ip_tol) tol = props(ip_tol)
 
+  ! DROT is read (and checked) only when it is not the identity; /= compares quietly, NaN included.
+  rotated = drot(1, 1) /= 1 .or. drot(2, 2) /= 1 .or. drot(3, 3) /= 1 .or. drot(1, 2) /= 0 .or. &
+            drot(2, 1) /= 0 .or. drot(1, 3) /= 0 .or. drot(3, 1) /= 0 .or. drot(2, 3) /= 0 .or. &
+            drot(3, 2) /= 0
+
   ! Arguments no smaller step can repair are rejected like a failed step (PNEWDT < 1, STRESS and
   ! STATEV unchanged, a message naming the argument): a negative or non-finite DTIME, a non-finite
-  ! stored state (docs/umat.md "Rejected calls").
-  if (arguments_rejected(dtime, statev, props(ip_phi), noel, npt)) then
+  ! DSTRAN or DROT, a non-finite stored state, or a non-finite STRESS to start an uninitialised state
+  ! from (docs/umat.md "Rejected calls"). Before any arithmetic on them: with floating-point traps on,
+  ! a NaN or an Inf must give the message, not SIGFPE.
+  if (arguments_rejected(dtime, ntens, dstran, rotated, drot, stress, statev, props(ip_phi), noel, npt)) then
     call suggest_step(pnewdt, step_cutback)
     call material_ddsdde(mat, ntens, ddsdde)
     return
   end if
 
   ! State at the start of the increment: rotated by DROT, or started from STRESS and PROPS.
-  call start_state(statev, stress, ntens, drot, mat, sv, sig_n, pc_n)
+  call start_state(statev, stress, ntens, rotated, drot, mat, sv, sig_n, pc_n)
 
   ! Strain increment: NTENS = 4 is 11, 22, 33, 12 with 13 = 23 = 0 (plane strain, axisymmetric).
   deps = 0
@@ -114,8 +121,9 @@ contains
   !> rejected call returns STATEV exactly as it came in), and the frames' stresses and pc from it. A
   !> state whose pc_hard is not positive is uninitialised: both frames start at the stress passed in,
   !> with pc = pc0 and no viscoplastic strain (theory.md sec. 2).
-  pure recursive subroutine start_state(statev, stress, ntens, drot, mat, sv, sig_n, pc_n)
+  pure recursive subroutine start_state(statev, stress, ntens, rotated, drot, mat, sv, sig_n, pc_n)
     integer, intent(in) :: ntens
+    logical, intent(in) :: rotated
     real(real64), intent(in) :: statev(nstatv_min), stress(ntens), drot(3, 3)
     type(material_t), intent(in) :: mat
     real(real64), intent(out) :: sv(nstatv_min), sig_n(6, 2), pc_n(2)
@@ -133,9 +141,7 @@ contains
     end if
     ! Rigid rotation of the increment (umat-interface.md): the stored tensors, not the normal.
     sv = statev
-    if (drot(1, 1) /= 1 .or. drot(2, 2) /= 1 .or. drot(3, 3) /= 1 .or. drot(1, 2) /= 0 .or. &
-        drot(2, 1) /= 0 .or. drot(1, 3) /= 0 .or. drot(3, 1) /= 0 .or. drot(2, 3) /= 0 .or. &
-        drot(3, 2) /= 0) call state_rotate(drot, sv)
+    if (rotated) call state_rotate(drot, sv)
     call state_unpack(sv, sig_n, pc_n)
   end subroutine start_state
 

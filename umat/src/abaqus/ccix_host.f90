@@ -16,9 +16,11 @@ module ccix_host
 contains
 
   !> One line in the .msg file about a call the UMAT rejected (PNEWDT < 1); the analysis goes on.
+  !> Flushed, so that the line is in the file whatever becomes of the analysis after it.
   recursive subroutine host_warning(message)
     character(len=*), intent(in) :: message
     write (message_unit, '(a)') '***WARNING: ' // message
+    flush (message_unit)
   end subroutine host_warning
 
   !> message in the .msg file, then XIT ends the analysis.
