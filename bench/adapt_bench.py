@@ -19,6 +19,7 @@ Converged answers (where each comes from):
 """
 import argparse
 import json
+import os
 import subprocess
 import sys
 import time
@@ -28,7 +29,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from performance_doc import replace_section  # noqa: E402
 
-DRIVER = ROOT / "build" / "bin" / "driver"
+DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 TITLE = "## Adapted meshes: error indicator, adaptation by rerun, the stated mesh error"
 UNLOAD = """  - name: unload
     duration: 20

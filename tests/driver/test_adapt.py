@@ -132,3 +132,66 @@ def test_restart_refuses_another_mesh(tmp_path):
     print(log.strip().splitlines()[-1])
     assert code == 2 and "another mesh" in log, log
     assert (out / "history.csv").read_bytes() == history and (out / "mesh.msh").read_bytes() == mesh
+
+
+def names_and_counts(msh):
+    """The physical groups of a gmsh 4.1 file: name -> (dimension, number of elements of the entities tagged with it)."""
+    text = Path(msh).read_text()
+    names = {}
+    block = text.split("$PhysicalNames\n")[1].split("$EndPhysicalNames")[0].splitlines()[1:]
+    for line in block:
+        d, tag, name = line.split(maxsplit=2)
+        names[(int(d), int(tag))] = name.strip('"')
+    ents = text.split("$Entities\n")[1].split("$EndEntities")[0].splitlines()
+    tagged = {}   # (dim, entity tag) -> physical tags
+    n = list(map(int, ents[0].split()))
+    row = 1
+    for dim in range(4):
+        for _ in range(n[dim]):
+            f = ents[row].split()
+            row += 1
+            k = 4 if dim == 0 else 7
+            tagged[(dim, int(f[0]))] = [int(t) for t in f[k + 1:k + 1 + int(f[k])]]
+    els = text.split("$Elements\n")[1].split("$EndElements")[0].splitlines()
+    out, i = {}, 1
+    while i < len(els):
+        dim, tag, _, m = map(int, els[i].split())
+        for p in tagged.get((dim, tag), []):
+            key = names[(dim, p)]
+            out[key] = (dim, out.get(key, (dim, 0))[1] + m)
+        i += 1 + m
+    return out
+
+
+def test_adapt_keeps_groups_and_planes(tmp_path):
+    """One adapted level of the 60-degree sector (3D, P2, elastic, under a Berkovich): the adapted mesh has every
+    physical group of the first, of the same dimension and not empty, and more cells where the indicator asked for them
+    (more contact-surface faces); the driver's own group checks pass on it (every node of mirror_a, mirror_b and side1
+    in its plane, docs/driver.md "Groups against their keys"), and it reports the same quantities."""
+    text = f"""scene: fe
+mesh:
+  geometry: {ROOT}/meshes/indent_sector.geo
+  parameters: {{L: 2, span: 60, h_tip: 0.3, h_far: 0.8, r_fine: 0.9, r_contact: 0.95}}
+  order: 2
+  adapt: {{levels: 1, growth: 2}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}]
+  mirror:
+    - {{group: mirror_a, normal: [0.5, -0.8660254037844386, 0]}}
+    - {{group: mirror_b, normal: [1, 0, 0]}}
+    - {{group: side1, normal: [0.5, 0.8660254037844386, 0]}}
+indenter: {{shape: berkovich, half_angle: 65.27, contact: contact, copies: 6}}
+stages:
+  - {{name: push, duration: 1, indenter: {{depth: 0.1}}, steps: {{count: 2}}}}
+"""
+    out = tmp_path / "sector"
+    run(text, out, exe="driver_elastic")
+    g0 = names_and_counts(out / "adapt" / "level0" / "mesh.msh")
+    g1 = names_and_counts(out / "adapt" / "level1" / "mesh.msh")
+    print("level 0:", g0, "\nlevel 1:", g1)
+    assert set(g0) == set(g1) and all(g1[k][0] == g0[k][0] and g1[k][1] > 0 for k in g0)
+    assert g1["contact"][1] > g0["contact"][1]
+    s = summary(out)
+    assert s["mesh_error"] is not None and len(s["levels"]) == 2 and s["levels"][1]["cells"] > 1.3 * s["levels"][0]["cells"]
+    assert (out / "mesh.msh").read_bytes() == (out / "adapt" / "level1" / "mesh.msh").read_bytes()

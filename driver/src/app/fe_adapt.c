@@ -94,17 +94,15 @@ static int publish(const char *outdir, const char *level_dir, char *err, size_t 
   return 0;
 }
 
-/* One quantity's error from its values on the levels (docs/adapt.md, "The error estimate"): the last change over
-   the predicted ratio of errors, with the rate r assumed; from three levels, the rate the last two changes show
-   when they fall, kept within [r/2, 2r]. */
+/* One quantity's error from its values on the levels (docs/adapt.md, "The error estimate"): the last change over the
+   predicted ratio of errors at the assumed rate r, error ~ cells^-r; from three levels, the change before it reduced
+   at that rate when it is the larger, so that a last change that is small by chance (meshes of one density scatter)
+   does not pass for convergence. */
 static double quantity_error(const double *q, const double *cells, int n, double r) {
-  const double d1 = fabs(q[n - 1] - q[n - 2]), rho = cells[n - 1] / cells[n - 2];
-  double       rate = r;
-  if (n >= 3) {
-    const double d0 = fabs(q[n - 2] - q[n - 3]), rho0 = cells[n - 2] / cells[n - 3];
-    if (d0 > 0 && d1 > 0 && d1 < d0) rate = PetscMin(PetscMax(log(d0 / d1) / log(0.5 * (rho + rho0)), 0.5 * r), 2 * r);
-  }
-  return d1 / (pow(rho, rate) - 1);
+  const double rho = cells[n - 1] / cells[n - 2], gain = pow(rho, r);
+  double       d = fabs(q[n - 1] - q[n - 2]);
+  if (n >= 3) d = fmax(d, fabs(q[n - 2] - q[n - 3]) / gain);
+  return d / (gain - 1);
 }
 
 void fe_adapt_estimate(const RunInfo *levels, int n, int order, int dim, MeshError *me) {
@@ -113,8 +111,8 @@ void fe_adapt_estimate(const RunInfo *levels, int n, int order, int dim, MeshErr
   if (n < 2 || n > 16) return;
   const RunnerSummary *a = &levels[n - 1].sum;
   me->have = 1, me->rate = (double)order / dim;
-  me->how  = n >= 3 ? "from the last three levels: the last change over the ratio of errors their changes show (docs/adapt.md)"
-                    : "from the last two levels: their change over the ratio of errors at the assumed rate (docs/adapt.md)";
+  me->how  = n >= 3 ? "the larger of the last change and the change before it reduced at the assumed rate, over the predicted ratio of errors (docs/adapt.md)"
+                    : "the last change over the predicted ratio of errors at the assumed rate (docs/adapt.md)";
   for (int l = 0; l < n; l++) cells[l] = (double)levels[l].cells;
   for (int k = 0; k <= a->nstages_done; k++)
     for (int q = 0; q < a->nreport; q++) {
