@@ -36,7 +36,9 @@ run("build" ${CMAKE_COMMAND} --build ${b} -j 2)
 # Its own tests: the UMAT's and tests/calculix (same_mesh skips: no driver here). The CalculiX run
 # (calculix.drop_in, ~20 s) and the host files (umat.host_*, ~15-40 s) are left to the full build, which
 # runs them on the same code; the installed host files are checked below.
-run("ctest" ${CMAKE_CTEST_COMMAND} --test-dir ${b} --output-on-failure -E "^calculix[.]drop_in$|^umat[.]host_")
+# umat.nonfinite_host_file and _abaqus_file run the host files too (their fixture is umat.host_files_compile).
+run("ctest" ${CMAKE_CTEST_COMMAND} --test-dir ${b} --output-on-failure
+    -E "^calculix[.]drop_in$|^umat[.]host_|^umat[.]nonfinite_(host|abaqus)_file$")
 run("install" ${CMAKE_COMMAND} --install ${b} --prefix ${WORK}/prefix)
 foreach(f share/camclay9/camclay9_umat.f90 share/camclay9/camclay9_umat_abaqus.for share/camclay9/camclay9_umat.o
           include/camclay9/camclay9.h
