@@ -94,15 +94,24 @@ static PetscErrorCode cell_geometry(FeProblem *p, PetscInt c, CellGeom *g) {
   PetscFunctionReturn(0);
 }
 
-/* The cell's stress as a linear function a0 + a . (x - x_q0), fitted by least squares through its quadrature
+/* The recovered fields (fe_estimate.h): the stress, and the viscoplastic strain (Voigt, engineering shears). */
+typedef enum { SRC_STRESS, SRC_EVP } Source;
+
+/* Component j of the field at quadrature point q of local cell c. */
+static PetscReal point_value(const FeProblem *p, PetscInt c, PetscInt q, PetscInt j, Source src) {
+  const PetscReal *st = &p->pts.state[SV(p, c + p->space.cStart, q) * p->pts.nsv];
+  return src == SRC_STRESS ? st[ST_STRESS + j] : material_quantity(&p->pts.mat, st + ST_STATEV, MATERIAL_EVP, (int)j);
+}
+
+/* The cell's field as a linear function a0 + a . (x - x_q0), fitted by least squares through its quadrature
    points (exact through the d + 1 points of the P2 rule; the constant mean with one point, P1); evaluated at
    the point x into s[6]. */
-static void cell_stress_at(FeProblem *p, PetscInt c, const CellGeom *g, const PetscReal *x, PetscReal s[6]) {
+static void cell_field_at(FeProblem *p, PetscInt c, const CellGeom *g, const PetscReal *x, Source src, PetscReal s[6]) {
   const PetscInt dim = g->dim, nq = p->space.nq, m = dim + 1;
   for (PetscInt j = 0; j < 6; j++) {
     PetscReal A[16] = {0}, b[4] = {0}, mean = 0, wsum = 0;
     for (PetscInt q = 0; q < nq; q++) {
-      const PetscReal w = p->space.qweights[q], v = p->pts.state[SV(p, c + p->space.cStart, q) * p->pts.nsv + ST_STRESS + j];
+      const PetscReal w = p->space.qweights[q], v = point_value(p, c, q, j, src);
       PetscReal       row[4] = {1, 0, 0, 0};
       for (PetscInt i = 0; i < dim; i++) row[1 + i] = g->xq[q][i] - g->xq[0][i];
       for (PetscInt r = 0; r < m; r++) {
@@ -130,10 +139,11 @@ static void barycentric(const CellGeom *g, const PetscReal *x, PetscReal lam[4])
   for (PetscInt k = 0; k < d; k++) lam[k + 1] = b[k], lam[0] -= b[k];
 }
 
-/* |s|^2 with the shear components counted twice (the tensor's own norm; fe_estimate.h). */
-static PetscReal tensor_norm2(const PetscReal s[6], PetscInt ntens) {
+/* The tensor's own norm squared (fe_estimate.h): a stress's shear components count twice, a strain's engineering
+   shears (twice the tensor's) half. */
+static PetscReal tensor_norm2(const PetscReal s[6], PetscInt ntens, Source src) {
   PetscReal n = 0;
-  for (PetscInt j = 0; j < ntens; j++) n += (j < 3 ? 1 : 2) * s[j] * s[j];
+  for (PetscInt j = 0; j < ntens; j++) n += (j < 3 ? 1 : src == SRC_STRESS ? 2 : 0.5) * s[j] * s[j];
   return n;
 }
 
@@ -171,24 +181,24 @@ static PetscErrorCode max_at_vertices(FeProblem *p, Vec L) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_estimate_update(FeProblem *p) {
+/* The recovery indicator of one field into eta (per local cell): sigma* from the cells' vertex values, then
+   eta_K = (int_K |sigma* - sigma_h|^2)^(1/2) (fe_estimate.h). */
+static PetscErrorCode recover(FeProblem *p, Source src, PetscReal *eta) {
   const PetscInt ncell = p->space.cEnd - p->space.cStart, ntens = p->space.dim == 3 ? 6 : 4;
   Vec            L;
   PetscScalar   *a;
   CellGeom       g;
   PetscFunctionBeginUser;
-  PetscCall(vertex_dm(p));
-  if (!p->est.eta) PetscCall(PetscCalloc2(ncell + 1, &p->est.eta, ncell + 1, &p->est.eta_max));
   PetscCall(DMGetLocalVector(p->est.dmv, &L));
   PetscCall(VecZeroEntries(L));
   PetscCall(VecGetArray(L, &a));
-  for (PetscInt c = 0; c < ncell; c++) { /* each cell's stress at its vertices, weighted by its volume */
+  for (PetscInt c = 0; c < ncell; c++) { /* each cell's field at its vertices, weighted by its volume */
     PetscInt  off[4], nv;
     PetscReal s[6];
     PetscCall(cell_geometry(p, c + p->space.cStart, &g));
     PetscCall(cell_vertex_offsets(p, c + p->space.cStart, off, &nv));
     for (PetscInt v = 0; v < nv; v++) {
-      cell_stress_at(p, c, &g, g.xv[v], s);
+      cell_field_at(p, c, &g, g.xv[v], src, s);
       for (PetscInt j = 0; j < 6; j++) a[off[v] + j] += g.vol * s[j];
       a[off[v] + 6] += g.vol;
     }
@@ -205,16 +215,38 @@ PetscErrorCode fe_estimate_update(FeProblem *p) {
       PetscReal lam[4], d[6];
       barycentric(&g, g.xq[q], lam);
       for (PetscInt j = 0; j < 6; j++) {
-        d[j] = -p->pts.state[SV(p, c + p->space.cStart, q) * p->pts.nsv + ST_STRESS + j];
+        d[j] = -point_value(p, c, q, j, src);
         for (PetscInt v = 0; v < nv; v++) d[j] += lam[v] * PetscRealPart(a[off[v] + j]) / PetscRealPart(a[off[v] + 6]);
       }
-      e2 += p->space.wdetJ[SV(p, c + p->space.cStart, q)] * tensor_norm2(d, ntens);
+      e2 += p->space.wdetJ[SV(p, c + p->space.cStart, q)] * tensor_norm2(d, ntens, src);
     }
-    p->est.eta[c]     = PetscSqrtReal(e2);
-    p->est.eta_max[c] = PetscMax(p->est.eta_max[c], p->est.eta[c]);
+    eta[c] = PetscSqrtReal(e2);
   }
   PetscCall(VecRestoreArray(L, &a));
   PetscCall(DMRestoreLocalVector(p->est.dmv, &L));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fe_estimate_update(FeProblem *p) {
+  const PetscInt ncell = p->space.cEnd - p->space.cStart;
+  PetscReal     *eta_e, norm2[2] = {0, 0};
+  PetscFunctionBeginUser;
+  PetscCall(vertex_dm(p));
+  if (!p->est.eta) PetscCall(PetscCalloc2(ncell + 1, &p->est.eta, ncell + 1, &p->est.eta_max));
+  PetscCall(PetscMalloc1(ncell + 1, &eta_e));
+  PetscCall(recover(p, SRC_STRESS, p->est.eta));
+  if (material_quantity_size(&p->pts.mat, MATERIAL_EVP) == 6) PetscCall(recover(p, SRC_EVP, eta_e));
+  else PetscCall(PetscArrayzero(eta_e, ncell + 1));
+  for (PetscInt c = 0; c < ncell; c++) norm2[0] += p->est.eta[c] * p->est.eta[c], norm2[1] += eta_e[c] * eta_e[c];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, norm2, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)p->space.dm)));
+  /* the two fields' shares, each relative to its own norm, in the stress indicator's units (fe_estimate.h) */
+  if (norm2[1] > 0)
+    for (PetscInt c = 0; c < ncell; c++) {
+      const PetscReal s = norm2[0] > 0 ? p->est.eta[c] * p->est.eta[c] / norm2[0] : 0, e = eta_e[c] * eta_e[c] / norm2[1];
+      p->est.eta[c] = PetscSqrtReal(norm2[0] > 0 ? norm2[0] : 1) * PetscSqrtReal(s + e);
+    }
+  for (PetscInt c = 0; c < ncell; c++) p->est.eta_max[c] = PetscMax(p->est.eta_max[c], p->est.eta[c]);
+  PetscCall(PetscFree(eta_e));
   p->est.nupdates++;
   PetscFunctionReturn(0);
 }

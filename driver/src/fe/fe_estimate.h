@@ -8,6 +8,12 @@
  *     eta_K = ( int_K |sigma* - sigma_h|^2 dV )^(1/2),   |s|^2 = s_11^2 + s_22^2 + s_33^2 + 2 (s_12^2 + s_13^2 + s_23^2),
  * with the scene's volume weight (thickness, 2 pi r). Where the solution is smooth it falls as h^(k + d/2) per
  * cell (k the element order) and its sum of squares as h^k, the energy error's rate.
+ * The same recovery on the viscoplastic strain (the material's total, STATEV by name; its engineering shears
+ * halved in the norm) gives eta_e,K. The stress's indicator alone sends the cells to the indenter's tip, where
+ * the stress is singular, and leaves the edge of the viscoplastic zone coarse, which carries the creep depth
+ * (docs/adapt.md, "Which field"). So the indicator is both fields' shares, each relative to its own norm:
+ *     eta_K = |eta_s| ( (eta_s,K / |eta_s|)^2 + (eta_e,K / |eta_e|)^2 )^(1/2),   |eta|^2 = sum_K eta_K^2,
+ * in the stress indicator's units; with no viscoplastic strain (an elastic run) it is eta_s,K.
  *
  * History: the fields of a run are written at its output times; each writes the indicator of the committed
  * state and keeps the largest value of every cell over those times (eta_max), the quantity the size field
