@@ -28,7 +28,7 @@ SCENES = sorted(p for p in (ROOT / "input" / "point").glob("*.yaml") if "scene: 
 
 def run(scene, outdir, *options, check=True):
     proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(outdir), *options],
-                          capture_output=True, text=True, cwd=ROOT)
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
     if check and proc.returncode != 0:
         raise AssertionError(f"driver failed on {scene}:\n{proc.stdout}\n{proc.stderr}")
     return proc
