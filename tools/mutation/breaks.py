@@ -30,11 +30,13 @@ BREAKS = [
          old="  return rho * cos(psi) - z * sin(psi);", new="  return rho * cos(psi) - z * sin(psi) * 1.01;",
          test="driver.normal_gap", k="second_order",
          why="the normal gap's distance to the face off by 1 % of its height term"),
-    dict(id="contact.active_set_sign", file="driver/src/contact/contact.c",
-         old="PetscBool a = PetscRealPart(la[i]) - ct->c * ct->g[i] > eps ? PETSC_TRUE : PETSC_FALSE;",
-         new="PetscBool a = PetscRealPart(la[i]) - ct->c * ct->g[i] >= -eps ? PETSC_TRUE : PETSC_FALSE;",
+    # (measured and replaced: eq. 14 with a closed inequality, lambda - c g >= -eps, passed driver.contact: it changes
+    # only nodes within eps of the switch, and the converged contact solution does not depend on the active-set rule)
+    dict(id="contact.rest_on_surface", file="driver/src/contact/semismooth.c",
+         old="/* down onto the surface, or up out of it */\n    in->ur += all;",
+         new="/* down onto the surface, or up out of it */\n    in->ur += 0.5 * all;",
          test="driver.contact", k="load_hold_unload",
-         why="eq. 14 with a closed inequality: a node at zero pressure and gap stays active"),
+         why="after release the indenter moved only halfway down to the surface (the residual depth)"),
     dict(id="contact.copies", file="driver/src/contact/indent_scene.c",
          old="  st->P0 /= copies, st->until_load /= copies;", new="  st->P0 /= copies;",
          test="driver.sector", k="copies",
@@ -44,6 +46,14 @@ BREAKS = [
          new="l[i] = leaf[NODE_VALUES * i + 1], r[i] = leaf[NODE_VALUES * i];",
          test="driver.restart_ranks", k="cone",
          why="the restored multipliers and their increment swapped"),
+    # (first aimed at driver.restart_ranks: missed, and it cannot see it: the rate only moves the first Newton iterate,
+    # and that scene's fixed steps converge Newton fully to the same answer in as many iterations; an adaptive scene,
+    # whose Newton stops on its error estimate, does see it: the bit-identical restart of the stage runner's test)
+    dict(id="contact.restart_rate_lost", file="driver/src/contact/contact_io.c",
+         old="l[i] = leaf[NODE_VALUES * i], r[i] = leaf[NODE_VALUES * i + 1];",
+         new="l[i] = leaf[NODE_VALUES * i], r[i] = 0;",
+         test="driver.stage_runner", k="restart_is_bit_identical",
+         why="the multipliers' last increment (the predictor's rate) not restored"),
     # stepping: the stage runner, the step controller
     dict(id="stepping.event_secant_end", file="driver/src/stepping/stage_runner.c",
          old="double frac = (target - st->event_prev) / (v - st->event_prev);",
@@ -75,7 +85,7 @@ BREAKS = [
          old="return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[j]);",
          new="return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[0]);",
          test="driver.fe", k="pressure_time_functions", why="a load table's slope over the wrong interval"),
-    dict(id="fe.table_time_factor", file="driver/src/fe/fe_scene.c",
+    dict(id="fe.table_value_factor", file="driver/src/fe/fe_scene.c",
          old="(*t)[r] = data[2 * r] * tf, (*v)[r] = data[2 * r + 1] * vf;", new="(*t)[r] = data[2 * r] * tf, (*v)[r] = data[2 * r + 1];",
          test="calibrate.checks", k="table_load_is", why="a stage table's value factor ignored"),
     dict(id="fe.output_shear_order", file="driver/src/fe/fe_output.c",
@@ -85,9 +95,11 @@ BREAKS = [
     dict(id="material.woodford_eta", file="driver/src/material/material_input.c",
          old="0.0026, 35.0,    1.3e10};", new="0.0026, 35.0,    1.3e11};",
          test="driver.point_scenes", k="error_of_the_shipped_scene", why="the Woodford preset's soft viscosity x10"),
+    # (first aimed at driver.point_scenes' shipped scene: missed, and rightly: that scene gives its tolerance in PROPS
+    # itself, which the driver passes as given; the test of the driver's own tolerance is the stage runner's)
     dict(id="material.tol_not_passed", file="driver/src/material/material_point.c",
          old="if (c.mode != UMAT_CONTROL_AS_GIVEN && mat->pr.tol >= 0", new="if (0 && c.mode != UMAT_CONTROL_AS_GIVEN && mat->pr.tol >= 0",
-         test="driver.point_scenes", k="error_of_the_shipped_scene",
+         test="driver.stage_runner", k="failed_call_replay",
          why="the step control's tolerance not passed to the UMAT (PROPS(20) as given)"),
     dict(id="material.lab_table", file="driver/src/point/point_solve.c",
          old="double w = (t - tt[lo]) / (tt[hi] - tt[lo]);", new="double w = (t - tt[lo]) / (tt[hi] - tt[0]);",
@@ -121,13 +133,16 @@ BREAKS = [
     dict(id="calibrate.bound_max_linear", file="driver/src/app/calibrate_report.c",
          old="  if (fabs(v - p->hi) <= 1e-6 * fabs(p->hi - p->lo) ||", new="  if (fabs(v - p->lo) <= 1e-6 * fabs(p->hi - p->lo) ||",
          test="calibrate.checks", k="linear and max", why="a linear parameter at its max not reported as at a bound"),
-    dict(id="calibrate.bound_max_log", file="driver/src/app/calibrate_report.c",
-         old="(p->log && fabs(log(v / p->hi)) <= 1e-6 * log(p->hi / p->lo))) return \"max\";",
-         new="(p->log && fabs(log(v / p->hi)) <= 1e-16 * log(p->hi / p->lo))) return \"max\";",
-         test="calibrate.checks", k="log and max", why="the log-scaled max bound tested to 1e-16 (never)"),
-    dict(id="calibrate.bound_min_linear", file="driver/src/app/calibrate_report.c",
-         old="  if (fabs(v - p->lo) <= 1e-6 * fabs(p->hi - p->lo) ||", new="  if (fabs(v - p->lo) <= 1e-16 * fabs(p->hi - p->lo) ||",
-         test="calibrate.checks", k="linear and min", why="the linear min bound tested to 1e-16 (never)"),
+    # (measured and replaced: the log-scaled max branch's tolerance made 1e-16, and the linear min branch's, passed
+    # calibrate.checks, and would pass any test: TAO ends exactly on a bound, where another branch or the tolerance's
+    # zero distance still answers; equivalent)
+    dict(id="calibrate.bound_named_wrong", file="driver/src/app/calibrate_report.c",
+         old='(p->log && fabs(log(v / p->lo)) <= 1e-6 * log(p->hi / p->lo))) return "min";',
+         new='(p->log && fabs(log(v / p->lo)) <= 1e-6 * log(p->hi / p->lo))) return "max";',
+         test="calibrate.checks", k="linear and min", why="a parameter at its min reported at its max"),
+    dict(id="calibrate.fit_yaml_at_max", file="driver/src/app/calibrate_yaml.c",
+         old='u[k] <= 1e-6 || u[k] >= 1 - 1e-6 ? ", at_bound: true" : ""', new='u[k] <= 1e-6 ? ", at_bound: true" : ""',
+         test="calibrate.checks", k="at_each_bound and max", why="fit.yaml does not flag a parameter at its max"),
     # io: numbers, YAML positions, paths, fields
     dict(id="io.int_range", file="driver/src/io/text.c",
          old="if (errno == ERANGE || v < lo || v > hi ||", new="if (errno == ERANGE ||",
@@ -142,5 +157,5 @@ BREAKS = [
     dict(id="io.number_trailing", file="driver/src/io/text.c",
          old="if (end == text || *end || errno == ERANGE || !isfinite(v)) return TEXT_NOT_A_NUMBER;",
          new="if (end == text || errno == ERANGE || !isfinite(v)) return TEXT_NOT_A_NUMBER;",
-         test="driver.point_scenes", k="bad_input_names", why="a number with trailing text ('1e3x') accepted"),
+         test="driver.point_scenes", k="bad_input_names", why="a number with trailing text ('10s') accepted"),
 ]
