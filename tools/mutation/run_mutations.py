@@ -158,7 +158,9 @@ def main():
     build(scratch, 3600)  # leave the copy built unbroken
     rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True, timeout=60).stdout.strip()
     when = (f"Last run: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, on {rev} (plus uncommitted changes, if any), "
-            f"{len(todo)} of {len(BREAKS)} breaks in this run; seconds: the test run alone (the rebuild not counted).")
+            f"{len(todo)} of {len(BREAKS)} breaks in this run"
+            f"{' (--baseline: each named test and filter passed unbroken first)' if a.baseline else ''}; "
+            "seconds: the test run alone (the rebuild not counted).")
     if not a.no_readme:
         write_readme(results, when)
     missed = [b["id"] for b in BREAKS if not results.get(b["id"], {}).get("result", "").startswith("caught")]
