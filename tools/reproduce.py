@@ -106,8 +106,8 @@ def mpiexec():
 
 
 class Job:
-    def __init__(self, key, scene, out, driver, ranks):
-        self.key, self.out, self.ranks = key, out, ranks
+    def __init__(self, key, scene, out, driver, ranks, timeout=None):
+        self.key, self.out, self.ranks, self.timeout = key, out, ranks, timeout
         cmd = [driver, "-input", str(scene), "-output_dir", str(out)]
         self.cmd = (mpiexec() + cmd) if ranks > 1 else cmd
         self.proc = self.log = None
@@ -121,6 +121,10 @@ class Job:
 
     def poll(self):
         rc = self.proc.poll()
+        if rc is None and self.timeout and time.monotonic() - self.t0 > self.timeout:
+            self.proc.kill()   # --job-timeout: a hung run fails instead of holding the whole reproduction
+            rc = self.proc.wait(timeout=60)
+            print(f"{self.key}: killed after {self.timeout:g} s (--job-timeout)", flush=True)
         if rc is not None:
             self.wall = time.monotonic() - self.t0
             self.log.close()
@@ -167,6 +171,7 @@ def main(argv=None):
     ap.add_argument("--out", help="output directory (default out/paper or out/paper_quick)")
     ap.add_argument("--driver", default=os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver")))
     ap.add_argument("--jobs", type=int, default=2, help="cores to use (default 2)")
+    ap.add_argument("--job-timeout", type=float, default=None, help="seconds after which a run is killed and fails")
     ap.add_argument("--docs", dest="docs", action="store_true", default=None,
                     help="write docs/paper.md and docs/paper/*.png (default: only in the full run)")
     ap.add_argument("--no-docs", dest="docs", action="store_false")
@@ -191,7 +196,7 @@ def main(argv=None):
         else:
             scene, ranks = scene_file(key), SCENES[key].get("mpi", 1)
             ranks = ranks if (ranks > 1 and a.jobs >= ranks and mpiexec()) else 1
-        jobs.append(Job(key, scene, out / key, a.driver, ranks))
+        jobs.append(Job(key, scene, out / key, a.driver, ranks, a.job_timeout))
     meta_path = out / "runs.json"
     prev = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
     rerun = sorted(set(prev.get("rerun", [])) | set(a.only)) if a.only else []

@@ -130,7 +130,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         scene = with_protocol(a.scene, a.protocol, tmp) if a.protocol else a.scene
         r = subprocess.run([a.driver, "-input", scene, "-output_dir", os.path.join(tmp, "out"), "-material_set", a.set],
-                           capture_output=True, text=True)
+                           capture_output=True, text=True, timeout=600)
         if r.returncode:
             sys.exit(f"make_synthetic: the driver failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
         h = read_history(os.path.join(tmp, "out", "history.csv"))

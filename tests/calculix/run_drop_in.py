@@ -13,7 +13,7 @@ sys.path.insert(0, HERE)
 from replay import umat_object  # noqa: E402  (CAMCLAY9_UMAT_OBJECT, or found in the build folder)
 
 r = subprocess.run(["bash", os.path.join(REPO, "tools", "calculix", "build_ccx.sh"), umat_object()],
-                   capture_output=True, text=True)
+                   capture_output=True, text=True, timeout=3600)
 if r.returncode == 77:
     print("calculix.drop_in skipped: " + (r.stderr.strip().splitlines() or ["build_ccx.sh exit 77"])[-1])
     sys.exit(77)
@@ -24,4 +24,4 @@ env = dict(os.environ, CAMCLAY9_REQUIRE_CCX="1")
 tests = [os.path.join(HERE, sys.argv[1])] if len(sys.argv) > 1 else \
     [os.path.join(HERE, "test_calculix.py"), "-k", "not test_inputs_are_generated"]
 sys.exit(subprocess.run([sys.executable, "-m", "pytest", "-q", "-s", "-p", "no:cacheprovider", *tests],
-                        env=env).returncode)
+                        env=env, timeout=3600).returncode)

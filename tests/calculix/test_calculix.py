@@ -39,7 +39,7 @@ def ccx():
     except FileNotFoundError as e:
         pytest.fail(str(e))
     r = subprocess.run(["bash", os.path.join(REPO, "tools", "calculix", "build_ccx.sh"), obj],
-                       capture_output=True, text=True)
+                       capture_output=True, text=True, timeout=3600)
     if r.returncode == 77:
         if os.environ.get("CAMCLAY9_REQUIRE_CCX"):     # run_drop_in.py found it available: no skip now
             pytest.fail(r.stderr)
@@ -60,7 +60,7 @@ def run(ccx, name, workdir, trace):
     shutil.copy(os.path.join(INPUTS, make_inputs.CYL_INIT), workdir)     # *INCLUDEd by the cylinders
     env = dict(os.environ, OMP_NUM_THREADS="1", CAMCLAY9_TRACE=os.path.join(workdir, "umat_trace.txt"))
     exe = os.path.join(ccx, "ccx_camclay9_trace" if trace else "ccx_camclay9")
-    r = subprocess.run([exe, "-i", name], cwd=workdir, env=env, capture_output=True, text=True)
+    r = subprocess.run([exe, "-i", name], cwd=workdir, env=env, capture_output=True, text=True, timeout=3600)
     assert r.returncode == 0 and "Job finished" in r.stdout, r.stdout[-3000:] + r.stderr
     return workdir
 

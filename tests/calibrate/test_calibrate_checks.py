@@ -31,6 +31,26 @@ def test_parameter_at_bound(tmp_path):
     assert r.returncode == 0 and "warning: eta_soft ended at its bound min = 2e+10 (accepted" in r.stdout, r.stdout
 
 
+# The other three branches of the bound check (calibrate_report.c, at_bound): a bound is min or max, the parameter's
+# scale log or linear. Expected: the synthetic data's truth (eta_soft = 1.3e10, make_synthetic.py) lies beyond the
+# named bound, so a fit that reproduces the data ends on that bound and the error names it with its value.
+BOUND_CASES = [
+    ("log at max", "start: 3.0e9, min: 1.0e9, max: 5.0e9, scale: log", "max", "5e\\+09"),
+    ("linear at min", "start: 3.9e10, min: 2.0e10, max: 1.0e12, scale: linear", "min", "2e\\+10"),
+    ("linear at max", "start: 3.0e9, min: 1.0e9, max: 5.0e9, scale: linear", "max", "5e\\+09"),
+]
+
+
+@pytest.mark.parametrize("name,bounds,which,value", BOUND_CASES, ids=[c[0] for c in BOUND_CASES])
+def test_parameter_at_each_bound(tmp_path, name, bounds, which, value):
+    r = run(bad_scene(tmp_path, "start: 3.9e10, min: 1.0e9, max: 1.0e12, scale: log", bounds), tmp_path / "out")
+    assert r.returncode == 1, (r.stdout[-2000:], r.stderr)
+    assert re.search(rf"bad.yaml:\d+: key 'parameters\[0\].{which}': eta_soft ended at its bound {which} = {value}: the data "
+                     r"want a value beyond it", r.stderr), r.stderr
+    fit = yaml.safe_load((tmp_path / "out" / "fit.yaml").read_text())
+    assert fit["parameters"]["eta_soft"]["at_bound"] is True
+
+
 def test_failed_reference(tmp_path):
     """A full model that fails: an error naming runs[0].reference, the scene, its exit code and log; the forward
     fit kept in fit.yaml, its quote saying the bias is unknown."""
@@ -67,20 +87,29 @@ def test_table_load_is_the_ramp(tmp_path):
     (docs/contact.md) and are cut back in both runs, the retried steps stop where the error estimate allows, and
     from there the step sizes carry the two loads' rounding on. Measured: 1.4e-10 um and 7.5e-7 uN (1.5e-12 um and
     7.8e-9 uN without the stall test, -indent_stall_window 0). A misread table is off by far more: a wrong
-    time_factor or factor changes the load by its whole size."""
+    time_factor or factor changes the load by its whole size. The run against the ramp run is [self]; the load of
+    every step against the closed form P = 10 t uN is [ind]."""
     (tmp_path / "load.csv").write_text("t_min,P_mN\n0,0\n1,0.6\n")
     ramp = table_scene(tmp_path, "    duration: 60\n    indenter: {load: 600}")
     ramp = ramp.rename(tmp_path / "ramp.yaml")
     table = table_scene(tmp_path, "    duration: 60\n    indenter: {load: {table: {file: load.csv, time: t_min, value: P_mN, "
                                   "time_factor: 60, factor: 1000}}}")
     for scene, out in ((ramp, "r"), (table, "t")):
-        r = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / out)], capture_output=True, text=True)
+        r = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / out)], capture_output=True, text=True,
+                           timeout=600)
         assert r.returncode == 0, r.stderr
     a, b = history(tmp_path / "r" / "history.csv"), history(tmp_path / "t" / "history.csv")
     assert len(a) == len(b) > 100
     assert [x["newton_its"] for x in a] == [y["newton_its"] for y in b]
     assert max(abs(float(x["depth"]) - float(y["depth"])) for x, y in zip(a, b)) < 1e-9  # 1.4e-10 measured
     assert max(abs(float(x["load"]) - float(y["load"])) for x, y in zip(a, b)) < 1e-8 * 600  # 7.5e-7 uN measured
+    # Independent of the ramp run: the table's load at every step of the loading stage (t <= 60 s) is the closed
+    # form P = 600 uN t / 60 s (the two rows interpolated linearly), to 1e-8 of 600 uN (measured 1.1e-13 uN).
+    loading = [y for y in b if float(y["time"]) <= 60]
+    assert len(loading) > 20
+    ramp_law = max(abs(float(y["load"]) - 10.0 * float(y["time"])) for y in loading)
+    print(f"table load against P = 10 t: {ramp_law:.2e} uN")
+    assert ramp_law < 1e-8 * 600
 
 
 TABLE_BAD = [
@@ -96,7 +125,8 @@ TABLE_BAD = [
 def test_table_load_bad(tmp_path, name, rows, message):
     (tmp_path / "load.csv").write_text("t,P\n" + rows)
     scene = table_scene(tmp_path, "    duration: 60\n    indenter: {load: {table: {file: load.csv, time: t, value: P}}}")
-    r = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "out")], capture_output=True, text=True)
+    r = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "out")], capture_output=True, text=True,
+                       timeout=600)
     assert r.returncode == 2
     assert re.search(message, r.stderr), r.stderr
 

@@ -61,7 +61,7 @@ reference_steps: 2
 
 
 def run(args, cwd=None):
-    return subprocess.run([DRIVER, *args], capture_output=True, text=True, cwd=cwd or ROOT)
+    return subprocess.run([DRIVER, *args], capture_output=True, text=True, cwd=cwd or ROOT, timeout=600)
 
 
 def first_line_is_ours(proc):
@@ -158,7 +158,7 @@ def gmsh(tmp_path, geo, name, *params):
         pytest.skip("gmsh is not installed")
     out = tmp_path / name
     subprocess.run([GMSH, "-3", "-format", "msh41", "-v", "0", str(ROOT / "meshes" / geo), *params, "-o", str(out)],
-                   check=True, capture_output=True)
+                   check=True, capture_output=True, timeout=600)
     return out
 
 
@@ -318,7 +318,7 @@ def run_elsewhere(tmp_path, folder):
     cwd = tmp_path / "elsewhere"
     cwd.mkdir()
     driver = Path(DRIVER).parent / "driver_elastic"
-    proc = subprocess.run([str(driver), "-input", str(scenes / "scene.yaml")], capture_output=True, text=True, cwd=cwd)
+    proc = subprocess.run([str(driver), "-input", str(scenes / "scene.yaml")], capture_output=True, text=True, cwd=cwd, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "warning" not in proc.stderr, proc.stderr
     import numpy as np

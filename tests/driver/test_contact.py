@@ -29,7 +29,7 @@ def run(text, out, exe="driver_elastic", args=(), np_=1, check=True):
     cmd = [str(BIN / exe), "-input", str(scene), "-output_dir", str(out), *args]
     if np_ > 1:
         cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(np_), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=600)
     if not check:
         return proc
     assert proc.returncode == 0, proc.stdout + proc.stderr

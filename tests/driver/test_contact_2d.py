@@ -28,7 +28,7 @@ def run(text, out):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
     proc = subprocess.run([str(BIN / "driver_elastic"), "-input", str(scene), "-output_dir", str(out)],
-                          capture_output=True, text=True, cwd=ROOT)
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
 

@@ -14,20 +14,45 @@ With the default (loose) tolerances, a whole run ends where the run that factors
 import re
 
 import numpy as np
+import pytest
 
 from test_stage_runner import adaptive, camclay_cone, load_hold, run
 
 TIGHT = ["-indent_check_solve", "-indent_ksp_rtol", "1e-12", "-indent_ksp_rtol_tight", "1e-12"]
 
 
+REFACTOR_ITS = 20  # -indent_refactor_its' default (contact_options.c)
+
+
+def assert_refactor_rule(stdout, refactor_its=REFACTOR_ITS, factorisations=None):
+    """The refactorisation rule as indent_solver.h states it, replayed on the solves the run printed (their Krylov
+    iterations, and whether each factored afresh): a factorisation is made at the first solve, and is due again once
+    the Krylov iterations beyond the first, summed over the solves since the last one, exceed refactor_its. Every due
+    solve must factor afresh, and no other: a factorisation never refreshed, or refreshed a solve early or late,
+    fails here (measured: 23 of 123 solves fresh on the P1 cone, each one due)."""
+    solves = [(int(i), k == "fresh") for i, k in re.findall(r"solve check: .*; (\d+) Krylov iterations, (\w+) factorisation", stdout)]
+    assert solves, stdout[-2000:]
+    extra, due, wrong = 0, True, []
+    for n, (its, fresh) in enumerate(solves):
+        if fresh != due:
+            wrong.append((n, its, "fresh" if fresh else "kept", "due" if due else "not due"))
+        extra = (0 if fresh else extra) + max(its - 1, 0)
+        due = extra > refactor_its
+    nfresh = sum(f for _, f in solves)
+    assert not wrong, f"solves against the rule (index, its, made, rule): {wrong[:10]}"
+    assert factorisations is None or nfresh == factorisations, (nfresh, factorisations)
+    assert nfresh >= 3, nfresh  # the rule was exercised: the factorisation was refreshed within the run
+
+
 def checked(text, out, args=(), np_=1):
     """Run with -indent_check_solve: the history, the largest kept-vs-fresh difference, the Newton iterations and
-    the factorisations of the run."""
+    the factorisations of the run; the refactorisation rule replayed on its solves (assert_refactor_rule)."""
     proc = run(text, out, args=[*TIGHT, *args], np_=np_, check=False)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     diffs = [float(x) for x in re.findall(r"solve check: .* = ([0-9.eE+-]+)", proc.stdout)]
     m = re.search(r"(\d+) Newton iterations .* (\d+) Krylov iterations, (\d+) factorisations", proc.stdout)
     assert diffs and m, proc.stdout[-2000:]
+    assert_refactor_rule(proc.stdout, factorisations=int(m.group(3)))
     return run.__globals__["history"](out), max(diffs), int(m.group(1)), int(m.group(3))
 
 
@@ -117,3 +142,48 @@ def test_stalled_steps_are_cut_back(tmp_path):
     assert cut_on > cut_off
     assert newton_on <= newton_off
     assert np.all(err_on <= 1.25 * err_off + 1e-4)
+
+
+def newton_attempts(stdout):
+    """Each Newton attempt of a step (-indent_monitor): its iterations' (active-set changes, merit), and whether it
+    converged (a step line follows) or was given up (the next attempt starts at newton 0)."""
+    attempts = []
+    for line in stdout.splitlines():
+        m = re.match(r"\s+newton\s+(\d+) .*\((\d+) changes\).* merit (\S+)$", line)
+        if m:
+            if int(m.group(1)) == 0:
+                attempts.append({"its": [], "converged": False})
+            attempts[-1]["its"].append((int(m.group(2)), float(m.group(3))))
+        elif line.startswith("step ") and attempts:
+            attempts[-1]["converged"] = True
+    return attempts
+
+
+@pytest.mark.parametrize("window", [3, 8])
+def test_stall_window_as_documented(tmp_path, window):
+    """The stall rule as -indent_stall_window's help and semismooth.c state it, replayed on every Newton attempt of
+    the cone run (-indent_monitor prints each iteration's active-set changes and merit): an attempt stalls at the
+    first iteration k >= w whose last w iterations changed no node and whose merit is above a tenth of iteration
+    k - w's. An attempt for which the rule names such a k must end there (given up, or converged at that very
+    iteration), and the cutbacks that are not the error measure's are exactly these stalls (this run has no other
+    Newton failure: no iteration limit, cycle or failed solve). A window late by one ends some attempt after the
+    rule's k; one early by one, or the merit compared with another iteration's, cuts back steps the rule does not.
+    Measured on this run: window 3, 2 stalls; window 8, 1 (each where the rule says)."""
+    scene = camclay_cone(load_hold(0.03, hold=10))
+    proc = run(scene, tmp_path / "mon", args=["-indent_monitor", "-indent_stall_window", str(window)], check=False)
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr
+    stalls, wrong = 0, []
+    for n, a in enumerate(newton_attempts(proc.stdout)):
+        its, last = a["its"], len(a["its"]) - 1
+        rule = next((k for k in range(window, last + 1)
+                     if all(its[j][0] == 0 for j in range(k - window + 1, k + 1)) and its[k][1] > 0.1 * its[k - window][1]), None)
+        if rule is not None:
+            stalls += not a["converged"]
+            if last != rule:
+                wrong.append((n, "stall due at", rule, "ended at", last))
+    m = re.search(r"(\d+) cutbacks \((\d+) by the error measure\)", proc.stdout)
+    other = int(m.group(1)) - int(m.group(2))
+    print(f"window {window}: {stalls} attempts stalled as the rule says, {other} cutbacks not by the error measure; "
+          f"against the rule: {wrong[:5]}")
+    assert not wrong
+    assert stalls >= 1 and other == stalls

@@ -25,7 +25,7 @@ MEASURED = {("confined", 0.0): 3.62e-2, ("confined", 1e13): 3.62e-2, ("confined"
 
 def test_extremes_sweep_quick(tmp_path):
     proc = subprocess.run([DRIVER, "-input", str(ROOT / "tests/driver/extremes_quick.yaml"), "-output_dir",
-                           str(tmp_path)], capture_output=True, text=True, cwd=ROOT)
+                           str(tmp_path)], capture_output=True, text=True, cwd=ROOT, timeout=600)
     print(proc.stdout.strip())
     assert proc.returncode == 0, proc.stdout + proc.stderr
     with open(tmp_path / "sweep.csv") as f:

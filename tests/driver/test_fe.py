@@ -25,7 +25,7 @@ def run(exe, scene_text, tmp, name):
     scene = tmp / f"{name}.yaml"
     scene.write_text(scene_text)
     proc = subprocess.run([exe, "-input", str(scene), "-output_dir", str(tmp / name)], capture_output=True,
-                          text=True, cwd=ROOT)
+                          text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return np.atleast_1d(np.genfromtxt(tmp / name / "history.csv", delimiter=",", names=True)), proc.stdout
 
@@ -107,7 +107,7 @@ segments:
     scene = tmp_path / "point.yaml"
     scene.write_text(point_scene)
     subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "point")], check=True,
-                   capture_output=True, cwd=ROOT)
+                   capture_output=True, cwd=ROOT, timeout=600)
     pt = np.genfromtxt(tmp_path / "point" / "history.csv", delimiter=",", names=True)
     fe_rows = np.where(fe["stage"] == 1)[0]
     pt_rows = np.where(pt["segment"] == 1)[0]
@@ -132,7 +132,7 @@ def test_one_and_two_ranks_agree(tmp_path):
         out = tmp_path / f"ranks{n}"
         cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(n), DRIVER, "-input", str(scene),
                "-output_dir", str(out)]
-        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=600)
         assert proc.returncode == 0, proc.stdout + proc.stderr
         hist[n] = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
     assert len(hist[1]) == len(hist[2])
@@ -153,7 +153,7 @@ def test_newton_converges_quadratically(tmp_path):
         initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
         stages="  - {name: load, duration: 1000, pressure: {x1: 35, y1: 35, z1: 60}, steps: {count: 1}}"))
     proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "o"), "-snes_monitor"],
-                          capture_output=True, text=True, cwd=ROOT)
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stdout
     r = [float(x) for x in re.findall(r"SNES Function norm ([0-9.eE+-]+)", proc.stdout)]
     print("residual sequence:", ", ".join(f"{x:.3e}" for x in r))
@@ -208,7 +208,7 @@ def test_restart_matches_uninterrupted_run(tmp_path):
     mpi = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", "2", DRIVER, "-input", str(scene)]
 
     def go(out, *extra):
-        proc = subprocess.run(mpi + ["-output_dir", str(out), *extra], capture_output=True, text=True, cwd=ROOT)
+        proc = subprocess.run(mpi + ["-output_dir", str(out), *extra], capture_output=True, text=True, cwd=ROOT, timeout=600)
         assert proc.returncode == 0, proc.stdout + proc.stderr
         return proc.stdout
 
@@ -237,7 +237,7 @@ def test_direct_and_gamg_agree(tmp_path):
     res = {}
     for name, opts in (("lu", []), ("gamg", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-12"])):
         proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / name), *opts],
-                              capture_output=True, text=True, cwd=ROOT)
+                              capture_output=True, text=True, cwd=ROOT, timeout=600)
         assert proc.returncode == 0, proc.stdout
         res[name] = np.genfromtxt(tmp_path / name / "history.csv", delimiter=",", names=True)
     err = np.max(np.abs(res["lu"]["eps_33"] - res["gamg"]["eps_33"])) / np.max(np.abs(res["lu"]["eps_33"]))
@@ -277,7 +277,7 @@ def test_phi_field_rank_independent_and_correlated(tmp_path):
         scene.write_text(text)
         out = tmp_path / name
         proc = subprocess.run(["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), DRIVER, "-input",
-                               str(scene), "-output_dir", str(out)], capture_output=True, text=True, cwd=ROOT)
+                               str(scene), "-output_dir", str(out)], capture_output=True, text=True, cwd=ROOT, timeout=600)
         assert proc.returncode == 0, proc.stdout + proc.stderr
         with h5py.File(out / "fields.h5") as f:
             x = f["/mesh/coordinates"][:][f["/mesh/cells"][:]].mean(axis=1)

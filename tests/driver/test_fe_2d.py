@@ -19,7 +19,7 @@ def run(text, out):
     scene = out.with_suffix(".yaml")
     scene.write_text(text)
     proc = subprocess.run([DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out)], capture_output=True,
-                          text=True, cwd=ROOT)
+                          text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True))
 

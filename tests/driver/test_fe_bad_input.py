@@ -55,7 +55,7 @@ def test_bad_scene(tmp_path, name, edit, expected):
     scene = tmp_path / "scene.yaml"
     scene.write_text(text)
     proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True,
-                          cwd=ROOT)
+                          cwd=ROOT, timeout=600)
     message = proc.stdout + proc.stderr
     assert proc.returncode != 0, message
     assert re.search(expected, message), message
@@ -69,6 +69,6 @@ def test_unwritable_output(tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("not a directory")
     proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(blocker / "sub")], capture_output=True,
-                          text=True, cwd=ROOT)
+                          text=True, cwd=ROOT, timeout=600)
     assert proc.returncode != 0 and ("cannot create" in proc.stdout + proc.stderr
                                      or "the output path is a file" in proc.stdout + proc.stderr)

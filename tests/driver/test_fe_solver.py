@@ -39,7 +39,7 @@ def run(tmp, name, opts, ranks=1):
         cmd += ["-max_steps", "25"]
     if ranks > 1:
         cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
-    proc = subprocess.run(cmd + opts.split(), capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(cmd + opts.split(), capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     m = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups", proc.stdout)
     s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks", proc.stdout)

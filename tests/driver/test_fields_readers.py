@@ -52,7 +52,7 @@ def run(exe, text, out, ranks=1, args=(), check=True):
     cmd = [exe, "-input", str(scene), "-output_dir", str(out), *args]
     if ranks > 1:
         cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=600)
     if check:
         assert proc.returncode == 0, proc.stdout + proc.stderr
     return proc

@@ -54,7 +54,7 @@ def earlier(tmp_path_factory):
     out = tmp / "out"
     scene = tmp / "good.yaml"
     scene.write_text(BOX)
-    proc = subprocess.run([DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True)
+    proc = subprocess.run([DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     files = {f.name: f.read_bytes() for f in out.iterdir() if f.name in ("history.csv", "fields.h5", "fields.xmf", "mesh.msh")}
     assert len(files) == 4

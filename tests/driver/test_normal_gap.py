@@ -9,9 +9,16 @@ the elastic cone's load is then
 
 A = 0.8253 (derived: 0.6282 from the radial displacement of Sneddon's surface, Hay, Bolshakov & Pharr's term, and
 0.1971 from the vertical displacement of the face-normal pressure's shear), B_C = 0.3655 (derived: that shear's
-radial displacement), C_2 fitted once (bench/normal_gap_bench.py). The test fails if the measured ratio leaves
-these values: at 70.3 and 60 deg the second-order value; between nu = 0 and 0.45 at 75 deg the first-order slope
-(A, not Hay's 0.628 alone); at 45 deg the load below Sneddon's, as the large-block benchmark measured it.
+radial displacement), C_2 = 0.33 fitted once to this code's own runs (bench/normal_gap_bench.py, psi >= 65 deg).
+The test fails if the measured ratio leaves these values:
+- 70.3 deg / nu 0.3 and 65 deg / nu 0.45: the second-order value within 4e-3. Where each part comes from: A and B_C
+  derived (independent of this code); the fitted C_2 term is C_2 kappa^2 c^2 = 3.4e-3 at 70.3/0.3 (about the
+  tolerance: there the check is partly a regression on the fit) and 6e-4 at 65/0.45 (independent to within it).
+- 75 deg, between nu = 0 and 0.45: the first-order slope (A, not Hay's 0.628 alone), within 5 %; B_C cancels and
+  the C_2 term is 4 % of the difference: independent to within the tolerance.
+- 45 deg / nu 0.3: 0.9006 of the vertical gap's load, within 5e-3. A regression value [reg]: measured by this
+  code (bench/normal_gap_bench.py on its 2000 a block; second order says 0.89, c = 1 being outside its range).
+The driver runs with a timeout (a broken gap once hung a run for 20 min of CPU).
 """
 import math
 import os
@@ -35,7 +42,7 @@ def load_ratio(psi, nu, gap, tmp):
     d.mkdir()
     (d / "scene.yaml").write_text(scene(psi, nu, gap, QUICK))
     p = subprocess.run([str(BIN / "driver_elastic"), "-input", str(d / "scene.yaml"), "-output_dir", str(d / "out")],
-                       capture_output=True, text=True)
+                       capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stdout + p.stderr
     h = np.atleast_1d(np.genfromtxt(d / "out" / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
     rows = h["depth"] > 0.45 * math.pi / 2 / math.tan(math.radians(psi))
@@ -70,7 +77,8 @@ def test_first_order_slope_in_nu(tmp_path):
 
 def test_sharp_cone_is_below_sneddon(tmp_path):
     """45 deg / 0.3: the face-normal pressure's shear moves the surface outward where the cone is higher, a c^2 effect
-    larger than the first-order stiffening at c = 1: 0.901 of Sneddon's load on the large block (second order 0.89)."""
+    larger than the first-order stiffening at c = 1: 0.901 of Sneddon's load on the large block (second order 0.89).
+    [reg]: 0.9006 is this code's own measurement (bench/normal_gap_bench.py), not an independent value."""
     r = ratio(45.0, 0.3, tmp_path)
     print(f"45 deg, nu 0.3: normal / vertical = {r:.4f}")
     assert r == pytest.approx(0.9006, abs=5e-3)

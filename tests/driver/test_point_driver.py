@@ -28,7 +28,7 @@ SCENES = sorted(p for p in (ROOT / "input" / "point").glob("*.yaml") if "scene: 
 
 def run(scene, outdir, *options, check=True):
     proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(outdir), *options],
-                          capture_output=True, text=True, cwd=ROOT)
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
     if check and proc.returncode != 0:
         raise AssertionError(f"driver failed on {scene}:\n{proc.stdout}\n{proc.stderr}")
     return proc
@@ -164,6 +164,9 @@ def test_tangent_check_along_a_path(tmp_path):
      r":\d+: unknown key 'segments\[0\]\.stepz'"),
     ("segments:\n  - {duration: x, control: {others: {stress: 0}}}\n",
      r":\d+: key 'segments\[0\]\.duration': expected a finite number, got 'x'"),
+    # a number followed by text (a unit) is not the number (issue 38: no case had trailing text)
+    ("segments:\n  - {duration: 10s, control: {others: {stress: 0}}}\n",
+     r":\d+: key 'segments\[0\]\.duration': expected a finite number, got '10s'"),
     ("segments:\n  - {duration: 1, control: {11: {stress: 0}}}\n",
      r":\d+: key 'segments\[0\]\.control': component 22 is not controlled"),
     ("segments: []\n", r":\d+: key 'segments': expected at least one segment"),

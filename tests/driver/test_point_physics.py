@@ -44,7 +44,7 @@ CBAR = PHI * C_H + (1 - PHI) * C_S
 def run_scene(name, tmp_path):
     out = tmp_path / name
     proc = subprocess.run([DRIVER, "-input", str(ROOT / "input/point" / f"{name}.yaml"), "-output_dir", str(out)],
-                          capture_output=True, text=True, cwd=ROOT)
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return np.genfromtxt(out / "history.csv", delimiter=",", names=True)
 

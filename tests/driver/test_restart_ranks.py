@@ -7,7 +7,9 @@ the new partition reads exactly what was written for its points; from there the 
 ranks. Reference [self]: the uninterrupted run on 1 rank (1 and 2 ranks agree to round-off on these scenes:
 fixed steps, full Newton convergence). Asserted: the same steps, stages, Newton iterations and cutbacks (and
 active contact nodes), every other history column within 1e-10 of its quantity's largest value, and the
-fields continued in the same fields.h5 (its times, the last stress field within 1e-10).
+fields continued in the same fields.h5 (its times, the last stress field within 1e-10); and the checkpoint the
+restarted run writes after its first step (step 6) against the uninterrupted run's, every dataset within 1e-10
+(measured 7e-14): it holds the multipliers' increment over that step, which sees the restored multipliers.
 
 Two scenes: a heterogeneous Cam-Clay IX box on P2 (phi field, bedding at 30 degrees: edges carry unknowns, every
 point a different state) under an instant axial load held in creep, then a lateral ramp; an axisymmetric
@@ -93,16 +95,45 @@ def last_stress(out):
         return f["/time"][:, 0], f[f"/fields/stress/{keys[-1]}"][()]
 
 
+def checkpoint_difference(a, b):
+    """The largest difference between two shared checkpoint files over every dataset but the UMAT call count, each
+    relative to its own largest value: the state a run carries into its next step, in the serial mesh's order."""
+    worst = (0.0, "")
+    with h5py.File(a) as fa, h5py.File(b) as fb:
+        names = []
+        fa.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) and n != "umat_calls" else None)
+        assert "contact/nodes" in names or "cells/state" in names, names
+        for n in names:
+            x, y = fa[n][()], fb[n][()]
+            assert x.shape == y.shape, n
+            scale = max(float(np.max(np.abs(x))), 1e-300)
+            worst = max(worst, (float(np.max(np.abs(x - y))) / scale, n))
+    return worst
+
+
 @pytest.mark.parametrize("name,text", [("box_p2", BOX), ("cone", CONE)])
 def test_restart_on_another_number_of_ranks(tmp_path, name, text):
+    """Besides the histories: the state after the first step of the restarted run, as its checkpoint at step 6
+    holds it, against the uninterrupted run's checkpoint at step 6 [self]. The step's rates are its end less its
+    start (semismooth_commit: the multipliers' increment lambda_6 - lambda_5), so a wrongly restored lambda_5
+    shows there even where Newton, converging fully, reaches the same lambda_6 (the cone's history: 1.9e-16 with
+    the restored multipliers corrupted)."""
     full = tmp_path / f"{name}_full"
     run(text, full)
     ref = history(full)
     t_ref, s_ref = last_stress(full)
+    six = tmp_path / f"{name}_six"
+    run(text, six, 1, ["-checkpoint_every", "6", "-max_steps", "6"])
     for first, then in ((1, 2), (2, 1)):
         out = tmp_path / f"{name}_{first}to{then}"
         run(text, out, first, ["-checkpoint_every", "5", "-max_steps", "6"])
         assert (out / "checkpoint.5.h5").is_file() and len(list(out.glob("checkpoint.5.rank*.bin"))) == first
+        probe = tmp_path / f"{name}_{first}to{then}_probe"
+        shutil.copytree(out, probe)
+        run(text, probe, then, ["-restart", "-checkpoint_every", "6", "-max_steps", "6"])
+        cdiff, cname = checkpoint_difference(six / "checkpoint.6.h5", probe / "checkpoint.6.h5")
+        print(f"{name}: restarted on {then} rank(s), its checkpoint at step 6 against the uninterrupted run's: {cdiff:.1e} ({cname})")
+        assert cdiff < TOL, (cname, cdiff)
         proc = run(text, out, then, ["-restart"])
         assert "restart at step 5" in proc.stdout and "on another number of ranks" in proc.stdout, proc.stdout
         h = history(out)

@@ -42,7 +42,7 @@ def gmsh(out, **par):
     args = ["gmsh", "-3", str(GEO), "-format", "msh22", "-o", str(out)]
     for k, v in par.items():
         args += ["-setnumber", k, str(v)]
-    subprocess.run(args, check=True, capture_output=True)
+    subprocess.run(args, check=True, capture_output=True, timeout=600)
     return out
 
 
@@ -50,7 +50,7 @@ def msh41(path):
     """The driver reads gmsh format 4.1 only (io/gmsh_mesh.c refuses 2.x: PETSc 3.18 mislabels its physical
     groups); the 2.2 files of this test (read and written by read_msh, write_msh) converted by gmsh."""
     out = path.with_name(path.stem + "_41.msh")
-    subprocess.run(["gmsh", str(path), "-0", "-format", "msh41", "-o", str(out)], check=True, capture_output=True)
+    subprocess.run(["gmsh", str(path), "-0", "-format", "msh41", "-o", str(out)], check=True, capture_output=True, timeout=600)
     return out
 
 

@@ -165,7 +165,7 @@ def test_failed_call_replay_from_an_indentation(tmp_path):
     assert proc.returncode == 1, proc.stdout + proc.stderr
     m = re.search(r"replayed by: driver -input (\S+)", proc.stderr)
     assert m and "step failed for good" in proc.stderr, proc.stderr
-    replay = subprocess.run([str(BIN / "driver"), "-input", m.group(1)], capture_output=True, text=True)
+    replay = subprocess.run([str(BIN / "driver"), "-input", m.group(1)], capture_output=True, text=True, timeout=600)
     print(proc.stderr.strip(), "\n", replay.stdout.strip())
     assert replay.returncode == 0 and "identical to the recorded call, bit for bit" in replay.stdout
 
@@ -227,7 +227,7 @@ def test_kill_at_any_moment_then_restart(tmp_path):
         time.sleep(rng.uniform(0, 0.3))       # at a random moment of the steps and checkpoints that follow
         if proc.poll() is None:
             proc.send_signal(signal.SIGKILL)
-        proc.wait()
+        proc.wait(timeout=60)
         assert latest.exists(), "no checkpoint was written"
     final = run(scene, out, args=["-restart", "-checkpoint_every", "1"])
     assert len(final) == len(full) and np.array_equal(final["depth"], full["depth"])

@@ -18,8 +18,10 @@
  *                then 0.1 again; the summary counts 1 cutback, 12 steps, end at t = 1, x = x0 e^-1/tau.
  *  4 event       until q_above 0.537 (fixed 0.1 s steps): the stage ends with |q - 0.537| <= EVENT_TOL 0.537
  *                (scene/stage.h, docs/driver.md "Events"), i.e. at t = 0.537 within that; the next stage's target
- *                0.05 later lies inside its first step: that step is redone by the secant (one solve more than
- *                accepts) and lands on 0.587 the same way; no cutback counted.
+ *                0.03 later lies inside its first step, at 0.3 of it (not mid-step: an interpolation from the
+ *                wrong end of the step, 0.7, would land there too): that step is redone by the secant (one solve
+ *                more than accepts), its retried length 0.03 (q linear: the secant is exact), and lands on 0.567
+ *                the same way; no cutback counted.
  *  5 output      output times 0.25, 0.5, 0.8 of a 1 s stage in 3 steps: write_fields at t = 0, 0.25, 0.5, 0.8, 1
  *                exactly (==), nothing else.
  *  6 checkpoint  an adaptive two-stage run (the 'output' measure on x, then the mock's estimate varying in time;
@@ -258,7 +260,7 @@ static void case_cutback(void) {
 static void case_event(void) {
   Mock          m;
   RunnerSummary sum;
-  const double  q1 = 0.537, q2 = 0.587;
+  const double  q1 = 0.537, q2 = 0.567;
   mock_init(&m);
   m.nstage   = 2;
   m.stage[0] = fixed_stage(1.0, 10, 1), m.stage[0].until = (StageEvent){EVENT_Q_ABOVE, q1};
@@ -272,6 +274,9 @@ static void case_event(void) {
   CHECK(near(m.accept_t[4], 0.5, 1e-14), "the step before the landing ended at %.17g, expected 0.5", m.accept_t[4]);
   CHECK(m.nsolve == m.naccept + 1 && near(m.solve_h[6], 0.1, 1e-14), "solves %d (expected %d: stage 1's first step of 0.1 (%g) overshoots, redone)",
         m.nsolve, m.naccept + 1, m.solve_h[6]);
+  /* q = t is linear, so the secant through the step's start is exact: the retry is q2 - q(start) = 0.03 long */
+  CHECK(near(m.solve_h[7], q2 - t1, 1e-12), "the retried step is %.17g long, expected q2 - t1 = %.17g (the secant from the step's start)",
+        m.solve_h[7], q2 - t1);
   CHECK(sum.cutbacks == 0 && m.t == t2, "cutbacks %d (expected 0), end %.17g (the mock's clock %.17g)", sum.cutbacks, t2, m.t);
 }
 

@@ -193,7 +193,7 @@ def test_tensor_measures():
 
 def test_cli_default_is_ph(run2d, tmp_path):
     proc = subprocess.run([sys.executable, str(ROOT / "post" / "indent_plots.py"), str(run2d[0]), "--out", str(tmp_path)],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "ph.png").exists() and json.loads((tmp_path / "creep.json").read_text())["creep_depth"] == 0.125
 

@@ -89,7 +89,7 @@ def test_point_plots_on_reference_run(tmp_path):
     run.mkdir()
     r = write_run(run)
     res = subprocess.run([sys.executable, str(ROOT / "post" / "point_plots.py"), str(run), "--out", str(out)],
-                         capture_output=True, text=True)
+                         capture_output=True, text=True, timeout=600)
     assert res.returncode == 0, res.stderr
     for png in ("stress_path.png", "stress_strain.png", "creep_creep.png"):
         f = out / png
@@ -120,6 +120,6 @@ def test_missing_column_is_named(tmp_path):
     assert "history.csv" in msg and "sig_hard_33" in msg, msg
 
     res = subprocess.run([sys.executable, str(ROOT / "post" / "point_plots.py"), str(tmp_path)],
-                         capture_output=True, text=True)
+                         capture_output=True, text=True, timeout=600)
     assert res.returncode != 0
     assert "history.csv" in res.stderr and "sig_hard_33" in res.stderr, res.stderr

@@ -11,7 +11,7 @@ TOOL = ROOT / "tools" / "check_includes.py"
 
 
 def check(src):
-    return subprocess.run([sys.executable, str(TOOL), str(src)], capture_output=True, text=True)
+    return subprocess.run([sys.executable, str(TOOL), str(src)], capture_output=True, text=True, timeout=600)
 
 
 def test_driver_sources_follow_the_layers():

@@ -136,7 +136,7 @@ def test_b_bound_is_sharp():
 
 
 def _run(*args):
-    return subprocess.run([sys.executable, str(TOOL), *args], capture_output=True, text=True)
+    return subprocess.run([sys.executable, str(TOOL), *args], capture_output=True, text=True, timeout=600)
 
 
 def test_cli():

@@ -45,7 +45,7 @@ set(abaqus_like -cpp -fPIC -DABQ_LNX86_64 -DABQ_FORTRAN -frecursive -ffp-contrac
                  -fstack-protector-strong -msse3)
 
 function(run what expect_rc)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+  execute_process(COMMAND ${ARGN} TIMEOUT 600 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
                   WORKING_DIRECTORY ${cwd})
   message("${out}${err}")
   if(NOT "${rc}" STREQUAL "${expect_rc}")
@@ -83,7 +83,7 @@ if(STEP STREQUAL "compile")
       message(FATAL_ERROR "host files: not installed: ${f}")
     endif()
     # Through the C preprocessor unchanged (blank lines aside), whatever the form.
-    execute_process(COMMAND ${FC} -cpp -E -P ${f} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    execute_process(COMMAND ${FC} -cpp -E -P ${f} TIMEOUT 600 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     if(rc OR err)
       message(FATAL_ERROR "host files: the C preprocessor on ${f}: exit ${rc}\n${err}")
     endif()
@@ -165,7 +165,7 @@ elseif(STEP STREQUAL "jacobi")
   endforeach()
   foreach(v abaqus object)
     execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/calls_host.txt ${WORK}/calls_${v}.txt
-                    RESULT_VARIABLE differ)
+                    TIMEOUT 600 RESULT_VARIABLE differ)
     if(differ)
       message(FATAL_ERROR "host files: the outputs of ${v} differ from the host file's")
     endif()
@@ -178,7 +178,7 @@ elseif(STEP STREQUAL "errors")
   set(dtime "Cam-Clay IX UMAT: DTIME = -1\\.000000E\\+000: expected a finite time increment >= 0; ")
   set(dtime "${dtime}increment rejected \\(PNEWDT < 1\\) at element 12, integration point 1")
   set(cwd ${WORK}/host)
-  execute_process(COMMAND ${WORK}/host_host bad_props RESULT_VARIABLE rc OUTPUT_VARIABLE out
+  execute_process(COMMAND ${WORK}/host_host bad_props TIMEOUT 600 RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_VARIABLE err WORKING_DIRECTORY ${cwd})
   message("${out}${err}exit ${rc}")
   if(rc STREQUAL "0")

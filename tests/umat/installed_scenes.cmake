@@ -5,7 +5,7 @@
 # Usage: cmake -DBUILD=<build dir> -DSRC=<project source> -DWORK=<scratch dir> -P installed_scenes.cmake
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix
-                RESULT_VARIABLE rc OUTPUT_QUIET)
+                TIMEOUT 600 RESULT_VARIABLE rc OUTPUT_QUIET)
 if(rc)
   message(FATAL_ERROR "installed scenes: cmake --install failed")
 endif()
@@ -30,7 +30,7 @@ if(generated)
 endif()
 execute_process(COMMAND ${WORK}/prefix/bin/driver -input ${share}/input/point/oedometer.yaml
                         -output_dir ${WORK}/out
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+                TIMEOUT 600 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(rc OR NOT out MATCHES "point scene oedometer: [0-9]+ steps" OR NOT EXISTS ${WORK}/out/history.csv)
   message(FATAL_ERROR "installed scenes: the installed driver did not run the installed scene "
                       "(exit ${rc})\n${out}\n${err}")

@@ -15,7 +15,7 @@ set(hide -DCMAKE_DISABLE_FIND_PACKAGE_PETSc=ON -DCMAKE_DISABLE_FIND_PACKAGE_MPI=
          -DCMAKE_DISABLE_FIND_PACKAGE_HDF5=ON -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON)
 
 function(run what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${ARGN} TIMEOUT 900 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(rc)
     message(FATAL_ERROR "standalone UMAT: ${what} failed (exit ${rc})\n${out}\n${err}")
   endif()

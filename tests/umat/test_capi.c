@@ -64,6 +64,32 @@ int main(void) {
     nbounded += lo || hi;
     check(ok, what);
   }
+  /* The bounds again, from an independent source: the interface contract (docs/umat-interface.md, "Bad
+   * properties", copied from the shared specification, not generated from ccix_props): M <= 0, lambda_p <= 0,
+   * pc0 <= 0, eta < 0 and phi outside [0, 1] are invalid. Each bound value itself and one ulp beyond it, in
+   * 1-based slots as the contract numbers them: a bound of the library's table that leaves the contract fails
+   * here (the loop above only checks the table against itself). */
+  const struct { int slot; double bound; int closed, below; } spec[] = {
+    {1, 0, 1, 1}, {1, 1, 1, 0},             /* phi in [0, 1] */
+    {7, 0, 0, 1}, {16, 0, 0, 1},            /* M > 0, hard and soft */
+    {8, 0, 0, 1}, {17, 0, 0, 1},            /* lambda_p > 0 */
+    {12, 0, 0, 1}, {18, 0, 0, 1},           /* pc0 > 0 */
+    {13, 0, 1, 1}, {19, 0, 1, 1}};          /* eta >= 0 (0: rate independent) */
+  for (size_t j = 0; j < sizeof spec / sizeof spec[0]; j++) {
+    char what[96];
+    const int k = spec[j].slot - 1;
+    double beyond = nextafter(spec[j].bound, spec[j].below ? -DBL_MAX : DBL_MAX), inside = spec[j].bound +
+                    (spec[j].below ? 1 : -1) * fmax(1e-3, 1e-3 * fabs(spec[j].bound));
+    int ok = 1, c1, c2, c3;
+    for (int i = 0; i < 23; i++) props[i] = woodford[i];
+    props[k] = spec[j].bound, camclay9_check_props(props, 23, 32, 6, 3, &c1, msg, sizeof msg);
+    props[k] = beyond, camclay9_check_props(props, 23, 32, 6, 3, &c2, msg, sizeof msg);
+    props[k] = inside, camclay9_check_props(props, 23, 32, 6, 3, &c3, msg, sizeof msg);
+    ok = (spec[j].closed ? c1 == 0 : c1 == k + 1) && c2 == k + 1 && c3 == 0;
+    snprintf(what, sizeof what, "PROPS(%d) %s %g as docs/umat-interface.md states (codes %d %d %d)", spec[j].slot,
+             spec[j].below ? (spec[j].closed ? ">=" : ">") : (spec[j].closed ? "<=" : "<"), spec[j].bound, c1, c2, c3);
+    check(ok, what);
+  }
   for (int i = 0; i < 23; i++) props[i] = woodford[i];
   check(np == CAMCLAY9_NPROPS_WITH_NORMAL && nbounded == 14, "23 PROPS slots, 14 with bounds of their own");
   check(!camclay9_prop_info(23, &info) && !info.name[0] && !camclay9_prop_info(-1, &info), "no PROPS slot 23 or -1");

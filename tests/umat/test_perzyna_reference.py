@@ -23,7 +23,7 @@ STEPS = [100, 1000, 10000, 100000]
 def run_point(nsteps):
     exe = os.environ.get("CREEP_POINT", "build/tests/umat/creep_point")
     out = subprocess.run([exe, str(THETA_DEG), str(T_END), str(nsteps)], check=True,
-                         capture_output=True, text=True).stdout.split()
+                         capture_output=True, text=True, timeout=600).stdout.split()
     return float(out[2]), float(out[3]), float(out[4])
 
 

@@ -27,7 +27,7 @@ N, RATIO = 2000, 1.006
 def creep(theta, t_end, nsteps, ratio, nhold):
     exe = os.environ.get("CREEP_POINT", "build/tests/umat/creep_point")
     out = subprocess.run([exe, str(theta), str(t_end), str(nsteps), repr(ratio), str(HOLD), str(nhold)],
-                         check=True, capture_output=True, text=True).stdout.split()
+                         check=True, capture_output=True, text=True, timeout=600).stdout.split()
     return -float(out[2])
 
 

@@ -162,8 +162,9 @@ static PetscErrorCode part(Vec flat, IS is, Vec v, PetscBool to_flat) {
 }
 
 /* -indent_check_solve: the kept solve's solution X against a fresh LU solve of the same system (K assembled at the
- * iterate, the nest converted, MUMPS), printed as |X - X_lu| / |X_lu| with the multipliers as lengths (lambda / c). */
-static PetscErrorCode check_against_fresh_lu(IndentSolver *s, PetscReal c) {
+ * iterate, the nest converted, MUMPS), printed as |X - X_lu| / |X_lu| with the multipliers as lengths (lambda / c),
+ * with the solve's Krylov iterations and whether it factored afresh (for tests of the refactorisation rule). */
+static PetscErrorCode check_against_fresh_lu(IndentSolver *s, PetscReal c, PetscInt its, PetscBool fresh) {
   Mat       A;
   KSP       ksp;
   PC        pc;
@@ -197,8 +198,8 @@ static PetscErrorCode check_against_fresh_lu(IndentSolver *s, PetscReal c) {
   PetscCall(VecNorm(X, NORM_2, &d));
   PetscCall(VecDestroy(&X));
   s->check_max = PetscMax(s->check_max, d / PetscMax(n, 1e-300));
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A), "    solve check: kept factorisation against a fresh LU: |dx - dx_lu| / |dx_lu| = %.3e (lambda / c: all lengths)\n",
-                        (double)(d / PetscMax(n, 1e-300))));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)A), "    solve check: kept factorisation against a fresh LU: |dx - dx_lu| / |dx_lu| = %.3e (lambda / c: all lengths); "
+                        "%d Krylov iterations, %s factorisation\n", (double)(d / PetscMax(n, 1e-300)), (int)its, fresh ? "fresh" : "kept"));
   PetscCall(VecDestroy(&Y));
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&A));
@@ -213,8 +214,9 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, PetscBool tight, 
   PetscInt its = 0;
   PetscFunctionBeginUser;
   PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscBool fresh = PETSC_FALSE;
   for (int attempt = 0; attempt < 2; attempt++) {
-    PetscBool fresh = s->refactor || !s->Aaij || !s->kept;
+    fresh = s->refactor || !s->Aaij || !s->kept;
     if (fresh) { /* K at this iterate, and the nest's values into the same AIJ matrix: the pattern is fixed, so MUMPS
                     keeps its analysis */
       PetscCall(s->assemble(s->actx));
@@ -232,7 +234,7 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, PetscBool tight, 
     if (*reason > 0 || fresh) break;
     s->refactor = PETSC_TRUE; /* the kept factorisation no longer serves: a fresh one, now */
   }
-  if (s->check && s->kept) PetscCall(check_against_fresh_lu(s, c));
+  if (s->check && s->kept) PetscCall(check_against_fresh_lu(s, c, its, fresh));
   s->extra_its += PetscMax(its - 1, 0);
   if (s->kept && s->extra_its > s->refactor_its) s->refactor = PETSC_TRUE;
   PetscFunctionReturn(0);

@@ -229,8 +229,9 @@ static PetscErrorCode converged(Semismooth *in, PetscInt k, PetscInt changes, Pe
   PetscFunctionBeginUser;
   if (!small && k > 0 && changes == 0) PetscCall(error_small(in, merit, in->history.merit[k - 1], &small));
   if (in->monitor)
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g\n", (int)k,
-                          (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes, (double)in->ur));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    newton %2d  |R_u| %.3e  |R_r| %.3e  |ncp| %.3e  active %d (%d changes)  u_r %.10g  merit %.17g\n",
+                          (int)k, (double)in->ru, (double)PetscAbsReal(in->Rr), (double)in->ncp, (int)in->nactive, (int)changes,
+                          (double)in->ur, (double)merit));
   *done = small && changes == 0 ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
