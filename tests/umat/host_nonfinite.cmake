@@ -43,7 +43,7 @@ endfunction()
 # run(ARGS...): EXE ARGS with standard error to ${WORK}/stderr.txt; sets rc, out, err_lines, msg_lines.
 function(run)
   file(REMOVE ${WORK}/job.msg)
-  execute_process(COMMAND ${EXE} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+  execute_process(COMMAND ${EXE} ${ARGN} TIMEOUT 600 RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_FILE ${WORK}/stderr.txt WORKING_DIRECTORY ${WORK})
   read_lines(${WORK}/stderr.txt err_lines)
   set(msg_lines "")
