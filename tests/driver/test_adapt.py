@@ -195,3 +195,9 @@ stages:
     s = summary(out)
     assert s["mesh_error"] is not None and len(s["levels"]) == 2 and s["levels"][1]["cells"] > 1.3 * s["levels"][0]["cells"]
     assert (out / "mesh.msh").read_bytes() == (out / "adapt" / "level1" / "mesh.msh").read_bytes()
+    # -adapt_growth 4 asks for twice the cells of growth 2 from the same level 0: the meshes differ by about 2 (gmsh
+    # makes more cells than asked on both, by about the same ratio)
+    run(text, tmp_path / "sector4", exe="driver_elastic", args=["-adapt_growth", "4"])
+    ratio = summary(tmp_path / "sector4")["levels"][1]["cells"] / s["levels"][1]["cells"]
+    print(f"level 1 cells, growth 4 over growth 2: {ratio:.2f}")
+    assert 1.4 < ratio < 2.8
