@@ -201,3 +201,27 @@ stages:
     ratio = summary(tmp_path / "sector4")["levels"][1]["cells"] / s["levels"][1]["cells"]
     print(f"level 1 cells, growth 4 over growth 2: {ratio:.2f}")
     assert 1.4 < ratio < 2.8
+
+
+def test_restart_checks_the_checkpoint_first(tmp_path):
+    """A damaged checkpoint (its rank-0 file cut short) or none at all: the checkpoint's own message (exit status 1),
+    found before the earlier fields.h5 is opened, so the earlier history, fields and mesh are untouched; with the
+    earlier fields.h5 gone as well, still the checkpoint's message (before: "Error in HDF5 call H5Fopen()", the
+    fields being opened for appending first)."""
+    text = hertz_scene(1, 0.05, 0.4)
+    out = tmp_path / "out"
+    code, log = drive(text, out, ("-checkpoint_every", "1", "-max_steps", "1"))
+    assert code == 0, log
+    files = {n: (out / n).read_bytes() for n in ("history.csv", "fields.h5", "fields.xmf", "mesh.msh")}
+    ckpt = out / "checkpoint.1.rank0.bin"
+    ckpt.write_bytes(ckpt.read_bytes()[:40])
+    code, log = drive(text, out, ("-restart",))
+    print(log.strip().splitlines()[-1])
+    assert code == 1 and "missing or incomplete" in log and "checkpoint.1.rank0.bin" in log, log
+    (out / "checkpoint.latest").unlink()
+    code, log = drive(text, out, ("-restart",))
+    assert code == 1 and "checkpoint.latest is missing" in log, log
+    assert all((out / n).read_bytes() == b for n, b in files.items())
+    (out / "fields.h5").unlink()
+    code, log = drive(text, out, ("-restart",))
+    assert code == 1 and "checkpoint.latest is missing" in log and "HDF5" not in log, log

@@ -148,15 +148,27 @@ static int latest_step(StepSolver *sv, const RunnerOptions *opt, int *step, int 
   return v[0] >= 0;
 }
 
-/* The message of a checkpoint that is not this run's: code 2 another scene, 4 another mesh. */
-static void mismatch_message(int code, int step, const RunnerOptions *opt, char *err, size_t errlen) {
+/* The message of a checkpoint this run cannot continue (code: 1 missing or damaged, on rank 'bad' first; 2 another
+   scene; 3 another format, 'other'; 4 another mesh). */
+static void refusal_message(int code, int step, int bad, int other, const RunnerOptions *opt, char *err, size_t errlen) {
   if (code == 2)
     snprintf(err, errlen, "-restart: the scene %s differs from the one the checkpoint in %s was written for (material, loads or "
                           "stages changed): run it afresh, without -restart; nothing was written", opt->scene_file, opt->outdir);
-  else
+  else if (code == 4)
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written on another mesh than %s (the mesh file differs: a "
                           "changed .geo, other gmsh parameters or another gmsh): run the scene afresh, without -restart; nothing was written",
              step, opt->outdir, opt->mesh_file ? opt->mesh_file : "this run's");
+  else if (code == 3)
+    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written by another version of the driver (checkpoint "
+                          "format %d; this driver reads format %d): run the scene afresh, without -restart; nothing was written",
+             step, opt->outdir, other, CKPT_VERSION);
+  else
+    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
+                          "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, bad, step, bad);
+}
+
+static void latest_missing_message(const RunnerOptions *opt, char *err, size_t errlen) {
+  snprintf(err, errlen, "-restart: %s/checkpoint.latest is missing or damaged (run with -checkpoint_every N first)", opt->outdir);
 }
 
 int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen) {
@@ -166,26 +178,30 @@ int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen) {
   static RunState    st;
   snprintf(path, sizeof path, "%s/checkpoint.latest", opt->outdir);
   FILE *fp = fopen(path, "r");
-  if (!fp) return 0; /* checkpoint_read says what is missing */
-  if (fscanf(fp, "%d %d", &step, &nranks) != 2) step = -1;
-  fclose(fp);
-  if (step < 0) return 0;
+  if (fp && fscanf(fp, "%d %d", &step, &nranks) != 2) step = -1;
+  if (fp) fclose(fp);
+  if (step < 0) {
+    latest_missing_message(opt, err, errlen);
+    return 1;
+  }
   set_path(opt, step, 0, path, sizeof path);
   BinFile f;
-  if (binfile_open(&f, path, "rb")) return 0;
-  binfile_expect_int(&f, CKPT_MAGIC);
-  binfile_read(&f, &version, sizeof version, 1);
-  if (f.ok && version == CKPT_VERSION) {
+  if (binfile_open(&f, path, "rb")) code = 1;
+  else {
+    binfile_expect_int(&f, CKPT_MAGIC);
+    binfile_read(&f, &version, sizeof version, 1);
+    if (f.ok && version != CKPT_VERSION) code = 3, f.ok = 0;
     binfile_expect_int(&f, nranks);
     binfile_expect_int(&f, 0);
     binfile_read(&f, &hash, sizeof hash, 1);
     binfile_read(&f, &st, sizeof st, 1);
-    if (f.ok && hash != binfile_hash(opt->scene_file)) code = 2;
-    else if (f.ok && st.mesh_hash != binfile_hash(opt->mesh_file)) code = 4;
+    if (!code && !f.ok) code = 1;
+    else if (!code && hash != binfile_hash(opt->scene_file)) code = 2;
+    else if (!code && st.mesh_hash != binfile_hash(opt->mesh_file)) code = 4;
+    binfile_close(&f, 0);
   }
-  binfile_close(&f, 0);
-  if (code) mismatch_message(code, step, opt, err, errlen);
-  return code ? 2 : 0;
+  if (code) refusal_message(code, step, 0, version, opt, err, errlen);
+  return code >= 2 ? 2 : code;
 }
 
 int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen) {
@@ -193,7 +209,7 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
   MPI_Comm_rank(sv->comm, &rank);
   MPI_Comm_size(sv->comm, &size);
   if (!latest_step(sv, opt, &step, &nranks)) {
-    snprintf(err, errlen, "-restart: %s/checkpoint.latest is missing or damaged (run with -checkpoint_every N first)", opt->outdir);
+    latest_missing_message(opt, err, errlen);
     return 1;
   }
   if (nranks != size && !sv->load_shared) {
@@ -230,14 +246,7 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
   MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);
   MPI_Allreduce(&mine, &first_bad, 1, MPI_INT, MPI_MIN, sv->comm);
   MPI_Allreduce(&found, &other, 1, MPI_INT, MPI_MAX, sv->comm);
-  if (worst == 4 || worst == 2) mismatch_message(worst, step, opt, err, errlen);
-  else if (worst == 3)
-    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written by another version of the driver (checkpoint "
-                          "format %d; this driver reads format %d): run the scene afresh, without -restart; nothing was written",
-             step, opt->outdir, other, CKPT_VERSION);
-  else if (worst)
-    snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
-                          "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, first_bad, step, first_bad);
+  if (worst) refusal_message(worst, step, first_bad, other, opt, err, errlen);
   if (worst) return worst >= 2 ? 2 : worst;
   if (sv->load_shared) {
     shared_path(opt, step, path, sizeof path);
