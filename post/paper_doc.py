@@ -157,8 +157,9 @@ def indentation(n, images, rel):
           "shipped mesh's (same section); BP's ladder (h_tip 5, 2.5, 1.77 µm) puts the shipped mesh +0.04 % in load, within "
           "the ± 1 % scatter of its creep depth, and at least 1.7 % low in residual depth, which rises as BN's does. Read "
           "the residual depths and profiles of BN and BP (Figs. 4–5) as lower bounds.", "",
-          "**Viscosities.** η_s = 1.3e10 MPa·s (soft frame) and η_h = 1.3e13 MPa·s (hard frame) are the paper's own values "
-          "(Tables 1–2), which it calibrated on these tests; they are not fitted here, because the measured curves are "
+          "**Viscosities.** η_s = 1.3e10 MPa³·s (soft frame) and η_h = 1.3e13 MPa³·s (hard frame) are the paper's own values "
+          "(its text after eq. 25; Tables 1–2 give the elastic and Cam-Clay constants), which it calibrated on these tests; "
+          "they are not fitted here, because the measured curves are "
           "printed only as images. As a check of the calibration route, `scene: calibrate` (docs/calibrate.md) recovers "
           "them from our own synthetic curves made at those values: η_s 1.30001e10 from the nano P–h curve, η_h 1.29999e13 "
           "from the BN curve with η_s held (+0.001 %, −0.001 %); from curves made by the full models, with the medium "
