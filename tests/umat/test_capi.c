@@ -65,7 +65,7 @@ int main(void) {
     check(ok, what);
   }
   /* The bounds again, from an independent source: the interface contract (docs/umat-interface.md, "Bad
-   * properties", copied from the shared specification, not generated from ccix_props): M <= 0, lambda_p <= 0,
+   * properties", written by hand, not generated from ccix_props): M <= 0, lambda_p <= 0,
    * pc0 <= 0, eta < 0 and phi outside [0, 1] are invalid. Each bound value itself and one ulp beyond it, in
    * 1-based slots as the contract numbers them: a bound of the library's table that leaves the contract fails
    * here (the loop above only checks the table against itself). */

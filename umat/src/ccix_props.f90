@@ -1,4 +1,4 @@
-!> The PROPS and STATEV contract of the Cam-Clay IX UMAT (../shared/docs/umat-interface.md): slot
+!> The PROPS and STATEV contract of the Cam-Clay IX UMAT (docs/umat-interface.md): slot
 !> numbers, the property checks with their messages, and the frames built from PROPS.
 module ccix_props
   use, intrinsic :: iso_fortran_env, only: real64, int64

@@ -5,12 +5,12 @@
 !>
 !> Re-entrant: RECURSIVE procedures (pure but for the warning of a rejected call), no module variables.
 module ccix_state
-  use, intrinsic :: iso_fortran_env, only: real64, int64
+  use, intrinsic :: iso_fortran_env, only: real64
   use ccix_tensor, only: stress_to_mandel, mandel_to_stress, strain_to_mandel, mandel_to_strain, &
                          rotate_mandel, mandel_w
   use ccix_props, only: is_sig_hard, is_evp_hard, is_pc_hard, is_sig_soft, is_evp_soft, is_pc_soft, &
                         is_evp_total, nstatv_min, message_len
-  use ccix_tensor, only: is_nan, first_not_finite, exponent_bits
+  use ccix_tensor, only: is_finite, is_nan, first_not_finite
   use ccix_host, only: host_warning
   use ccix_frame, only: flag_floor, flag_tension, flag_fallback
   use ccix_mixture, only: step_info_t, hard, soft
@@ -121,7 +121,7 @@ contains
   !> negative or not finite; DSTRAN not finite; DROT, when read (not the identity), not finite; the
   !> stored state not usable, a slot 1-32 not finite or pc of a frame in use (slot 26) not positive;
   !> or, for an uninitialised state (slot 13 finite and <= 0, started from STRESS), STRESS not finite.
-  !> No test here signals on a NaN or an Inf (finite, first_not_finite: bit tests; the ordered
+  !> No test here signals on a NaN or an Inf (is_finite, first_not_finite: bit tests; the ordered
   !> comparisons only of finite numbers), so that a host with floating-point traps on gets the line,
   !> not SIGFPE.
   recursive logical function arguments_rejected(dtime, ntens, dstran, rotated, drot, stress, statev, phi, &
@@ -131,12 +131,12 @@ contains
     logical, intent(in) :: rotated   ! DROT is not the identity (compared quietly: /=), so it is read
     character(len=*), parameter :: a_finite_number = 'a finite number'
     integer :: k
+    logical :: usable
 
     bad = .true.
-    if (.not. finite(dtime)) then
-      call reject('DTIME', [integer ::], dtime, 'a finite time increment >= 0', noel, npt)
-      return
-    else if (dtime < 0) then
+    usable = is_finite(dtime)
+    if (usable) usable = dtime >= 0   ! compared only when finite (no short-circuit in Fortran)
+    if (.not. usable) then
       call reject('DTIME', [integer ::], dtime, 'a finite time increment >= 0', noel, npt)
       return
     end if
@@ -153,7 +153,7 @@ contains
         return
       end if
     end if
-    if (finite(statev(is_pc_hard))) then
+    if (is_finite(statev(is_pc_hard))) then
       if (statev(is_pc_hard) <= 0) then   ! uninitialised: started from STRESS (and PROPS)
         k = first_not_finite(ntens, stress)
         if (k > 0) call reject('STRESS', [k], stress(k), a_finite_number // &
@@ -174,12 +174,6 @@ contains
     end if
     bad = .false.
   end function arguments_rejected
-
-  !> is_finite (ccix_tensor), here where it is inlined: its bits, never a comparison of x.
-  pure recursive logical function finite(x)
-    real(real64), intent(in) :: x
-    finite = iand(transfer(x, 0_int64), exponent_bits) /= exponent_bits
-  end function finite
 
   !> The line of a rejected call: the argument, with its indices if any (name(i) or name(i,j)), its
   !> value, what was expected, where.

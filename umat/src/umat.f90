@@ -2,7 +2,7 @@
 !>
 !> This routine only adapts the Abaqus conventions (Voigt order 11, 22, 33, 12, 13, 23, engineering
 !> shear strains, NTENS = 4 or 6, DROT, PNEWDT, STATEV layout) to the Mandel-notation mixture in
-!> ccix_mixture. The contract is ../shared/docs/umat-interface.md and docs/umat.md.
+!> ccix_mixture. The contract is docs/umat-interface.md and docs/umat.md.
 !>
 !> Re-entrant: every procedure is RECURSIVE, so that its locals are automatic whatever the compiler
 !> flags (gfortran -fno-automatic, ifort's default static local arrays and -save spare RECURSIVE

@@ -63,22 +63,6 @@ static int write_level_geo(const FeScene *sc, const char *geo, const char *sizes
   return fclose(fp) ? (snprintf(err, errlen, "%s: cannot write the adapted geometry", geo), 1) : 0;
 }
 
-/* Copy a file (rank 0), through dst.part renamed into place. Missing src: nothing (0). */
-static int copy_file(const char *src, const char *dst) {
-  char  part[1200], buf[1 << 16];
-  FILE *in = fopen(src, "rb"), *out;
-  size_t n;
-  if (!in) return 0;
-  snprintf(part, sizeof part, "%s.part", dst);
-  if (!(out = fopen(part, "wb"))) return fclose(in), 1;
-  while ((n = fread(buf, 1, sizeof buf, in)) > 0)
-    if (fwrite(buf, 1, n, out) != n) break;
-  int bad = ferror(in) || ferror(out);
-  fclose(in);
-  bad |= fclose(out) != 0;
-  return bad || rename(part, dst);
-}
-
 /* The answer's files into OUT (rank 0), once the last level is done. */
 static int publish(const char *outdir, const char *level_dir, char *err, size_t errlen) {
   static const char *const files[] = {"history.csv", "fields.h5", "fields.xmf", "mesh.msh"};
@@ -86,7 +70,7 @@ static int publish(const char *outdir, const char *level_dir, char *err, size_t 
   for (int i = 0; i < 4; i++) {
     snprintf(src, sizeof src, "%s/%s", level_dir, files[i]);
     snprintf(dst, sizeof dst, "%s/%s", outdir, files[i]);
-    if (copy_file(src, dst)) {
+    if (fs_copy_file(src, dst)) {
       snprintf(err, errlen, "%s: cannot copy the last level's %s into the output directory", dst, files[i]);
       return 1;
     }
@@ -105,7 +89,8 @@ static double quantity_error(const double *q, const double *cells, int n, double
   return d / (gain - 1);
 }
 
-void fe_adapt_estimate(const RunInfo *levels, int n, int order, int dim, MeshError *me) {
+/* The mesh error of every reported quantity from the levels' answers (docs/adapt.md, "The error estimate"). */
+static void estimate(const RunInfo *levels, int n, int order, int dim, MeshError *me) {
   double cells[16], end[16], change[16];
   memset(me, 0, sizeof *me);
   if (n < 2 || n > 16) return;
@@ -126,9 +111,12 @@ void fe_adapt_estimate(const RunInfo *levels, int n, int order, int dim, MeshErr
     }
 }
 
+/* The folder of level k of a run into outdir. */
+static void level_dir(const char *outdir, int k, char *dir, size_t n) { snprintf(dir, n, "%.480s/adapt/level%d", outdir, k); }
+
 /* Whether every reported quantity's estimated error is within tol of its size (the changes over the stages, and
    the values at the stages' ends). */
-static int within(const RunnerSummary *s, const MeshError *me, double tol) {
+static int within_tol(const RunnerSummary *s, const MeshError *me, double tol) {
   for (int k = 1; k <= s->nstages_done; k++)
     for (int q = 0; q < s->nreport; q++) {
       const double change = fabs(s->report[k][q] - s->report[k - 1][q]), end = fabs(s->report[k][q]);
@@ -137,13 +125,19 @@ static int within(const RunnerSummary *s, const MeshError *me, double tol) {
   return 1;
 }
 
+/* The estimate of the levels 0..n-1 into me, and whether it ends the adaptation (mesh.adapt.tol reached). */
+static int estimate_levels(const FeScene *sc, const RunInfo *lv, int n, MeshError *me) {
+  estimate(lv, n, sc->order, sc->kin == KIN_3D ? 3 : 2, me);
+  return me->have && sc->adapt.tol > 0 && within_tol(&lv[n - 1].sum, me, sc->adapt.tol);
+}
+
 /* Level k into OUT/adapt/level<k>: meshed from the scene (k = 0) or from the sizes of level k - 1. */
 static int run_level(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, const char *outdir, int k, const RunInfo *prev, RunInfo *info,
                      char *err, size_t errlen) {
   char dir[512], geo[700], sizes[700], prev_sizes[700];
   int  rank, rc = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  snprintf(dir, sizeof dir, "%.480s/adapt/level%d", outdir, k);
+  level_dir(outdir, k, dir, sizeof dir);
   snprintf(sc->outdir, sizeof sc->outdir, "%s", dir);
   snprintf(sizes, sizeof sizes, "%s/sizes.pos", dir);
   snprintf(geo, sizeof geo, "%s/adapted.geo", dir);
@@ -220,7 +214,7 @@ static int reuse_level(const char *outdir, int k, int last, unsigned long long k
   int  rank, ok = 0;
   char dir[512];
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  snprintf(dir, sizeof dir, "%.480s/adapt/level%d", outdir, k);
+  level_dir(outdir, k, dir, sizeof dir);
   if (!rank) ok = k < last && level_load(dir, key, 1, lv);
   MPI_Bcast(&ok, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   if (ok) MPI_Bcast(lv, (int)sizeof *lv, MPI_BYTE, 0, PETSC_COMM_WORLD);
@@ -240,8 +234,7 @@ int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, 
   for (int k = 0; k <= sc->adapt.levels && !rc; k++) {
     int stop, kept = !fresh && reuse_level(outdir, k, sc->adapt.levels, key, &lv[k]);
     if (kept) {
-      fe_adapt_estimate(lv, k + 1, sc->order, sc->kin == KIN_3D ? 3 : 2, &me);
-      stop = me.have && sc->adapt.tol > 0 && within(&lv[k].sum, &me, sc->adapt.tol);
+      stop = estimate_levels(sc, lv, k + 1, &me);
       PetscPrintf(PETSC_COMM_WORLD, "adapt: level %d kept from an earlier run of this scene (%s, %ld cells; docs/adapt.md, \"Kept meshes\")%s\n", k,
                   lv[k].dir, lv[k].cells, stop ? ": the answer, run again" : "");
       n = k + 1;
@@ -251,19 +244,19 @@ int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, 
     rc    = run_level(doc, sc, isc, opt, outdir, k, k ? &lv[k - 1] : NULL, &lv[k], err, errlen);
     if (rc) break;
     if (!rank) level_save(&lv[k], key);
-    n = k + 1;
-    fe_adapt_estimate(lv, n, sc->order, sc->kin == KIN_3D ? 3 : 2, &me);
+    n    = k + 1;
+    stop = estimate_levels(sc, lv, n, &me);
     if (!rank) {
       printf("adapt: level %d: %ld cells, %ld unknowns, %.1f s CPU\n", k, lv[k].cells, lv[k].unknowns, lv[k].cpu);
       run_summary_print(sc, &lv[k], me.have ? &me : NULL);
-      snprintf(sc->outdir, sizeof sc->outdir, "%s", lv[k].dir); /* the level's own summary.json, its estimate from the levels so far */
-      if (run_summary_write(sc, sc->indenter ? "indentation" : "fe", lv, n, &me, err, errlen)) printf("adapt: %s\n", err);
+      /* the level's own summary.json, its estimate from the levels so far */
+      if (run_summary_write(sc, lv[k].dir, lv, n, &me, err, errlen)) printf("adapt: %s\n", err);
     }
-    if (me.have && sc->adapt.tol > 0 && within(&lv[k].sum, &me, sc->adapt.tol)) break;
+    if (stop) break;
   }
   snprintf(sc->outdir, sizeof sc->outdir, "%s", outdir);
   if (rc) return rc;
-  if (!rank) rc = publish(outdir, lv[n - 1].dir, err, errlen) || run_summary_write(sc, sc->indenter ? "indentation" : "fe", lv, n, &me, err, errlen);
+  if (!rank) rc = publish(outdir, lv[n - 1].dir, err, errlen) || run_summary_write(sc, outdir, lv, n, &me, err, errlen);
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
   return rc;

@@ -18,7 +18,4 @@ PetscErrorCode fe_adapt_options(YdDoc *doc, FeScene *sc, PetscBool restart, char
 /* Run the levels. Returns the run's status (0, 1, 2 with err filled, or a PETSc code). */
 int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, char *err, size_t errlen);
 
-/* The mesh error of every reported quantity from the levels' answers (docs/adapt.md, "The error estimate"). */
-void fe_adapt_estimate(const RunInfo *levels, int n, int order, int dim, MeshError *me);
-
 #endif

@@ -143,11 +143,11 @@ static PetscErrorCode print_sizes(FeScene *sc, FeProblem *p, RunInfo *info) {
 
 /* After the stages: the indicator's norm and, when asked, the size field for the next mesh (fe/fe_estimate.h). */
 static PetscErrorCode after_run(FeProblem *p, const char *sizes, double growth, double base, RunInfo *info) {
-  PetscReal max2, now2;
+  PetscReal norm;
   PetscFunctionBeginUser;
-  PetscCall(fe_estimate_totals(p, &max2, &now2));
-  info->eta = PetscSqrtReal(max2), info->predicted = 0;
-  if (sizes && p->est.nupdates > 0) PetscCall(fe_estimate_write_sizes(p, growth * (base > 0 ? base : (double)info->cells), sizes, &info->predicted));
+  PetscCall(fe_estimate_norm(p, &norm));
+  info->eta = norm;
+  if (sizes) PetscCall(fe_estimate_write_sizes(p, growth * (base > 0 ? base : (double)info->cells), sizes, &info->predicted));
   PetscFunctionReturn(0);
 }
 
@@ -235,7 +235,7 @@ int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (!rc && !rank) {
     run_summary_print(&sc, &info, NULL);
-    rc = run_summary_write(&sc, sc.indenter ? "indentation" : "fe", &info, 1, NULL, err, errlen);
+    rc = run_summary_write(&sc, sc.outdir, &info, 1, NULL, err, errlen);
   }
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   return rc;

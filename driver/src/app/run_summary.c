@@ -61,12 +61,12 @@ static void level_entry(FILE *fp, const RunInfo *r, int last) {
           r->sum.wall, r->sum.steps, r->sum.cutbacks, r->sum.its, r->sum.umat_calls, last ? "" : ",");
 }
 
-int run_summary_write(const FeScene *sc, const char *kind, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen) {
+int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen) {
   char                 part[1200], path[1100];
   const RunInfo       *a = &levels[nlevels - 1];
   const RunnerSummary *s = &a->sum;
   double               cpu = 0;
-  snprintf(path, sizeof path, "%s/summary.json", sc->outdir);
+  snprintf(path, sizeof path, "%s/summary.json", dir);
   snprintf(part, sizeof part, "%s.part", path);
   FILE *fp = fopen(part, "w");
   if (!fp) {
@@ -76,7 +76,7 @@ int run_summary_write(const FeScene *sc, const char *kind, const RunInfo *levels
   for (int l = 0; l < nlevels; l++) cpu += levels[l].cpu;
   fputs("{\n  \"scene\": ", fp);
   str(fp, sc->name);
-  fprintf(fp, ", \"kind\": \"%s\", \"completed\": %s,\n  \"mesh\": {\"dir\": ", kind, s->failed || s->stopped ? "false" : "true");
+  fprintf(fp, ", \"kind\": \"%s\", \"completed\": %s,\n  \"mesh\": {\"dir\": ", sc->indenter ? "indentation" : "fe", s->failed || s->stopped ? "false" : "true");
   str(fp, a->dir);
   fprintf(fp, ", \"cells\": %ld, \"unknowns\": %ld, \"order\": %d, \"error_indicator\": ", a->cells, a->unknowns, sc->order);
   num(fp, a->eta);

@@ -27,9 +27,9 @@ typedef struct {
   double change[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
 } MeshError;
 
-/* Write outdir/summary.json (rank 0; through summary.json.part, renamed once complete). levels: the runs, the last
-   one the answer (several when the mesh was adapted). 0, or 1 with err filled. */
-int run_summary_write(const FeScene *sc, const char *kind, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen);
+/* Write dir/summary.json (rank 0; through summary.json.part, renamed once complete). levels: the runs, the last one
+   the answer (several when the mesh was adapted). 0, or 1 with err filled. */
+int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen);
 
 /* Print the reported quantities of the last level with their mesh errors (rank 0). */
 void run_summary_print(const FeScene *sc, const RunInfo *last, const MeshError *me);

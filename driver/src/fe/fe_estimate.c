@@ -147,21 +147,9 @@ static PetscReal tensor_norm2(const PetscReal s[6], PetscInt ntens, Source src) 
   return n;
 }
 
-/* Sum the cells' vertex values into the vertex DM's local vector L, over every rank. */
-static PetscErrorCode sum_at_vertices(FeProblem *p, Vec L) {
-  Vec G;
-  PetscFunctionBeginUser;
-  PetscCall(DMGetGlobalVector(p->est.dmv, &G));
-  PetscCall(VecZeroEntries(G));
-  PetscCall(DMLocalToGlobal(p->est.dmv, L, ADD_VALUES, G));
-  PetscCall(DMGlobalToLocal(p->est.dmv, G, INSERT_VALUES, L));
-  PetscCall(DMRestoreGlobalVector(p->est.dmv, &G));
-  PetscFunctionReturn(0);
-}
-
-/* The largest of the cells' vertex values in L, over every rank (DMLocalToGlobal has no MAX_VALUES: the section's
-   star forest reduces with MPI_MAX itself). */
-static PetscErrorCode max_at_vertices(FeProblem *p, Vec L) {
+/* The cells' values at each vertex in L combined over every rank (op: MPI_SUM, or MPI_MAX, which DMLocalToGlobal
+   lacks) by the section's star forest, and the result back in every rank's L. */
+static PetscErrorCode combine_at_vertices(FeProblem *p, Vec L, MPI_Op op) {
   Vec                G;
   PetscSF            sf;
   const PetscScalar *l;
@@ -172,14 +160,15 @@ static PetscErrorCode max_at_vertices(FeProblem *p, Vec L) {
   PetscCall(VecZeroEntries(G));
   PetscCall(VecGetArrayRead(L, &l));
   PetscCall(VecGetArray(G, &g));
-  PetscCall(PetscSFReduceBegin(sf, MPIU_SCALAR, l, g, MPI_MAX));
-  PetscCall(PetscSFReduceEnd(sf, MPIU_SCALAR, l, g, MPI_MAX));
+  PetscCall(PetscSFReduceBegin(sf, MPIU_SCALAR, l, g, op));
+  PetscCall(PetscSFReduceEnd(sf, MPIU_SCALAR, l, g, op));
   PetscCall(VecRestoreArray(G, &g));
   PetscCall(VecRestoreArrayRead(L, &l));
   PetscCall(DMGlobalToLocal(p->est.dmv, G, INSERT_VALUES, L));
   PetscCall(DMRestoreGlobalVector(p->est.dmv, &G));
   PetscFunctionReturn(0);
 }
+
 
 /* The recovery indicator of one field into eta (per local cell): sigma* from the cells' vertex values, then
    eta_K = (int_K |sigma* - sigma_h|^2)^(1/2) (fe_estimate.h). */
@@ -204,7 +193,7 @@ static PetscErrorCode recover(FeProblem *p, Source src, PetscReal *eta) {
     }
   }
   PetscCall(VecRestoreArray(L, &a));
-  PetscCall(sum_at_vertices(p, L));
+  PetscCall(combine_at_vertices(p, L, MPI_SUM));
   PetscCall(VecGetArray(L, &a));
   for (PetscInt c = 0; c < ncell; c++) { /* eta_K^2 = int_K |sigma* - sigma_h|^2 */
     PetscInt  off[4], nv;
@@ -251,13 +240,12 @@ PetscErrorCode fe_estimate_update(FeProblem *p) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_estimate_totals(FeProblem *p, PetscReal *sum_max2, PetscReal *sum2) {
-  PetscReal s[2] = {0, 0};
+PetscErrorCode fe_estimate_norm(FeProblem *p, PetscReal *norm) {
+  PetscReal s = 0;
   PetscFunctionBeginUser;
-  for (PetscInt c = 0; p->est.eta && c < p->space.cEnd - p->space.cStart; c++)
-    s[0] += p->est.eta_max[c] * p->est.eta_max[c], s[1] += p->est.eta[c] * p->est.eta[c];
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)p->space.dm)));
-  *sum_max2 = s[0], *sum2 = s[1];
+  for (PetscInt c = 0; p->est.eta && c < p->space.cEnd - p->space.cStart; c++) s += p->est.eta_max[c] * p->est.eta_max[c];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)p->space.dm)));
+  *norm = PetscSqrtReal(s);
   PetscFunctionReturn(0);
 }
 
@@ -310,7 +298,7 @@ PetscErrorCode fe_estimate_write_sizes(FeProblem *p, PetscReal target_cells, con
     for (PetscInt v = 0; v < nv; v++) a[off[v]] = PetscMax(PetscRealPart(a[off[v]]), 1 / hnew[c]);
   }
   PetscCall(VecRestoreArray(L, &a));
-  PetscCall(max_at_vertices(p, L));
+  PetscCall(combine_at_vertices(p, L, MPI_MAX));
   PetscCall(PetscViewerASCIIOpen(PetscObjectComm((PetscObject)p->space.dm), path, &vw));
   PetscCall(PetscViewerASCIIPrintf(vw, "// The element sizes made from the error indicator (fe_estimate.h): %g cells predicted\nView \"size\" {\n", (double)*predicted));
   PetscCall(PetscViewerASCIIPushSynchronized(vw));

@@ -27,8 +27,8 @@
    Collective. */
 PetscErrorCode fe_estimate_update(FeProblem *p);
 
-/* The sum over all cells of eta_max^2 and of eta^2 (collective), for the log and the summary. */
-PetscErrorCode fe_estimate_totals(FeProblem *p, PetscReal *sum_max2, PetscReal *sum2);
+/* The indicator's norm, sqrt(sum over all cells of eta_max^2) (collective), for the summary; 0 before any output. */
+PetscErrorCode fe_estimate_norm(FeProblem *p, PetscReal *norm);
 
 /* A size field that equidistributes eta_max over about 'target_cells' cells (Zienkiewicz & Zhu 1987, sec. 5;
  * docs/adapt.md): with eta_K ~ h_K^s, s = order + dim/2, the new size of cell K is

@@ -67,3 +67,20 @@ int fs_prepare_output_dir(const char *dir, char *err, size_t errlen) {
   }
   return 0;
 }
+
+int fs_copy_file(const char *src, const char *dst) {
+  char   part[4200], buf[1 << 16];
+  FILE  *in = fopen(src, "rb"), *out;
+  size_t n;
+  if (!in) return 0;
+  snprintf(part, sizeof part, "%s.part", dst);
+  if (!(out = fopen(part, "wb"))) return fclose(in), 1;
+  while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+    if (fwrite(buf, 1, n, out) != n) break;
+  int bad = ferror(in) || ferror(out);
+  fclose(in);
+  bad |= fclose(out) != 0;
+  if (!bad && !rename(part, dst)) return 0;
+  remove(part);
+  return 1;
+}

@@ -12,4 +12,8 @@ int fs_make_directories(const char *path);
  * it is: named), "...: cannot create: <reason>", "...: not writable: <reason>". */
 int fs_prepare_output_dir(const char *dir, char *err, size_t errlen);
 
+/* Copy src to dst through dst.part, renamed into place once whole (a reader never sees half a file; on failure the
+ * .part is removed and dst untouched). A missing src copies nothing. 0, or 1. */
+int fs_copy_file(const char *src, const char *dst);
+
 #endif

@@ -171,11 +171,30 @@ static void latest_missing_message(const RunnerOptions *opt, char *err, size_t e
   snprintf(err, errlen, "-restart: %s/checkpoint.latest is missing or damaged (run with -checkpoint_every N first)", opt->outdir);
 }
 
-int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen) {
-  char               path[1100];
-  int                step = -1, nranks = 0, version = 0, code = 0;
+/* The head of rank 'rank's file, open in f: its magic, format, ranks and rank, the scene's hash and the runner's
+   state. 0 (this run's), 1 (damaged), 2 (another scene), 3 (another format, in *version) or 4 (another mesh). */
+static int read_head(BinFile *f, const RunnerOptions *opt, int nranks, int rank, int *version, RunState *st) {
   unsigned long long hash = 0;
-  static RunState    st;
+  binfile_expect_int(f, CKPT_MAGIC);
+  binfile_read(f, version, sizeof *version, 1);
+  if (f->ok && *version != CKPT_VERSION) {
+    f->ok = 0;
+    return 3;
+  }
+  binfile_expect_int(f, nranks);
+  binfile_expect_int(f, rank);
+  binfile_read(f, &hash, sizeof hash, 1);
+  binfile_read(f, st, sizeof *st, 1);
+  if (!f->ok) return 1;
+  if (hash != binfile_hash(opt->scene_file)) return 2;
+  return st->mesh_hash != binfile_hash(opt->mesh_file) ? 4 : 0;
+}
+
+int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen) {
+  char     path[1100];
+  int      step = -1, nranks = 0, version = 0, code = 1;
+  RunState st;
+  BinFile  f;
   snprintf(path, sizeof path, "%s/checkpoint.latest", opt->outdir);
   FILE *fp = fopen(path, "r");
   if (fp && fscanf(fp, "%d %d", &step, &nranks) != 2) step = -1;
@@ -185,19 +204,8 @@ int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen) {
     return 1;
   }
   set_path(opt, step, 0, path, sizeof path);
-  BinFile f;
-  if (binfile_open(&f, path, "rb")) code = 1;
-  else {
-    binfile_expect_int(&f, CKPT_MAGIC);
-    binfile_read(&f, &version, sizeof version, 1);
-    if (f.ok && version != CKPT_VERSION) code = 3, f.ok = 0;
-    binfile_expect_int(&f, nranks);
-    binfile_expect_int(&f, 0);
-    binfile_read(&f, &hash, sizeof hash, 1);
-    binfile_read(&f, &st, sizeof st, 1);
-    if (!code && !f.ok) code = 1;
-    else if (!code && hash != binfile_hash(opt->scene_file)) code = 2;
-    else if (!code && st.mesh_hash != binfile_hash(opt->mesh_file)) code = 4;
+  if (!binfile_open(&f, path, "rb")) {
+    code = read_head(&f, opt, nranks, 0, &version, &st);
     binfile_close(&f, 0);
   }
   if (code) refusal_message(code, step, 0, version, opt, err, errlen);
@@ -222,25 +230,14 @@ int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int 
   int                from = rank < nranks ? rank : 0;
   char               path[1100];
   BinFile            f;
-  unsigned long long hash = 0;
-  int                code = 0, version = CKPT_VERSION; /* code: 0 ok, 1 missing or damaged, 2 another scene, 3 another format, 4 another mesh */
-  unsigned long long mesh_hash = binfile_hash(opt->mesh_file);
+  int                code = 1, version = CKPT_VERSION; /* read_head's codes */
   set_path(opt, step, from, path, sizeof path);
-  if (binfile_open(&f, path, "rb")) code = 1;
-  else {
-    binfile_expect_int(&f, CKPT_MAGIC);
-    binfile_read(&f, &version, sizeof version, 1);
-    if (f.ok && version != CKPT_VERSION) code = 3, f.ok = 0;
-    binfile_expect_int(&f, nranks);
-    binfile_expect_int(&f, from);
-    binfile_read(&f, &hash, sizeof hash, 1);
-    if (f.ok && hash != binfile_hash(opt->scene_file)) code = 2;
-    binfile_read(&f, st, sizeof *st, 1);
-    if (f.ok && !code && sv->load(sv->ctx, &f)) f.ok = 0;
+  if (!binfile_open(&f, path, "rb")) {
+    code = read_head(&f, opt, nranks, from, &version, st);
+    if (!code && sv->load(sv->ctx, &f)) f.ok = 0;
     binfile_expect_int(&f, CKPT_MAGIC);
     if (binfile_close(&f, 0) && !code) code = 1;
     if (!code && st->step != step) code = 1;
-    if (!code && st->mesh_hash != mesh_hash) code = 4;
   }
   int worst = 0, mine = code ? from : nranks, first_bad = nranks, found = code == 3 ? version : 0, other = 0;
   MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, sv->comm);

@@ -23,9 +23,9 @@ typedef struct {
 
 /* Write the set for st->step; *last: the step of the previous set (deleted once the new one is in place). */
 int checkpoint_write(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);
-/* Before anything of a restarted run is set up or opened (rank 0): whether the latest checkpoint was written for
- * this scene file and this mesh file (opt->scene_file, opt->mesh_file). 0 (also when there is none or it cannot be
- * read: checkpoint_read says so), or 2 with err filled. */
+/* Before anything of a restarted run is set up or opened (rank 0): whether the latest checkpoint is there, whole in
+ * its rank-0 head and written for this scene file and this mesh file (opt->scene_file, opt->mesh_file). 0; 1 (missing
+ * or damaged) or 2 (another scene, mesh or format) with checkpoint_read's message in err. */
 int checkpoint_precheck(const RunnerOptions *opt, char *err, size_t errlen);
 /* Read the latest set into st and the solver. Returns 0, 1 (missing or damaged) or 2 (another scene). */
 int checkpoint_read(StepSolver *sv, const RunnerOptions *opt, RunState *st, int *last, char *err, size_t errlen);

@@ -354,15 +354,14 @@ static PetscErrorCode initial_state(FeSolver *f) {
   PetscFunctionReturn(0);
 }
 
-/* After the run: the output closed, the summary lines, the solver's objects freed. */
 /* What an FE scene reports (StepSolver.report): the volume-mean strain along the scene's axis and its trace. */
-static PetscErrorCode report(void *ctx, double *v) {
+static void report(void *ctx, double *v) {
   FeSolver *f = ctx;
   v[0] = f->c.stats.strain_mean[f->c.sc->axis];
   v[1] = f->c.stats.strain_mean[0] + f->c.stats.strain_mean[1] + f->c.stats.strain_mean[2];
-  return 0;
 }
 
+/* After the run: the output closed, the summary lines, the solver's objects freed. */
 static PetscErrorCode finish(FeSolver *f, MPI_Comm comm, const RunnerSummary *sum, const RunnerOptions *opt) {
   FeProblem *p = f->c.p;
   PetscFunctionBeginUser;

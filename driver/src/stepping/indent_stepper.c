@@ -221,10 +221,9 @@ static PetscErrorCode replay(void *ctx, const char *dir, char *msg, size_t n) {
 static long umat_calls(void *ctx) { return (long)fe_problem_diag(((Indent *)ctx)->c.p)->umat_calls; }
 
 /* What an indentation reports (StepSolver.report): the indenter's depth and the whole indenter's load. */
-static PetscErrorCode report(void *ctx, double *v) {
+static void report(void *ctx, double *v) {
   Indent *d = ctx;
   v[0] = (double)d->in.ur, v[1] = whole(d, d->load);
-  return 0;
 }
 
 /* After the run: the output closed, the summary line, the contact solver freed. */

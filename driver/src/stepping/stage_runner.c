@@ -293,9 +293,8 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
 }
 
 /* The scene's reported quantities at the start (k = 0) or at the end of stage k - 1. */
-static int keep_report(Run *r, int k) {
-  if (!r->sv->report || k > RUNNER_MAX_STAGES) return 0;
-  return (int)r->sv->report(r->sv->ctx, r->st.report[k]);
+static void keep_report(Run *r, int k) {
+  if (r->sv->report && k <= RUNNER_MAX_STAGES) r->sv->report(r->sv->ctx, r->st.report[k]);
 }
 
 static int write_fields(Run *r, char *err, size_t errlen) {
@@ -364,10 +363,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
                r->view.until.value, st->t, stage_list(r), st->stage, r->view.duration);
       return 1;
     }
-    if (stage_done) {
-      if ((rc = keep_report(r, st->stage + 1))) return rc;
-      st->stage++, st->in_stage = 0;
-    }
+    if (stage_done) keep_report(r, st->stage + 1), st->stage++, st->in_stage = 0;
     if (opt->checkpoint_every > 0 && st->step % opt->checkpoint_every == 0) {
       if (r->hist) fflush(r->hist);
       st->history_offset = r->hist ? ftell(r->hist) : 0;
@@ -376,9 +372,9 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, err, errlen)) ? rc : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
-  int rc = keep_report(r, st->stage + 1);
+  keep_report(r, st->stage + 1);
   st->stage++, st->in_stage = 0;
-  return rc;
+  return 0;
 }
 
 int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *sum, char *err, size_t errlen) {
@@ -402,7 +398,8 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   clock_gettime(CLOCK_MONOTONIC, &r.w0);
   if (!opt->restart) {
     r.view.name = NULL; /* row 0: the solver names it */
-    if ((rc = history_row(&r, 0, 0, 0, err)) || (rc = write_fields(&r, err, errlen)) || (rc = keep_report(&r, 0))) return rc;
+    keep_report(&r, 0);
+    if ((rc = history_row(&r, 0, 0, 0, err)) || (rc = write_fields(&r, err, errlen))) return rc;
   }
   while (!rc && r.st.stage < sv->nstage) {
     rc = opt->max_steps >= 0 && r.st.step >= opt->max_steps ? 3 : run_stage(&r, err, errlen);

@@ -139,7 +139,7 @@ typedef struct {
    * (RunnerSummary), the quantities whose mesh error a run states (docs/adapt.md). */
   int         nreport;
   const char *report_names[RUNNER_MAX_REPORT];
-  PetscErrorCode (*report)(void *ctx, double *v);
+  void (*report)(void *ctx, double *v);
 } StepSolver;
 
 typedef struct {
