@@ -243,3 +243,27 @@ def test_your_own_scene_template(tmp_path):
     e_creep, e_res = 1000 * st[2]["mesh_error"]["change"]["depth"], 1000 * st[3]["mesh_error"]["end"]["depth"]
     print(f"creep depth {creep:.4f} nm (mesh error {e_creep:.3g}), residual depth {h_res:.3f} nm (mesh error {e_res:.3g})")
     assert abs(creep / 8.196 - 1) < 0.02 and abs(h_res / 40.44 - 1) < 0.01 and e_creep > 0 and e_res > 0
+
+
+def test_time_error_effectivity(tmp_path):
+    """The time-step error stated for a held stage's change (docs/adapt.md, "The time-step error"): the kerogen twin
+    (input/nanoindent_kerogen_axi.yaml) at the output measure's tol 0.03 and 0.015 on the load and the hold. Backward
+    Euler with this control is first order in tol (docs/performance.md, "Time-step error control": the errors halve
+    with tol), so the creep depth's true error at tol 0.03 is 2 (h(0.03) - h(0.015)) (Richardson), independent of the
+    estimate; expected: estimate / true error in [0.5, 2] (measured 0.79; 0.80 against the extrapolation of tol 0.005
+    and 0.0025). Stages whose load changes state none (null): their departures hold the response's curvature."""
+    text = (ROOT / "input" / "nanoindent_kerogen_axi.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
+    creep, est = {}, {}
+    for tol in (0.03, 0.015):
+        out = tmp_path / f"tol{tol}"
+        scene = text.replace("tol: 1.5e-2", f"tol: {tol}")
+        assert scene.count(f"tol: {tol}") == 2
+        code, log = drive(scene, out, exe="driver")
+        assert code == 0 and "time-step error" in log, log[-2000:]
+        st = summary(out)["stages"]
+        assert [s["name"] for s in st] == ["start", "load", "hold", "unload"]
+        assert st[1]["time_error"] is None and st[3]["time_error"] is None and st[2]["time_error"]["change"]["load"] == 0
+        creep[tol], est[tol] = st[2]["change"]["depth"], st[2]["time_error"]["change"]["depth"]
+    true = 2 * (creep[0.03] - creep[0.015])
+    print(f"creep depth {creep}, stated time-step error {est[0.03]:.4g}, Richardson {true:.4g}, effectivity {est[0.03] / abs(true):.3f}")
+    assert 0.5 <= est[0.03] / abs(true) <= 2

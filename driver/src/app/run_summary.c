@@ -49,6 +49,12 @@ static void stage_entry(FILE *fp, const FeScene *sc, const RunnerSummary *s, con
     quantities(fp, s, me->change[k]);
     fputc('}', fp);
   }
+  fputs(", \"time_error\": ", fp);
+  if (k && isfinite(s->time_error_change[k][0])) {
+    fputs("{\"change\": ", fp);
+    quantities(fp, s, s->time_error_change[k]);
+    fputc('}', fp);
+  } else fputs("null", fp);
   fprintf(fp, "}%s\n", k < s->nstages_done ? "," : "");
 }
 
@@ -97,6 +103,13 @@ int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels,
   return 0;
 }
 
+/* " (mesh error m, time-step error t)" of a reported value, each where it was estimated (m >= 0, t finite). */
+static void errors(double mesh, double time) {
+  if (mesh >= 0 && isfinite(time)) printf(" (mesh error %.2g, time-step error %.2g)", mesh, time);
+  else if (mesh >= 0) printf(" (mesh error %.2g)", mesh);
+  else if (isfinite(time)) printf(" (time-step error %.2g)", time);
+}
+
 void run_summary_print(const FeScene *sc, const RunInfo *last, const MeshError *me) {
   const RunnerSummary *s = &last->sum;
   for (int k = 1; k <= s->nstages_done; k++) {
@@ -104,9 +117,9 @@ void run_summary_print(const FeScene *sc, const RunInfo *last, const MeshError *
     for (int q = 0; q < s->nreport; q++) {
       double end = s->report[k][q], change = end - s->report[k - 1][q];
       printf(" %s %.6g", s->report_names[q], end);
-      if (me && me->have) printf(" (mesh error %.2g)", me->end[k][q]);
+      errors(me && me->have ? me->end[k][q] : -1, NAN);
       printf(", its change %.6g", change);
-      if (me && me->have) printf(" (mesh error %.2g)", me->change[k][q]);
+      errors(me && me->have ? me->change[k][q] : -1, s->time_error_change[k][q]);
       printf(";");
     }
     printf("\n");

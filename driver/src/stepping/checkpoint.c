@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC 0x43433952 /* "CC9R" */
-#define CKPT_VERSION 5 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState */
+#define CKPT_VERSION 6 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState; 6: their time-step errors */
 
 static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
   snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);

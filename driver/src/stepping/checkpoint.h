@@ -19,6 +19,11 @@ typedef struct {
   long   history_offset;
   double report[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT]; /* the reported quantities at the start and stage ends */
   unsigned long long mesh_hash;                            /* of the run's mesh file (0: none): a restart needs the same */
+  /* the time-step error of the reported quantities (stage_runner.c, time_error_step): the last step's values and
+     increment, the sum of the steps' local errors over the stage, kept at each stage's end (NAN: not a held stage) */
+  int    rep_have_prev;
+  double rep_prev[RUNNER_MAX_REPORT], drep_prev[RUNNER_MAX_REPORT], rep_h_prev;
+  double terr_stage[RUNNER_MAX_REPORT], terr_change[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
 } RunState;
 
 /* Write the set for st->step; *last: the step of the previous set (deleted once the new one is in place). */

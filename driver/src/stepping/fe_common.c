@@ -36,6 +36,11 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
   point_invariants(c->stats.stress_mean, 6, &p, &q);
   stage_view_of(g, v);
   v->event_start = g->until.kind == EVENT_P_ABOVE ? p : q;
+  /* held: an instant stage after its jump, or every pressure and traction kept or ramped to its value at the start */
+  const StageLoads *l = &c->sc->loads[s];
+  v->held = 1;
+  for (int k = 0; k < c->sc->npressure && !g->instant; k++)
+    if (l->fn[k] != FN_RAMP || !(isnan(l->pressure[k]) || l->pressure[k] == c->start[k])) v->held = 0;
 }
 
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {

@@ -292,9 +292,42 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   if (ratio >= 0 || o->its > 0) st->reject_ratio = 0;
 }
 
-/* The scene's reported quantities at the start (k = 0) or at the end of stage k - 1. */
+/* The scene's reported quantities at the start (k = 0) or at the end of stage k - 1, with the time-step error of
+ * their change over a held stage (time_error_step). */
 static void keep_report(Run *r, int k) {
-  if (r->sv->report && k <= RUNNER_MAX_STAGES) r->sv->report(r->sv->ctx, r->st.report[k]);
+  RunState *st = &r->st;
+  if (!r->sv->report) return;
+  for (int q = 0; q < r->sv->nreport && k <= RUNNER_MAX_STAGES; q++) st->terr_change[k][q] = k && r->view.held ? st->terr_stage[q] : NAN;
+  for (int q = 0; q < r->sv->nreport; q++) st->terr_stage[q] = 0;
+  if (k <= RUNNER_MAX_STAGES) r->sv->report(r->sv->ctx, st->report[k]);
+  if (k == 0) r->sv->report(r->sv->ctx, st->rep_prev);
+}
+
+/* The time-step error of the reported quantities after an accepted step (docs/adapt.md, "The time-step error").
+ * Backward Euler's local error is -(h_n^2/2) y'' + O(h^3); the increment's departure from the previous one scaled
+ * to this step is Delta_n - (h_n/h_{n-1}) Delta_{n-1} = (h_n (h_n + h_{n-1})/2) y'' + O(h^3), so the local error
+ * is that departure times h_n/(h_n + h_{n-1}) (the same departure the 'output' measure controls, error_ratio).
+ * The global error of a stable integration is at most the sum of the local ones: summed in absolute value over a
+ * held stage, it estimates the error of the change over it (the creep depth). Where the loads change, the same
+ * departure holds the curvature of the response to them (elastic, rate-independent), which is no time-step error:
+ * no estimate there (StageView.held). A stage's first step (a kink of the rate) and an instant step predict
+ * nothing: the estimate starts at the step after the next. */
+static void time_error_step(Run *r, const StepRequest *rq) {
+  RunState *st = &r->st;
+  double    v[RUNNER_MAX_REPORT];
+  if (!r->sv->report) return;
+  r->sv->report(r->sv->ctx, v);
+  int have = st->rep_have_prev && !rq->first_in_stage && rq->h > 0 && st->rep_h_prev > 0;
+  for (int q = 0; q < r->sv->nreport; q++) {
+    double d = v[q] - st->rep_prev[q];
+    if (have) {
+      double e = fabs(d - rq->h / st->rep_h_prev * st->drep_prev[q]) * rq->h / (rq->h + st->rep_h_prev);
+      st->terr_stage[q] += e;
+    }
+    st->drep_prev[q] = d, st->rep_prev[q] = v[q];
+  }
+  st->rep_have_prev = rq->h > 0 && !rq->first_in_stage;
+  st->rep_h_prev    = rq->h;
 }
 
 static int write_fields(Run *r, char *err, size_t errlen) {
@@ -342,6 +375,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     int was_instant = st->pending_instant, cut = st->cut_in_step;
     SOLVER_CALL(sv->accept(sv->ctx, &rq, err, errlen));
     st->t += rq.h, st->t_stage += rq.h, st->step++, st->its += o.its;
+    time_error_step(r, &rq);
     after_accept(r, &rq, &o, ratio, kink_ratio);
     if (promote(r)) {
       snprintf(err, errlen, "%s: cannot rename the new output files into place", opt->outdir);
@@ -417,6 +451,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   sum->nreport = sv->report ? sv->nreport : 0, sum->nstages_done = PetscMin(r.st.stage, RUNNER_MAX_STAGES);
   for (int k = 0; k < sum->nreport; k++) sum->report_names[k] = sv->report_names[k];
   memcpy(sum->report, r.st.report, sizeof sum->report);
+  memcpy(sum->time_error_change, r.st.terr_change, sizeof sum->time_error_change);
   if (opt->summary) *opt->summary = *sum;
   if (rc && err[0] && opt->outdir && opt->outdir[0] && !r.promoted && !opt->restart) {
     size_t len = strlen(err);

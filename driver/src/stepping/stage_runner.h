@@ -33,6 +33,8 @@ typedef struct {
   double             event_start; /* the until quantity at the stage's start (for landing) */
   int                nout_times;  /* fields at exactly these stage times (output: {times} of a stage) */
   const double      *out_times;
+  int                held;        /* the loads are constant over the stage (after an instant one's jump): only then is the
+                                     time-step error of the reported quantities' change estimated (time_error_step) */
 } StageView;
 
 /* The view of stage g as it comes from the scene (the solver's stage_begin may then change it). */
@@ -161,6 +163,9 @@ typedef struct RunnerSummary_ {
   int         nreport, nstages_done;
   const char *report_names[RUNNER_MAX_REPORT];
   double      report[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
+  /* the time-step error of their change over stage s (index s + 1; docs/adapt.md, "The time-step error"): the
+     sum of the steps' local error estimates over a held stage (StageView.held); NAN where none is made */
+  double      time_error_change[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
 } RunnerSummary;
 
 /* Run every stage. Returns the run's status: 0; 1 (a step failed for good, an event was missed, a file could not

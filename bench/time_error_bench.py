@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""The time-step error a run states (docs/adapt.md, "The time-step error"): each case at its shipped step control and
+at finer ones; the stated error of each held stage's change against its true error. Writes the section "Stated
+time-step error" of docs/performance.md.
+
+    bench/time_error_bench.py [--out out/time_error_bench] [--no-doc]
+
+The true error: backward Euler under these controls is first order (docs/performance.md, "Time-step error control":
+the errors halve with the tol), so the value at the finest two controls, extrapolated to zero (2 v(c/2) - v(c)), is
+the reference, and its uncertainty is the finest run's distance from it.
+Cases:
+- kerogen_axi: input/nanoindent_kerogen_axi.yaml, the output measure's tol 0.03, 0.015 (shipped), 0.005, 0.0025 on the
+  load and the hold; the creep depth (the hold's depth change).
+- sphere: input/your_indent_axi.yaml (README, "Your own indentation scene"), tol 0.015 (shipped), 0.0075, 0.00375.
+- triaxial: input/triaxial.yaml on one rank, the creep stage's largest step 2000 s (shipped), 500, 125 s (its step is
+  set by the UMAT's control and that cap); the axial strain's change over the creep stage.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
+DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+TITLE = "## Stated time-step error"
+
+# case: (scene, the text the control is in (with {} for its value), its values, finest last; the stage; the quantity)
+CASES = {
+    "kerogen_axi": ("nanoindent_kerogen_axi.yaml", "tol: {}", ["1.5e-2", "0.03", "0.005", "0.0025"], "hold", "depth"),
+    "sphere": ("your_indent_axi.yaml", "tol: {}", ["1.5e-2", "0.0075", "0.00375"], "hold", "depth"),
+    "triaxial": ("triaxial.yaml", "max: {}", ["2000", "500", "125"], "creep", "strain_axial"),
+}
+
+
+def run(case, value, out):
+    name, pattern, values, _, _ = CASES[case]
+    text = (ROOT / "input" / name).read_text().replace("../meshes/", f"{ROOT}/meshes/")
+    shipped = pattern.format(values[0])  # every stage controlled by it (not the unloads' looser tol)
+    assert shipped in text, f"{case}: '{shipped}' not in {name}"
+    text = text.replace(shipped, pattern.format(value))
+    out.mkdir(parents=True, exist_ok=True)
+    scene = out.parent / f"{out.name}.yaml"
+    scene.write_text(text)
+    proc = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, timeout=3600)
+    if proc.returncode:
+        raise SystemExit(f"{case} at {value}: the driver failed:\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
+    return json.loads((out / "summary.json").read_text())
+
+
+def measure(case, root):
+    _, _, values, stage, q = CASES[case]
+    rows = []
+    for v in values:
+        js = run(case, v, root / f"{case}_{v}")
+        st = next(s for s in js["stages"] if s["name"] == stage)
+        rows.append({"control": v, "steps": js["counters"]["steps"], "cpu_s": js["cost"]["cpu_s"],
+                     "value": st["change"][q], "stated": st["time_error"]["change"][q]})
+    fine = sorted(rows, key=lambda r: float(r["control"]))
+    ref = 2 * fine[0]["value"] - fine[1]["value"]
+    for r in rows:
+        r["true"] = r["value"] - ref
+        r["effectivity"] = r["stated"] / abs(r["true"]) if r["true"] else None
+    return {"stage": stage, "quantity": q, "reference": ref, "uncertainty": abs(fine[0]["value"] - ref), "rows": rows}
+
+
+def section(results):
+    lines = [TITLE, "",
+             "Command: `bench/time_error_bench.py` (cases and references in its docstring). Each held stage's change is "
+             "stated with the sum of its steps' local error estimates (docs/adapt.md, \"The time-step error\"); here "
+             "against its true error, from the finest two controls extrapolated (first order). Effectivity = stated / true.",
+             "", "| case | change of | control | steps | CPU [s] | value | true error | stated | effectivity |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for case, r in results.items():
+        for row in r["rows"]:
+            eff = "—" if row["effectivity"] is None else f"{row['effectivity']:.2f}"
+            lines.append(f"| {case} | {r['quantity']} over '{r['stage']}' | {row['control']} | {row['steps']} | {row['cpu_s']:.1f} | "
+                         f"{row['value']:.6g} | {100 * row['true'] / abs(r['reference']):+.3f} % | "
+                         f"{100 * row['stated'] / abs(r['reference']):.3f} % | {eff} |")
+        lines.append(f"| {case} | reference | | | | {r['reference']:.6g} | ± {100 * r['uncertainty'] / abs(r['reference']):.3f} % | | |")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=str(ROOT / "out" / "time_error_bench"))
+    ap.add_argument("--no-doc", action="store_true")
+    a = ap.parse_args()
+    root = Path(a.out)
+    results = {case: measure(case, root) for case in CASES}
+    (root / "results.json").write_text(json.dumps(results, indent=1) + "\n")
+    text = section(results)
+    print(text)
+    if not a.no_doc:
+        replace_section(TITLE, text)
+
+
+if __name__ == "__main__":
+    main()
