@@ -273,8 +273,8 @@ def shipped_lines(skey, ref, paper):
         return []
     e = {"h_max": s["depth_end_of_load"] / ref["h_max"]["value"] - 1, "creep": s["creep_depth"] / ref["creep"]["value"] - 1}
     return [f"The shipped scene itself ({SHIPPED[skey][0]}.yaml, as docs/paper.md runs it; its own mesh of the shipped "
-            f"density, another draw of the same mesh noise): depth at the end of loading {s['depth_end_of_load'] * 1e3:.2f} nm "
-            f"({e['h_max']:+.1%}), creep depth {s['creep_depth'] * 1e3:.2f} nm ({e['creep']:+.1%}).", ""]
+            f"density, another draw of the same mesh noise): depth at the end of loading {s['depth_end_of_load'] * 1e3:.4g} nm "
+            f"({e['h_max']:+.1%}), creep depth {s['creep_depth'] * 1e3:.4g} nm ({e['creep']:+.1%}).", ""]
 
 
 def within_table(res, skey, ref):

@@ -98,7 +98,7 @@ def triaxial_mesh_effect():
             "triaxial cylinder)")
 
 
-def mesh2d_effect(n):
+def mesh2d_effect(n, quick=False):
     """The 2D meshes' errors against the converged 2D answers (docs/results/indent2d_convergence.json): the study's
     rung with the shipped parameters, Fig. 13's quantity with them, and the shipped scene's own run (this store)."""
     st = results_store.load("indent2d_convergence")
@@ -110,7 +110,7 @@ def mesh2d_effect(n):
                                                                                                   ("bed", 0.25, 10.0))}
     e = {sk: {k: rung[sk]["o"][k] / ref[sk][k]["value"] - 1 for k in ("h_max", "creep", "h_res", "sig_hold", "dsig")}
          for sk in rung}
-    own = (n["indent"].get("loading_rate_a1") or {}).get("creep_depth")
+    own = None if quick else (n["indent"].get("loading_rate_a1") or {}).get("creep_depth")
     own_txt = (f"; the shipped scene's own mesh (its h_far rounded, another mesh of the same density) {_pct(own / ref['lr']['creep']['value'] - 1)} "
                "in creep depth" if own else "")
     return ("against the converged 2D answer (docs/performance.md, 2D indentation: mesh and element study; α = 1 and "
@@ -121,7 +121,7 @@ def mesh2d_effect(n):
             f"{_pct(e['bed']['h_res'])}, {_pct(e['bed']['sig_hold'])}, {_pct(e['bed']['dsig'])}")
 
 
-def setup_differences(n):
+def setup_differences(n, quick=False):
     """Every choice where our setup is not the paper's, or the paper does not say: what, why, and its effect where
     it was measured (the numbers' sources in brackets). Rows with a measured sensitivity from this run use n."""
     ind = n["indent"]
@@ -176,7 +176,7 @@ def setup_differences(n):
          "≤ 0.5 % on the 2D scenes' outputs (docs/performance.md, Time-step error control)"),
         ("2D meshes (Figs. 7–15)", "not stated", "P2 triangles, the fine zone over the whole contact (README, Which model "
          "each scene uses)", "P1 locks under the soft frame's nearly isochoric flow (about 20 % too little creep)",
-         mesh2d_effect(n)),
+         mesh2d_effect(n, quick)),
     ]
     L = ["## Setup differences", "", "Where our setup is not the paper's, or the paper does not say (theory.md §6 holds the "
          "readings of the equations, A1–A13):", "", "| item | paper | ours | why | effect, where measured |",
@@ -301,7 +301,7 @@ def small_copy(src, dest):
 
 def render(numbers, trends, images, meta, rel):
     """The Markdown of docs/paper.md; images: {figure id: [(file name or path, caption)]}, linked as rel/<name>."""
-    L = header(meta) + ["## Summary", ""] + summary(numbers, trends) + setup_differences(numbers)
+    L = header(meta) + ["## Summary", ""] + summary(numbers, trends) + setup_differences(numbers, meta["mode"] == "quick")
     L += indentation(numbers, images, rel) + paper_doc_2d.loading_rate(numbers, trends, images, rel, _images)
     L += paper_doc_2d.bedding(numbers, trends, images, rel, _images)
     L += paper_doc_tri.triaxial(numbers, trends, images, rel, _images)

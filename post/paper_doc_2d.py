@@ -61,12 +61,17 @@ def fig11_times(alpha, s):
 
 def fig11_text(alpha, s):
     """'agrees at 100 s (9/9 pairs), differs at 500 s (7/9), ...': each hold time's verdict and its robustness."""
-    return ", ".join(f"{'agrees' if ok else 'differs'} at {t} s ({same}/{n})" for t, (ok, same, n) in fig11_times(alpha, s).items())
+    return ", ".join(f"{'agrees' if ok else 'differs'} at {t} s" + (f" ({same}/{n})" if n else "")
+                     for t, (ok, same, n) in fig11_times(alpha, s).items())
 
 
 def fig11_verdict(alpha, s):
-    oks = [ok for ok, _, _ in fig11_times(alpha, s).values()]
-    return _v(all(oks)) if all(oks) or not any(oks) else "**agrees** early only" if oks[0] else "**differs** early"
+    """One verdict where every hold time gives the same, else each time's: '**agrees** at 100 s, **differs** at 500, 2000 s'."""
+    t = fig11_times(alpha, s)
+    oks = [ok for ok, _, _ in t.values()]
+    if all(oks) or not any(oks):
+        return _v(oks[0])
+    return ", ".join(f"{_v(v)} at " + ", ".join(k for k, (ok, _, _) in t.items() if ok == v) + " s" for v in (True, False))
 
 
 def fig9(R):
@@ -127,7 +132,7 @@ def summary_rows(n, trends):
                     + f" for α = 0.1, 1, 10 | α = 1, 10: {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))}; "
                     f"α = 0.1: {_v(R['0.1']['dsig_sides'] < 0 < R['0.1']['dsig_beneath'])} |")
     if f13:
-        ours = ", ".join(f"α = {a}: {v['change_end']:+.3g} MPa (largest {v['change_max']:+.3g}, {v['outputs']} outputs)"
+        ours = ", ".join(f"α = {a}: {v['change_end']:+.3g} MPa (largest after its start {v['change_max']:+.3g}, {v['outputs']} outputs)"
                          for a, v in f13.items())
         rows.append(f"| 13 | ‖σ‖ beneath the tip rises for α = 0.1, falls for α = 1, 10 (§4.1) | region mean over the hold, {ours} | "
                     + "; ".join(f"α = {a}: {_v(fig13(a, v))}" for a, v in f13.items()) + " |")
@@ -231,7 +236,7 @@ def fields_verdicts(S, f13):
     if f13:
         L.append("Fig. 13 (rule: the sign of Δ‖σ‖ over the whole hold, its mean over the region beneath the tip, not one "
                  "cell; the paper's “point in contact with the tip” is not placed more closely; in brackets the largest "
-                 "Δ‖σ‖ over the hold's outputs and their number): " + "; ".join(
+                 "Δ‖σ‖ over the hold's outputs after its start, and their number): " + "; ".join(
                      f"α = {a}: {v['change_end']:+.3g} MPa ({v['change_max']:+.3g}, {v['outputs']} outputs), {_v(fig13(a, v))}"
                      for a, v in f13.items()) + ".")
     return L

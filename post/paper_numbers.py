@@ -77,7 +77,7 @@ def triaxial_numbers(run, theta):
         "soft_over_hard": {f"{x:g}": float(np.interp(x, t[pos], ratio)) for x in RATIO_TIMES if x <= t[-1] * (1 + 1e-6)},
         "soft_over_hard_10x_until": last_time_above(t[pos], ratio, SOFT_OVER_HARD),
         # the smallest ratio over the hold's first EARLY s and over the whole hold (Fig. 18's claim covers all of it)
-        "soft_over_hard_min_early": float(np.min(ratio[t[pos] <= EARLY * (1 + 1e-9)])),
+        "soft_over_hard_min_early": float(min(np.min(ratio[t[pos] <= EARLY]), np.interp(EARLY, t[pos], ratio))),
         "soft_over_hard_min": float(np.min(ratio)),
     }
 
@@ -108,7 +108,7 @@ def collect(out):
                 s = f["fig13"]["dsig"]
                 n["fig13"][d.name.removeprefix("loading_rate_a")] = {
                     "region": list(BENEATH), "change_end": float(s[-1]), "change_min": float(min(s)),
-                    "change_max": float(max(s)), "hold": float(f["fig13"]["t"][-1]), "outputs": len(s)}
+                    "change_max": float(max(s[1:] if len(s) > 1 else s)), "hold": float(f["fig13"]["t"][-1]), "outputs": len(s)}
                 n["fig13"][d.name.removeprefix("loading_rate_a")].update(
                     t=f["fig13"]["t"], dsig=[float(x) for x in s])
                 n["indent"][d.name].update(evp_start=f["evp_start"], fig10b=f["fig10b"], fig10b_total=f["fig10b_total"],

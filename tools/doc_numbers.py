@@ -94,7 +94,7 @@ def write(root):
             text = want
         else:
             have = section_of(text, title)
-            text = text.replace(have, want.rstrip("\n") + ("\n" if have.endswith("\n") else "")) if have else text
+            text = text.replace(have, want.rstrip("\n") + have[len(have.rstrip("\n")):]) if have else text
         p.write_text(text, encoding="utf-8")
     ns = doc_quotes.namespace(store_dir)
     for q in doc_quotes.QUOTES:

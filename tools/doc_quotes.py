@@ -67,7 +67,7 @@ def namespace(store_dir=results_store.STORE):
         return A(r.get("err") or {k: r[k] / ref[k] - 1 for k in ("P", "creep", "h_res")})
 
     fe_row = {(r["size"], r["tol"], r["ranks"]): A(r) for r in fe.get("rows", [])}
-    ns = dict(pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
+    ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row)
     if 0 in tri and 90 in tri:
@@ -104,6 +104,7 @@ QUOTES = [
     (R, "> 10× the hard one only until «f(f18.until[0], 0)» s (θ = 0) and «f(f18.until[90], 0)» s (θ = 90) of the 36 000 s"),
     (R, "(size 6 mm: «pu(fe[(6, 1e-06, 2)].err_10h, 2)» from the finest run at 10 h, with another φ draw) | "
         "«f(fe[(6, 1e-06, 2)].wall, 0)» s wall on 2 quiet cores (the main job above) |"),
+    (R, "docs/paper.md (about «f(meta.wall_runs / 60, 0)» min on a loaded"),
     # the kerogen sector (defect 3)
     (R, "(P2 to h_tip 0.035: P «k.reference.P» µN ± «pu(k.reference.hw.P)», creep depth «k.reference.creep» nm ± "
         "«pu(k.reference.hw.creep)», residual depth «k.reference.h_res» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
