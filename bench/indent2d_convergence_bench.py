@@ -39,7 +39,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))
 from indent_convergence_bench import run  # noqa: E402
-from indent_convergence_doc import bracket, richardson  # noqa: E402
+from indent_convergence_doc import richardson  # noqa: E402
 from performance_doc import replace_section  # noqa: E402
 from step_control_bench import absolute  # noqa: E402
 import results_store  # noqa: E402
