@@ -5,7 +5,8 @@ Usage:
     post/indent_plots.py [ph] RUN [--out DIR] [--hold-stage hold]
     post/indent_plots.py compare RUN1 RUN2 ... [--labels a b ...] [--out DIR]
     post/indent_plots.py fields RUN [--window W] [--deformed [--scale S]] [--hold-times 100 500 2000]
-                                    [--evp evp|evp_soft|evp_hard] [--probe X Y] [--out DIR]
+                                    [--evp evp|evp_soft|evp_hard] [--region X0 X1 Y0 Y1 | --probe X Y]
+                                    [--out DIR]
     post/indent_plots.py vectors RUN [--window W] [--deformed] [--max-arrows N] [--out DIR]
     post/indent_plots.py profile RUN [--time T] [--out DIR]
 
@@ -18,8 +19,11 @@ Usage:
   fields   2D runs: maps at the output nearest to the start and to the end of the hold of tr(evp) and
            |dev evp| (fig9.png), |evp| (fig10.png); the change from the start of the hold of |evp|
            (fig11.png) and of |sigma| (fig12.png) at the outputs nearest to the --hold-times; the change
-           of |sigma| vs time in the cell beneath the tip, the cell whose centroid is nearest to --probe
-           (default (0, -1e-6 L), fig13.png).
+           of |sigma| vs time at every output of the hold (fig13.png), as docs/paper.md measures Fig. 13: its
+           mean over a region beneath the tip (the cells clipped to it), --region X0 X1 Y0 Y1, by default
+           |x| < a/4, -a/2 < y < 0 with a = 2.5 x the depth at the end of loading (the contact half-width of
+           the paper's wedge: tan 68.26 deg = 2.5); --probe X Y: the one cell nearest instead. More outputs
+           in the hold (output.fields_every) sample the curve more finely.
   vectors  2D runs: displacement increments u(end of hold) - u(start of hold) around the tip (Fig. 15,
            vectors.png).
   profile  residual surface profile (Fig. 5): vertical displacement of the top-surface vertices (y = 0 in
@@ -28,18 +32,10 @@ Usage:
 
 Every figure goes to --out DIR (default RUN), and the numbers plotted are printed, one line per curve.
 
-Input, written by the driver into RUN:
-  history.csv  one row per converged step (the row with step 0 is the initial state), header line
-               time,stage,stage_name,step,dt,newton_its,cutbacks,load,depth,active_nodes,active_changes,
-               contact_force,max_penetration,min_lambda,umat_calls,wall
-               (stage: 0-based index; stage_name e.g. load/hold/unload; load P in uN, per unit thickness
-               in plane strain; depth h in um; time in s). Only the columns a subcommand uses are required.
-  fields.h5    written by driver/src/fe/fe_output.c (docs/driver.md, "Fields"): /time (ntimes, 1),
-               /mesh/coordinates (nnodes x dim), /mesh/cells (ncells x dim+1, P2 with the mid-side nodes
-               after the corners), per output k (six digits) /fields/displacement/<k> (nnodes x 3) and
-               /fields/<name>/<k> (averages over a cell's quadrature points) for stress, strain, evp_hard,
-               evp_soft, evp (full 3x3 tensors, ncells x 9), pc_hard, pc_soft, phi (ncells); read through
-               post/fields.py, which gives the tensors as 11 22 33 12 13 23, strains with engineering shear.
+Input, written by the driver into RUN: history.csv, one row per converged step (time, stage, stage_name, load,
+depth, ...: docs/driver.md; load per unit thickness in plane strain, depth in um, time in s; only the columns a
+subcommand uses are required), and fields.h5 (docs/driver.md, "Fields"; cell averages of the tensors, read
+through post/fields.py as 11 22 33 12 13 23, strains with engineering shear).
 
 Colour scales of the maps (fields) are robust: they span the --clip .. 100 - --clip percentiles of the
 cells in view (default 1-99 %), so the few singular cells at the tip do not wash the map out; the colour
@@ -62,6 +58,7 @@ from matplotlib.tri import Triangulation
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from fields_h5 import Fields, dev_norm, tensor_norm, trace  # noqa: E402
+from indent_fields import clipped_areas, region_mean  # noqa: E402
 
 HISTORY_COLUMNS = ("time", "stage", "stage_name", "step", "dt", "newton_its", "cutbacks", "load", "depth",
                    "active_nodes", "active_changes", "contact_force", "max_penetration", "min_lambda",
@@ -346,6 +343,15 @@ def probe_cell(F, probe):
     return int(np.argmin(np.sum((F.centroids[:, :2] - p) ** 2, axis=1))), p
 
 
+def tip_region(h, a):
+    """Fig. 13's region beneath the tip (x0, x1, y0, y1): --region, else |x| < a/4, -a/2 < y < 0 with a = 2.5 x the
+    depth at the end of loading (docs/paper.md's region for the loading-rate scenes: a = 0.5 um at 0.19-0.22 um)."""
+    if a.region:
+        return tuple(a.region)
+    half = 2.5 * creep_summary(History(a.run), a.hold_stage)["depth_end_of_load"]
+    return (-half / 4, half / 4, -half / 2, 0.0)
+
+
 def cmd_fields(a):
     h = History(a.run, need=STAGE_COLUMNS)
     t0, t1 = h.hold_times(a.hold_stage)
@@ -409,20 +415,26 @@ def cmd_fields(a):
             fig.suptitle(f"{label} since the start of the hold (t = {T[k0]:.4g} s)", fontsize=10)
             save(fig, out / f"{fname}.png")
 
-        # Fig. 13: change of |sigma| beneath the tip vs time during the hold
-        c, p = probe_cell(F, a.probe)
+        # Fig. 13: change of |sigma| beneath the tip vs time during the hold: a region mean (or one cell, --probe)
         idx = np.flatnonzero((T >= T[k0]) & (T <= T[k1]))
-        sig = tensor_norm(F.cell_history("stress", c)[idx], False)
+        if a.probe is not None:
+            c, p = probe_cell(F, a.probe)
+            sig = tensor_norm(F.cell_history("stress", c)[idx], False)
+            where = f"cell {c} (centroid {F.centroids[c, 0]:.3g}, {F.centroids[c, 1]:.3g} µm)"
+        else:
+            box = tip_region(h, a)
+            w = clipped_areas(F, box)
+            sig = np.array([region_mean(tensor_norm(F.cell("stress", k), False), w) for k in idx])
+            where = f"mean over |x| < {box[1]:.3g}, {box[2]:.3g} < y < 0 µm ({np.count_nonzero(w)} cells clipped to it)"
         dt, ds = T[idx] - T[k0], sig - sig[0]
-        print(f"fig13 cell {c} (centroid {F.centroids[c, 0]:.4g}, {F.centroids[c, 1]:.4g} um; nearest to "
-              f"({p[0]:.3g}, {p[1]:.3g})): |sigma| {sig[0]:.6g} -> {sig[-1]:.6g} MPa, change {ds[-1]:.6g} MPa "
-              f"(min {ds.min():.6g}, max {ds.max():.6g}) over {dt[-1]:.6g} s, {idx.size} outputs")
+        print(f"fig13 {where}: |sigma| {sig[0]:.6g} -> {sig[-1]:.6g} MPa, change {ds[-1]:.6g} MPa (min {ds.min():.6g}, "
+              f"max {ds.max():.6g}) over {dt[-1]:.6g} s, {idx.size} outputs")
         fig = Figure(figsize=(6, 4))
         ax = fig.subplots()
         ax.plot(dt, ds, "k.-", ms=3)
         ax.set_xlabel("time since the start of the hold [s]")
         ax.set_ylabel("Δ‖σ‖ [MPa]")
-        ax.set_title(f"cell beneath the tip: centroid ({F.centroids[c, 0]:.3g}, {F.centroids[c, 1]:.3g}) µm", fontsize=9)
+        ax.set_title(f"beneath the tip: {where}", fontsize=8)
         ax.grid(alpha=0.3)
         fig.tight_layout()
         save(fig, out / "fig13.png")
@@ -559,8 +571,10 @@ def parser():
                    help="viscoplastic strain field (default evp, the mixture's)")
     p.add_argument("--clip", type=float, default=1.0,
                    help="colour scales span the CLIP .. 100-CLIP percentiles of the cells in view (default 1; 0: min..max)")
+    p.add_argument("--region", type=float, nargs=4, metavar=("X0", "X1", "Y0", "Y1"),
+                   help="fig13: the region whose mean of |sigma| is followed (default |x| < a/4, -a/2 < y < 0, a = 2.5 h)")
     p.add_argument("--probe", type=float, nargs=2, metavar=("X", "Y"),
-                   help="fig13: the cell whose centroid is nearest to (X, Y) (default: just beneath the tip)")
+                   help="fig13: follow the one cell whose centroid is nearest to (X, Y) instead of the region mean")
     p = sub.add_parser("vectors", help="2D displacement increments during the hold (vectors.png)")
     p.add_argument("run")
     common(p)

@@ -2,9 +2,11 @@
 post/paper_numbers.py) and a verdict for every figure that states a result. Each verdict follows a rule written here
 from the paper's sentence, not from our runs; the rule is printed with the verdict.
 """
+from paper_fields import HOLD_TIMES, ZONE_CUTOFFS, ZONE_LEVELS
 from paper_numbers import ALPHAS, THETAS_BEDDING
 
 TILT = 2.0        # deg: a principal flow axis within this of the load axis is no tilt (Fig. 15)
+TIMES11 = tuple(f"{t:g}" for t in HOLD_TIMES)   # Fig. 11's panels: its rules are evaluated at each of these hold times
 
 
 def _f(x, fmt=".3g"):
@@ -19,17 +21,19 @@ def _lr(ind):
     return {a: ind.get(f"loading_rate_a{a}") or {} for a in ALPHAS}
 
 
-def fig10b(s):
+def fig10b(s, key="fig10b"):
     """Fig. 10: "at the conclusion of the creep stage, an inelastic zone forms at a finite distance away from the
-    indenter tip, and not directly below it". Rule: the ring means of the hold's growth of |evp| peak away from the
-    tip (ring centre >= a/4) and at least 10 % above the innermost ring."""
-    b = s["fig10b"]
+    indenter tip, and not directly below it". Rule: the ring means peak away from the tip (ring centre >= a/4) and at
+    least 10 % above the innermost ring. key "fig10b": of the hold's growth of |evp| (the zone the creep forms, the
+    sentence's subject); "fig10b_total": of the total |evp| at the hold's end (what the paper's Fig. 10 draws, the
+    loading's strain included)."""
+    b = s[key]
     return b["r_peak"] >= 0.25 and b["peak_over_tip_ring"] >= 1.1
 
 
 def fig11(alpha, z):
-    """Fig. 11 at 100 s. alpha 0.1: "the inelastic zones develop from the top surface ... on the left and right sides
-    of the indenter": the sector beside the indent (0-30 deg from the surface) holds the largest share. alpha 10:
+    """Fig. 11 at one hold time. alpha 0.1: "the inelastic zones develop from the top surface ... on the left and right
+    sides of the indenter": the sector beside the indent (0-30 deg from the surface) holds the largest share. alpha 10:
     "develops throughout the entire circular region": the zone fills at least half its half-disc and no sector holds
     more than half. alpha 1 ("merge into a circular region, although the maximum ... close to the top surface"):
     fills at least half its half-disc."""
@@ -38,6 +42,50 @@ def fig11(alpha, z):
     if alpha == "10":
         return z["fill"] >= 0.5 and max(z["surface"], z["middle"], z["beneath"]) <= 0.5
     return z["fill"] >= 0.5
+
+
+FIG11_RULE = ("rules: α = 0.1 the sector beside the indent holds the largest share; α = 10 the zone fills ≥ half its "
+              "half-disc with no sector above half; α = 1 fills ≥ half; the zone: Δ‖εvp‖ above 10 % of its 99th percentile "
+              "within 3a; each rule at every hold time of the paper's panels, " + ", ".join(f"{t} s" for t in TIMES11))
+
+
+def fig11_times(alpha, s):
+    """The verdict at each hold time, and how many of the (zone level, cutoff) pairs give the same verdict there."""
+    out = {}
+    for t in TIMES11:
+        ok = fig11(alpha, s["fig11"][t])
+        sens = s.get("fig11_sens", {}).get(t, {})
+        out[t] = (ok, sum(fig11(alpha, z) == ok for z in sens.values()), len(sens))
+    return out
+
+
+def fig11_text(alpha, s):
+    """'agrees at 100 s (9/9 pairs), differs at 500 s (7/9), ...': each hold time's verdict and its robustness."""
+    return ", ".join(f"{'agrees' if ok else 'differs'} at {t} s" + (f" ({same}/{n})" if n else "")
+                     for t, (ok, same, n) in fig11_times(alpha, s).items())
+
+
+def fig11_verdict(alpha, s):
+    """One verdict where every hold time gives the same, else each time's: '**agrees** at 100 s, **differs** at 500, 2000 s'."""
+    t = fig11_times(alpha, s)
+    oks = [ok for ok, _, _ in t.values()]
+    if all(oks) or not any(oks):
+        return _v(oks[0])
+    return ", ".join(f"{_v(v)} at " + ", ".join(k for k, (ok, _, _) in t.items() if ok == v) + " s" for v in (True, False))
+
+
+def fig9(R):
+    """Fig. 9: "the deviatoric viscoplastic strain ... more intense and more concentrated, the volumetric weaker and
+    more pervasive". Rule, for every alpha: dev's 99th percentile within 2a above tr's, and dev above 10 % of its own
+    99th percentile over a smaller share of the half-disc r < 2a than tr."""
+    return all(r["dev_p99"] > r["tr_p99"] and r["dev_frac"] < r["tr_frac"] for r in R.values())
+
+
+def fig13(alpha, v):
+    """Fig. 13: the stress "at a point in contact with the tip" increases during the hold for alpha 0.1 and decreases
+    for 1 and 10. Rule: the sign of the region mean's change over the whole hold (its largest value over the hold's
+    outputs is printed beside it: an early rise that falls back shows there)."""
+    return (v["change_end"] > 0) == (alpha == "0.1")
 
 
 def fig15(f):
@@ -56,34 +104,38 @@ def summary_rows(n, trends):
     R = {a: s.get("regions") for a, s in S.items()}
     if all(R.values()):
         rows.append("| 9 | ‖dev εvp‖ more intense, more concentrated; tr εvp weaker, more pervasive (§4.1) | dev/tr 99th percentile "
-                    + ", ".join(f"{r['dev_p99'] / r['tr_p99']:.0f}×" for r in R.values()) + " for α = 0.1, 1, 10; dev area "
-                    + ", ".join(f"{r['dev_area'] / r['tr_area']:.2f}" for r in R.values()) + " of tr's | "
-                    + _v(all(r["dev_p99"] > r["tr_p99"] and r["dev_area"] < r["tr_area"] for r in R.values())) + " |")
+                    + ", ".join(f"{r['dev_p99'] / r['tr_p99']:.0f}×" for r in R.values()) + " for α = 0.1, 1, 10; share of the "
+                    "half-disc r < 2a above 10 % of its own 99th percentile, dev / tr: "
+                    + ", ".join(f"{r['dev_frac']:.2f} / {r['tr_frac']:.2f}" for r in R.values()) + " | "
+                    + _v(fig9(R)) + " |")
     ev = [s.get("evp_start") for s in S.values()]
     if all(ev):
         rows.append("| 10 (a) | before creep, faster loading → less viscoplastic strain around the tip (§4.1) | mean ‖εvp‖ within 0.5 µm: "
                     + " > ".join(f"{e['mean']:.3g}" for e in ev) + " | " + _v(ev[0]["mean"] > ev[1]["mean"] > ev[2]["mean"]) + " |")
-    if all(s.get("fig10b") for s in S.values()):
-        rows.append("| 10 (b) | at the end of creep the inelastic zone lies away from the tip, not below it (§4.1) | the hold's growth "
-                    "of ‖εvp‖ peaks at r = " + ", ".join(f"{s['fig10b']['r_peak']:.2f} a ({s['fig10b']['peak_over_tip_ring']:.2f}× "
-                                                         "the tip's ring)" for s in S.values()) + " for α = 0.1, 1, 10 | "
-                    + "; ".join(f"α = {a}: {_v(fig10b(s))}" for a, s in S.items()) + " |")
+    if all(s.get("fig10b") and s.get("fig10b_total") for s in S.values()):
+        rows.append("| 10 (b) | at the end of creep the inelastic zone lies away from the tip, not below it (§4.1) | ring means "
+                    "around the tip, peak at r / peak over the innermost ring, for α = 0.1, 1, 10: the hold's growth of ‖εvp‖ "
+                    + ", ".join(f"{s['fig10b']['r_peak']:.2f} a / {s['fig10b']['peak_over_tip_ring']:.2f}×" for s in S.values())
+                    + "; the total ‖εvp‖ " + ", ".join(f"{s['fig10b_total']['r_peak']:.2f} a / "
+                                                       f"{s['fig10b_total']['peak_over_tip_ring']:.2f}×" for s in S.values())
+                    + " | growth: " + ", ".join(f"α = {a}: {_v(fig10b(s))}" for a, s in S.items()) + "; total: "
+                    + ", ".join(f"α = {a}: {_v(fig10b(s, 'fig10b_total'))}" for a, s in S.items()) + " |")
     if all(s.get("fig11") for s in S.values()):
-        z = {a: s["fig11"]["100"] for a, s in S.items()}
-        rows.append("| 11 | α = 0.1: zones from the surface beside the indent; α = 10: the whole circular region (§4.1) | at 100 s, "
-                    "share beside / beneath, fill of the half-disc: " + ", ".join(
-                        f"α = {a}: {v['surface']:.2f} / {v['beneath']:.2f}, {v['fill']:.2f}" for a, v in z.items()) + " | "
-                    + "; ".join(f"α = {a}: {_v(fig11(a, v))}" for a, v in z.items()) + " |")
+        rows.append("| 11 | α = 0.1: zones from the surface beside the indent; α = 10: the whole circular region (§4.1) | share "
+                    "beside / beneath, fill of the half-disc, at " + " / ".join(f"{t} s" for t in TIMES11) + ": " + "; ".join(
+                        f"α = {a}: " + " / ".join(f"{s['fig11'][t]['surface']:.2f}, {s['fig11'][t]['beneath']:.2f}, "
+                                                  f"{s['fig11'][t]['fill']:.2f}" for t in TIMES11) for a, s in S.items())
+                    + " | " + "; ".join(f"α = {a}: {fig11_verdict(a, s)}" for a, s in S.items()) + " |")
     if all(R.values()):
         rows.append("| 12 | α = 0.1: sides relax; α = 1, 10: relaxation beneath the tip (§4.1) | Δ‖σ‖ beneath / beside: "
                     + ", ".join(f"{r['dsig_beneath']:+.3g} / {r['dsig_sides']:+.3g} MPa" for r in R.values())
                     + f" for α = 0.1, 1, 10 | α = 1, 10: {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))}; "
                     f"α = 0.1: {_v(R['0.1']['dsig_sides'] < 0 < R['0.1']['dsig_beneath'])} |")
     if f13:
-        ours = ", ".join(f"α = {a}: {v['change_end']:+.3g} MPa" for a, v in f13.items())
-        ok = {a: (v["change_end"] > 0) == (a == "0.1") for a, v in f13.items()}
-        rows.append(f"| 13 | ‖σ‖ beneath the tip rises for α = 0.1, falls for α = 1, 10 (§4.1) | region mean, {ours} over the hold | "
-                    + "; ".join(f"α = {a}: {_v(o)}" for a, o in ok.items()) + " |")
+        ours = ", ".join(f"α = {a}: {v['change_end']:+.3g} MPa (largest after its start {v['change_max']:+.3g}, {v['outputs']} outputs)"
+                         for a, v in f13.items())
+        rows.append(f"| 13 | ‖σ‖ beneath the tip rises for α = 0.1, falls for α = 1, 10 (§4.1) | region mean over the hold, {ours} | "
+                    + "; ".join(f"α = {a}: {_v(fig13(a, v))}" for a, v in f13.items()) + " |")
     rows.append(f"| 14 | anisotropy weak in indentation creep (§4.2) | {t['aniso']['detail']}{thickness_note(ind)} | {_v(t['aniso']['ok'])} |")
     f = (ind.get("bedding_theta45") or {}).get("flow")
     if f:
@@ -140,15 +192,17 @@ def fields_tables(S):
     if not all(s.get("regions") and s.get("fig11") for s in S.values()):
         return []
     L = ["", "Figs. 9–12 as numbers (end of the hold unless said; the regions: beneath |x| < a/4, beside a/2 < |x| < 3a/2, "
-         "both −a/2 < y < 0, cells clipped to them; rings around the tip of width a/6):", "",
-         "| α | ‖dev εvp‖ / \\|tr εvp\\| (99th percentiles within 2a) | area above 10 % of it, dev / tr [µm²] | hold's growth of "
-         "‖εvp‖: ring of its peak, peak / innermost ring | Fig. 11 at 100 s / 2000 s: share beside, between, beneath; fill | "
-         "Δ‖σ‖ beneath / beside [MPa] |", "|---|---|---|---|---|---|"]
+         "both −a/2 < y < 0, cells clipped to them; rings around the tip of width a/6; Fig. 11's zone: Δ‖εvp‖ above 10 % of "
+         "its 99th percentile within 3a, its sectors 0–30°, 30–60°, 60–90° from the surface):", "",
+         "| α | ‖dev εvp‖ / \\|tr εvp\\| (99th percentiles within 2a) | share of r < 2a above 10 % of it, dev / tr | ring of "
+         "the peak, peak / innermost ring: hold's growth of ‖εvp‖; total ‖εvp‖ | Fig. 11 at " + " / ".join(f"{t} s" for t in TIMES11)
+         + ": share beside, between, beneath; fill | Δ‖σ‖ beneath / beside [MPa] |", "|---|---|---|---|---|---|"]
     for a, s in S.items():
-        r, b, z = s["regions"], s["fig10b"], s["fig11"]
-        zz = " / ".join(f"{z[k]['surface']:.2f}, {z[k]['middle']:.2f}, {z[k]['beneath']:.2f}; {z[k]['fill']:.2f}" for k in ("100", "2000"))
-        L.append(f"| {a} | {r['dev_p99']:.3g} / {r['tr_p99']:.3g} | {r['dev_area']:.3g} / {r['tr_area']:.3g} | "
-                 f"r = {b['r_peak']:.2f} a, {b['peak_over_tip_ring']:.2f} | {zz} | {r['dsig_beneath']:+.3g} / {r['dsig_sides']:+.3g} |")
+        r, b, bt, z = s["regions"], s["fig10b"], s["fig10b_total"], s["fig11"]
+        zz = " / ".join(f"{z[k]['surface']:.2f}, {z[k]['middle']:.2f}, {z[k]['beneath']:.2f}; {z[k]['fill']:.2f}" for k in TIMES11)
+        L.append(f"| {a} | {r['dev_p99']:.3g} / {r['tr_p99']:.3g} | {r['dev_frac']:.2f} / {r['tr_frac']:.2f} | "
+                 f"r = {b['r_peak']:.2f} a, {b['peak_over_tip_ring']:.2f}; r = {bt['r_peak']:.2f} a, {bt['peak_over_tip_ring']:.2f} | "
+                 f"{zz} | {r['dsig_beneath']:+.3g} / {r['dsig_sides']:+.3g} |")
     return L
 
 
@@ -158,29 +212,33 @@ def fields_verdicts(S, f13):
     ev = [s.get("evp_start") for s in S.values()]
     if all(ev):
         ok = ev[0]["mean"] > ev[1]["mean"] > ev[2]["mean"]
-        L.append(f"Fig. 10 (before creep): {_v(ok)}: the mean ‖εvp‖ within 0.5 µm of the tip at the start of the hold "
-                 f"{'falls' if ok else 'does not fall monotonically'} from α = 0.1 to 10.")
-    if all(s.get("fig10b") for s in S.values()):
-        L.append("Fig. 10 (end of creep; rule: the ring means of the hold's growth of ‖εvp‖ peak at r ≥ a/4 and ≥ 1.1× the "
-                 "innermost ring): " + "; ".join(f"α = {a}: {_v(fig10b(s))} (peak at r = {s['fig10b']['r_peak']:.2f} a, "
-                                                 f"{s['fig10b']['peak_over_tip_ring']:.2f}×)" for a, s in S.items()) + ".")
+        L.append(f"Fig. 10 (before creep; rule: the mean ‖εvp‖ within 0.5 µm of the tip at the start of the hold falls from "
+                 f"α = 0.1 to 1 to 10): {_v(ok)}.")
+    if all(s.get("fig10b") and s.get("fig10b_total") for s in S.values()):
+        L.append("Fig. 10 (end of creep; rule: the ring means peak at r ≥ a/4 and ≥ 1.1× the innermost ring). The paper's "
+                 "sentence is about the zone the creep forms, so the rule is applied to the hold's growth of ‖εvp‖: "
+                 + "; ".join(f"α = {a}: {_v(fig10b(s))} (peak at r = {s['fig10b']['r_peak']:.2f} a, "
+                             f"{s['fig10b']['peak_over_tip_ring']:.2f}×)" for a, s in S.items())
+                 + ". Its Fig. 10 draws the total ‖εvp‖, the loading's strain included, which peaks at the tip: "
+                 + "; ".join(f"α = {a}: {_v(fig10b(s, 'fig10b_total'))} (r = {s['fig10b_total']['r_peak']:.2f} a, "
+                             f"{s['fig10b_total']['peak_over_tip_ring']:.2f}×)" for a, s in S.items()) + ".")
     if all(s.get("fig11") for s in S.values()):
-        L.append("Fig. 11 (at 100 s; rules: α = 0.1 the sector beside the indent holds the largest share; α = 10 the zone "
-                 "fills ≥ half its half-disc with no sector above half; α = 1 fills ≥ half): "
-                 + "; ".join(f"α = {a}: {_v(fig11(a, s['fig11']['100']))}" for a, s in S.items()) + ".")
+        L.append(f"Fig. 11 ({FIG11_RULE}; in brackets, of the {len(ZONE_LEVELS) * len(ZONE_CUTOFFS)} zones with levels "
+                 f"{', '.join(f'{x:g}' for x in ZONE_LEVELS)} and cutoffs {', '.join(f'{x:g}a' for x in ZONE_CUTOFFS)}, how many "
+                 "give the same verdict): " + "; ".join(f"α = {a}: {fig11_verdict(a, s)}: {fig11_text(a, s)}" for a, s in S.items()) + ".")
     if all(R.values()):
-        ok9 = all(r["dev_p99"] > r["tr_p99"] and r["dev_area"] < r["tr_area"] for r in R.values())
         r01 = R["0.1"]
-        L += [f"Fig. 9: {_v(ok9)}: the deviatoric viscoplastic strain is the more intense and the more concentrated, "
-              "the volumetric the weaker and the more pervasive, for every α.",
-              f"Fig. 12, α = 1 and 10: {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))} (stress relaxes beneath "
-              f"the tip). α = 0.1: {_v(r01['dsig_sides'] < 0 < r01['dsig_beneath'])}: the paper has the sides relaxing "
-              f"and the stress beneath the tip rising; ours is {r01['dsig_beneath']:+.3g} MPa beneath and "
-              f"{r01['dsig_sides']:+.3g} MPa beside."]
+        L += [f"Fig. 9 (rule: for every α, dev's 99th percentile within 2a above tr's, and dev above 10 % of its own 99th "
+              f"percentile over a smaller share of r < 2a than tr): {_v(fig9(R))}.",
+              f"Fig. 12, α = 1 and 10 (rule: Δ‖σ‖ beneath the tip < 0): {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))}. "
+              f"α = 0.1 (rule: the sides relax, Δ‖σ‖ beside < 0 < beneath): {_v(r01['dsig_sides'] < 0 < r01['dsig_beneath'])}: "
+              f"ours is {r01['dsig_beneath']:+.3g} MPa beneath and {r01['dsig_sides']:+.3g} MPa beside."]
     if f13:
-        L.append("Fig. 13 (the mean of Δ‖σ‖ over the region beneath the tip, not one cell; the paper's “point in contact "
-                 "with the tip” is not placed more closely): " + "; ".join(
-                     f"α = {a}: {v['change_end']:+.3g} MPa, {_v((v['change_end'] > 0) == (a == '0.1'))}" for a, v in f13.items()) + ".")
+        L.append("Fig. 13 (rule: the sign of Δ‖σ‖ over the whole hold, its mean over the region beneath the tip, not one "
+                 "cell; the paper's “point in contact with the tip” is not placed more closely; in brackets the largest "
+                 "Δ‖σ‖ over the hold's outputs after its start, and their number): " + "; ".join(
+                     f"α = {a}: {v['change_end']:+.3g} MPa ({v['change_max']:+.3g}, {v['outputs']} outputs), {_v(fig13(a, v))}"
+                     for a, v in f13.items()) + ".")
     return L
 
 

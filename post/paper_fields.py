@@ -25,7 +25,9 @@ BENEATH = (-A_LR / 4, A_LR / 4, -A_LR / 2, 0.0)       # Fig. 13's probe and Fig.
 SIDES = ((-1.5 * A_LR, -0.5 * A_LR, -A_LR / 2, 0.0), (0.5 * A_LR, 1.5 * A_LR, -A_LR / 2, 0.0))
 HOLD_TIMES = (100.0, 500.0, 2000.0)
 A_BED = 5.0     # the bedding scenes' contact half-width, rounded (h tan 68.26 deg: 5.2-5.5 um over theta)
-REGION_KEYS = ("a_ref", "tr_p99", "tr_area", "dev_p99", "dev_area", "dsig_beneath", "dsig_sides")
+REGION_KEYS = ("a_ref", "tr_p99", "tr_frac", "dev_p99", "dev_frac", "dsig_beneath", "dsig_sides")
+ZONE_LEVELS = (0.05, 0.1, 0.2)   # Fig. 11's zone: above this x its 99th percentile (0.1 the verdict's); sensitivity
+ZONE_CUTOFFS = (2.0, 3.0, 4.0)   # ... and within this x a of the tip (3 the verdict's)
 WINDOW = 0.6    # half-width of the loading-rate maps [um]
 DPI = 90
 
@@ -98,12 +100,14 @@ def loading_rate_numbers(run):
         w05 = H.A * near05
         res = {"evp_start": {"mean": float(np.sum(e0 * w05) / np.sum(w05)),
                              "max": float(np.nanmax(nodal_average(F, e0)[np.hypot(F.x[:, 0], F.x[:, 1]) < 0.5]))}}
-        # Fig. 9: volumetric against deviatoric vp strain at the end of the hold
+        # Fig. 9: volumetric against deviatoric vp strain at the end of the hold: the 99th percentile within 2a of
+        # the tip, and the fraction of that half-disc's area where each exceeds 10 % of it (how concentrated)
         ev = six(F, "evp", H.k1)
         near = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < 2 * a
         for name, v in (("tr", np.abs(trace(ev))), ("dev", dev_norm(ev, True))):
             top = float(np.percentile(v[near], 99))
-            res[f"{name}_p99"], res[f"{name}_area"] = top, float(H.A[v > 0.1 * top].sum())
+            res[f"{name}_p99"] = top
+            res[f"{name}_frac"] = float(H.A[near & (v > 0.1 * top)].sum() / H.A[near].sum())
         # Fig. 10(b): where the hold's vp strain grows most, relative to the tip
         de = e1 - e0
         rc, prof = ring_profile(H, de, a)
@@ -113,8 +117,17 @@ def loading_rate_numbers(run):
         res["fig10b"] = {"ring_r": rc.tolist(), "ring_mean": prof.tolist(), "r_peak": float(rc[np.nanargmax(prof)]),
                          "peak_over_tip_ring": float(np.nanmax(prof) / prof[0]), "nodal_max_at": F.x[j, :2].tolist(),
                          "nodal_max_r": float(np.hypot(*F.x[j, :2]) / a)}
-        # Fig. 11: shape of the zone where the vp strain grows, at each hold time
-        res["fig11"] = {f"{th:g}": sector_shares(H, H.evp(k) - e0, a) for th, k in zip(HOLD_TIMES, H.ks)}
+        # ... and of the total |evp| at the end of the hold, which is what the paper's Fig. 10 draws
+        rc, prof = ring_profile(H, e1, a)
+        res["fig10b_total"] = {"ring_mean": prof.tolist(), "r_peak": float(rc[np.nanargmax(prof)]),
+                               "peak_over_tip_ring": float(np.nanmax(prof) / prof[0])}
+        # Fig. 11: shape of the zone where the vp strain grows, at each hold time, and for other zone levels and cutoffs
+        res["fig11"], res["fig11_sens"] = {}, {}
+        for th, k in zip(HOLD_TIMES, H.ks):
+            d = H.evp(k) - e0
+            res["fig11"][f"{th:g}"] = sector_shares(H, d, a)
+            res["fig11_sens"][f"{th:g}"] = {f"{lv:g}/{rm:g}": sector_shares(H, d, a, rmax=rm, level=lv)
+                                            for lv in ZONE_LEVELS for rm in ZONE_CUTOFFS}
         # Figs. 12, 13: |sigma| beneath the tip and beside the indent (region means)
         s0 = H.sig(H.k0)
         wb = clipped_areas(F, BENEATH)

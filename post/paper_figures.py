@@ -127,7 +127,8 @@ def draw_all(out, numbers=None):
                 add(fid, _copy(out / key / "ph.png", figs / f"{fid}_ph.png"), f"P–h, {key}")
         if _plot(log, ["profile", out / "microindent_BN", "--out", out / "microindent_BN"]):
             add("fig5", _copy(out / "microindent_BN" / "profile.png", figs / "fig5_profile.png"),
-                "residual surface profile after unloading, microindent_BN")
+                "residual surface profile after unloading, microindent_BN (the shipped uniform mesh's: a lower bound, "
+                "its residual depth below the converged one; § Nano- and microindentation)")
         runs = [out / f"loading_rate_a{a}" for a in ALPHAS]
         if _plot(log, ["compare", *runs, "--labels", *[f"α = {a}" for a in ALPHAS], "--out", figs / "lr"]):
             add("fig7", _copy(figs / "lr" / "compare_ph.png", figs / "fig7_ph.png"), "P–h for α = 0.1, 1, 10")

@@ -76,6 +76,9 @@ def triaxial_numbers(run, theta):
         "fits": {k: {"B": v[0], "tau": v[1]} for k, v in resampled_fits(t, eps).items()},
         "soft_over_hard": {f"{x:g}": float(np.interp(x, t[pos], ratio)) for x in RATIO_TIMES if x <= t[-1] * (1 + 1e-6)},
         "soft_over_hard_10x_until": last_time_above(t[pos], ratio, SOFT_OVER_HARD),
+        # the smallest ratio over the hold's first EARLY s and over the whole hold (Fig. 18's claim covers all of it)
+        "soft_over_hard_min_early": float(min(np.min(ratio[t[pos] <= EARLY]), np.interp(EARLY, t[pos], ratio))),
+        "soft_over_hard_min": float(np.min(ratio)),
     }
 
 
@@ -105,9 +108,12 @@ def collect(out):
                 s = f["fig13"]["dsig"]
                 n["fig13"][d.name.removeprefix("loading_rate_a")] = {
                     "region": list(BENEATH), "change_end": float(s[-1]), "change_min": float(min(s)),
-                    "change_max": float(max(s)), "hold": float(f["fig13"]["t"][-1]), "outputs": len(s)}
-                n["indent"][d.name].update(evp_start=f["evp_start"], fig10b=f["fig10b"], fig11=f["fig11"],
-                                           checker=f["checker"], regions={k: f[k] for k in REGION_KEYS})
+                    "change_max": float(max(s[1:] if len(s) > 1 else s)), "hold": float(f["fig13"]["t"][-1]), "outputs": len(s)}
+                n["fig13"][d.name.removeprefix("loading_rate_a")].update(
+                    t=f["fig13"]["t"], dsig=[float(x) for x in s])
+                n["indent"][d.name].update(evp_start=f["evp_start"], fig10b=f["fig10b"], fig10b_total=f["fig10b_total"],
+                                           fig11=f["fig11"], fig11_sens=f["fig11_sens"], checker=f["checker"],
+                                           regions={k: f[k] for k in REGION_KEYS})
         if d.name.startswith("bedding_theta") and d.name.removeprefix("bedding_theta").isdigit():
             n["indent"][d.name]["flow"] = flow_direction(d, A_BED, int(d.name.removeprefix("bedding_theta")))
     (out / "numbers.json").write_text(json.dumps(n, indent=1, default=float) + "\n", encoding="utf-8")
@@ -150,10 +156,14 @@ def check_trends(n):
                           "theta0/theta90 creep ratio " + ", ".join(f"{v:.3f} at {k} s" for k, v in r.items())
                           + f" (paper's fits: {lomnitz(385, *PAPER_LOMNITZ[0]) / lomnitz(385, *PAPER_LOMNITZ[90]):.3f} "
                           "at 385 s; must be > 1)"))
-        e = {th: tri[th]["soft_over_hard"][f"{EARLY:g}"] for th in THETAS_TRIAXIAL}
-        out.append(_trend("the soft frame dominates early creep (§5, Fig. 18)", all(v > SOFT_OVER_HARD for v in e.values()),
-                          "soft/hard mean axial creep at 385 s: " + ", ".join(f"theta {th}: {v:.1f}" for th, v in e.items())
-                          + f" (must be > {SOFT_OVER_HARD:g})"))
+        e = {th: tri[th]["soft_over_hard_min_early"] for th in THETAS_TRIAXIAL}
+        until = {th: tri[th].get("soft_over_hard_10x_until") for th in THETAS_TRIAXIAL}
+        out.append(_trend("the soft frame dominates the first 385 s of creep (§5, Fig. 18, which claims it for the whole "
+                          "10 h: docs/paper.md gives that verdict)", all(v > SOFT_OVER_HARD for v in e.values()),
+                          "soft/hard mean axial creep, smallest over the hold's first 385 s: "
+                          + ", ".join(f"theta {th}: {v:.1f}" for th, v in e.items()) + f" (must be > {SOFT_OVER_HARD:g}); "
+                          "above 10 until " + ", ".join(f"{u:.0f} s" if u else "never" for u in until.values())
+                          + f" of the {tri[0]['duration']:.0f} s hold"))
     else:
         out.append(_trend("triaxial trends (§5)", False, "triaxial runs missing"))
     return out

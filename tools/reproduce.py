@@ -4,8 +4,10 @@ the comparison with the paper (docs/paper.md), and check the trends the paper st
 
 Usage: tools/reproduce.py [--quick] [--out DIR] [--driver PATH] [--jobs 2] [--docs | --no-docs]
 
-  full (default)  the shipped scenes (input/*.yaml) as they are; output in out/paper; writes docs/paper.md
-                  and its images (docs/paper/).
+  full (default)  the shipped scenes (input/*.yaml) as they are (the loading-rate scenes with fields every
+                  FIELDS_EVERY steps besides); output in out/paper; writes docs/paper.md and its images
+                  (docs/paper/), its numbers into the results store (docs/results/paper.json) and the run times
+                  into docs/performance.md ("Reproducing the paper").
   --quick         coarse variants of the same scenes (meshes coarsened, the UMAT's step tolerance 1e-3, the
                   same loads, durations and materials), written as scene files into DIR/scenes; output in
                   out/paper_quick; writes DIR/paper.md (docs/ only with --docs). Exits 1 unless the four
@@ -30,10 +32,17 @@ sys.path.insert(0, str(ROOT / "post"))
 import paper_numbers  # noqa: E402
 import paper_figures  # noqa: E402
 import paper_doc  # noqa: E402
+import results_store  # noqa: E402
 
 # key: (scene file in input/, quick overrides). Quick: mesh parameters, a looser step control (the stages'
 # output error measure at QUICK_OUTPUT_TOL, or the UMAT's tol where a scene has none), fields_every. Order: longest first in the full run (the 3D microindentation).
 IND2 = {"tol": 1.0e-3, "fields_every": 20, "order": 1}  # quick 2D: P1 (the shipped scenes are P2)
+# The full run's loading-rate scenes write their fields every FIELDS_EVERY steps as well (output.fields_every: the
+# steps do not land on them, so the run is the shipped scene's step for step): Fig. 13's stress under the tip is
+# then sampled through the hold (about 20 outputs, the hold's steps growing about geometrically), not at its four
+# output times alone (issue 36, referee's defect 9).
+FIELDS_EVERY = 25
+LR_FULL = {"full": {"fields_every": FIELDS_EVERY}}
 QUICK_OUTPUT_TOL = 0.05  # quick: the output error measure's tol (the shipped scenes: 1.5e-2)
 SCENES = {
     # the 3D scenes on their cheapest exact model (README, "Which model each scene uses"): kerogen and BN on the
@@ -43,9 +52,9 @@ SCENES = {
     "microindent_BN": {"file": "microindent_BN_sector_adapt", "mesh": {"h_tip": 5, "h_far": 20}, "order": 1, "tol": 1.0e-3},
     "microindent_BP": {"file": "microindent_BP_adapt", "mesh": {"h_tip": 5, "h_far": 20}, "order": 1, "tol": 1.0e-3},
     "nanoindent_kerogen": {"file": "nanoindent_kerogen_sector_adapt", "mesh": {"h_tip": 0.2, "h_far": 0.8}, "order": 1, "tol": 1.0e-3},
-    "loading_rate_a0.1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}),
-    "loading_rate_a1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}),
-    "loading_rate_a10": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}),
+    "loading_rate_a0.1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}, **LR_FULL),
+    "loading_rate_a1": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}, **LR_FULL),
+    "loading_rate_a10": dict(IND2, mesh={"h_tip": 0.05, "h_far": 0.3, "r_fine": 0.4}, **LR_FULL),
     "bedding_theta0": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta30": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta45": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
@@ -67,13 +76,16 @@ def scene_file(key):
 
 def variant_scene(key, dest, quick):
     """Write the scene of key to dest: input/<file>.yaml with an absolute mesh path and the key's variant (a
-    plane-strain thickness, the mesh's lengths scaled), and with --quick its coarse variant (quick_scene)."""
+    plane-strain thickness, the mesh's lengths scaled; in the full run, the outputs of "full"), and with --quick
+    its coarse variant (quick_scene)."""
     q = SCENES[key]
     d = yaml.safe_load(scene_file(key).read_text(encoding="utf-8"))
     geo = Path(d["mesh"]["geometry"])
     d["mesh"]["geometry"] = str((ROOT / "meshes" / geo.name).resolve())
     if quick:
         quick_scene(q, d)
+    elif "full" in q:
+        d["output"]["fields_every"] = q["full"]["fields_every"]
     if "thickness" in q:
         d["mesh"]["thickness"] = q["thickness"]
         d["name"] = key
@@ -193,7 +205,7 @@ def main(argv=None):
     for key in keys:
         if key not in SCENES:
             raise SystemExit(f"reproduce: unknown scene '{key}' (known: {', '.join(SCENES)})")
-        if a.quick or "thickness" in SCENES[key]:
+        if a.quick or "thickness" in SCENES[key] or "full" in SCENES[key]:
             (out / "scenes").mkdir(exist_ok=True)
             scene, ranks = variant_scene(key, out / "scenes" / f"{key}.yaml", a.quick), 1
         else:
@@ -203,8 +215,10 @@ def main(argv=None):
     meta_path = out / "runs.json"
     prev = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
     rerun = sorted(set(prev.get("rerun", [])) | set(a.only)) if a.only else []
+    today = time.strftime("%Y-%m-%d", time.gmtime())
     if a.no_run:
         walls, t_runs, rerun = prev.get("walls", {}), prev.get("wall_runs", float("nan")), prev.get("rerun", [])
+        runs = prev
     else:
         print(f"reproduce ({mode}): {len(jobs)} scenes, {a.jobs} at a time, driver {a.driver}, output {out}", flush=True)
         walls, failed = run_all(jobs, max(1, a.jobs))
@@ -212,9 +226,14 @@ def main(argv=None):
         if failed:
             print(f"reproduce: {len(failed)} scene(s) failed: {', '.join(failed)} (see DIR/<scene>/driver.log)")
             return 1
+        dates = {**prev.get("dates", {}), **{k: today for k in walls}}
         if a.only:  # the other scenes keep their runs and times; the whole run's time stays the last full run's
             walls, t_runs = {**prev.get("walls", {}), **walls}, prev.get("wall_runs", float("nan"))
-        meta_path.write_text(json.dumps({"walls": walls, "wall_runs": t_runs, "rerun": rerun}) + "\n", encoding="utf-8")
+            runs = {**prev, "walls": walls, "rerun": rerun, "dates": dates}
+        else:
+            runs = {"walls": walls, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
+                    "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs"}
+        meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
     print(f"runs: {t_runs:.1f} s wall; plotting", flush=True)
     t_plot = time.monotonic()
     numbers = paper_numbers.collect(out)
@@ -222,14 +241,20 @@ def main(argv=None):
     trends = paper_numbers.check_trends(numbers)
     t_all = time.monotonic() - t_start
     partial = bool(rerun) or a.no_run
-    meta = {"mode": mode, "wall_runs": t_runs, "wall_total": t_runs + (time.monotonic() - t_plot) if partial else t_all, "walls": walls,
-            "out": str(out), "rerun": rerun,
+    total = runs.get("wall_total") if partial and runs.get("wall_total") else (
+        t_runs + (time.monotonic() - t_plot) if partial else t_all)
+    if not partial:
+        runs["wall_total"] = total
+        meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
+    meta = {"mode": mode, "date": today, "wall_runs": t_runs, "wall_total": total, "walls": walls, "out": str(out),
+            "rerun": rerun, "run_dates": runs.get("dates", {}), "whole_run_date": runs.get("whole_run_date", today),
+            "load_note": runs.get("load_note", "load not recorded"),
             "scene_source": "input/*.yaml as shipped" if not a.quick else "coarse variants (out/.../scenes)"}
     paper_doc.write(out / "paper.md", numbers, trends, images, meta, image_dir=out / "figures")
     if docs:
         paper_doc.write(ROOT / "docs" / "paper.md", numbers, trends, images, meta, image_dir=ROOT / "docs" / "paper")
-        if not partial:  # the timing section is a whole run's
-            write_performance(meta, a.jobs)
+        print(f"written: {results_store.save('paper', paper_doc.store_data(numbers, images, meta))}")
+        write_performance(meta)
     print(f"reproduce ({mode}): runs {t_runs:.1f} s, total {meta['wall_total']:.1f} s wall; {out / 'paper.md'}"
           + (f", {ROOT / 'docs' / 'paper.md'}" if docs else ""))
     for t in trends:
@@ -239,18 +264,12 @@ def main(argv=None):
     return 0
 
 
-def write_performance(meta, jobs):
-    """The full run's wall times into docs/performance.md (section "## Reproducing the paper")."""
+def write_performance(meta):
+    """The run times into docs/performance.md (section "## Reproducing the paper"), from the same meta data as
+    docs/paper.md's (paper_doc.performance_section)."""
     sys.path.insert(0, str(ROOT / "bench"))
     from performance_doc import replace_section
-    rows = "\n".join(f"| {k} | {v:.1f} |" for k, v in sorted(meta["walls"].items(), key=lambda kv: -kv[1]))
-    load = os.getloadavg()[0]
-    replace_section("## Reproducing the paper", (
-        "## Reproducing the paper\n\n"
-        f"Command: `tools/reproduce.sh` (every scene of the paper as shipped, {jobs} at a time, then the figures and\n"
-        f"docs/paper.md). Runs {meta['wall_runs']:.0f} s, in all {meta['wall_total']:.0f} s wall on 2 cores (load average "
-        f"{load:.1f} at the end: the machine\nwas shared). Wall time of each scene (two ran at once):\n\n"
-        "| scene | wall [s] |\n|---|---|\n" + rows + "\n"))
+    replace_section("## Reproducing the paper", paper_doc.performance_section(meta))
 
 
 if __name__ == "__main__":

@@ -141,7 +141,18 @@ def test_fields(run2d, tmp_path, capsys):
     out = capsys.readouterr().out
     for th in (100, 500, 2000):                                # outputs at exactly these hold times
         assert f"hold time {th} s (asked {th} s)" in out
-    # fig13: the cell beneath the tip, its |sigma| change over the hold = (s(2010) - s(10)) g_c |S0|
+    # fig13 by default: the mean over |x| < a/4, -a/2 < y < 0, a = 2.5 x the depth at the end of loading (0.25 um):
+    # its |sigma| change over the hold = (s(2010) - s(10)) |S0| x the area mean of g over the region
+    box = (-0.625 / 4, 0.625 / 4, -0.625 / 2, 0.0)
+    with ip.Fields(run) as F:
+        w = ip.clipped_areas(F, box)
+    m = re.search(r"fig13 mean over \|x\| < (\S+), (\S+) < y < 0 .* change (\S+) MPa", out)
+    assert (float(m.group(1)), float(m.group(2))) == pytest.approx(box[1:3], rel=5e-3)
+    expect = (S_OUT[4] - S_OUT[1]) * np.sum(gc * w) / np.sum(w) * ip.tensor_norm(S0, False)
+    assert float(m.group(3)) == pytest.approx(expect, rel=1e-5)
+    # --probe: the one cell beneath the tip, its |sigma| change over the hold = (s(2010) - s(10)) g_c |S0|
+    assert ip.main(["fields", str(run), "--out", str(tmp_path), "--probe", "0", "-0.000001"]) == 0
+    out = capsys.readouterr().out
     with ip.Fields(run) as F:
         c, _ = ip.probe_cell(F, None)
     assert 12 in cells[c] and x[cells[c]].mean(axis=0)[1] < 0          # a cell at the tip (vertex 12 = origin)

@@ -33,6 +33,7 @@ def test_lomnitz_curve_gives_its_own_parameters_however_sampled(tmp_path):
     assert n["creep"]["385"] == pytest.approx(n["paper_creep"]["385"], rel=1e-4)
     assert n["soft_over_hard"]["385"] == pytest.approx(100.0)
     assert n["soft_over_hard_10x_until"] == pytest.approx(36000.0)
+    assert n["soft_over_hard_min_early"] == pytest.approx(100.0) and n["soft_over_hard_min"] == pytest.approx(100.0)
 
 
 def test_sampling_changes_the_fit_of_a_non_lomnitz_curve(tmp_path):
@@ -56,7 +57,8 @@ def trends_input(creep_slow=0.01, creep_fast=0.04, bedding=(0.7, 0.72, 0.74, 0.7
     ind = {f"loading_rate_a{a}": {"depth_end_of_load": d, "creep_depth": c}
            for a, d, c in zip(pn.ALPHAS, (0.21, 0.19, 0.17), (creep_slow, 0.02, creep_fast))}
     ind.update({f"bedding_theta{t}": {"creep_depth": c} for t, c in zip(pn.THETAS_BEDDING, bedding)})
-    tri = {th: {"creep": {"385": c, "3600": 2 * c, "36000": 4 * c}, "soft_over_hard": {"385": r}}
+    tri = {th: {"creep": {"385": c, "3600": 2 * c, "36000": 4 * c}, "soft_over_hard": {"385": r},
+                "soft_over_hard_min_early": r, "soft_over_hard_10x_until": 2000.0, "duration": 36000.0}
            for th, c, r in ((0, 6e-5, ratio[0]), (90, 4e-5, ratio[1]))}
     return {"indent": ind, "triaxial": tri, "fig13": {}}
 

@@ -1,0 +1,40 @@
+"""The results store: the numbers that README.md and docs/*.md quote from runs, as JSON files in docs/results/
+(committed: the documents show them). Each file is written by the generator or bench that made its numbers
+(tools/reproduce.py: paper.json; bench/indent2d_convergence_bench.py --doc: indent2d_convergence.json; ...), and
+the documents are written from it: docs/paper.md and the generated sections of docs/performance.md by their
+generators, the numbers quoted in README.md and in the hand-written readings by tools/doc_numbers.py --write from
+the quotes of tools/doc_quotes.py. tools/doc_numbers.py (CTest docs.numbers) fails when a document's number
+differs from the store.
+
+A file holds {"provenance": {...}, ...}: where its numbers come from (command, date, and for numbers taken over
+from an earlier document rather than from a run, which and to what digits).
+"""
+import json
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+STORE = ROOT / "docs" / "results"
+
+
+def path(name, store=STORE):
+    return Path(store) / f"{name}.json"
+
+
+def load(name, store=STORE):
+    """The store file `name` (docs/results/<name>.json) as a dict; {} if it does not exist."""
+    p = path(name, store)
+    return json.loads(p.read_text(encoding="utf-8")) if p.is_file() else {}
+
+
+def save(name, data, store=STORE):
+    """Write the store file `name`, one value a line, so that a change shows as a small diff (keys in the order the
+    generator made them: the documents list some of them in that order)."""
+    p = path(name, store)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(json.dumps(data, indent=1, default=float, ensure_ascii=False) + "\n", encoding="utf-8")
+    return p
+
+
+def int_keys(d):
+    """JSON keeps dict keys as strings: the triaxial theta keys back to ints (0, 90) where they were ints."""
+    return {int(k) if isinstance(k, str) and k.lstrip("-").isdigit() else k: v for k, v in d.items()}

@@ -1,0 +1,73 @@
+"""tools/doc_numbers.py: the documents' numbers against the results store (docs/results/). The committed documents
+agree with the store; a number edited by hand in README.md, docs/paper.md or a generated section of
+docs/performance.md, or a store value changed, makes the check fail and name the place; --write puts the store's
+numbers back."""
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+TOOL = ROOT / "tools" / "doc_numbers.py"
+sys.path.insert(0, str(ROOT / "tools"))
+import doc_quotes  # noqa: E402
+
+DOCS = ("README.md", "docs/paper.md", "docs/performance.md", "bench/indent2d_convergence_conclusions.md",
+        "bench/indent_convergence_conclusions.md")
+
+
+def run(*args):
+    return subprocess.run([sys.executable, str(TOOL), *args], capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture
+def tree(tmp_path):
+    """A copy of the documents and the store, to edit."""
+    for d in DOCS:
+        (tmp_path / d).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(ROOT / d, tmp_path / d)
+    shutil.copytree(ROOT / "docs" / "results", tmp_path / "docs" / "results")
+    return tmp_path
+
+
+def edit(path, old, new):
+    text = path.read_text(encoding="utf-8")
+    assert text.count(old) >= 1, old
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+
+
+def test_the_committed_documents_agree_with_the_store():
+    r = run()
+    assert r.returncode == 0, r.stdout
+    assert "(all)" in r.stdout
+
+
+def test_every_quote_is_found_once_with_its_numbers():
+    ns = doc_quotes.namespace()
+    for doc, text in doc_quotes.QUOTES:
+        assert (ROOT / doc).read_text(encoding="utf-8").count(doc_quotes.render(text, ns)) == 1, text[:60]
+
+
+@pytest.mark.parametrize("doc, old, new", [
+    ("README.md", "its creep is 0.88×", "its creep is 0.90×"),                     # a quote of the main job
+    ("README.md", "creep depth −1.7 %, residual depth −1.5 %", "creep depth −1.7 %, residual depth −1.4 %"),
+    ("docs/paper.md", "(0.88× θ0, 0.92× θ90", "(0.88× θ0, 0.93× θ90"),             # generated from paper.json
+    ("docs/performance.md", "creep 35.46 ± 0.4%", "creep 35.41 ± 0.4%"),           # the 2D study's reference
+    ("docs/performance.md", "| triaxial_theta0 | 36.0 |", "| triaxial_theta0 | 8.0 |"),   # a run time
+    ("bench/indent2d_convergence_conclusions.md", "its creep depth, 35.09 nm, is −1.0 %", "its creep depth, 35.27 nm, is −0.4 %"),
+])
+def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
+    assert run("--root", str(tree)).returncode == 0
+    edit(tree / doc, old, new)
+    r = run("--root", str(tree))
+    assert r.returncode == 1 and doc in r.stdout, r.stdout
+    run("--root", str(tree), "--write")                       # the store's numbers put back
+    assert run("--root", str(tree)).returncode == 0
+
+
+def test_a_store_value_changed_fails_the_check(tree):
+    edit(tree / "docs" / "results" / "indent3d.json", '"P": 537.5', '"P": 540.0')   # the kerogen 3D reference
+    r = run("--root", str(tree))
+    assert r.returncode == 1 and "README.md" in r.stdout and "P 540.0 µN" in r.stdout

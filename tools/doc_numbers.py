@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""The documents' numbers against the results store (docs/results/*.json, post/results_store.py).
+
+Usage: tools/doc_numbers.py [--write] [--root DIR]
+
+  (default)  check; exit 1, each difference listed, when a document's number differs from the store:
+             * docs/paper.md against the text its generator writes from docs/results/paper.json
+               (post/paper_doc.py, render_store);
+             * the sections of docs/performance.md written from a store against what their generators write:
+               "## Reproducing the paper" (paper.json) and "## 2D indentation: mesh and element study"
+               (bench/indent2d_convergence_bench.py, indent2d_convergence.json);
+             * every quote of tools/doc_quotes.py (README.md, the hand-written readings): its text, with its
+               numbers computed from the stores, must stand in its document.
+  --write    write those sections and docs/paper.md from the stores, and put the stores' numbers into the quotes'
+             places in the documents (where a quote's text is found with other numbers in it).
+  --root     the tree whose README.md, docs/ and docs/results/ are read (default: this repository); the
+             generators' own text (bench/*_conclusions.md) is always this repository's.
+
+CTest docs.numbers runs the check; tests/tools/test_doc_numbers.py shows it failing on a hand edit.
+"""
+import argparse
+import difflib
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "post"))
+sys.path.insert(0, str(ROOT / "bench"))
+sys.path.insert(0, str(ROOT / "tools"))
+import doc_quotes  # noqa: E402
+import indent2d_convergence_bench as i2d  # noqa: E402
+import paper_doc  # noqa: E402
+import results_store  # noqa: E402
+
+PERF_SECTIONS = ("## Reproducing the paper", i2d.TITLE)
+
+
+def section_of(text, title):
+    """The section of a '## ' Markdown file that starts with title, up to the next '## ' (as bench/performance_doc.py
+    replaces it); None if absent."""
+    if title not in text:
+        return None
+    rest = text[text.index(title):]
+    end = rest.find("\n## ", 1)
+    return rest if end < 0 else rest[:end + 1]
+
+
+def generated(store_dir):
+    """{(document, section title or None): the text its generator writes from the store}."""
+    paper = results_store.load("paper", store_dir)
+    out = {}
+    if paper:
+        out[("docs/paper.md", None)] = paper_doc.render_store(paper)
+        out[("docs/performance.md", PERF_SECTIONS[0])] = paper_doc.performance_section(paper["meta"])
+    s2 = results_store.load(i2d.STORE, store_dir)
+    if s2:
+        out[("docs/performance.md", PERF_SECTIONS[1])] = i2d.section(s2, paper)
+    return out
+
+
+def diff_lines(want, have, name):
+    d = list(difflib.unified_diff(have.splitlines(), want.splitlines(), f"{name} (the document)",
+                                  f"{name} (from the store)", n=0, lineterm=""))
+    return d[:12] + ([f"... {len(d) - 12} more lines"] if len(d) > 12 else [])
+
+
+def check(root):
+    store_dir = Path(root) / "docs" / "results"
+    problems = []
+    for (doc, title), want in generated(store_dir).items():
+        text = (Path(root) / doc).read_text(encoding="utf-8")
+        have = text if title is None else section_of(text, title)
+        if have is None:
+            problems.append(f"{doc}: no section '{title}'")
+        elif have.rstrip("\n") != want.rstrip("\n"):
+            problems.append(f"{doc}{', ' + title if title else ''}: differs from its store\n"
+                            + "\n".join(diff_lines(want, have, doc)))
+    ns = doc_quotes.namespace(store_dir)
+    for q in doc_quotes.QUOTES:
+        doc, want = q[0], doc_quotes.render(q[1], ns)
+        if want not in (Path(root) / doc).read_text(encoding="utf-8"):
+            near = doc_quotes.find(q[1], (Path(root) / doc).read_text(encoding="utf-8"))
+            problems.append(f"{doc}: the quote '{want}' (numbers from the store) is not in the document"
+                            + (f"; it has '{near}'" if near else " (nor its text with other numbers)"))
+    return problems
+
+
+def write(root):
+    store_dir = Path(root) / "docs" / "results"
+    for (doc, title), want in generated(store_dir).items():
+        p = Path(root) / doc
+        text = p.read_text(encoding="utf-8")
+        if title is None:
+            text = want
+        else:
+            have = section_of(text, title)
+            text = text.replace(have, want.rstrip("\n") + have[len(have.rstrip("\n")):]) if have else text
+        p.write_text(text, encoding="utf-8")
+    ns = doc_quotes.namespace(store_dir)
+    for q in doc_quotes.QUOTES:
+        p = Path(root) / q[0]
+        text = p.read_text(encoding="utf-8")
+        near, want = doc_quotes.find(q[1], text), doc_quotes.render(q[1], ns)
+        if near and near != want:
+            p.write_text(text.replace(near, want, 1), encoding="utf-8")
+            print(f"{q[0]}: '{near}' -> '{want}'")
+        elif not near:
+            print(f"{q[0]}: the quote's text is not in the document: {want}")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--write", action="store_true", help="write the documents' numbers from the store")
+    ap.add_argument("--root", default=str(ROOT), help="the tree to read (default: this repository)")
+    a = ap.parse_args(argv)
+    if a.write:
+        write(a.root)
+        return 0
+    problems = check(a.root)
+    for p in problems:
+        print(p)
+    n = len(doc_quotes.QUOTES) + len(generated(Path(a.root) / "docs" / "results"))
+    print(f"doc_numbers: {n - len(problems)} of {n} checks agree with the store" + ("" if problems else " (all)"))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

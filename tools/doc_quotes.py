@@ -1,0 +1,180 @@
+"""The numbers that hand-written text quotes from the results store (docs/results/*.json): README.md and the readings
+of docs/performance.md. Each quote is (document, text), the text with «expression» where a number stands; the
+expression is evaluated on the stores (namespace() below) and formatted by the helpers pc (signed per cent, "−4.7 %"),
+pu (unsigned per cent), f (fixed decimals) and g (any format spec). tools/doc_numbers.py checks that each quote, its
+numbers computed from the store, stands in its document, and --write puts the store's numbers into it.
+
+Coverage: every number of README's main-job paragraph and of its table rows for the 3D kerogen, BN and BP scenes,
+the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
+below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times, the adapted
+scenes' CPU, the kerogen adapted scene's errors: docs/performance.md, "Adapted meshes", whose bench keeps no store).
+"""
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "post"))
+import paper_doc_tri  # noqa: E402
+import results_store  # noqa: E402
+
+MINUS = "\u2212"
+
+
+def pc(x, d=1):
+    return f"{x * 100:+.{d}f} %".replace("-", MINUS)
+
+
+def pu(x, d=1):
+    return f"{abs(x) * 100:.{d}f} %"
+
+
+def f(x, d=1):
+    return f"{x:.{d}f}".replace("-", MINUS)
+
+
+def g(x, spec):
+    return format(x, spec)
+
+
+class A(dict):
+    """A dict whose keys read as attributes too (k.reference.P)."""
+
+    def __getattr__(self, name):
+        try:
+            v = self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+        return A(v) if isinstance(v, dict) else v
+
+
+def namespace(store_dir=results_store.STORE):
+    paper = results_store.load("paper", store_dir)
+    n = paper.get("numbers", {})
+    tri = results_store.int_keys(n.get("triaxial", {}))
+    i3, i2 = results_store.load("indent3d", store_dir), results_store.load("indent2d_convergence", store_dir)
+    fe = results_store.load("fe_triaxial", store_dir)
+
+    def rung2(sk, h_tip, r_fine, order=2):
+        """A 2D study rung's errors against its scene's converged answer."""
+        r = next(r for r in i2["rungs"].values() if r.get("scene") == sk and r["order"] == order and not r.get("tol")
+                 and abs(r["h_tip"] - h_tip) < 1e-3 * h_tip and r["r_fine"] == r_fine)
+        return A({k: r["o"][k] / i2["reference"][sk][k]["value"] - 1 for k in r["o"]} | {"cpu": r["cpu"], "unknowns": r["unknowns"]})
+
+    def err3(key):
+        """A kerogen rung's errors against the converged 3D answer."""
+        r, ref = i3["kerogen"]["rungs"][key], i3["kerogen"]["reference"]
+        return A(r.get("err") or {k: r[k] / ref[k] - 1 for k in ("P", "creep", "h_res")})
+
+    fe_row = {(r["size"], r["tol"], r["ranks"]): A(r) for r in fe.get("rows", [])}
+    ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
+              walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row)
+    if 0 in tri and 90 in tri:
+        ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
+    return ns
+
+
+PART = re.compile(r"«(.*?)»")
+NUMBER = r"(?:[−+-]?(?:\d[\d., ]*\d|\d|X)(?: %)?)"   # what a «» place holds: a number, a list of them, or X
+
+
+def render(text, ns):
+    """The quote's text with each «expression» replaced by its value."""
+    return PART.sub(lambda m: str(eval(m.group(1), {"__builtins__": {}, **ns})), text)
+
+
+def find(text, doc):
+    """The place in doc where the quote's text stands with any numbers in its «» places (one line), or None."""
+    parts = PART.split(text)
+    pattern = "".join(re.escape(p) if i % 2 == 0 else NUMBER for i, p in enumerate(parts))
+    m = re.search(pattern, doc)
+    return m.group(0) if m else None
+
+
+R = "README.md"
+C2, C3 = "bench/indent2d_convergence_conclusions.md", "bench/indent_convergence_conclusions.md"
+QUOTES = [
+    # the main job (defects 1, 5): both readings of eq. 28's log, the run times, Fig. 18's window
+    (R, "It takes «f(fe[(6, 1e-06, 2)].wall)» s wall on 2 quiet cores at the default mesh («fe[(6, 1e-06, 2)].cells» tets; "
+        "docs/performance.md, \"FE: triaxial cylinder\") and «f(walls.triaxial_theta0)» s in docs/paper.md's latest run"),
+    (R, "Read with ln, its creep is «f(rd.ln.early[0], 2)»× and «f(rd.ln.early[1], 2)»× the paper's fit at 385 s (θ = 0, 90) "
+        "and «f(rd.ln.late[0], 2)»–«f(rd.ln.late[1], 2)»× from 1 to 10 h; read with log10, «f(rd.log10.early[0], 2)»× and "
+        "«f(rd.log10.early[1], 2)»× at 385 s and «f(rd.log10.late[0], 2)»–«f(rd.log10.late[1], 2)»× from 1 to 10 h"),
+    (R, "> 10× the hard one only until «f(f18.until[0], 0)» s (θ = 0) and «f(f18.until[90], 0)» s (θ = 90) of the 36 000 s"),
+    (R, "(size 6 mm: «pu(fe[(6, 1e-06, 2)].err_10h, 2)» from the finest run at 10 h, with another φ draw) | "
+        "«f(fe[(6, 1e-06, 2)].wall, 0)» s wall on 2 quiet cores (the main job above) |"),
+    (R, "docs/paper.md (about «f(meta.wall_runs / 60, 0)» min on a loaded"),
+    # the kerogen sector (defect 3)
+    (R, "(P2 to h_tip 0.035: P «k.reference.P» µN ± «pu(k.reference.hw.P)», creep depth «k.reference.creep» nm ± "
+        "«pu(k.reference.hw.creep)», residual depth «k.reference.h_res» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
+        "«pc(err3('sector2_0.12').P)», creep depth «pc(err3('sector2_0.12').creep)», residual depth «pc(err3('sector2_0.12').h_res)»"),
+    (R, "another mesh of this density is «pc(err3('sector2f8_0.12').h_res)» in residual depth"),
+    (R, "«f(k.shipped_cost.cpu_median, 0)» s CPU (median of «k.shipped_cost.runs», idle machine; «k.shipped_cost.umat_calls_M» M "
+        "UMAT calls, «k.shipped_cost.ratio_to_umat»× their benchmark time; the mesh before: «f(k.shipped_cost.cpu_before_repick, 0)» s, "
+        "creep «pc(err3('sector2f8_0.1').creep)»; «f(k.shipped_cost.cpu_before_issue25, 0)» s before"),
+    (R, "an independent mesh of this density (the cube, h_tip 0.12) is «pc(err3('half2_0.12').P)» in load, "
+        "«pc(err3('half2_0.12').creep)» in creep depth and «pc(err3('half2_0.12').h_res)» in residual depth"),
+    # the axisymmetric twin (defect 3)
+    (R, "«pc(err3('axi1_0.02').P)» in load against the 3D answer (the tip's shape; × «k.berkovich_cone_elastic», the elastic "
+        "Berkovich/cone ratio, overshoots by «pu(k.rungs['axi1_0.02']['P'] * k.berkovich_cone_elastic / k.reference.P - 1)»: "
+        "with creep the converged 3D and axisymmetric loads are «f(k.reference.P / k.rungs['axi2_0.01']['P'], 2)»× apart), "
+        "«pc(err3('axi1_0.02').creep, 0)» in creep depth, «pc(err3('axi1_0.02').h_res)» in residual depth; within "
+        "«pu(k.rungs['axi1_0.02']['P'] / k.rungs['axi2_0.01']['P'] - 1)» (load) and "
+        "«pu(k.rungs['axi1_0.02']['creep'] / k.rungs['axi2_0.01']['creep'] - 1)» (creep) of its own converged answer"),
+    # BN and BP (defects 3, 6)
+    (R, "the creep depth within «pu(max(abs(bn.p2.creep[2] / c - 1) for c in (bn.p2.creep[-1], bn.p1.creep[-1], bn.adapted.creep[-1])))» "
+        "of the finest uniform P2 («bn.p2.creep[-1]» nm), P1 («bn.p1.creep[-1]» nm) and adapted («f(bn.adapted.creep[-1], 1)» nm) meshes"),
+    (R, "(P2: «', '.join(f(x, 2) for x in bn.p2.h_res[1:])» µm), so the shipped mesh's «bn.p2.h_res[2]» µm is "
+        "«pc(bn.p2.h_res[2] / bn.adapted.h_res[-1] - 1, 0)» against the converged «f(bn.adapted.h_res[-1], 3)» µm "
+        "(adapted meshes, `microindent_BN_sector_adapt.yaml`; the axisymmetric twin: «f(bn.twin_h_res, 3)» µm)"),
+    (R, "«f(bn.cost.cpu, 0)» s CPU («f(bn.cost.cpu_before_issue25, 0)» s before issue 25); «bn.cost.steps» steps, "
+        "«bn.cost.rejected» rejected («bn.cost.rejected_before» before the PI step controller)"),
+    (R, "the load «pc(bp.p2.P[1] / bp.p2.P_limit - 1, 2)» from its limit, the creep depth within its ± 1 % scatter, the residual "
+        "depth «bp.p2.h_res[1]» µm, «pc(bp.p2.h_res[1] / bp.adapted.h_res[-1] - 1, 0)» against the converged "
+        "«f(bp.adapted.h_res[-1], 2)» µm"),
+    (R, "«f(bp.cost.cpu, 0)» s CPU («f(bp.cost.cpu_before_issue25, 0)» s before issue 25, whose MUMPS factorisations were "
+        "«pu(bp.cost.factorisation_share_before, 0)» of it; now «pu(bp.cost.factorisation_share, 0)»)"),
+    (R, "on the first levels, «f(bn.adapted.h_res[0], 3)» and «f(bn.adapted.h_res[1], 3)» µm on its last two levels "
+        "(«f(bn.adapted.unknowns[0] / 1000, 1)» k and «f(bn.adapted.unknowns[1] / 1000, 1)» k unknowns)"),
+    (R, "on the first level, «f(bp.adapted.h_res[0], 3)» and «f(bp.adapted.h_res[1], 3)» µm on its last two levels "
+        "(«f(bp.adapted.unknowns[0] / 1000, 1)» k and «f(bp.adapted.unknowns[1] / 1000, 1)» k unknowns)"),
+    # the 2D scenes (defects 2, 10)
+    (R, "depth at the end of loading «pc(rung2('lr', 0.01414, 0.9).h_max)», creep depth «pc(rung2('lr', 0.01414, 0.9).creep)», "
+        "residual depth «pc(rung2('lr', 0.01414, 0.9).h_res)» (with an unload added), stress under the tip "
+        "«pc(rung2('lr', 0.01414, 0.9).sig_hold)» and its change over the hold (Fig. 13's quantity) "
+        "«pc(rung2('lr', 0.01414, 0.9).dsig)»; the shipped scene's own mesh (its h_far rounded) "
+        "«pc(ind.loading_rate_a1.creep_depth / i2.reference.lr.creep.value - 1)» in creep depth"),
+    (R, "(at 20 k unknowns: creep «pc(rung2('bed', 0.3536, 10.0).creep)» against "
+        "«pc(rung2('bed', 0.1768, 10.0, 1).creep)», residual depth «pc(rung2('bed', 0.3536, 10.0).h_res)» against "
+        "«pc(rung2('bed', 0.1768, 10.0, 1).h_res)»)"),
+    (R, "at 45°: depth at the end of loading «pc(rung2('bed', 0.25, 10.0).h_max)», creep depth «pc(rung2('bed', 0.25, 10.0).creep)», "
+        "stress under the tip «pc(rung2('bed', 0.25, 10.0).sig_hold)» (within 1 % and 5 %; the residual depth, not reported by "
+        "these scenes, «pc(rung2('bed', 0.25, 10.0).h_res)»)"),
+    (R, "(7 s before: «pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth)"),
+    # below the table (defect 3)
+    (R, "were «f(k.rungs['old1_0.05']['cpu'], 0)» s for the sector but «pc(err3('old1_0.05').P, 0)» in load and "
+        "«pc(err3('old1_0.05').creep, 0)» in creep depth"),
+    (R, "with `h_tip: 0.2` (P2, «f(k.rungs['sector2_0.2']['cpu'], 0)» s CPU) are «pc(err3('sector2_0.2').P)» in load but "
+        "«pc(err3('sector2_0.2').creep, 0)» in creep depth and «pc(err3('sector2_0.2').h_res, 0)» in residual depth"),
+    # the readings written by hand beside the generated tables (bench/*_conclusions.md, included in docs/performance.md)
+    (C2, "creep depth «f(i2.reference.lr.creep.value * 1e3, 2)» nm ± «pu(i2.reference.lr.creep.hw)», residual\n  "
+         "depth «f(i2.reference.lr.h_res.value * 1e3, 2)» nm ± «pu(i2.reference.lr.h_res.hw)»; σ̄ at the hold's end "
+         "«f(i2.reference.lr.sig_hold.value)» MPa and its change over the hold «f(i2.reference.lr.dsig.value)» MPa"),
+    (C2, "depth at the end of loading «pc(rung2('lr', 0.01414, 0.9).h_max)», creep depth «pc(rung2('lr', 0.01414, 0.9).creep)», "
+         "residual depth «pc(rung2('lr', 0.01414, 0.9).h_res)», σ̄\n  at the end of the hold «pc(rung2('lr', 0.01414, 0.9).sig_hold)»"),
+    (C2, "Fig. 13's quantity Δσ̄ «pc(rung2('lr', 0.01414, 0.9).dsig)»"),
+    (C2, "its creep depth, «f(ind.loading_rate_a1.creep_depth * 1e3, 2)» nm, is «pc(ind.loading_rate_a1.creep_depth / "
+         "i2.reference.lr.creep.value - 1)»"),
+    (C2, "converged creep depth «f(i2.reference.bed.creep.value * 1e3, 1)» nm ± «pu(i2.reference.bed.creep.hw)» (Richardson, "
+         "p «f(float(i2.reference.bed.creep.rule.split('= ')[1]), 2)»), residual depth «f(i2.reference.bed.h_res.value * 1e3, 1)» nm ± "
+         "«pu(i2.reference.bed.h_res.hw)»"),
+    (C2, "(41 k unknowns, 130 s, 2.7 ×): «pc(rung2('bed', 0.25, 10.0).h_max)», «pc(rung2('bed', 0.25, 10.0).creep)», "
+         "«pc(rung2('bed', 0.25, 10.0).h_res)», «pc(rung2('bed', 0.25, 10.0).sig_hold)»: within all four limits (✓);\n  Δσ̄ "
+         "«pc(rung2('bed', 0.25, 10.0).dsig)». Before (P1, h_tip 0.5; 7 s): «pc(rung2('bed', 0.5, 10.0, 1).h_max)», "
+         "«pc(rung2('bed', 0.5, 10.0, 1).creep)», «pc(rung2('bed', 0.5, 10.0, 1).h_res)», «pc(rung2('bed', 0.5, 10.0, 1).sig_hold)»"),
+    (C3, "the ratio is «k.reference.P» / «f(k.rungs['axi2_0.01']['P'], 1)» = «f(k.reference.P / k.rungs['axi2_0.01']['P'], 3)», "
+         "«pu(1 - k.reference.P / k.rungs['axi2_0.01']['P'] / k.berkovich_cone_elastic, 0)» below the elastic one, and the shipped\n"
+         "  twin, P1 at h_tip 0.02, is «pc(err3('axi1_0.02').P)» in load, «pc(err3('axi1_0.02').creep, 0)» in creep depth and "
+         "«pc(err3('axi1_0.02').h_res)» in residual depth"),
+]
