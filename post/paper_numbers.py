@@ -88,7 +88,27 @@ def indent_numbers(run):
     h = History(run)
     s = creep_summary(h)
     s["max_depth"] = float(np.max(h["depth"]))
+    s.update(stated_errors(Path(run)))
     return s
+
+
+def stated_errors(run):
+    """The mesh and time-step errors the run states (its summary.json, docs/adapt.md) for the creep depth (the hold's
+    depth change) and the residual depth (the unload's end depth), with the number of meshes: {} without them."""
+    path = run / "summary.json"
+    if not path.is_file():
+        return {}
+    js = json.loads(path.read_text(encoding="utf-8"))
+    st = {x["name"]: x for x in js.get("stages", [])}
+    out = {"meshes": len(js.get("levels", [])) or 1}
+    hold, unload = st.get("hold", {}), st.get("unload", {})
+    if hold.get("mesh_error"):
+        out["creep_mesh_error"] = hold["mesh_error"]["change"]["depth"]
+    if hold.get("time_error"):
+        out["creep_time_error"] = hold["time_error"]["change"]["depth"]
+    if unload.get("mesh_error"):
+        out["residual_mesh_error"] = unload["mesh_error"]["end"]["depth"]
+    return out
 
 
 # ------------------------------------------------------------------ all

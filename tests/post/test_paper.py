@@ -74,3 +74,23 @@ def test_trends_pass_and_each_fails_when_its_trend_is_reversed():
     n = trends_input()
     del n["triaxial"][90]
     assert not any(t["ok"] for t in pn.check_trends(n)[1:])                        # a missing run fails
+
+
+def test_stated_errors_of_an_adapted_run(tmp_path):
+    """An adapted run's summary.json (docs/adapt.md) gives the table of Figs. 3-5 its stated errors, in place of the
+    lower-bound flag: the creep depth's mesh and time-step errors (the hold's), the residual depth's (the unload's
+    end), the number of meshes; a run on one mesh states none."""
+    import json
+    import paper_doc
+    run = tmp_path / "bn"
+    run.mkdir()
+    stage = lambda name, me, te: {"name": name, "end": {"depth": 1.0}, "change": {"depth": 0.1}, "mesh_error": me, "time_error": te}
+    js = {"stages": [stage("start", None, None), stage("load", {"end": {"depth": 0}, "change": {"depth": 0}}, None),
+                     stage("hold", {"end": {"depth": 0.002}, "change": {"depth": 0.003}}, {"change": {"depth": 0.0004}}),
+                     stage("unload", {"end": {"depth": 0.021}, "change": {"depth": 0.02}}, None)],
+          "levels": [{}, {}, {}, {}]}
+    (run / "summary.json").write_text(json.dumps(js))
+    s = pn.stated_errors(run)
+    assert s == {"meshes": 4, "creep_mesh_error": 0.003, "creep_time_error": 0.0004, "residual_mesh_error": 0.021}
+    assert paper_doc._stated(s, "creep_mesh_error", "creep_time_error") == " (± 0.003 mesh, 4 meshes; ± 0.0004 time steps)"
+    assert pn.stated_errors(tmp_path) == {}
