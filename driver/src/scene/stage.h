@@ -46,6 +46,7 @@ typedef struct {
 } StageEvent;
 
 #define STAGE_MAX_OUT_TIMES 64
+#define MAXSTAGES 16 /* an FE scene's stages at most */
 
 /* The stage of every scene kind. */
 typedef struct {
@@ -58,9 +59,6 @@ typedef struct {
   int         nout_times; /* fields at exactly these stage times (output: {times: [...]}) */
   double      out_times[STAGE_MAX_OUT_TIMES];
 } Stage;
-
-/* The keys stage_read reads, for a kind's list of the keys a stage may have. */
-#define STAGE_KEYS "name, duration, load, steps, until, creep, output"
 
 /* Stage 'index' of a scene at node (a mapping), key path 'path' ("stages[2]"); default name word+index ("stage2",
  * "segment2"); events: the until kinds this scene kind allows (stage_event_read). The load key is read only when it
