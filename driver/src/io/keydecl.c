@@ -150,7 +150,7 @@ static int declared(const YdDoc *doc, YdNode *map, const char *key, const KeyDec
   return 1;
 }
 
-/* An absent key: required, or its default (parse: 0 number, 1 integer, 2 bool, 3 word). */
+/* An absent key: an error if it is required (its default is the caller's to set). */
 static int absent(const YdDoc *doc, YdNode *map, const KeyDecl *d, const char *key, char *err, size_t errlen) {
   char path[512];
   if (!d || !(d->flags & KEY_REQUIRED)) return 0;
@@ -159,17 +159,38 @@ static int absent(const YdDoc *doc, YdNode *map, const KeyDecl *d, const char *k
   return 1;
 }
 
+/* Every typed read begins so: the declaration (*d), the value's node (*nd, also into *node_out) and its key path.
+   -1: an error (err filled); 0: absent (the caller applies the default, then absent()); 1: present. */
+static int fetch(const YdDoc *doc, YdNode *map, const char *key, const KeyDecl **d, YdNode **nd, YdNode **node_out, char *path,
+                 size_t n, char *err, size_t errlen) {
+  if (declared(doc, map, key, d, err, errlen)) return -1;
+  *nd = yd_get(map, key);
+  if (node_out) *node_out = *nd;
+  full_path(map, key, path, n);
+  return *nd != NULL;
+}
+
+/* The place of word s in the choices ("a, b, c"), or -1. */
+static int word_index(const char *choices, const char *s) {
+  int k = 0;
+  for (const char *c = choices; c && *c; k++) {
+    size_t l = strcspn(c, ",");
+    if (l == strlen(s) && !strncmp(c, s, l)) return k;
+    c += l;
+    while (*c == ',' || *c == ' ') c++;
+  }
+  return -1;
+}
+
 int keys_number(const YdDoc *doc, YdNode *map, const char *key, double *v, YdNode **node_out, char *err, size_t errlen) {
   const KeyDecl *d;
+  YdNode        *nd;
   char           path[512], range[160];
-  if (declared(doc, map, key, &d, err, errlen)) return 1;
-  YdNode *nd = yd_get(map, key);
-  if (node_out) *node_out = nd;
-  if (!nd) {
-    if (d && d->def) text_real(d->def, v); /* a default in words leaves *v as the reader set it */
-    return absent(doc, map, d, key, err, errlen);
+  int            got = fetch(doc, map, key, &d, &nd, node_out, path, sizeof path, err, errlen);
+  if (got <= 0) {
+    if (!got && d && d->def) text_real(d->def, v); /* a default in words leaves *v as the reader set it */
+    return got < 0 || absent(doc, map, d, key, err, errlen);
   }
-  full_path(map, key, path, sizeof path);
   if (yd_double(doc, nd, path, v, err, errlen)) return 1;
   if (d && !in_range(d, *v)) {
     say(err, errlen, "%s:%d: key '%s': expected %s, got %g", doc->file, nd->line, path, keys_range_text(d, range, sizeof range), *v);
@@ -181,26 +202,18 @@ int keys_number(const YdDoc *doc, YdNode *map, const char *key, double *v, YdNod
 static int int_choice(const char *choices, int v) {
   char want[16];
   snprintf(want, sizeof want, "%d", v);
-  for (const char *c = choices; c && *c;) {
-    size_t l = strcspn(c, ",");
-    if (l == strlen(want) && !strncmp(c, want, l)) return 1;
-    c += l;
-    while (*c == ',' || *c == ' ') c++;
-  }
-  return 0;
+  return word_index(choices, want) >= 0;
 }
 
 int keys_integer(const YdDoc *doc, YdNode *map, const char *key, int *v, YdNode **node_out, char *err, size_t errlen) {
   const KeyDecl *d;
+  YdNode        *nd;
   char           path[512], range[160];
-  if (declared(doc, map, key, &d, err, errlen)) return 1;
-  YdNode *nd = yd_get(map, key);
-  if (node_out) *node_out = nd;
-  if (!nd) {
-    if (d && d->def) text_int(d->def, INT_MIN, INT_MAX, v);
-    return absent(doc, map, d, key, err, errlen);
+  int            got = fetch(doc, map, key, &d, &nd, node_out, path, sizeof path, err, errlen);
+  if (got <= 0) {
+    if (!got && d && d->def) text_int(d->def, INT_MIN, INT_MAX, v);
+    return got < 0 || absent(doc, map, d, key, err, errlen);
   }
-  full_path(map, key, path, sizeof path);
   if (yd_expect(doc, nd, YD_SCALAR, path, err, errlen)) return 1;
   int       ranged = d && !d->choices && (!isnan(d->lo) || !isnan(d->hi)), terse = d && (d->flags & KEY_TERSE);
   long long lo = ranged && !isnan(d->lo) ? (long long)d->lo : INT_MIN, hi = ranged && !isnan(d->hi) ? (long long)d->hi : INT_MAX;
@@ -226,45 +239,30 @@ int keys_integer(const YdDoc *doc, YdNode *map, const char *key, int *v, YdNode 
 
 int keys_bool(const YdDoc *doc, YdNode *map, const char *key, int *v, YdNode **node_out, char *err, size_t errlen) {
   const KeyDecl *d;
+  YdNode        *nd;
   char           path[512];
-  if (declared(doc, map, key, &d, err, errlen)) return 1;
-  YdNode *nd = yd_get(map, key);
-  if (node_out) *node_out = nd;
-  if (!nd) {
-    if (d && d->def) *v = !strcmp(d->def, "true");
-    return absent(doc, map, d, key, err, errlen);
+  int            got = fetch(doc, map, key, &d, &nd, node_out, path, sizeof path, err, errlen);
+  if (got <= 0) {
+    if (!got && d && d->def) *v = !strcmp(d->def, "true");
+    return got < 0 || absent(doc, map, d, key, err, errlen);
   }
-  return yd_bool(doc, nd, full_path(map, key, path, sizeof path), v, err, errlen);
-}
-
-/* The place of word s in the choices, or -1. */
-static int word_index(const char *choices, const char *s) {
-  int k = 0;
-  for (const char *c = choices; c && *c; k++) {
-    size_t l = strcspn(c, ",");
-    if (l == strlen(s) && !strncmp(c, s, l)) return k;
-    c += l;
-    while (*c == ',' || *c == ' ') c++;
-  }
-  return -1;
+  return yd_bool(doc, nd, path, v, err, errlen);
 }
 
 int keys_word(const YdDoc *doc, YdNode *map, const char *key, const char **v, int *index, YdNode **node_out, char *err,
               size_t errlen) {
   const KeyDecl *d;
+  YdNode        *nd;
   char           path[512], range[256];
   const char    *s;
-  if (declared(doc, map, key, &d, err, errlen)) return 1;
-  YdNode *nd = yd_get(map, key);
-  if (node_out) *node_out = nd;
-  if (!nd) {
-    if (d && d->def && d->choices && word_index(d->choices, d->def) >= 0) {
+  int            got = fetch(doc, map, key, &d, &nd, node_out, path, sizeof path, err, errlen);
+  if (got <= 0) {
+    if (!got && d && d->def && d->choices && word_index(d->choices, d->def) >= 0) {
       if (v) *v = d->def;
       if (index) *index = word_index(d->choices, d->def);
     }
-    return absent(doc, map, d, key, err, errlen);
+    return got < 0 || absent(doc, map, d, key, err, errlen);
   }
-  full_path(map, key, path, sizeof path);
   if (yd_string(doc, nd, path, &s, err, errlen)) return 1;
   int k = d && d->choices ? word_index(d->choices, s) : 0;
   if (k < 0) {

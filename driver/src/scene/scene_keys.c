@@ -18,6 +18,14 @@
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
+/* A stage table's keys (scene/time_function.h) under P: its value column and factor as help. */
+#define TABLE(P, VALUE, FACTOR)                                                                                                       \
+  {P ".table.file", FE, KEY_FILE, N, N, REQ, NULL, NULL, NULL, "the CSV file"},                                                       \
+  {P ".table.time", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its time column (the stage's time, after time_factor)"},              \
+  {P ".table.value", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, VALUE},                                                               \
+  {P ".table.time_factor", FE, KEY_NUMBER, 0, N, GT, NULL, "1", "s per unit", "the table's time unit in s"},                          \
+  {P ".table.factor", FE, KEY_NUMBER, N, N, 0, NULL, "1", NULL, FACTOR}
+
 /* path, kinds, type, lo, hi, flags, choices, default, unit, help */
 static const KeyDecl decl[] = {
   {"scene", FE | PT, KEY_WORD, N, N, REQ, "fe, point", NULL, NULL, "the scene's kind (sweep, calibrate and replay scenes: driver -help, docs/calibrate.md)"},
@@ -117,11 +125,7 @@ static const KeyDecl decl[] = {
   {"{stage}.pressure.*.exp.P0", FE, KEY_NUMBER, N, N, REQ, NULL, NULL, "MPa", "the pressure at the stage's start"},
   {"{stage}.pressure.*.exp.k", FE, KEY_NUMBER, N, N, REQ, NULL, NULL, "1/s", "the rate"},
   {"{stage}.pressure.*.table", FE, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "a CSV history, linear between its rows, its end values beyond them"},
-  {"{stage}.pressure.*.table.file", FE, KEY_FILE, N, N, REQ, NULL, NULL, NULL, "the CSV file"},
-  {"{stage}.pressure.*.table.time", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its time column (the stage's time, after time_factor)"},
-  {"{stage}.pressure.*.table.value", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its value column"},
-  {"{stage}.pressure.*.table.time_factor", FE, KEY_NUMBER, 0, N, GT, NULL, "1", "s per unit", "the table's time unit in s"},
-  {"{stage}.pressure.*.table.factor", FE, KEY_NUMBER, N, N, 0, NULL, "1", NULL, "the values times this"},
+  TABLE("{stage}.pressure.*", "its value column", "the values times this"),
   {"{stage}.traction", FE, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "the traction of groups of boundary.traction (omitted: held)"},
   {"{stage}.traction.*", FE, KEY_NUMBERS, N, N, 0, NULL, "held", "MPa", "the group's traction vector at the stage's end (3 numbers; 2D: 2)"},
   {"{stage}.indenter", FE, KEY_MAPPING, N, N, 0, NULL, "load: hold", NULL, "indentation: the indenter in this stage, load or depth, and until"},
@@ -130,18 +134,10 @@ static const KeyDecl decl[] = {
   {"{stage}.indenter.load.exp.P0", FE, KEY_NUMBER, 0, N, REQ | GT, NULL, NULL, "force", "the load at the stage's start"},
   {"{stage}.indenter.load.exp.k", FE, KEY_NUMBER, N, N, REQ, NULL, NULL, "1/s", "the rate"},
   {"{stage}.indenter.load.table", FE, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "a measured load history over the whole stage, loads >= 0"},
-  {"{stage}.indenter.load.table.file", FE, KEY_FILE, N, N, REQ, NULL, NULL, NULL, "the CSV file"},
-  {"{stage}.indenter.load.table.time", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its time column (the stage's time, after time_factor)"},
-  {"{stage}.indenter.load.table.value", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its load column"},
-  {"{stage}.indenter.load.table.time_factor", FE, KEY_NUMBER, 0, N, GT, NULL, "1", "s per unit", "the table's time unit in s"},
-  {"{stage}.indenter.load.table.factor", FE, KEY_NUMBER, N, N, 0, NULL, "1", NULL, "the loads times this (the scene's units)"},
+  TABLE("{stage}.indenter.load", "its load column", "the loads times this (the scene's units)"),
   {"{stage}.indenter.depth", FE, KEY_FORMS, N, N, 0, "a number | {table: {...}}", NULL, "length", "depth control: the depth at the stage's end, or a table"},
   {"{stage}.indenter.depth.table", FE, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "a depth history over the whole stage"},
-  {"{stage}.indenter.depth.table.file", FE, KEY_FILE, N, N, REQ, NULL, NULL, NULL, "the CSV file"},
-  {"{stage}.indenter.depth.table.time", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its time column (the stage's time, after time_factor)"},
-  {"{stage}.indenter.depth.table.value", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "its depth column"},
-  {"{stage}.indenter.depth.table.time_factor", FE, KEY_NUMBER, 0, N, GT, NULL, "1", "s per unit", "the table's time unit in s"},
-  {"{stage}.indenter.depth.table.factor", FE, KEY_NUMBER, N, N, 0, NULL, "1", NULL, "the depths times this"},
+  TABLE("{stage}.indenter.depth", "its depth column", "the depths times this"),
   {"{stage}.indenter.until", FE, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "end the stage on the indenter, one of depth or load, with a rising load (not with the stage's until)"},
   {"{stage}.indenter.until.depth", FE, KEY_NUMBER, 0, N, GT, NULL, NULL, "length", "end when the depth reaches this"},
   {"{stage}.indenter.until.load", FE, KEY_NUMBER, 0, N, GT, NULL, NULL, "force", "end when the whole indenter's load reaches this"},
