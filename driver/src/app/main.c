@@ -25,7 +25,7 @@ static const char help_head[] =
   "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project; the 'scene:' key says which kind.\n"
   "Keys of FE (scene: fe; with an indenter: indentation; mpiexec -n N driver ...) and point scenes (scene: point), one a\n"
   "line: its path ({stage}: an item of 'stages' (fe) or of 'segments' (point); []: a list's item; *: a name of your\n"
-  "choosing), the scenes that read it, its type with its range or choices; its default; its unit: what it is.\n"
+  "choosing) [the scenes that read it], its type with its range or choices; its default; its unit. What it is.\n"
   "Input paths are relative to the scene file's folder, outputs to the working directory (docs/driver.md, Paths; its\n"
   "Key reference is this list).\n";
 static const char help_tail[] =
