@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The driver's folders are its architecture, and dependencies run one way (docs/architecture.md):
+"""The driver's folders are its architecture, and dependencies run one way (driver/README.md, "The layers"):
 
     app -> stepping -> contact -> {fe, point} -> scene -> material -> io
 

@@ -16,8 +16,8 @@ PetscErrorCode fe_adapt_declare(PetscInt *levels, PetscReal *growth, PetscBool *
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Mesh adaptation by rerun (FE and indentation scenes; docs/adapt.md)", NULL);
   PetscCall(options_int(PetscOptionsObject, "-adapt_levels", "reruns on meshes made from the error indicator, over mesh.adapt.levels (0: none)",
                         *levels, 0, 8, levels, set_levels));
-  PetscCall(options_real(PetscOptionsObject, "-adapt_growth", "cells of a level over the previous level's, over mesh.adapt.growth (1.2 to 8)",
-                         *growth, growth, set_growth));
+  PetscCall(options_real(PetscOptionsObject, "-adapt_growth", "cells of a level over the previous level's, over mesh.adapt.growth", *growth,
+                         1.2, 8, 0, growth, set_growth));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

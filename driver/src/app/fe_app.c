@@ -16,6 +16,7 @@
 #include "../fe/fe_scene.h"
 #include "../io/fsutil.h"
 #include "../io/gmsh_mesh.h"
+#include "../io/keydecl.h"
 #include "../io/options.h"
 #include "../stepping/checkpoint.h"
 #include "../stepping/fe_stepper.h"
@@ -60,12 +61,14 @@ PetscErrorCode app_runner_options(RunnerOptions *o) {
   PetscCall(options_int(PetscOptionsObject, "-progress_every", "a progress line every N steps (0: the scene's choice)", progress, 0,
                         PETSC_MAX_INT, &progress, NULL));
   PetscCall(options_real(PetscOptionsObject, "-step_alpha", "step controller: dt' = dt 0.9 ratio^-alpha ratio_prev^beta (1, 0: elementary)",
-                         alpha, &alpha, NULL));
-  PetscCall(options_real(PetscOptionsObject, "-step_beta", "step controller: the exponent of the previous step's error ratio", beta, &beta,
-                         NULL));
+                         alpha, 0, 2, OPTIONS_LO_OPEN, &alpha, NULL));
+  PetscCall(options_real(PetscOptionsObject, "-step_beta",
+                         "step controller: the exponent of the previous step's error ratio (below -step_alpha)", beta, 0, 2, OPTIONS_HI_OPEN,
+                         &beta, NULL));
   PetscOptionsEnd();
-  PetscCheck(alpha > 0 && alpha <= 2 && beta >= 0 && beta < alpha, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "options -step_alpha %g -step_beta %g: expected 0 < alpha <= 2 and 0 <= beta < alpha", (double)alpha, (double)beta);
+  PetscCheck(beta < alpha, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "option -step_beta %g: expected a number below -step_alpha (%g): the controller would not damp the steps' ratio", (double)beta,
+             (double)alpha);
   o->gains.alpha = alpha, o->gains.beta = beta;
   o->checkpoint_every = (int)every, o->restart = restart, o->max_steps = (int)max_steps, o->progress_every = (int)progress;
   PetscFunctionReturn(0);
@@ -224,6 +227,7 @@ int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen
   RunInfo            info;
   if (fe_scene_read(doc, &sc, err, errlen)) return 2;
   if (sc.indenter && indent_scene_read(doc, &sc, &isc, err, errlen)) return 2;
+  if (keys_check_document(doc, err, errlen)) return 2; /* every key read, and read with its declaration */
   if (outdir_override && outdir_override[0]) snprintf(sc.outdir, sizeof sc.outdir, "%s", outdir_override);
   PetscErrorCode ierr = app_runner_options(&opt);
   int rank, bad = 0;

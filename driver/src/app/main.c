@@ -7,8 +7,10 @@
 
 #include "../contact/contact_options.h"
 #include "../io/options.h"
+#include "../io/keydecl.h"
 #include "../io/yaml_doc.h"
 #include "../material/material_input.h"
+#include "../scene/scene_keys.h"
 #include "../stepping/fe_stepper.h"
 #include "../stepping/point_stepper.h"
 #include "fe_adapt.h"
@@ -17,32 +19,17 @@
 #include "sweep.h"
 #include "calibrate.h"
 
-static const char help[] =
-  "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project.\n"
-  "Finite-element scenes (scene: fe; mpiexec -n N driver ...):\n"
-  "  mesh: {geometry: X.geo | file: X.msh, parameters: {NAME: value}, order: 1 | 2,\n"
-  "         kinematics: 3d | plane_strain | axisymmetric, thickness}\n"
-  "  material: (as below)   phi: {mean, std, min, max, seed}\n"
-  "  initial: {stress: [6 values, both frames], pressure: {GROUP: p}}\n"
-  "  boundary: {fixed: [{group: G, components: [x, y, z]}], pressure: [G, ...]}\n"
-  "  stages: - {name, duration, load: linear | instant, pressure: {G: p}, steps: {...}, until: {evp_rate_below}, creep}\n"
-  "  output: {directory, fields_every: N}\n"
-  "  solver: {options: '-snes_... -ksp_...'}  (the command line wins)\n"
-  "  Input paths (mesh.geometry, mesh.file, tables) are relative to the scene file's folder; outputs to the\n"
-  "  working directory, or -output_dir (docs/driver.md, Paths).\n"
-  "Scene keys (material point, scene: point):\n"
-  "  scene: point | replay       name: text      ntens: 6 | 4     units: {stress: MPa, time: s}\n"
-  "  material: {umat: camclay9, name, props: woodford | [list], set: {phi: .., eta_soft: .., tol: ..},\n"
-  "             bedding_angle: deg | normal: [n1, n2, n3], nstatv}\n"
-  "  initial: {stress: [6 values, both frames], statev: [list]}\n"
-  "  output: {directory: out/point/NAME, progress_every: N}     check_tangent: true|false\n"
-  "  segments: - {name, duration, load: linear | instant,\n"
-  "               control: {11: {stress: v} | {strain: v} | {strain: {column: c, factor: f}}, ..., others: {...}},\n"
-  "               constraints: [{replaces: 22, strain: {11: 1, 22: 1, 33: 1}, stress: {...}, value: v}],\n"
-  "               steps: {count: N, spacing: linear | geometric, ratio: r} | {adaptive: true, first, min, max, growth},\n"
-  "               until: {evp_rate_below: v | q_above: v | q_below: v | p_above: v}, creep: bool, axis: 33,\n"
-  "               table: {file: data.csv, time: column, time_factor: f}}\n"
-  "Extremes sweep (scene: sweep): material, matrix: {dt, eta, strain_increment, bedding_angle, phi},\n"
+/* -help: what the driver runs, every key of the FE, indentation and point scenes from their declarations
+ * (scene/scene_keys.c), the other kinds' keys, then (PETSc) every option with its range and default. */
+static const char help_head[] =
+  "driver -input SCENE.yaml: runs a scene of the Cam-Clay IX project; the 'scene:' key says which kind.\n"
+  "Keys of FE (scene: fe; with an indenter: indentation; mpiexec -n N driver ...) and point scenes (scene: point), one a\n"
+  "line: its path ({stage}: an item of 'stages' (fe) or of 'segments' (point); []: a list's item; *: a name of your\n"
+  "choosing) [the scenes that read it], its type with its range or choices; its default; its unit. What it is.\n"
+  "Input paths are relative to the scene file's folder, outputs to the working directory (docs/driver.md, Paths; its\n"
+  "Key reference is this list).\n";
+static const char help_tail[] =
+  "Extremes sweep (scene: sweep): material (above), matrix: {dt, eta, strain_increment, bedding_angle, phi},\n"
   "  reference_steps, output: {directory}\n"
   "Calibration (scene: calibrate; docs/calibrate.md): parameters: - {name: PROPS name, start, min, max, scale: log},\n"
   "  runs: - {name, scene: forward.yaml, drive: data | scene, reference: full.yaml | none, set: {NAME: v},\n"
@@ -51,17 +38,26 @@ static const char help[] =
   "  refine: auto | yes | no, accept: [rows, scale, bound], output: {directory}\n"
   "  TAO options -tao_type (pounders), -tao_max_funcs, -tao_pounders_delta, ...; -calibrate_dry_run\n"
   "Replay (scene: replay): call: {ntens, nstatv, props, stress, statev, stran, dstran, time, dtime},\n"
-  "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n";
+  "  expected: {pnewdt, stress, statev, ddsdde} (checked bit for bit)\n"
+  "Options: each with its range or choices in [brackets] and its default as <now : formerly>.\n";
+static char help[65536];
+
+static void make_help(void) {
+  size_t n = (size_t)snprintf(help, sizeof help, "%s", help_head);
+  n += keys_text(&scene_keys, help + n, sizeof help - n);
+  if (n < sizeof help) snprintf(help + n, sizeof help - n, "%s", help_tail);
+}
 
 /* The driver's own options, besides the modules' below. */
 typedef struct {
   char      input[PETSC_MAX_PATH_LEN], outdir[PETSC_MAX_PATH_LEN];
   PetscBool given, check;
-  PetscInt  replay_step;
+  PetscInt  replay_step, key_reference;
 } MainOptions;
 
 static PetscErrorCode main_options(MainOptions *m) {
-  PetscBool traceback = PETSC_FALSE, dry = PETSC_FALSE; /* dry: read by calibrate.c */
+  PetscBool          traceback = PETSC_FALSE, dry = PETSC_FALSE; /* dry: read by calibrate.c */
+  const char *const  forms[]   = {"none", "text", "markdown"};
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof *m));
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Scene driver", NULL);
@@ -77,6 +73,9 @@ static PetscErrorCode main_options(MainOptions *m) {
   PetscCall(options_bool(PetscOptionsObject, "-calibrate_dry_run",
                          "calibrate scenes: write the forward scenes that follow the data, say the stages found, run nothing", dry, &dry,
                          NULL));
+  PetscCall(options_elist(PetscOptionsObject, "-key_reference",
+                          "print every scene key's declaration (markdown: docs/driver.md's Key reference) and run nothing", forms, 3, 0,
+                          &m->key_reference, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -116,8 +115,9 @@ static PetscErrorCode warn_unused_options(void) {
   if (left) PetscFunctionReturn(0);
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt k = 0; k < n; k++)
-    PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: warning: option -%s%s%s was given but never used (misspelt, or not read "
-                           "by this kind of scene; driver -help lists them)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
+    if (!options_set_by_driver(names[k])) /* a default the driver set (-indent_mat_mumps_icntl_14) was not the user's */
+      PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: warning: option -%s%s%s was given but never used (misspelt, or not "
+                             "read by this kind of scene; driver -help lists them)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(0);
 }
@@ -181,7 +181,10 @@ static int run_scene(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
   if (yd_string(doc, yd_get(doc->root, "scene"), "scene", &kind, err, errlen)) return 2;
   if (!strcmp(kind, "point")) return run_point(doc, outdir, check, replay_step, err, errlen);
   if (!strcmp(kind, "fe")) return fe_app_run(doc, outdir, err, errlen);
-  if (!strcmp(kind, "sweep")) return sweep_run(doc, outdir, err, errlen);
+  if (!strcmp(kind, "sweep")) { /* its material block by the scene's declarations */
+    scene_keys_attach(doc, SCENE_SWEEP);
+    return sweep_run(doc, outdir, err, errlen);
+  }
   if (!strcmp(kind, "replay")) return replay_run(doc, err, errlen);
   if (!strcmp(kind, "calibrate")) return calibrate_run(doc, outdir, err, errlen);
   snprintf(err, errlen, "%s:%d: key 'scene': expected calibrate, fe, point, replay or sweep, got '%s'", doc->file,
@@ -194,6 +197,7 @@ int main(int argc, char **argv) {
   PetscBool   help_asked = PETSC_FALSE, traceback = PETSC_FALSE;
   MainOptions m;
 
+  make_help();
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-help", &help_asked));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-error_traceback", &traceback));
@@ -204,6 +208,7 @@ int main(int argc, char **argv) {
   PetscBool      bad  = PETSC_FALSE;
   if (ierr) rc = 2, print_failure((int)ierr, "", PETSC_TRUE);
   else if ((ierr = options_check_unknown(NULL, 0, reserved_prefixes, NULL, err, sizeof err, &bad)) || bad) rc = 2, print_failure((int)ierr, err, PETSC_TRUE);
+  else if (m.key_reference) keys_write(&scene_keys, m.key_reference == 2, stdout);
   else if (!m.given) {
     if (!help_asked) PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "driver: give a scene: driver -input input/<scene>.yaml (-help lists the keys)\n");
     rc = help_asked ? 0 : 2;

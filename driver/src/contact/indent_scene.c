@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "../io/keydecl.h"
+
 #define FAIL(...)                       \
   do {                                  \
     snprintf(err, errlen, __VA_ARGS__); \
@@ -12,88 +14,86 @@
 
 static const double DEG = M_PI / 180;
 
-/* load: {table: ...} or depth: {table: ...}: a history in the stage time that covers the whole stage. */
-static int read_table(YdDoc *doc, YdNode *nd, const char *path, double duration, double copies, IndentStage *st, char *err,
-                      size_t errlen) {
-  char    sub[160];
-  YdNode *x = nd->kind == YD_MAPPING ? yd_get(nd, "table") : NULL;
-  int     load = st->kind == IND_LOAD_TABLE;
-  if (!x)
-    FAIL("%s:%d: key '%s': expected a number, %s{table: {file, time, value, time_factor, factor}}", doc->file, nd->line, path,
-         load ? "'hold', {exp: {P0, k}} or " : "");
-  snprintf(sub, sizeof sub, "%s.table", path);
-  if (stage_table_read(doc, x, sub, &st->tab_t, &st->tab_v, &st->nrow, err, errlen)) return 1;
-  if (yd_check_unused(doc, nd, path, load ? "exp, table" : "table", err, errlen)) return 1;
-  double t_end = st->tab_t[st->nrow - 1];
+static const char *s_shape(ShapeKind k) { return (const char *[]){"berkovich", "cone", "wedge", "sphere", "flat_punch"}[k]; }
+
+/* A load or depth table: a history in the stage time that covers the whole stage; a load's values >= 0. */
+static int check_table(const YdDoc *doc, YdNode *nd, const char *path, double duration, IndentStage *st, char *err, size_t errlen) {
+  const TimeFn *f = &st->fn;
+  YdNode       *x = yd_get(nd, "table");
+  double        t_end = f->t[f->n - 1];
   if (t_end < duration * (1 - 1e-9))
-    FAIL("%s:%d: key '%s': the table's times end at %g s (the stage's time, after time_factor), before the stage's end "
-         "(duration %g s): give the history over the whole stage", doc->file, x->line, sub, t_end, duration);
-  for (int r = 0; load && r < st->nrow; r++) {
-    if (st->tab_v[r] < 0)
-      FAIL("%s:%d: key '%s': the load at t = %g s (row %d) is %g: expected loads >= 0 (the indenter pushes; it cannot pull)",
-           doc->file, x->line, sub, st->tab_t[r], r + 1, st->tab_v[r]);
-    st->tab_v[r] /= copies; /* the model's share of the whole indenter's load */
+    FAIL("%s:%d: key '%s.table': the table's times end at %g s (the stage's time, after time_factor), before the stage's end "
+         "(duration %g s): give the history over the whole stage", doc->file, x->line, path, t_end, duration);
+  for (int r = 0; st->kind == IND_LOAD_TABLE && r < f->n; r++)
+    if (f->v[r] < 0)
+      FAIL("%s:%d: key '%s.table': the load at t = %g s (row %d) is %g: expected loads >= 0 (the indenter pushes; it cannot pull)",
+           doc->file, x->line, path, f->t[r], r + 1, f->v[r]);
+  return 0;
+}
+
+/* depth: a number or {table}; load: a number >= 0, hold, {exp: {P0, k}} or {table} (scene/time_function.h). */
+static int read_function(const YdDoc *doc, YdNode *load, YdNode *depth, const char *path, double duration, IndentStage *st, char *err,
+                         size_t errlen) {
+  char sub[160];
+  snprintf(sub, sizeof sub, "%s.%s", path, depth ? "depth" : "load");
+  if (depth) {
+    if (time_fn_read(doc, depth, sub, TF_ALLOW_NUMBER | TF_ALLOW_TABLE, "a number, {table: {file, time, value, time_factor, factor}}",
+                     &st->fn, err, errlen))
+      return 1;
+    st->kind = st->fn.kind == TF_TABLE ? IND_DEPTH_TABLE : IND_DEPTH_RAMP;
+  } else {
+    if (time_fn_read(doc, load, sub, TF_ALLOW_NUMBER | TF_ALLOW_HOLD | TF_ALLOW_EXP | TF_ALLOW_TABLE,
+                     "a number, 'hold', {exp: {P0, k}} or {table: {file, time, value, time_factor, factor}}", &st->fn, err, errlen))
+      return 1;
+    const IndentLoadKind kinds[] = {[TF_RAMP] = IND_LOAD_RAMP, [TF_HOLD] = IND_LOAD_HOLD, [TF_EXP] = IND_LOAD_EXP, [TF_TABLE] = IND_LOAD_TABLE};
+    st->kind = kinds[st->fn.kind];
+    if (st->kind == IND_LOAD_RAMP && st->fn.target < 0)
+      FAIL("%s:%d: key '%s': expected a load >= 0 (the indenter pushes; it cannot pull), got %g", doc->file, load->line, sub, st->fn.target);
+  }
+  return st->fn.kind == TF_TABLE ? check_table(doc, depth ? depth : load, sub, duration, st, err, errlen) : 0;
+}
+
+/* until: {depth: h} or {until: {load: P}}, with a rising load, and not beside the stage's own until. */
+static int read_until(const YdDoc *doc, YdNode *x, const char *path, const Stage *g, IndentStage *st, char *err, size_t errlen) {
+  char sub[160];
+  snprintf(sub, sizeof sub, "%s.until", path);
+  if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen)) return 1;
+  YdNode *d, *l;
+  if (keys_number(doc, x, "depth", &st->until_depth, &d, err, errlen) || keys_number(doc, x, "load", &st->until_load, &l, err, errlen)) return 1;
+  if (keys_check_unused(doc, x, NULL, err, errlen)) return 1; /* an unknown word first, by its name */
+  if (!!d + !!l != 1) FAIL("%s:%d: key '%s': give one of depth or load, got %s", doc->file, x->line, sub, d ? "both" : "neither");
+  if (st->kind == IND_LOAD_HOLD || indent_stage_depth_control(st))
+    FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp, exp or table), not %s", doc->file, x->line, sub,
+         st->kind == IND_LOAD_HOLD ? "load: hold" : "depth control");
+  if (g->until.kind != EVENT_NONE) { /* read now, so that no earlier stage runs first */
+    YdNode *stage = x->parent ? x->parent->parent : NULL;
+    FAIL("%s:%d: key '%s': %s %g, and the stage's until (line %d) %s %g: give one end event, not both", doc->file, x->line, sub,
+         d ? "depth" : "load", d ? st->until_depth : st->until_load, yd_key_line(stage, "until"), stage_event_name(g->until.kind),
+         g->until.value);
   }
   return 0;
 }
 
-static int read_stage(YdDoc *doc, YdNode *nd, int i, double duration, double copies, IndentStage *st, char *err, size_t errlen) {
-  char    path[96], sub[128];
+/* One of copies mirror images carries 1/copies of the whole indenter's load: its load function and load event, here
+   only (the history's loads are the whole indenter's again: stepping/indent_stepper.c). */
+static void share_load(IndentStage *st, double copies) {
+  if (!indent_stage_depth_control(st)) time_fn_share(&st->fn, copies);
+  st->until_load /= copies;
+}
+
+static int read_stage(const YdDoc *doc, YdNode *nd, int i, const Stage *g, double copies, IndentStage *st, char *err, size_t errlen) {
+  char    path[96];
   YdNode *x;
   snprintf(path, sizeof path, "stages[%d].indenter", i);
-  st->kind = IND_LOAD_HOLD; /* a stage that does not mention the indenter holds its load */
+  st->kind = IND_LOAD_HOLD, st->fn.kind = TF_HOLD; /* a stage that does not mention the indenter holds its load */
   if (!nd) return 0;
   if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
   YdNode *load = yd_get(nd, "load"), *depth = yd_get(nd, "depth");
   if (!!load + !!depth != 1) FAIL("%s:%d: key '%s': give exactly one of load (force control) or depth (depth control)", doc->file, nd->line, path);
-  if (depth && depth->kind != YD_SCALAR) {
-    st->kind = IND_DEPTH_TABLE;
-    snprintf(sub, sizeof sub, "%s.depth", path);
-    if (read_table(doc, depth, sub, duration, copies, st, err, errlen)) return 1;
-  } else if (depth) {
-    st->kind = IND_DEPTH_RAMP;
-    snprintf(sub, sizeof sub, "%s.depth", path);
-    if (yd_double(doc, depth, sub, &st->target, err, errlen)) return 1;
-  } else if (load->kind == YD_SCALAR && !strcmp(load->text, "hold")) {
-    st->kind = IND_LOAD_HOLD;
-  } else if (load->kind == YD_SCALAR) {
-    st->kind = IND_LOAD_RAMP;
-    snprintf(sub, sizeof sub, "%s.load", path);
-    if (yd_double(doc, load, sub, &st->target, err, errlen)) return 1;
-    if (st->target < 0) FAIL("%s:%d: key '%s': expected a load >= 0 (the indenter pushes; it cannot pull), got %g", doc->file, load->line, sub, st->target);
-  } else if (load->kind == YD_MAPPING && !yd_get(load, "exp")) {
-    st->kind = IND_LOAD_TABLE;
-    snprintf(sub, sizeof sub, "%s.load", path);
-    if (read_table(doc, load, sub, duration, copies, st, err, errlen)) return 1;
-  } else {
-    snprintf(sub, sizeof sub, "%s.load", path);
-    if (load->kind != YD_MAPPING || !(x = yd_get(load, "exp")))
-      FAIL("%s:%d: key '%s': expected a number, 'hold', {exp: {P0, k}} or {table: {file, time, value, time_factor, factor}}", doc->file, load->line, sub);
-    st->kind = IND_LOAD_EXP;
-    char p0[160], pk[160];
-    snprintf(sub, sizeof sub, "%s.load.exp", path);
-    snprintf(p0, sizeof p0, "%s.P0", sub), snprintf(pk, sizeof pk, "%s.k", sub);
-    if (yd_double(doc, yd_get(x, "P0"), p0, &st->P0, err, errlen) || yd_double(doc, yd_get(x, "k"), pk, &st->k, err, errlen)) return 1;
-    if (!(st->P0 > 0)) FAIL("%s:%d: key '%s': expected > 0, got %g", doc->file, yd_key_line(x, "P0"), p0, st->P0);
-    if (yd_check_unused(doc, x, sub, "P0, k", err, errlen) || yd_check_unused(doc, load, path, "exp, table", err, errlen)) return 1;
-  }
-  if ((x = yd_get(nd, "until"))) {
-    snprintf(sub, sizeof sub, "%s.until", path);
-    if (yd_expect(doc, x, YD_MAPPING, sub, err, errlen)) return 1;
-    YdNode *d = yd_get(x, "depth"), *l = yd_get(x, "load");
-    if (yd_check_unused(doc, x, sub, "depth, load", err, errlen)) return 1; /* an unknown word first, by its name */
-    if (!!d + !!l != 1) FAIL("%s:%d: key '%s': give one of depth or load, got %s", doc->file, x->line, sub, d ? "both" : "neither");
-    if (d && yd_double(doc, d, sub, &st->until_depth, err, errlen)) return 1;
-    if (l && yd_double(doc, l, sub, &st->until_load, err, errlen)) return 1;
-    if (d && !(st->until_depth > 0)) FAIL("%s:%d: key '%s.depth': expected a depth > 0, got %g", doc->file, d->line, sub, st->until_depth);
-    if (l && !(st->until_load > 0)) FAIL("%s:%d: key '%s.load': expected a load > 0, got %g", doc->file, l->line, sub, st->until_load);
-    if (st->kind == IND_LOAD_HOLD || indent_stage_depth_control(st))
-      FAIL("%s:%d: key '%s': an end event needs a rising load (a ramp, exp or table), not %s", doc->file, x->line, sub,
-           st->kind == IND_LOAD_HOLD ? "load: hold" : "depth control");
-  }
-  if (st->kind == IND_LOAD_RAMP) st->target /= copies; /* the model carries 1/copies of the indenter's load */
-  st->P0 /= copies, st->until_load /= copies;
-  return yd_check_unused(doc, nd, path, "load, depth, until", err, errlen);
+  if (read_function(doc, load, depth, path, g->duration, st, err, errlen)) return 1;
+  if ((x = yd_get(nd, "until")) && read_until(doc, x, path, g, st, err, errlen)) return 1;
+  share_load(st, copies);
+  return keys_check_unused(doc, nd, NULL, err, errlen);
 }
 
 int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err, size_t errlen) {
@@ -105,13 +105,8 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
   if (yd_expect(doc, nd, YD_MAPPING, "indenter", err, errlen)) return 1;
   IndenterShape *sh = &is->shape;
   sh->dim = dim;
-  if (yd_string(doc, yd_get(nd, "shape"), "indenter.shape", &s, err, errlen)) return 1;
-  const char *shapes[] = {"berkovich", "cone", "wedge", "sphere", "flat_punch"};
-  int         kind     = -1;
-  for (int k = 0; k < 5; k++)
-    if (!strcmp(s, shapes[k])) kind = k;
-  v = yd_get(nd, "shape");
-  if (kind < 0) FAIL("%s:%d: key 'indenter.shape': expected berkovich, cone, wedge, sphere or flat_punch, got '%s'", doc->file, v->line, s);
+  int kind = 0, gap = 0; /* the choices of shape (ShapeKind's order) and of gap (normal, vertical) */
+  if (keys_word(doc, nd, "shape", NULL, &kind, &v, err, errlen)) return 1;
   sh->kind = (ShapeKind)kind;
   if (sh->kind == SHAPE_BERKOVICH && dim != 3)
     FAIL("%s:%d: key 'indenter.shape': berkovich needs a 3D mesh (axisymmetric: the cone of the same area, half_angle 70.3; plane strain: wedge)", doc->file, v->line);
@@ -128,29 +123,18 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
     if (!(deg > 0 && deg < 90)) FAIL("%s:%d: key 'indenter.%s': expected a half-angle between 0 and 90 degrees, got %g", doc->file, (ha ? ha : ta)->line, ha ? "half_angle" : "tip_angle", ha ? deg : 2 * deg);
     sh->half_angle = deg * DEG;
   } else {
-    if (yd_double(doc, yd_get(nd, "radius"), "indenter.radius", &sh->radius, err, errlen)) return 1;
-    if (!(sh->radius > 0)) FAIL("%s:%d: key 'indenter.radius': expected > 0, got %g", doc->file, yd_key_line(nd, "radius"), sh->radius);
+    if (keys_number(doc, nd, "radius", &sh->radius, &v, err, errlen)) return 1;
+    if (!v) FAIL("%s:%d: key 'indenter.radius' is missing: expected a number (a %s has a radius)", doc->file, nd->line, s_shape(sh->kind));
   }
-  if ((v = yd_get(nd, "rotation"))) {
-    double deg;
-    if (sh->kind != SHAPE_BERKOVICH) FAIL("%s:%d: key 'indenter.rotation': only a Berkovich indenter has one", doc->file, v->line);
-    if (yd_double(doc, v, "indenter.rotation", &deg, err, errlen)) return 1;
-    sh->rotation = deg * DEG;
-  }
+  double deg = 0;
+  if (keys_number(doc, nd, "rotation", &deg, &v, err, errlen)) return 1;
+  if (v && sh->kind != SHAPE_BERKOVICH) FAIL("%s:%d: key 'indenter.rotation': only a Berkovich indenter has one", doc->file, v->line);
+  sh->rotation = deg * DEG;
   if ((v = yd_get(nd, "tip")) && yd_doubles(doc, v, "indenter.tip", sh->tip, dim, NULL, err, errlen)) return 1;
   if (yd_string(doc, yd_get(nd, "contact"), "indenter.contact", &s, err, errlen)) return 1;
   snprintf(is->contact_group, sizeof is->contact_group, "%s", s);
-  if ((v = yd_get(nd, "gap"))) {
-    if (yd_string(doc, v, "indenter.gap", &s, err, errlen)) return 1;
-    if (strcmp(s, "normal") && strcmp(s, "vertical"))
-      FAIL("%s:%d: key 'indenter.gap': expected normal (to the indenter surface, at the current position) or vertical "
-           "(along the axis at the reference position: Sneddon's and Hertz's linearised contact), got '%s'", doc->file, v->line, s);
-    sh->vertical = !strcmp(s, "vertical");
-  }
-  if ((v = yd_get(nd, "complementarity_c"))) {
-    if (yd_double(doc, v, "indenter.complementarity_c", &is->c, err, errlen)) return 1;
-    if (!(is->c > 0)) FAIL("%s:%d: key 'indenter.complementarity_c': expected > 0 (stress per length), got %g", doc->file, v->line, is->c);
-  }
+  if (keys_word(doc, nd, "gap", NULL, &gap, NULL, err, errlen) || keys_number(doc, nd, "complementarity_c", &is->c, NULL, err, errlen)) return 1;
+  sh->vertical = gap == 1;
   is->copies = 1;
   if ((v = yd_get(nd, "copies"))) {
     if (yd_double(doc, v, "indenter.copies", &is->copies, err, errlen)) return 1;
@@ -161,33 +145,16 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
       FAIL("%s:%d: key 'indenter.copies': a %s model already carries the whole indenter's load (1), got %g", doc->file, v->line,
            sc->kin == KIN_AXISYMMETRIC ? "axisymmetric" : "plane-strain", is->copies);
   }
-  if (yd_check_unused(doc, nd, "indenter", "shape, half_angle, tip_angle, radius, rotation, tip, contact, gap, complementarity_c, copies", err, errlen)) return 1;
+  if (keys_check_unused(doc, nd, NULL, err, errlen)) return 1;
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))
     FAIL("%s:%d: key 'indenter.tip': axisymmetric: the tip must be on the axis (x = 0)", doc->file, yd_key_line(nd, "tip"));
   for (int i = 0; i < sc->nstage; i++)
-    if (read_stage(doc, sc->loads[i].indenter, i, sc->stage[i].duration, is->copies, &is->stage[i], err, errlen)) return 1;
+    if (read_stage(doc, sc->loads[i].indenter, i, &sc->stage[i], is->copies, &is->stage[i], err, errlen)) return 1;
   return 0;
 }
 
-double indent_stage_value(const IndentStage *st, double start, double lambda, double ts) {
-  switch (st->kind) {
-  case IND_LOAD_EXP: return st->P0 * exp(st->k * ts);  /* Yin et al. 2021 eqs. 25, 26 (alpha folded into k) */
-  case IND_LOAD_HOLD: return start;
-  case IND_LOAD_TABLE:
-  case IND_DEPTH_TABLE: return stage_table_value(st->tab_t, st->tab_v, st->nrow, ts);
-  default: return start + lambda * (st->target - start);
-  }
-}
+double indent_stage_value(const IndentStage *st, double start, double lambda, double ts) { return time_fn_value(&st->fn, start, lambda, ts); }
 
 double indent_stage_time_of_load(const IndentStage *st, double start, double duration, double P) {
-  double te = -1;
-  if (st->kind == IND_LOAD_EXP) te = log(P / st->P0) / st->k;
-  else if (st->kind == IND_LOAD_RAMP && st->target != start) te = duration * (P - start) / (st->target - start);
-  else if (st->kind == IND_LOAD_TABLE) { /* the first crossing; a table that starts above P: its start */
-    const double *t = st->tab_t, *v = st->tab_v;
-    if (v[0] >= P) te = 0;
-    for (int j = 0; te < 0 && j + 1 < st->nrow; j++)
-      if (v[j + 1] >= P) te = t[j] + (t[j + 1] - t[j]) * (P - v[j]) / (v[j + 1] - v[j]);
-  }
-  return te >= 0 && te <= duration ? te : -1;
+  return time_fn_time_of(&st->fn, start, duration, P);
 }

@@ -14,12 +14,10 @@ typedef enum { IND_LOAD_RAMP, IND_LOAD_EXP, IND_LOAD_HOLD, IND_DEPTH_RAMP, IND_L
 
 typedef struct {
   IndentLoadKind kind;
-  double         target;        /* ramp: the load (or depth) at the stage's end */
-  double         P0, k;         /* exp */
-  double        *tab_t, *tab_v; /* table: stage times and loads (the model's) or depths, nrow of them */
-  int            nrow;
+  TimeFn         fn;            /* the load (the model's: 1/copies of the whole indenter's) or the depth in the stage time
+                                   (scene/time_function.h) */
   double         until_depth;   /* > 0: the stage ends when the depth reaches it */
-  double         until_load;    /* > 0: ... when the load reaches it (exp: at a time known in advance) */
+  double         until_load;    /* > 0: ... when the load (the model's) reaches it (exp: at a time known in advance) */
 } IndentStage;
 
 typedef struct {

@@ -9,8 +9,10 @@
 
 #include "../io/csv_table.h"
 #include "../io/gmsh_mesh.h"
+#include "../io/keydecl.h"
 #include "../io/paths.h"
 #include "../material/material_input.h"
+#include "../scene/scene_keys.h"
 
 #define FAIL(...)                       \
   do {                                  \
@@ -18,79 +20,20 @@
     return 1;                           \
   } while (0)
 
-/* A stage table {file, time, value, time_factor, factor} (node x, key path 'path'): the times (the stage's, in
- * s after time_factor) and values (after factor), linearly interpolated; outside its times its end values hold. */
-int stage_table_read(YdDoc *doc, YdNode *x, const char *path, double **t, double **v, int *n, char *err, size_t errlen) {
-  const char *file, *tc, *vc;
-  double      tf = 1, vf = 1;
-  YdNode     *y;
-  char        sub[256];
-  if (yd_expect(doc, x, YD_MAPPING, path, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.file", path);
-  if (yd_string(doc, yd_require(doc, x, "file", YD_SCALAR, sub, err, errlen), sub, &file, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.time", path);
-  if (yd_string(doc, yd_require(doc, x, "time", YD_SCALAR, sub, err, errlen), sub, &tc, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.value", path);
-  if (yd_string(doc, yd_require(doc, x, "value", YD_SCALAR, sub, err, errlen), sub, &vc, err, errlen)) return 1;
-  snprintf(sub, sizeof sub, "%s.time_factor", path);
-  if ((y = yd_get(x, "time_factor")) && (yd_double(doc, y, sub, &tf, err, errlen) || !(tf > 0)))
-    FAIL("%s:%d: key '%s': expected a factor > 0 (the table's time unit in s), got '%s'", doc->file, y->line, sub, y->text ? y->text : "");
-  snprintf(sub, sizeof sub, "%s.factor", path);
-  if ((y = yd_get(x, "factor")) && yd_double(doc, y, sub, &vf, err, errlen)) return 1;
-  if (yd_check_unused(doc, x, path, "file, time, value, time_factor, factor", err, errlen)) return 1;
-  char resolved[1024], where[1200];
-  snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(x, "file"), path);
-  if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
-  snprintf(where, sizeof where, "%s:%d: key '%s'", doc->file, x->line, path);
-  const char *want[2] = {tc, vc};
-  double     *data;
-  if (csv_read_columns(resolved, where, want, 2, 0, &data, n, err, errlen)) return 1;
-  *t = malloc(sizeof(double) * *n), *v = malloc(sizeof(double) * *n);
-  for (int r = 0; r < *n; r++) (*t)[r] = data[2 * r] * tf, (*v)[r] = data[2 * r + 1] * vf;
-  free(data);
+/* A pressure of a stage (scene/time_function.h): a number (reached at the stage's end), {exp: {P0, k}} (P0 exp(k t)
+ * in the stage time t), or {table: {file, time, value, time_factor, factor}} (linear interpolation). */
+static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, StageLoads *g, int gi, char *err, size_t errlen) {
+  if (time_fn_read(doc, nd, path, TF_ALLOW_NUMBER | TF_ALLOW_EXP | TF_ALLOW_TABLE, "a number, {exp: {P0, k}} or {table: {...}}",
+                   &g->fn[gi], err, errlen))
+    return 1;
+  if (g->fn[gi].kind == TF_RAMP) g->pressure[gi] = g->fn[gi].target;
   return 0;
 }
 
-double stage_table_value(const double *t, const double *v, int n, double ts) {
-  int j = 0;
-  if (ts <= t[0]) return v[0];
-  if (ts >= t[n - 1]) return v[n - 1];
-  while (t[j + 1] < ts) j++;
-  return v[j] + (v[j + 1] - v[j]) * (ts - t[j]) / (t[j + 1] - t[j]);
-}
-
-/* A pressure of a stage: a number (reached at the stage's end), {exp: {P0, k}} (P0 exp(k t) in the
- * stage time t), or {table: {file, time, value, time_factor, factor}} (linear interpolation). */
-static int read_pressure(YdDoc *doc, YdNode *nd, const char *path, StageLoads *g, int gi, char *err, size_t errlen) {
-  YdNode *x;
-  g->fn[gi] = FN_RAMP;
-  if (nd->kind == YD_SCALAR) return yd_double(doc, nd, path, &g->pressure[gi], err, errlen);
-  if (yd_expect(doc, nd, YD_MAPPING, path, err, errlen)) return 1;
-  char sub[200];
-  if ((x = yd_get(nd, "exp"))) {
-    g->fn[gi] = FN_EXP;
-    snprintf(sub, sizeof sub, "%s.exp", path);
-    char p0[220], pk[220];
-    snprintf(p0, sizeof p0, "%s.P0", sub), snprintf(pk, sizeof pk, "%s.k", sub);
-    if (yd_double(doc, yd_get(x, "P0"), p0, &g->P0[gi], err, errlen) || yd_double(doc, yd_get(x, "k"), pk, &g->k[gi], err, errlen)) return 1;
-    if (yd_check_unused(doc, x, sub, "P0, k", err, errlen)) return 1;
-  } else if ((x = yd_get(nd, "table"))) {
-    g->fn[gi] = FN_TABLE;
-    snprintf(sub, sizeof sub, "%s.table", path);
-    if (stage_table_read(doc, x, sub, &g->tab_t[gi], &g->tab_v[gi], &g->nrow[gi], err, errlen)) return 1;
-  } else {
-    FAIL("%s:%d: key '%s': expected a number, {exp: {P0, k}} or {table: {...}}", doc->file, nd->line, path);
-  }
-  return yd_check_unused(doc, nd, path, "exp, table", err, errlen);
-}
-
-/* The pressure of group k at stage time ts (lambda: the ramp's fraction then). */
 double stage_pressure(const StageLoads *g, int k, double start, double target, double lambda, double ts) {
-  switch (g->fn[k]) {
-  case FN_EXP: return g->P0[k] * exp(g->k[k] * ts);
-  case FN_TABLE: return stage_table_value(g->tab_t[k], g->tab_v[k], g->nrow[k], ts);
-  default: return start + lambda * (target - start);
-  }
+  TimeFn f = g->fn[k];
+  if (f.kind == TF_RAMP) f.target = target; /* the caller's: a group the stage does not name keeps its value */
+  return time_fn_value(&f, start, lambda, ts);
 }
 
 
@@ -147,8 +90,7 @@ static int component_of(const char *s) {
   return !strcmp(s, "x") || !strcmp(s, "0") ? 0 : !strcmp(s, "y") || !strcmp(s, "1") ? 1 : !strcmp(s, "z") || !strcmp(s, "2") ? 2 : -1;
 }
 
-/* A stage's output: {times: [t1, t2, ...]}: fields at exactly these stage times (the steps land on them). */
-/* name, units and output (directory, fields_every, times) of the scene. */
+/* name, units and output (directory, fields_every) of the scene. */
 static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
   YdNode     *x, *v;
   const char *s;
@@ -160,19 +102,19 @@ static int read_output(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t 
     for (size_t i = 0; i < x->n; i++) x->used[i] = 1;
   snprintf(sc->outdir, sizeof sc->outdir, "out/%s", sc->name);
   if ((x = yd_get(root, "output"))) {
+    if (yd_expect(doc, x, YD_MAPPING, "output", err, errlen)) return 1;
     if ((v = yd_get(x, "directory"))) {
       if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
-    if ((v = yd_get(x, "fields_every")) && yd_int_range(doc, v, "output.fields_every", 0, INT_MAX, &sc->fields_every, err, errlen)) return 1;
-    if (yd_check_unused(doc, x, "output", "directory, fields_every", err, errlen)) return 1;
+    if (keys_integer(doc, x, "fields_every", &sc->fields_every, NULL, err, errlen) || keys_check_unused(doc, x, NULL, err, errlen)) return 1;
   }
   return 0;
 }
 
 /* mesh.adapt: {levels, growth, tol} (fe_scene.h); only with mesh.geometry, which adaptation meshes again. */
 static int read_adapt(YdDoc *doc, YdNode *mesh, FeScene *sc, char *err, size_t errlen) {
-  YdNode *x = yd_get(mesh, "adapt"), *v;
+  YdNode *x = yd_get(mesh, "adapt");
   sc->adapt = (MeshAdapt){.levels = 0, .growth = 2, .tol = 0, .line = 0};
   if (!x) return 0;
   if (yd_expect(doc, x, YD_MAPPING, "mesh.adapt", err, errlen)) return 1;
@@ -180,54 +122,38 @@ static int read_adapt(YdDoc *doc, YdNode *mesh, FeScene *sc, char *err, size_t e
   if (!yd_get(mesh, "geometry"))
     FAIL("%s:%d: key 'mesh.adapt': adaptation meshes the geometry again: give mesh.geometry (a gmsh .geo), not mesh.file (a .msh "
          "without its geometry)", doc->file, x->line);
-  if ((v = yd_get(x, "levels")) && yd_int_range(doc, v, "mesh.adapt.levels", 1, 8, &sc->adapt.levels, err, errlen)) return 1;
-  if ((v = yd_get(x, "growth"))) {
-    if (yd_double(doc, v, "mesh.adapt.growth", &sc->adapt.growth, err, errlen)) return 1;
-    if (!(sc->adapt.growth >= 1.2 && sc->adapt.growth <= 8))
-      FAIL("%s:%d: key 'mesh.adapt.growth': expected the ratio of cells from one level to the next, 1.2 to 8, got %g", doc->file, v->line,
-           sc->adapt.growth);
-  }
-  if ((v = yd_get(x, "tol"))) {
-    if (yd_double(doc, v, "mesh.adapt.tol", &sc->adapt.tol, err, errlen)) return 1;
-    if (!(sc->adapt.tol > 0 && sc->adapt.tol < 1))
-      FAIL("%s:%d: key 'mesh.adapt.tol': expected a relative error > 0 and < 1 (0.01 is 1 %%), got %g", doc->file, v->line, sc->adapt.tol);
-  }
-  return yd_check_unused(doc, x, "mesh.adapt", "levels, growth, tol", err, errlen);
+  if (keys_integer(doc, x, "levels", &sc->adapt.levels, NULL, err, errlen) || keys_number(doc, x, "growth", &sc->adapt.growth, NULL, err, errlen) ||
+      keys_number(doc, x, "tol", &sc->adapt.tol, NULL, err, errlen))
+    return 1;
+  return keys_check_unused(doc, x, NULL, err, errlen);
 }
 
 /* mesh: a gmsh geometry (meshed now, with parameters), a .msh file; its order, kinematics and thickness. */
 static int read_mesh(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
   YdNode     *v;
-  const char *s;
   YdNode     *mesh = yd_require(doc, root, "mesh", YD_MAPPING, "mesh", err, errlen);
   if (!mesh) return 1;
+  int     kin = 0; /* the choices 3d, plane_strain, axisymmetric */
   sc->order = 1;
-  if ((v = yd_get(mesh, "order")) && yd_int(doc, v, "mesh.order", &sc->order, err, errlen)) return 1;
-  if (sc->order != 1 && sc->order != 2) FAIL("%s:%d: key 'mesh.order': expected 1 or 2, got %d", doc->file, v->line, sc->order);
+  if (keys_integer(doc, mesh, "order", &sc->order, NULL, err, errlen)) return 1;
   YdNode *geo = yd_get(mesh, "geometry"), *file = yd_get(mesh, "file");
   if (!!geo + !!file != 1)
     FAIL("%s:%d: key 'mesh': give exactly one of geometry (a gmsh .geo, meshed now) or file (a .msh)", doc->file, mesh->line);
   sc->kin       = KIN_3D;
   sc->thickness = 1;
-  if ((v = yd_get(mesh, "kinematics"))) {
-    if (yd_string(doc, v, "mesh.kinematics", &s, err, errlen)) return 1;
-    if (!strcmp(s, "3d")) sc->kin = KIN_3D;
-    else if (!strcmp(s, "plane_strain")) sc->kin = KIN_PLANE_STRAIN;
-    else if (!strcmp(s, "axisymmetric")) sc->kin = KIN_AXISYMMETRIC;
-    else FAIL("%s:%d: key 'mesh.kinematics': expected 3d, plane_strain or axisymmetric, got '%s'", doc->file, v->line, s);
-  }
-  if ((v = yd_get(mesh, "thickness"))) {
-    if (yd_double(doc, v, "mesh.thickness", &sc->thickness, err, errlen)) return 1;
-    if (!(sc->thickness > 0) || sc->kin != KIN_PLANE_STRAIN)
-      FAIL("%s:%d: key 'mesh.thickness': expected > 0, and only with kinematics: plane_strain", doc->file, v->line);
-  }
+  if (keys_word(doc, mesh, "kinematics", NULL, &kin, NULL, err, errlen)) return 1;
+  sc->kin = kin == 0 ? KIN_3D : kin == 1 ? KIN_PLANE_STRAIN : KIN_AXISYMMETRIC;
+  if (keys_number(doc, mesh, "thickness", &sc->thickness, &v, err, errlen)) return 1;
+  if (v && sc->kin != KIN_PLANE_STRAIN)
+    FAIL("%s:%d: key 'mesh.thickness': %g, and kinematics: %s: only a plane-strain mesh has a thickness", doc->file, v->line, sc->thickness,
+         kin == 0 ? "3d" : "axisymmetric");
   if (read_mesh_source(doc, mesh, geo, file, sc, err, errlen) || read_adapt(doc, mesh, sc, err, errlen)) return 1;
-  return yd_check_unused(doc, mesh, "mesh", "geometry, parameters, file, order, kinematics, thickness, adapt", err, errlen);
+  return keys_check_unused(doc, mesh, NULL, err, errlen);
 }
 
 /* material (the UMAT's properties) and phi (the hard-frame fraction's field). */
 static int read_material_phi(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
-  YdNode *x, *v;
+  YdNode *x;
   if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
       material_read(doc, x, sc->kin == KIN_3D ? 6 : 4, &sc->mat, err, errlen))
     return 1;
@@ -235,17 +161,15 @@ static int read_material_phi(YdDoc *doc, YdNode *root, FeScene *sc, char *err, s
   sc->phi_lo = 0, sc->phi_hi = 1, sc->phi_seed = 1;
   if ((x = yd_get(root, "phi"))) {
     if (!material_has_phi(&sc->mat)) FAIL("%s:%d: key 'phi': this UMAT has no hard-frame fraction", doc->file, x->line);
-    if (yd_double(doc, yd_get(x, "mean"), "phi.mean", &sc->phi_mean, err, errlen)) return 1;
-    if ((v = yd_get(x, "std")) && yd_double(doc, v, "phi.std", &sc->phi_std, err, errlen)) return 1;
-    if ((v = yd_get(x, "min")) && yd_double(doc, v, "phi.min", &sc->phi_lo, err, errlen)) return 1;
-    if ((v = yd_get(x, "max")) && yd_double(doc, v, "phi.max", &sc->phi_hi, err, errlen)) return 1;
-    if ((v = yd_get(x, "seed")) && yd_int(doc, v, "phi.seed", &sc->phi_seed, err, errlen)) return 1;
-    if ((v = yd_get(x, "correlation_length")) &&
-        (yd_double(doc, v, "phi.correlation_length", &sc->phi_corr, err, errlen) || sc->phi_corr < 0))
-      FAIL("%s:%d: key 'phi.correlation_length': expected a length >= 0", doc->file, v->line);
-    if (!(0 <= sc->phi_lo && sc->phi_lo <= sc->phi_mean && sc->phi_mean <= sc->phi_hi && sc->phi_hi <= 1 && sc->phi_std >= 0))
-      FAIL("%s:%d: key 'phi': expected 0 <= min <= mean <= max <= 1 and std >= 0", doc->file, x->line);
-    if (yd_check_unused(doc, x, "phi", "mean, std, min, max, seed, correlation_length", err, errlen)) return 1;
+    if (yd_expect(doc, x, YD_MAPPING, "phi", err, errlen) || keys_number(doc, x, "mean", &sc->phi_mean, NULL, err, errlen) ||
+        keys_number(doc, x, "std", &sc->phi_std, NULL, err, errlen) || keys_number(doc, x, "min", &sc->phi_lo, NULL, err, errlen) ||
+        keys_number(doc, x, "max", &sc->phi_hi, NULL, err, errlen) || keys_integer(doc, x, "seed", &sc->phi_seed, NULL, err, errlen) ||
+        keys_number(doc, x, "correlation_length", &sc->phi_corr, NULL, err, errlen))
+      return 1;
+    if (!(0 <= sc->phi_lo && sc->phi_lo <= sc->phi_mean && sc->phi_mean <= sc->phi_hi && sc->phi_hi <= 1))
+      FAIL("%s:%d: key 'phi': expected 0 <= min <= mean <= max <= 1, got min %g, mean %g, max %g", doc->file, x->line, sc->phi_lo, sc->phi_mean,
+           sc->phi_hi);
+    if (keys_check_unused(doc, x, NULL, err, errlen)) return 1;
   }
   return 0;
 }
@@ -257,7 +181,7 @@ static int read_initial(YdDoc *doc, YdNode *root, FeScene *sc, YdNode **initial_
   if ((x = yd_get(root, "initial"))) {
     if ((v = yd_get(x, "stress")) && yd_doubles(doc, v, "initial.stress", sc->stress0, 6, NULL, err, errlen)) return 1;
     *initial_pressure = yd_get(x, "pressure");
-    if (yd_check_unused(doc, x, "initial", "stress (both frames), pressure (in equilibrium with it)", err, errlen)) return 1;
+    if (keys_check_unused(doc, x, NULL, err, errlen)) return 1;
   }
   return 0;
 }
@@ -286,7 +210,7 @@ static int read_fixed(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t errl
              comps->items[j]->kind == YD_SCALAR ? comps->items[j]->text : "a list or mapping");
       sc->fixed[k].comp[sc->fixed[k].ncomp++] = c;
     }
-    if (yd_check_unused(doc, f, path, "group, components", err, errlen)) return 1;
+    if (keys_check_unused(doc, f, NULL, err, errlen)) return 1;
     sc->nfixed++;
   }
   return 0;
@@ -319,7 +243,7 @@ static int read_mirror(YdDoc *doc, YdNode *x, FeScene *sc, char *err, size_t err
            yd_key_line(f, "normal"), sub, dim, n[0], n[1], n[2]);
     for (int d = 0; d < dim; d++) m->normal[d] = n[d] / sqrt(norm);
     m->mirror = PETSC_TRUE, m->index = (int)k, m->line = yd_key_line(f, "normal");
-    if (yd_check_unused(doc, f, path, "group, normal", err, errlen)) return 1;
+    if (keys_check_unused(doc, f, NULL, err, errlen)) return 1;
     sc->nfixed++;
   }
   return 0;
@@ -351,6 +275,36 @@ static int check_mirror_symmetry(YdDoc *doc, const FeScene *sc, char *err, size_
   return 0;
 }
 
+/* An axisymmetric body of Cam-Clay IX with a hard frame (phi > 0, transversely isotropic about its bedding normal b) is
+   axisymmetric only when b lies along the axis (y): a normal with a radial part (bedding_angle 30, or 90) differs from
+   one azimuth to the next, which the model cannot represent. Other UMATs and phi = 0 (an isotropic soft frame) pass. */
+static int check_axisymmetric_material(YdDoc *doc, YdNode *root, const FeScene *sc, char *err, size_t errlen) {
+  const UmatMaterial *mat = &sc->mat;
+  double              b[3] = {0, 1, 0}, nb;
+  char                where[400];
+  if (sc->kin != KIN_AXISYMMETRIC || !material_has_phi(mat) || !(sc->phi_mean > 0 || (sc->phi_std > 0 && sc->phi_hi > 0))) return 0;
+  material_normal(mat, b);
+  nb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  if (fabs(fabs(b[1]) - nb) <= 1e-9 * nb) return 0;
+  YdNode *m = yd_get(root, "material"), *set = yd_get(m, "set"), *v = NULL;
+  const char *names[] = {"n1", "n2", "n3"}, *named = NULL;
+  for (int k = 0; k < 3 && set && !v; k++)
+    if ((v = yd_get(set, names[k]))) named = names[k];
+  if ((v = yd_get(m, "bedding_angle")))
+    snprintf(where, sizeof where, "%s:%d: key 'material.bedding_angle': %s", doc->file, v->line, v->text ? v->text : "");
+  else if ((v = yd_get(m, "normal"))) snprintf(where, sizeof where, "%s:%d: key 'material.normal': [%g, %g, %g]", doc->file, v->line, b[0], b[1], b[2]);
+  else if (named && (v = yd_get(set, named)))
+    snprintf(where, sizeof where, "%s:%d: key 'material.set.%s': %s", doc->file, yd_key_line(set, named), named, v->text ? v->text : "");
+  else if ((v = yd_get(m, "props")) && v->kind == YD_SEQUENCE)
+    snprintf(where, sizeof where, "%s:%d: key 'material.props': the normal n1, n2, n3 = %g, %g, %g", doc->file, v->line, b[0], b[1], b[2]);
+  else snprintf(where, sizeof where, "option -material_set (scene %s): the normal n1, n2, n3 = %g, %g, %g", doc->file, b[0], b[1], b[2]);
+  FAIL("%s in an axisymmetric scene (mesh.kinematics: axisymmetric, line %d): the bedding normal [%.6g, %.6g, %.6g] does not lie "
+       "along the axis (y), so the hard frame (phi > 0, transversely isotropic about it) is not axisymmetric: the model would "
+       "not be the problem stated. Give bedding_angle 0 (the load along the bedding normal), phi = 0, or a 3D model (a load "
+       "parallel to the bedding: input/microindent_BP.yaml)", where, yd_key_line(yd_get(root, "mesh"), "kinematics"), b[0] / nb,
+       b[1] / nb, b[2] / nb);
+}
+
 /* boundary: fixed groups, pressure groups and traction groups (loads GROUP.x, GROUP.y (, GROUP.z)). */
 static int read_boundary(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t errlen) {
   YdNode     *x;
@@ -380,7 +334,7 @@ static int read_boundary(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_
       for (int d = 0; d < dim; d++) snprintf(sc->pressure_group[sc->npressure++], 64, "%s.%c", s, 'x' + d);
     }
   }
-  return yd_check_unused(doc, bc, "boundary", "fixed, mirror, pressure, traction", err, errlen);
+  return keys_check_unused(doc, bc, NULL, err, errlen);
 }
 
 /* initial.pressure: the starting pressure of each loaded group named in it (0 otherwise). */
@@ -438,7 +392,7 @@ static int read_stage_loads(YdDoc *doc, YdNode *st, const char *path, const FeSc
         for (int j = 0; j < sc->npressure; j++)
           if (!strcmp(sc->pressure_group[j], name)) gi = j;
         if (gi < 0) FAIL("%s:%d: key '%s': not a group listed in boundary.traction", doc->file, v->key_lines[k], sub2);
-        g->pressure[gi] = t[d], g->fn[gi] = FN_RAMP;
+        g->pressure[gi] = t[d], g->fn[gi] = (TimeFn){.kind = TF_RAMP, .target = t[d]};
       }
     }
   }
@@ -453,7 +407,7 @@ static int read_stage(YdDoc *doc, YdNode *st, int i, FeScene *sc, char *err, siz
   if (stage_read(doc, st, path, i, "stage", "evp_rate_below, q_above, q_below, p_above", &sc->stage[i], err, errlen)) return 1;
   if (read_stage_loads(doc, st, path, sc, &sc->loads[i], err, errlen)) return 1;
   sc->loads[i].indenter = yd_get(st, "indenter"); /* read by the contact module */
-  return yd_check_unused(doc, st, path, STAGE_KEYS ", pressure, traction, indenter", err, errlen);
+  return keys_check_unused(doc, st, NULL, err, errlen);
 }
 
 /* solver.options: PETSc options (the command line overrides them). */
@@ -466,7 +420,7 @@ static int read_solver(YdDoc *doc, YdNode *root, FeScene *sc, char *err, size_t 
       if (s[0] != '-') FAIL("%s:%d: key 'solver.options': expected PETSc options such as '-snes_monitor', got '%s'", doc->file, v->line, s);
       snprintf(sc->solver_options, sizeof sc->solver_options, "%s", s);
     }
-    if (yd_check_unused(doc, x, "solver", "options (PETSc options; the command line overrides them)", err, errlen)) return 1;
+    if (keys_check_unused(doc, x, NULL, err, errlen)) return 1;
   }
   return 0;
 }
@@ -475,10 +429,12 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   YdNode *root = doc->root, *initial_pressure;
   memset(sc, 0, sizeof *sc);
   snprintf(sc->name, sizeof sc->name, "fe");
+  scene_keys_attach(doc, SCENE_FE);
   yd_get(root, "scene");
   if (read_output(doc, root, sc, err, errlen) || read_mesh(doc, root, sc, err, errlen) || read_material_phi(doc, root, sc, err, errlen) ||
-      read_initial(doc, root, sc, &initial_pressure, err, errlen) || read_boundary(doc, root, sc, err, errlen) ||
-      read_initial_pressure(doc, initial_pressure, sc, err, errlen) || check_mirror_symmetry(doc, sc, err, errlen))
+      check_axisymmetric_material(doc, root, sc, err, errlen) || read_initial(doc, root, sc, &initial_pressure, err, errlen) ||
+      read_boundary(doc, root, sc, err, errlen) || read_initial_pressure(doc, initial_pressure, sc, err, errlen) ||
+      check_mirror_symmetry(doc, sc, err, errlen))
     return 1;
   YdNode *stages = yd_require(doc, root, "stages", YD_SEQUENCE, "stages", err, errlen);
   if (!stages) return 1;
@@ -492,6 +448,5 @@ int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen) {
   for (int i = 0; i < sc->nstage; i++)
     if (sc->loads[i].indenter && !sc->indenter)
       FAIL("%s:%d: key 'stages[%d].indenter': the scene has no top-level 'indenter' block", doc->file, sc->loads[i].indenter->line, i);
-  return yd_check_unused(doc, root, "", "scene, name, units, mesh, material, phi, initial, boundary, indenter, stages, output, solver",
-                         err, errlen);
+  return keys_check_unused(doc, root, NULL, err, errlen);
 }

@@ -6,22 +6,17 @@
 #include "../io/gmsh_mesh.h"
 #include "../io/yaml_doc.h"
 #include "../scene/stage.h"
+#include "../scene/time_function.h"
 #include "fe_problem.h"
 
-#define MAXSTAGES 16
 #define FE_MAX_FIXED 16 /* boundary.fixed and boundary.mirror entries together */
 
-enum { FN_RAMP, FN_EXP, FN_TABLE };
-
 /* A stage's loads on the body (the stage itself, scene/stage.h, is every kind's): the pressure or traction of each
- * group at the stage's end, or a time function of the stage time: P0 exp(k t), or a table; and its indenter
- * settings (read by the contact module). */
+ * group, a time function of the stage time (scene/time_function.h: a ramp to the value at the stage's end,
+ * P0 exp(k t), or a table); and its indenter settings (read by the contact module). */
 typedef struct {
-  double    pressure[FE_MAX_GROUPS]; /* at the end of the stage; NAN: keep */
-  int       fn[FE_MAX_GROUPS];       /* FN_RAMP (the target above), FN_EXP, FN_TABLE */
-  double    P0[FE_MAX_GROUPS], k[FE_MAX_GROUPS];
-  int       nrow[FE_MAX_GROUPS];
-  double   *tab_t[FE_MAX_GROUPS], *tab_v[FE_MAX_GROUPS];
+  double    pressure[FE_MAX_GROUPS]; /* a ramp's value at the end of the stage; NAN: keep */
+  TimeFn    fn[FE_MAX_GROUPS];
   YdNode   *indenter;                /* the stage's indenter settings (read by the contact module), or NULL */
 } StageLoads;
 
@@ -63,12 +58,8 @@ typedef struct {
 
 /* Read the scene; 0, or 1 with err filled. */
 int fe_scene_read(YdDoc *doc, FeScene *sc, char *err, size_t errlen);
-/* The load of group k at stage time ts (lambda: the fraction of a ramp done then). */
+/* The load of group k at stage time ts: its time function, a ramp from start to target (lambda: the fraction of the
+ * stage done then). */
 double stage_pressure(const StageLoads *g, int k, double start, double target, double lambda, double ts);
-/* A stage's {table: {file, time, value, time_factor, factor}} at node x (key path 'path', the file relative to
- * the scene's): times in the stage's time (s) and values, malloc'ed, n rows; 0, or 1 with err filled. */
-int stage_table_read(YdDoc *doc, YdNode *x, const char *path, double **t, double **v, int *n, char *err, size_t errlen);
-/* A table's value at stage time ts: linear between its rows, its end values outside them. */
-double stage_table_value(const double *t, const double *v, int n, double ts);
 
 #endif

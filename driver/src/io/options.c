@@ -1,6 +1,8 @@
 #include "options.h"
 
 #include <limits.h>
+#include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "text.h"
@@ -16,12 +18,32 @@ static void remember(const char *name) {
   if (ndeclared < MAX_DECLARED) snprintf(declared[ndeclared++], sizeof declared[0], "%s", name);
 }
 
+/* The options the driver set itself (options_default). */
+static char defaulted[MAX_DECLARED][64];
+static int  ndefaulted;
+
 PetscErrorCode options_default(const char *name, const char *value) {
   PetscBool set;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, name, value));
+  if (!set) {
+    PetscCall(PetscOptionsSetValue(NULL, name, value));
+    if (ndefaulted < MAX_DECLARED && !options_set_by_driver(name)) snprintf(defaulted[ndefaulted++], sizeof defaulted[0], "%s", name);
+  }
   PetscFunctionReturn(0);
+}
+
+int options_set_by_driver(const char *name) {
+  const char *bare = name[0] == '-' ? name + 1 : name;
+  for (int k = 0; k < ndefaulted; k++)
+    if (!strcmp(defaulted[k] + 1, bare)) return 1;
+  return 0;
+}
+
+/* help with the range appended: "help [range]" (into buf). */
+static const char *with_range(const char *help, const char *range, char *buf, size_t n) {
+  if (snprintf(buf, n, "%s [%s]", help, range) < 0) buf[0] = '\0';
+  return buf;
 }
 
 /* The value given for name, or NULL (not given, or given without a value: *bare). */
@@ -34,7 +56,7 @@ static PetscErrorCode given_text(const char *name, char *buf, size_t n, PetscBoo
 
 PetscErrorCode options_int(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscInt def, PetscInt lo,
                            PetscInt hi, PetscInt *value, PetscBool *set) {
-  char      text[256], want[96];
+  char      text[256], want[96], range[64], full[1024];
   PetscBool given;
   int       v;
   PetscFunctionBeginUser;
@@ -44,21 +66,39 @@ PetscErrorCode options_int(PetscOptionItems *PetscOptionsObject, const char *nam
     text_int_expected(lo, hi, want, sizeof want);
     SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "option %s %s: expected %s", name, text[0] ? text : "(no value)", want);
   }
-  PetscCall(PetscOptionsRangeInt(name, help, NULL, def, value, set, lo, hi));
+  if (hi >= PETSC_MAX_INT) snprintf(range, sizeof range, ">= %lld", (long long)lo);
+  else snprintf(range, sizeof range, "%lld to %lld", (long long)lo, (long long)hi);
+  PetscCall(PetscOptionsRangeInt(name, with_range(help, range, full, sizeof full), NULL, def, value, set, lo, hi));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode options_real(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscReal def,
-                            PetscReal *value, PetscBool *set) {
-  char      text[256];
+/* "a number > 0 and < 1", "a number from 1.2 to 8", ">= 0" ... */
+static const char *real_range(PetscReal lo, PetscReal hi, unsigned open, char *buf, size_t n) {
+  const char *gl = open & OPTIONS_LO_OPEN ? ">" : ">=", *lh = open & OPTIONS_HI_OPEN ? "<" : "<=";
+  if (!isnan(lo) && !isnan(hi) && !open) snprintf(buf, n, "a number from %g to %g", (double)lo, (double)hi);
+  else if (!isnan(lo) && !isnan(hi)) snprintf(buf, n, "a number %s %g and %s %g", gl, (double)lo, lh, (double)hi);
+  else if (!isnan(lo)) snprintf(buf, n, "a number %s %g", gl, (double)lo);
+  else if (!isnan(hi)) snprintf(buf, n, "a number %s %g", lh, (double)hi);
+  else snprintf(buf, n, "a finite number");
+  return buf;
+}
+
+PetscErrorCode options_real(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscReal def, PetscReal lo,
+                            PetscReal hi, unsigned open, PetscReal *value, PetscBool *set) {
+  char      text[256], range[96], full[1024];
   PetscBool given;
-  double    v;
+  double    v = 0;
   PetscFunctionBeginUser;
   remember(name);
   PetscCall(given_text(name, text, sizeof text, &given));
   PetscCheck(!given || !text_real(text, &v), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "option %s %s: expected a finite number", name,
              text[0] ? text : "(no value)");
-  PetscCall(PetscOptionsReal(name, help, NULL, def, value, set));
+  real_range(lo, hi, open, range, sizeof range);
+  int below = !isnan(lo) && ((open & OPTIONS_LO_OPEN) ? !(v > lo) : !(v >= lo));
+  int above = !isnan(hi) && ((open & OPTIONS_HI_OPEN) ? !(v < hi) : !(v <= hi));
+  PetscCheck(!given || !(below || above), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "option %s %s: expected %s", name, text, range);
+  const char *shown = !strncmp(range, "a number from ", 14) ? range + 14 : !strncmp(range, "a number ", 9) ? range + 9 : range;
+  PetscCall(PetscOptionsReal(name, with_range(help, shown, full, sizeof full), NULL, def, value, set));
   PetscFunctionReturn(0);
 }
 

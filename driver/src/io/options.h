@@ -1,8 +1,10 @@
 /* The driver's own options (-checkpoint_every, -fe_*, -indent_*, ...): each module declares and reads them in
- * one PetscOptionsBegin/End block through these functions, which check the value first (an integer in its
- * range, a finite number, a boolean: the message names the option, io/text.h) and remember the name, so
- * that main can call every module's block before the run and refuse a misspelt option of the driver's
- * (options_check_unknown), and -help lists them all. PETSc options the driver sets as defaults: options_default. */
+ * one PetscOptionsBegin/End block through these functions, each option with its default and its range (an
+ * integer's [lo, hi], a number's interval, a word's choices), which check the value first (the message names the
+ * option, its value and the range, io/text.h) and remember the name, so that main can call every module's block
+ * before the run and refuse a bad value or a misspelt option of the driver's (options_check_unknown) before
+ * anything runs, and -help lists them all with their ranges ("[1 to 10000]") and defaults. PETSc options the
+ * driver sets as defaults: options_default. */
 #ifndef OPTIONS_H
 #define OPTIONS_H
 
@@ -10,12 +12,16 @@
 
 /* Sets option name to value unless it is set already (the user's choice wins). */
 PetscErrorCode options_default(const char *name, const char *value);
+/* Whether name was set by options_default, not by the user (the warning about unused options leaves it out). */
+int options_set_by_driver(const char *name);
 
 /* Inside PetscOptionsBegin/End (PetscOptionsObject is the block's). */
 PetscErrorCode options_int(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscInt def, PetscInt lo,
                            PetscInt hi, PetscInt *value, PetscBool *set);
-PetscErrorCode options_real(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscReal def,
-                            PetscReal *value, PetscBool *set);
+/* A number in [lo, hi] (NAN: no bound on that side; open: OPTIONS_LO_OPEN, OPTIONS_HI_OPEN for > lo, < hi). */
+enum { OPTIONS_LO_OPEN = 1, OPTIONS_HI_OPEN = 2 };
+PetscErrorCode options_real(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscReal def, PetscReal lo,
+                            PetscReal hi, unsigned open, PetscReal *value, PetscBool *set);
 PetscErrorCode options_bool(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, PetscBool def,
                             PetscBool *value, PetscBool *set);
 PetscErrorCode options_string(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, const char *def,

@@ -33,6 +33,7 @@ static void node_push(YdNode *parent, char *key, int key_line, YdNode *child) {
   parent->items = realloc(parent->items, (parent->n + 1) * sizeof *parent->items);
   parent->items[parent->n] = child;
   child->key                = key; /* owned by the parent's keys */
+  child->parent             = parent;
   child->index              = parent->kind == YD_SEQUENCE ? (int)parent->n : -1;
   if (parent->kind == YD_MAPPING) {
     parent->keys      = realloc(parent->keys, (parent->n + 1) * sizeof *parent->keys);
@@ -56,6 +57,7 @@ static void node_free(YdNode *nd) {
   free(nd->key_lines);
   free(nd->used);
   free(nd->text);
+  free(nd->watch); /* the root's (io/keydecl.h allocates it) */
   free(nd);
 }
 
@@ -204,8 +206,30 @@ void yd_free(YdDoc *doc) {
   memset(doc, 0, sizeof *doc);
 }
 
+const YdNode *yd_root(const YdNode *node) {
+  while (node && node->parent) node = node->parent;
+  return node;
+}
+
+const char *yd_node_path(const YdNode *node, int canonical, char *buf, size_t n) {
+  const YdNode *chain[64];
+  int           depth = 0;
+  size_t        len   = 0;
+  buf[0]              = '\0';
+  for (const YdNode *x = node; x && x->parent && depth < 64; x = x->parent) chain[depth++] = x;
+  while (depth-- > 0 && len < n) {
+    const YdNode *x = chain[depth];
+    if (x->key) len += (size_t)snprintf(buf + len, n - len, "%s%s", len ? "." : "", x->key);
+    else if (canonical) len += (size_t)snprintf(buf + len, n - len, "[]");
+    else len += (size_t)snprintf(buf + len, n - len, "[%d]", x->index);
+  }
+  return buf;
+}
+
 YdNode *yd_get(YdNode *map, const char *key) {
   if (!map || map->kind != YD_MAPPING) return NULL;
+  const YdNode *root = yd_root(map);
+  if (root->watch) root->watch->asked(root->watch, map, key);
   for (size_t i = 0; i < map->n; i++)
     if (!strcmp(map->keys[i], key)) {
       map->used[i] = 1;

@@ -8,6 +8,14 @@
 typedef enum { YD_SCALAR, YD_SEQUENCE, YD_MAPPING } YdKind;
 
 typedef struct YdNode YdNode;
+
+/* Whoever declared a document's keys (io/keydecl.h) watches it: yd_get tells it every key a reader asks for, so
+ * that a key read without a declaration is found. */
+typedef struct YdWatch YdWatch;
+struct YdWatch {
+  void (*asked)(YdWatch *w, const YdNode *map, const char *key);
+};
+
 struct YdNode {
   YdKind   kind;
   int      line;      /* 1-based line in the file */
@@ -19,6 +27,8 @@ struct YdNode {
   char   **keys;      /* mapping keys (YD_MAPPING) */
   int     *key_lines; /* line of each key */
   int     *used;      /* mapping: set when a reader asked for the key (unknown-key check) */
+  YdNode  *parent;    /* the mapping or sequence it is in; NULL: the root */
+  YdWatch *watch;     /* the root's: the declarations its keys are read against (io/keydecl.h), or NULL */
 };
 
 typedef struct {
@@ -30,7 +40,12 @@ typedef struct {
 int  yd_load(const char *file, YdDoc *doc, char *err, size_t errlen);
 void yd_free(YdDoc *doc);
 
-/* Mapping lookup; NULL if absent. Marks the key as used. */
+/* The key path of node from the root: "stages[2].steps" (canonical: "stages[].steps", every index as []). */
+const char *yd_node_path(const YdNode *node, int canonical, char *buf, size_t n);
+/* The document's root of node. */
+const YdNode *yd_root(const YdNode *node);
+
+/* Mapping lookup; NULL if absent. Marks the key as used (and tells the root's watch, if any). */
 YdNode *yd_get(YdNode *map, const char *key);
 /* Line of key in map (or of map if absent). */
 int yd_key_line(const YdNode *map, const char *key);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "camclay9.h"
+#include "../io/keydecl.h"
 #include "../io/options.h"
 #include "../io/text.h"
 
@@ -236,9 +237,7 @@ int material_read(const YdDoc *doc, YdNode *node, int ntens, UmatMaterial *mat, 
   if (read_props_set(doc, node, mat, &props, &normal_in_props, &src, err, errlen)) return 1;
   if (camclay && apply_option_set(mat, &normal_in_props, &src, err, errlen)) return 1;
   if (read_bedding(doc, node, ntens, camclay, normal_in_props, mat, &nprops_given, err, errlen)) return 1;
-  if ((nd = yd_get(node, "nstatv")) && yd_int_range(doc, nd, "material.nstatv", 0, UMAT_MAX_STATEV, &mat->nstatv, err, errlen)) return 1;
-  if (yd_check_unused(doc, node, "material", "umat, name, props, set, bedding_angle, normal, nstatv", err, errlen))
-    return 1;
+  if (keys_integer(doc, node, "nstatv", &mat->nstatv, NULL, err, errlen) || keys_check_unused(doc, node, NULL, err, errlen)) return 1;
   if (camclay && nprops_given < mat->pr.tol) { /* the slots before tol are the material's */
     snprintf(err, errlen, "%s:%d: key 'material.props': %d PROPS given, at least %d needed by camclay9 (%d: with tol; "
              "%d: with the normal n1, n2, n3)", doc->file, props->line, nprops_given, mat->pr.tol, mat->pr.tol + 1,

@@ -9,7 +9,9 @@
 
 #include "../io/csv_table.h"
 #include "../io/paths.h"
+#include "../io/keydecl.h"
 #include "../material/material_input.h"
+#include "../scene/scene_keys.h"
 
 static const char *component_names[6] = {"11", "22", "33", "12", "13", "23"};
 
@@ -40,15 +42,13 @@ static int read_equation(YdDoc *doc, YdNode *nd, const char *path, Equation *eq,
     const char *col;
     eq->table_factor = 1;
     if (yd_string(doc, yd_get(v, "column"), sub, &col, err, errlen)) return 1;
-    YdNode *f = yd_get(v, "factor");
-    if (f && yd_double(doc, f, sub, &eq->table_factor, err, errlen)) return 1;
-    if (yd_check_unused(doc, v, sub, "column, factor", err, errlen)) return 1;
+    if (keys_number(doc, v, "factor", &eq->table_factor, NULL, err, errlen) || keys_check_unused(doc, v, NULL, err, errlen)) return 1;
     table_cols[*ntable] = (char *)col;
     eq->table_column    = (*ntable)++;
   } else if (yd_double(doc, v, sub, &eq->target, err, errlen)) {
     return 1;
   }
-  return yd_check_unused(doc, nd, path, "stress, strain", err, errlen);
+  return keys_check_unused(doc, nd, NULL, err, errlen);
 }
 
 
@@ -155,7 +155,7 @@ static int read_constraint(YdDoc *doc, YdNode *cn, const char *p2, int ntens, Se
   YdNode *val = yd_get(cn, "value");
   snprintf(p3, sizeof p3, "%s.value", p2);
   if (val && yd_double(doc, val, p3, &eq->value, err, errlen)) return 1;
-  return yd_check_unused(doc, cn, p2, "replaces, strain, stress, value (omitted: keep the value at the segment start)", err, errlen);
+  return keys_check_unused(doc, cn, NULL, err, errlen);
 }
 
 /* A segment's constraints: a sequence of linear constraints, each replacing one component's equation. */
@@ -175,16 +175,8 @@ static int read_constraints(YdDoc *doc, YdNode *nd, const char *path, int ntens,
 
 /* A creep segment's loading axis (for the plots). */
 static int read_axis(YdDoc *doc, YdNode *nd, const char *path, int ntens, Segment *sg, char *err, size_t errlen) {
-  const char *s;
-  YdNode     *x;
-  sg->axis = ntens == 6 ? 2 : 1;
-  if ((x = yd_get(nd, "axis"))) {
-    if (yd_string(doc, x, "axis", &s, err, errlen)) return 1;
-    int c = point_component(s);
-    if (c < 0 || c > 2) FAIL("%s:%d: key '%s.axis': expected 11, 22 or 33, got '%s'", doc->file, x->line, path, s);
-    sg->axis = c;
-  }
-  return 0;
+  sg->axis = ntens == 6 ? 2 : 1; /* the choices 11, 22, 33: the component's index */
+  return keys_word(doc, nd, "axis", NULL, &sg->axis, NULL, err, errlen);
 }
 
 /* A segment's table of lab data (the time column and the columns the controls read). */
@@ -202,9 +194,7 @@ static int read_segment_table(YdDoc *doc, YdNode *nd, const char *path, Segment 
   snprintf(pf, sizeof pf, "%s.file", sub), snprintf(pt, sizeof pt, "%s.time", sub);
   if (yd_string(doc, yd_get(tab, "file"), pf, &file, err, errlen)) return 1;
   if (yd_string(doc, yd_get(tab, "time"), pt, &tcol, err, errlen)) return 1;
-  YdNode *f = yd_get(tab, "time_factor");
-  if (f && yd_double(doc, f, sub, &tfac, err, errlen)) return 1;
-  if (yd_check_unused(doc, tab, sub, "file (relative to the scene file), time (column), time_factor", err, errlen)) return 1;
+  if (keys_number(doc, tab, "time_factor", &tfac, NULL, err, errlen) || keys_check_unused(doc, tab, NULL, err, errlen)) return 1;
   char resolved[1024], where[1200];
   snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, yd_key_line(tab, "file"), sub);
   if (path_input(doc->file, where, file, resolved, sizeof resolved, err, errlen)) return 1;
@@ -238,13 +228,14 @@ static int read_segment(YdDoc *doc, YdNode *nd, int index, int ntens, Segment *s
       read_constraints(doc, nd, path, ntens, sg, err, errlen) || check_equations(doc, nd, path, sg, ntens, err, errlen) ||
       read_axis(doc, nd, path, ntens, sg, err, errlen) || read_segment_table(doc, nd, path, sg, table_cols, ntable, err, errlen))
     return 1;
-  return yd_check_unused(doc, nd, path, STAGE_KEYS ", control, constraints, axis, table", err, errlen);
+  return keys_check_unused(doc, nd, NULL, err, errlen);
 }
 
 int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
   memset(sc, 0, sizeof *sc);
   YdNode     *root = doc->root, *x;
   const char *s;
+  scene_keys_attach(doc, SCENE_POINT);
   if (yd_string(doc, yd_get(root, "scene"), "scene", &s, err, errlen)) return 1;
   snprintf(sc->name, sizeof sc->name, "point");
   if ((x = yd_get(root, "name"))) {
@@ -256,8 +247,7 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
     for (size_t i = 0; i < x->n; i++) x->used[i] = 1;
   }
   int ntens = 6;
-  if ((x = yd_get(root, "ntens")) && yd_int(doc, x, "ntens", &ntens, err, errlen)) return 1;
-  if (ntens != 6 && ntens != 4) FAIL("%s:%d: key 'ntens': expected 6 (3D) or 4 (plane strain), got %d", doc->file, x->line, ntens);
+  if (keys_integer(doc, root, "ntens", &ntens, NULL, err, errlen)) return 1;
   if (!(x = yd_require(doc, root, "material", YD_MAPPING, "material", err, errlen)) ||
       material_read(doc, x, ntens, &sc->mat, err, errlen))
     return 1;
@@ -270,7 +260,7 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
       int got;
       if (yd_doubles(doc, v, "initial.statev", sc->statev0, -sc->mat.nstatv, &got, err, errlen)) return 1;
     }
-    if (yd_check_unused(doc, x, "initial", "stress (both frames), statev", err, errlen)) return 1;
+    if (keys_check_unused(doc, x, NULL, err, errlen)) return 1;
   }
   snprintf(sc->outdir, sizeof sc->outdir, "out/point/%s", sc->name);
   sc->progress_every = 0;
@@ -281,10 +271,9 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
       if (yd_string(doc, v, "output.directory", &s, err, errlen)) return 1;
       snprintf(sc->outdir, sizeof sc->outdir, "%s", s);
     }
-    if ((v = yd_get(x, "progress_every")) && yd_int_range(doc, v, "output.progress_every", 0, INT_MAX, &sc->progress_every, err, errlen)) return 1;
-    if (yd_check_unused(doc, x, "output", "directory, progress_every", err, errlen)) return 1;
+    if (keys_integer(doc, x, "progress_every", &sc->progress_every, NULL, err, errlen) || keys_check_unused(doc, x, NULL, err, errlen)) return 1;
   }
-  if ((x = yd_get(root, "check_tangent")) && yd_bool(doc, x, "check_tangent", &sc->check_tangent, err, errlen)) return 1;
+  if (keys_bool(doc, root, "check_tangent", &sc->check_tangent, NULL, err, errlen)) return 1;
 
   YdNode *segs = yd_require(doc, root, "segments", YD_SEQUENCE, "segments", err, errlen);
   if (!segs) return 1;
@@ -293,8 +282,7 @@ int point_scene_read(YdDoc *doc, PointScene *sc, char *err, size_t errlen) {
   sc->seg  = calloc(segs->n, sizeof *sc->seg);
   for (int i = 0; i < sc->nseg; i++)
     if (read_segment(doc, segs->items[i], i, ntens, &sc->seg[i], err, errlen)) return 1;
-  return yd_check_unused(doc, root, "", "scene, name, units, ntens, material, initial, output, check_tangent, segments",
-                         err, errlen);
+  return keys_check_unused(doc, root, NULL, err, errlen) || keys_check_document(doc, err, errlen);
 }
 
 void point_scene_free(PointScene *sc) {

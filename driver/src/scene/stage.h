@@ -46,6 +46,7 @@ typedef struct {
 } StageEvent;
 
 #define STAGE_MAX_OUT_TIMES 64
+#define MAXSTAGES 16 /* an FE scene's stages at most */
 
 /* The stage of every scene kind. */
 typedef struct {
@@ -59,12 +60,10 @@ typedef struct {
   double      out_times[STAGE_MAX_OUT_TIMES];
 } Stage;
 
-/* The keys stage_read reads, for a kind's list of the keys a stage may have. */
-#define STAGE_KEYS "name, duration, load, steps, until, creep, output"
-
 /* Stage 'index' of a scene at node (a mapping), key path 'path' ("stages[2]"); default name word+index ("stage2",
- * "segment2"); events: the until kinds this scene kind allows (stage_event_read). The load key is read only when it
- * is a word (instant or linear): a kind whose load key is a mapping reads it itself. 0, or 1 with err filled. */
+ * "segment2"); events: the until kinds this scene kind allows (stage_event_read). Each key by its declaration
+ * (scene/scene_keys.c: its type, range, choices and default); 'output' only where the scene kind declares it (a
+ * point segment's is refused as a key of FE scenes). 0, or 1 with err filled. */
 int stage_read(const YdDoc *doc, YdNode *node, const char *path, int index, const char *word, const char *events, Stage *st,
                char *err, size_t errlen);
 

@@ -1,0 +1,70 @@
+"""Every file the code cites lives in the repository, and the driver's README says what is built (issue 35, item 8).
+
+- each path to a document or a tool that a source file, a tool, a test or a document names (docs/NAME.md,
+  driver/README.md, tools/NAME.py, tests/.../NAME.py) is a file of the repository (main's tools/check_includes.py
+  cited docs/architecture.md, which does not exist), and none cites a folder outside it (../shared);
+- driver/README.md describes the driver as built: every folder of driver/src with its place in the layers, the
+  same order as tools/check_includes.py enforces (main's said "Nothing is built yet").
+"""
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SOURCES = ["driver/src/**/*.[ch]", "tools/**/*.py", "tools/**/*.sh", "tests/**/*.py", "post/**/*.py", "bench/**/*.py", "umat/**/*.f90",
+           "umat/**/*.h", "docs/*.md", "driver/README.md", "README.md", "tests/README.md"]
+# Cited but missing, in files outside issue 35's change (tools/calculix): the scenes' descriptions (scenes.md) were a
+# document of a folder outside the repository; their citations (and the bare "scenes.md" of input/, meshes/, post/ and
+# README.md) are left for the files' owners. Listed so that a new one fails here, and a mended one too (shrink the list).
+KNOWN_MISSING = {"tools/calculix/same_mesh.py: docs/scenes.md", "tools/calculix/make_inputs.py: docs/scenes.md"}
+CITED = re.compile(r"(?<![\w./-])((?:docs|tools|driver|tests|post|bench)/[\w./-]+\.(?:md|py|sh|c|h))\b")
+
+
+def files():
+    seen = set()
+    for pattern in SOURCES:
+        for f in ROOT.glob(pattern):
+            if f.is_file() and f not in seen and "build" not in f.relative_to(ROOT).parts and f != Path(__file__).resolve():
+                seen.add(f)
+                yield f
+
+
+def test_every_cited_file_exists():
+    missing, known = [], set()
+    for f in files():
+        text = f.read_text(errors="replace")
+        for m in CITED.finditer(text):
+            path = m.group(1).rstrip(".")
+            if "*" in path or "NAME" in path or "<" in path or (ROOT / path).exists():
+                continue
+            if f"{f.relative_to(ROOT)}: {path}" in KNOWN_MISSING:
+                known.add(f"{f.relative_to(ROOT)}: {path}")
+            else:
+                missing.append(f"{f.relative_to(ROOT)}:{text.count(chr(10), 0, m.start()) + 1}: {path}")
+    assert not missing, "files cited but not in the repository:\n" + "\n".join(missing)
+    assert known == KNOWN_MISSING, f"mended: {sorted(KNOWN_MISSING - known)}: take them off KNOWN_MISSING"
+
+
+def test_nothing_cites_a_folder_outside_the_repository():
+    outside = []
+    for f in files():
+        text = f.read_text(errors="replace")
+        for m in re.finditer(r"\.\./shared|shared/docs", text):
+            outside.append(f"{f.relative_to(ROOT)}:{text.count(chr(10), 0, m.start()) + 1}")
+    assert not outside, "a folder outside the repository cited:\n" + "\n".join(outside)
+
+
+def test_driver_readme_gives_the_layers():
+    sys.path.insert(0, str(ROOT / "tools"))
+    try:
+        import check_includes
+    finally:
+        sys.path.pop(0)
+    readme = (ROOT / "driver" / "README.md").read_text()
+    assert "Nothing is built yet" not in readme and "driver will call" not in readme
+    folders = {p.name for p in (ROOT / "driver" / "src").iterdir() if p.is_dir()}
+    assert folders == set(check_includes.LAYER)
+    for folder in folders:
+        assert re.search(rf"^\|[^|]*`{folder}/`", readme, re.M), f"driver/README.md: no row for {folder}/"
+    chain = re.search(r"^\s+(app -> .*)$", readme, re.M).group(1)
+    assert chain in (ROOT / "tools" / "check_includes.py").read_text(), chain
