@@ -40,7 +40,7 @@ void fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v) {
   const StageLoads *l = &c->sc->loads[s];
   v->held = 1;
   for (int k = 0; k < c->sc->npressure && !g->instant; k++)
-    if (l->fn[k] != FN_RAMP || !(isnan(l->pressure[k]) || l->pressure[k] == c->start[k])) v->held = 0;
+    if (l->fn[k].kind != TF_HOLD && (l->fn[k].kind != TF_RAMP || !(isnan(l->pressure[k]) || l->pressure[k] == c->start[k]))) v->held = 0;
 }
 
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq) {

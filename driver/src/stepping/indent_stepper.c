@@ -34,7 +34,7 @@ static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, c
   fe_common_stage_begin(&d->c, s, resumed, v);
   semismooth_set_stage(&d->in, indent_stage_depth_control(st), !resumed);
   if (!resumed) d->stage_start = d->in.depth_control ? d->in.ur : d->load;
-  v->held = v->held && (st->kind == IND_LOAD_HOLD || ((st->kind == IND_LOAD_RAMP || st->kind == IND_DEPTH_RAMP) && st->target == d->stage_start));
+  v->held = v->held && (st->kind == IND_LOAD_HOLD || ((st->kind == IND_LOAD_RAMP || st->kind == IND_DEPTH_RAMP) && st->fn.target == d->stage_start));
   if ((st->until_depth > 0 || st->until_load > 0) && g->until.kind != EVENT_NONE)
     STEP_FAIL(err, errlen, "%s: key 'stages[%d].indenter.until': stage '%s': give one end event: indenter.until or until, not both",
               d->is->file, s, g->name);
