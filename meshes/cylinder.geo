@@ -1,4 +1,4 @@
-// Triaxial specimen (scenes.md §5): a cylinder of radius R and height H on the x3 axis, bottom at
+// Triaxial specimen (Yin, Liu & Borja 2021 §5): a cylinder of radius R and height H on the x3 axis, bottom at
 // x3 = 0, mm. Parameters (override with gmsh -setnumber NAME VALUE): R, H, size (target element size).
 // Physical groups: volume "rock"; surfaces "bottom", "top", "side"; point "pin" (bottom centre, a mesh
 // vertex so that rigid motions in the bottom plane can be fixed); point "rim" (R, 0, 0) on the bottom

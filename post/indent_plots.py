@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plots of an indentation run of the FE driver (scenes.md §1-4; Yin, Liu & Borja 2021, Figs. 3-15).
+"""Plots of an indentation run of the FE driver (Yin, Liu & Borja 2021, Figs. 3-15).
 
 Usage:
     post/indent_plots.py [ph] RUN [--out DIR] [--hold-stage hold]

@@ -165,7 +165,7 @@ def setup_differences(n, quick=False):
          "the hexagon's: an exact sixth", "the cone in a square against a round block: 0.6 % in load (docs/contact.md)"),
         ("plane-strain thickness t", "not given", "1 µm: loads per µm", "the convention of all 2D scenes; about the "
          "Berkovich-equivalent t = 4.9 h at the nanoscale, not at 15 mN (about 3 µm)", t_effect),
-        ("unloading", "'unload' (shape not stated)", "linear to zero in 20 s", "scenes.md", "—"),
+        ("unloading", "'unload' (shape not stated)", "linear to zero in 20 s", "the paper's 20 s (§3); linear: our choice", "—"),
         ("contact gap", "eqs. 12–19 (frictionless)", "the distance normal to the indenter's face at the current "
          "position (`gap: normal`)", "frictionless contact at the deformed surface", "elastic load 4.0 % above "
          "Sneddon's for the 70.3° cone at ν = 0.3, 0.90× at 45°; on loading_rate_a1 on a coarse mesh of the 2D study "

@@ -97,7 +97,7 @@ def triaxial(n, trends, images, rel, img):
          "logarithm are given below; the log10 curve is the ln curve divided by ln 10 = 2.303. Fig. 18: “the contribution "
          "of the soft frame to the creep response of the cylindrical sample is more than 10 times larger than the "
          "contribution of the hard frame, irrespective of the bedding plane orientation” (§5).", "",
-         "**Ours** (FE cylinder, volume-mean axial strain, the start of scenes.md §5: both frames at −35 MPa, "
+         "**Ours** (FE cylinder, volume-mean axial strain, the start of the triaxial scene: both frames at −35 MPa, "
          "confinement held to steady state, then σd = 40 MPa for 10 h).", "",
          "| | t = 385 s | 1 h | 10 h |", "|---|---|---|---|"]
     times = EARLY + LATE

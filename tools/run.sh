@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what is missing, build, and run the main job.
 #
-# The main job: the triaxial creep cylinder (scenes.md §5), `driver -input input/triaxial.yaml`, with
+# The main job: the triaxial creep cylinder (Yin, Liu & Borja 2021 §5), `driver -input input/triaxial.yaml`, with
 # its plots (creep curve and Lomnitz fit beside the paper's; per-frame statistics) in out/triaxial_theta0/.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."

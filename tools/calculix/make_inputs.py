@@ -222,7 +222,7 @@ Cam-Clay IX conventions probe, one C3D8, prescribed general strain
 {material(probe_axes())}{initial_stress([1], 8)}{steps([(dt, T, bcs) for dt, T in PROBE], out)}"""
 
 
-# The cylinder of the triaxial scene (shared docs/scenes.md §5): diameter 25.4 mm, height 50.8 mm,
+# The cylinder of the triaxial scene (input/triaxial.yaml): diameter 25.4 mm, height 50.8 mm,
 # uniform phi = 0.5 so that it stays homogeneous and can be compared with one point. Coarse O-grid:
 # a core square of CORE x CORE elements, one ring out to the circle, LAYERS element layers.
 RADIUS, HEIGHT, CORE, LAYERS = 12.7, 50.8, 4, 4

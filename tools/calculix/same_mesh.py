@@ -1,6 +1,6 @@
 """One gmsh mesh of the triaxial cylinder in the FE driver and in CalculiX (issue 13).
 
-The physics of input/triaxial.yaml (docs/scenes.md §5): the cylinder of meshes/cylinder.geo, both frames at
+The physics of input/triaxial.yaml (input/triaxial.yaml): the cylinder of meshes/cylinder.geo, both frames at
 -35 MPa in equilibrium with 35 MPa on the top and the side, the bottom on rollers, its centre pinned, one rim
 point held in y; phi per element from the seeded normal draw of the scene. The history is the one of
 input/abaqus (make_inputs.py): hold 1e6 s, ramp the top to 75 MPa in 1 s (a ramp: CalculiX has no zero-time
