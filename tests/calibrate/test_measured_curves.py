@@ -278,5 +278,5 @@ def test_output_directory_under_the_working_directory(tmp_path):
     assert (tmp_path / "cwd" / "out" / "calibrate" / "own_curve" / "protocol" / "nano" / "scene.yaml").exists()
     assert not (tmp_path / "scenes" / "out").exists()
     doc = (ROOT / "docs" / "calibrate.md").read_text()
-    assert re.search(r"Input paths \(.*\) resolve against the scene file's folder; the output directory[^.]*under the working "
-                     r"directory", doc.replace("\n", " "))
+    assert re.search(r"Input paths \(.*?\) resolve against the scene file's folder; the output directory \(.*?\) lies under "
+                     r"the working directory", doc.replace("\n", " "))
