@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The data against the fitted curves of a calibration: reads OUT/curves.csv (written by scene: calibrate) and
 draws one panel per run and block (loading and unloading: depth against load; hold: creep depth against
-time; series: the model column against time), data as dots, the fitted model as a line.
+time; series: the model column against time; a block per stage), data as dots, the fitted model as a line (with a
+fitted drift: the model plus the drift, drift: fit; the data less it, drift measured in a hold).
 
   post/calibrate_plot.py out/calibrate/NAME [-o fit.png]
 """
@@ -20,8 +21,9 @@ def read_curves(path):
     blocks = OrderedDict()
     with open(path) as f:
         for r in csv.DictReader(f):
-            b = blocks.setdefault((r["run"], r["block"]), {"x_name": r["x_name"], "y_name": r["y_name"], "x": [],
-                                                           "data": [], "model": []})
+            name = r["block"] + (f" '{r['stage']}'" if r.get("stage") else "")  # two holds: each its panel
+            b = blocks.setdefault((r["run"], name), {"x_name": r["x_name"], "y_name": r["y_name"], "x": [],
+                                                     "data": [], "model": []})
             for k in ("x", "data", "model"):
                 b[k].append(float(r[k]))
     return blocks
@@ -41,7 +43,7 @@ def main():
             ax = axes[i][j]
             ax.plot(b["x"], b["data"], "o", ms=3, label="data")
             ax.plot(b["x"], b["model"], "-", label="fit")
-            rel = " (less its mean)" if block in ("hold",) else ""
+            rel = " (less its mean)" if block.startswith("hold") else ""
             ax.set(title=f"{run}: {block}", xlabel=b["x_name"], ylabel=b["y_name"] + rel)
             ax.legend(fontsize=8)
         for j in range(sum(1 for r, _ in blocks if r == run), ncol):

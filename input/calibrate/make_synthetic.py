@@ -17,6 +17,7 @@ from 1). --protocol FILE: the forward scene's stages replaced by FILE's (name, d
 step control of the scene's stage of the same index), e.g. protocols/ramp600_hold30.yaml.
 """
 import argparse
+import copy
 import csv
 import os
 import subprocess
@@ -79,7 +80,7 @@ def with_protocol(scene, protocol, tmp):
     with open(protocol) as f:
         stages = yaml.safe_load(f)["stages"]
     for i, st in enumerate(stages):
-        st.setdefault("steps", doc["stages"][min(i, len(doc["stages"]) - 1)]["steps"])
+        st.setdefault("steps", copy.deepcopy(doc["stages"][min(i, len(doc["stages"]) - 1)]["steps"]))  # no YAML alias
     doc["stages"] = stages
     for key in ("geometry", "file"):
         if key in doc.get("mesh", {}):

@@ -88,7 +88,7 @@ def test_nano_soft_frame_recovered(tmp_path):
     assert abs(eta / TRUE["eta_soft"] - 1) < 0.01, eta
     assert res["cost"]["rejected"] == 0
     curves = (tmp_path / "out" / "curves.csv").read_text().splitlines()
-    assert curves[0] == "run,block,x_name,y_name,x,data,model" and len(curves) == 1 + 44
+    assert curves[0] == "run,block,x_name,y_name,x,data,model,drift,stage" and len(curves) == 1 + 44
     assert "set: {eta_soft:" in (tmp_path / "out" / "fit.yaml").read_text()
 
 
@@ -203,15 +203,18 @@ BAD = [
      r"bad.yaml:\d+: key 'runs\[0\].residuals\[0\]' \(loading in stage 'load'\): the data's load = .* lies outside the "
      r"forward run's range in that stage"),
     # issues 22, 23: the checks that catch a wrong fit at the start, the messages that name the key and value
-    ("rows outside the forward run", ("depth: depth_um}", "depth: depth_um}\n      factors: {time: 2}"),
+    ("rows outside the forward run", ("units: {time: s, load: uN, depth: um}", "units: {load: uN, depth: um}\n      factors: {time: 2}"),
      r"bad.yaml:\d+: key 'runs\[0\].data': 36 of the 44 data rows \(times 249.\d+ to 468.\d+ s in the forward run's time\) lie "
      r"outside the forward run \(0 to 235.\d+ s\): the forward scene's protocol is not the data's: give drive: data"),
-    ("depth in nm without a factor", ("depth: depth_um}", "depth: depth_um}\n      factors: {depth: 1000}"),
-     r"bad.yaml:\d+: key 'runs\[0\].data.factors.depth' \(column 'depth_um', factor 1000\): the data's depths reach 1\d\d.\d "
+    ("depth declared in mm, not um", ("depth: um}", "depth: mm}"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.units.depth' \(column 'depth_um', unit mm, factor 1000\): the data's depths reach 1\d\d.\d "
      r"where the first forward run's reach 0.1\d+ in stage 'load' \(residuals\[0\]\), 1.0\de\+03 times as much: a unit\?"),
-    ("load in nN without a factor", ("depth: depth_um}", "depth: depth_um}\n      factors: {load: 1000}"),
-     r"key 'runs\[0\].data.factors.load' \(column 'load_uN', factor 1000\): the data's loads reach 2.5e\+05 where the "
+    ("load declared in mN, not uN", ("load: uN,", "load: mN,"),
+     r"key 'runs\[0\].data.units.load' \(column 'load_uN', unit mN, factor 1000\): the data's loads reach 2.5e\+05 where the "
      r"first forward run's reach 250"),
+    ("depth with a factor and a unit", ("depth: depth_um}", "depth: depth_um}\n      factors: {depth: 1000}"),
+     r"bad.yaml:\d+: key 'runs\[0\].data.units.depth': the column 'depth_um' has a unit and a factor \(runs\[0\].data.factors.depth\): "
+     r"give one of them"),
     ("factor zero", ("depth: depth_um}", "depth: depth_um}\n      factors: {time: 0}"),
      r"bad.yaml:\d+: key 'runs\[0\].data.factors.time': expected a factor > 0 .*, got 0"),
     ("factor negative", ("depth: depth_um}", "depth: depth_um}\n      factors: {depth: -0.001}"),

@@ -67,7 +67,7 @@ runs:
 {extra_run}    data:
       file: {data}
       columns: {{time: time_s, load: load_mN, depth: depth_nm}}
-      factors: {{load: 1000, depth: 0.001}}
+      units: {{time: s, load: mN, depth: nm}}
 {extra}""")
     return path
 
@@ -112,7 +112,7 @@ def test_own_curve_another_protocol(record, full_model, tmp_path):
           f"measured {bias['value']:.4g} +- {bias['std_error']:.2g}; quote {quote['value']:.8g} +- {quote['std_error']:.2g}; "
           f"cost {fit['cost']}")
     # the forward model alone is biased beyond its standard error: the refinement is used, and its value is quoted
-    assert abs(fwd["value"] - TRUE) > 5 * fwd["std_error"] and fit["refinement"]["refined"]
+    assert abs(fwd["value"] - TRUE) > 3 * fwd["std_error"] and fit["refinement"]["refined"]  # Newey-West: 3.7 measured
     assert fit["refinement"]["converged"] and "refined on the full model" in quote["from"]
     assert abs(quote["value"] / TRUE - 1) < 0.01, quote
     # the reported bias is the measured one within its own uncertainty (two standard errors; 0.97 measured)

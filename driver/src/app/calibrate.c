@@ -110,6 +110,27 @@ static int read_refine(YdDoc *doc, Calib *c, char *err, size_t errlen) {
   return 0;
 }
 
+/* weighting: range (default: each block's residuals divided by its data's range, blocks of different units alike) |
+ * noise (by the noise of its data column: the maximum-likelihood weighting of independent errors). */
+static int read_weighting(YdDoc *doc, Calib *c, char *err, size_t errlen) {
+  const char *s;
+  YdNode     *v = yd_get(doc->root, "weighting");
+  if (!v) return 0;
+  if (yd_string(doc, v, "weighting", &s, err, errlen)) return 1;
+  if (strcmp(s, "range") && strcmp(s, "noise"))
+    FAIL("%s:%d: key 'weighting': expected range (each block by its data's range) or noise (by its data column's noise, "
+         "from its second differences), got '%s'", doc->file, v->line, s);
+  for (int j = 0; j < c->nrun; j++) c->run[j].weighting = strcmp(s, "noise") ? CAL_WEIGHT_RANGE : CAL_WEIGHT_NOISE;
+  return 0;
+}
+
+/* refine_runs: the refinement's full-model runs at most (default 6). */
+static int read_refine_runs(YdDoc *doc, Calib *c, char *err, size_t errlen) {
+  YdNode *v      = yd_get(doc->root, "refine_runs");
+  c->refine_runs = 6;
+  return v && yd_int_range(doc, v, "refine_runs", 1, CAL_REFINE_CAP, &c->refine_runs, err, errlen);
+}
+
 static int read_scene(YdDoc *doc, Calib *c, const char *outdir, char *err, size_t errlen) {
   const char *s;
   YdNode     *v;
@@ -141,8 +162,11 @@ static int read_scene(YdDoc *doc, Calib *c, const char *outdir, char *err, size_
     return 1;
   if (out && yd_get(out, "directory")) snprintf(c->outdir, sizeof c->outdir, "%s", s);
   if (outdir && outdir[0]) snprintf(c->outdir, sizeof c->outdir, "%s", outdir);
-  if (read_accept(doc, c, err, errlen) || read_refine(doc, c, err, errlen)) return 1;
-  return yd_check_unused(doc, doc->root, "", "scene, name, parameters, runs, refine, accept, output", err, errlen);
+  if (read_accept(doc, c, err, errlen) || read_refine(doc, c, err, errlen) || read_refine_runs(doc, c, err, errlen) ||
+      read_weighting(doc, c, err, errlen))
+    return 1;
+  return yd_check_unused(doc, doc->root, "", "scene, name, parameters, runs, refine, refine_runs, weighting, accept, output",
+                         err, errlen);
 }
 
 /* The environment without the MPI launcher's variables: a forward run is its own singleton. */
@@ -191,8 +215,10 @@ int cal_forward(Calib *c, const CalRun *run, const char *scene, const double *p,
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
-/* The evaluated points: u, the residuals and every block's model curve. A point evaluated before costs no run. */
-static double *cache_entry(Calib *c, int i) { return c->cache + (size_t)i * (c->np + 2 * c->m); }
+/* The evaluated points: u, the residuals (before a fitted drift is profiled out of them) and every block's model
+ * curve. A point evaluated before costs no run. */
+static size_t  cache_size(const Calib *c) { return (size_t)(c->np + 2 * c->m); }
+static double *cache_entry(Calib *c, int i) { return c->cache + (size_t)i * cache_size(c); }
 void cal_models(Calib *c, double *models, int save) {
   for (int j = 0, off = 0; j < c->nrun; j++)
     for (int k = 0; k < c->run[j].ncurve; k++) {
@@ -215,7 +241,7 @@ static int cache_find(Calib *c, const double *u, double *r) {
 static void cache_add(Calib *c, const double *u, const double *r) {
   if (c->ncache == c->cache_cap) {
     c->cache_cap = c->cache_cap ? 2 * c->cache_cap : 64;
-    c->cache     = realloc(c->cache, sizeof(double) * (size_t)c->cache_cap * (c->np + 2 * c->m));
+    c->cache     = realloc(c->cache, sizeof(double) * (size_t)c->cache_cap * cache_size(c));
   }
   double *e = cache_entry(c, c->ncache++);
   memcpy(e, u, sizeof(double) * c->np), memcpy(e + c->np, r, sizeof(double) * c->m);
@@ -254,15 +280,28 @@ static int evaluate(Calib *c, const double *u, double *r, const char *tag, int f
   return 0;
 }
 
+/* drift: fit: each such run's drift rate profiled out of its residuals (held at 0 while c->drift_held). */
+static void project_drift(Calib *c, double *r) {
+  for (int j = 0, off = 0; j < c->nrun; off += cal_run_size(&c->run[j]), j++)
+    if (c->run[j].drift == CAL_DRIFT_FIT) {
+      if (c->drift_held) c->run[j].drift_rate = 0;
+      else cal_drift_project(&c->run[j], r + off);
+    }
+}
+
 int cal_evaluate(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen) {
-  if (cache_find(c, u, r)) return 0;
-  if (evaluate(c, u, r, tag, 0, err, errlen)) return 1;
-  cache_add(c, u, r);
+  if (!cache_find(c, u, r)) {
+    if (evaluate(c, u, r, tag, 0, err, errlen)) return 1;
+    cache_add(c, u, r);
+  }
+  project_drift(c, r);
   return 0;
 }
 
 int cal_evaluate_full(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen) {
-  return evaluate(c, u, r, tag, 1, err, errlen);
+  if (evaluate(c, u, r, tag, 1, err, errlen)) return 1;
+  project_drift(c, r);
+  return 0;
 }
 
 /* TAO's residual routine: a failed evaluation is rejected (a large residual), not fatal. */
@@ -389,6 +428,30 @@ static PetscErrorCode solve(Calib *c, double *u, PetscInt *its, char *reason, si
   PetscFunctionReturn(0);
 }
 
+/* TAO's solve; with a drift fitted (drift: fit), two: first with the drift rates held at 0, then with them profiled
+ * out, from the first's fit. A drift fitted from the start can take up the material's creep instead: at a viscosity
+ * too high the model hardly creeps and a steeper drift explains the depth's rise, a second minimum of the misfit
+ * (the nano record with 1 nm noise and 0.05 nm/s drift: from 3x above the truth, eta_soft 4.0e10 and 0.107 nm/s
+ * at a misfit of 2.09; from the fit without drift, 1.28e10 and 0.049 nm/s at 1.81). */
+static PetscErrorCode solve_with_drift(Calib *c, double *u, PetscInt *its, char *reason, size_t rlen) {
+  PetscInt first = 0;
+  int      fit   = 0;
+  PetscFunctionBeginUser;
+  for (int j = 0; j < c->nrun; j++) fit |= c->run[j].drift == CAL_DRIFT_FIT;
+  if (fit) {
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "drift: fit: the parameters first with the drift held at 0, then with the drift "
+                          "rate profiled out from there (a drift fitted from the start can take up the creep)\n"));
+    c->drift_held = 1;
+    PetscCall(solve(c, u, &first, reason, rlen));
+    c->drift_held = 0, c->stalled = 0, c->no_progress = 0, c->best_f = INFINITY;
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "drift: fit: the drift held at 0: %s after %d iterations; now with the drift rate "
+                          "fitted\n", reason, (int)first));
+  }
+  PetscCall(solve(c, u, its, reason, rlen));
+  *its += first;
+  PetscFunctionReturn(0);
+}
+
 /* What each run's forward runs follow, and its full model: said in the log. */
 static PetscErrorCode describe_run(Calib *c, const CalRun *run) {
   char buf[4096];
@@ -401,6 +464,20 @@ static PetscErrorCode describe_run(Calib *c, const CalRun *run) {
                           run->stages_from_column ? run->stage_col : "", run->stages_from_column ? "'" : "", buf, run->driven, run->scene));
   } else
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "run '%s': the forward runs follow the stages of %s (drive: scene)\n", run->name, run->scene));
+  cal_ranges_describe(run, buf, sizeof buf);
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s\n", buf));
+  if (run->drive) {
+    cal_load_describe(run, buf, sizeof buf);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s\n", buf));
+  }
+  if (run->drift == CAL_DRIFT_MEASURED)
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  drift: %.4g +- %.2g %s/s measured in the data's stage '%s' (a line through depth "
+                          "against time over its %d rows; %.4g in the data's depth unit per s), removed from every depth "
+                          "(ISO 14577-1; Oliver & Pharr 1992)\n", run->drift_rate, run->drift_se, run->scene_unit[2],
+                          run->stage[run->drift_stage].name, run->drift_rows, run->drift_rate / run->factor[2]));
+  else if (run->drift == CAL_DRIFT_FIT)
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  drift: fitted beside the parameters (a constant rate from the data's first row, "
+                          "profiled out of each evaluation's residuals)\n"));
   if (run->reference[0])
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "  full model (reference%s): %s, run at the fit for the forward model's bias\n",
                           run->reference_default ? ", the default beside the forward scene" : "", run->reference));
@@ -418,6 +495,7 @@ static int start(Calib *c, double *u, char *err, size_t errlen) {
     char    dir[PATH_MAX + 200];
     PetscErrorCode ierr = describe_run(c, run);
     if (ierr) return free(r), stage_runner_status(ierr, err);
+    if (cal_check_load_scale(run, c->accept, err, errlen)) return free(r), 1;
     snprintf(dir, sizeof dir, "%s/forward/start_%s", c->outdir, run->name);
     int rc = cal_forward(c, run, cal_run_scene(run, 0), p, dir);
     if (rc) {
@@ -434,6 +512,16 @@ static int start(Calib *c, double *u, char *err, size_t errlen) {
     if (cal_run_setup(run, dir, err, errlen) || cal_check_rows(run, dir, c->accept, err, errlen) ||
         cal_check_scale(run, dir, c->accept, 0, err, errlen))
       return free(r), 1;
+    for (int role = 2; run->weighting == CAL_WEIGHT_NOISE && role <= 3; role++) {
+      int given = role == 2 ? run->col_depth >= 0 : run->col_value >= 0;
+      ierr = !given ? 0 : isnan(run->noise[role])
+        ? PetscPrintf(PETSC_COMM_SELF, "  weighting: noise: the %s column's noise is below 1e-6 of its range (a clean "
+                      "record): its blocks keep their ranges\n", role == 2 ? "depth" : "value")
+        : PetscPrintf(PETSC_COMM_SELF, "  weighting: noise: each %s block's residuals divided by the %s column's noise, %.4g "
+                      "(%.4g in the data's unit; from its second differences along the blocks)\n", role == 2 ? "depth" : "value",
+                      role == 2 ? "depth" : "value", run->noise[role], run->noise[role] / fabs(run->factor[role]));
+      if (ierr) return free(r), stage_runner_status(ierr, err);
+    }
     int n = cal_run_size(run);
     r     = realloc(r, sizeof(double) * (size_t)(m + n));
     if (cal_run_residual(run, dir, r + m, err, errlen) || cal_check_scale(run, dir, c->accept, 1, err, errlen))
@@ -465,6 +553,7 @@ static PetscErrorCode dry_run(Calib *c, PetscBool *dry) {
   *dry = PETSC_FALSE;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-calibrate_dry_run", dry, NULL));
   for (int j = 0; *dry && j < c->nrun; j++) PetscCall(describe_run(c, &c->run[j]));
+
   if (*dry) PetscCall(PetscPrintf(PETSC_COMM_SELF, "calibrate %s: -calibrate_dry_run: nothing run; the scenes are in %s/protocol\n", c->name, c->outdir));
   PetscFunctionReturn(0);
 }
@@ -485,6 +574,8 @@ int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
   } else if (fs_prepare_output_dir(c->outdir, err, errlen) || write_protocols(c, err, errlen)) {
   } else if ((ierr = dry_run(c, &dry)) || dry) {
     rc = stage_runner_status(ierr, err);
+    for (int j = 0; !ierr && j < c->nrun && !rc; j++) /* the checks that need no forward run */
+      if (cal_check_load_scale(&c->run[j], c->accept, err, errlen)) rc = 2;
   } else if ((bad = start(c, u, err, errlen))) {
     if (bad > 2) rc = bad; /* a PETSc error; else the input's (2) */
   } else {
@@ -495,7 +586,7 @@ int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen) {
       fprintf(c->evals, "evaluation,ok");
       for (int k = 0; k < c->np; k++) fprintf(c->evals, ",%s", c->p[k].name);
       fprintf(c->evals, ",misfit,forward_runs,wall\n");
-      if ((ierr = solve(c, u, &its, reason, sizeof reason))) rc = stage_runner_status(ierr, err);
+      if ((ierr = solve_with_drift(c, u, &its, reason, sizeof reason))) rc = stage_runner_status(ierr, err);
       else rc = (bad = cal_report(c, u, its, reason, err, errlen)) > 2 ? bad : bad ? 1 : 0;
       fclose(c->evals);
     }

@@ -32,21 +32,54 @@ typedef struct {
   char         tao_type[64];
   int          accept;       /* the checks the scene accepts (CAL_ACCEPT_*) */
   int          refine;       /* the two-fidelity refinement: 0 no, 1 auto (when the bias exceeds the standard error), 2 yes */
+  int          refine_runs;  /* at most this many full-model runs (refine_runs:, default 6) */
   int          ncache, cache_cap; /* every evaluated point: u (np), residuals and model curves (m each) */
   double      *cache;
   double       last_u[CAL_MAX_PARAMS], last_f; /* the previous TAO iterate, for the no-progress stop */
   int          stalled, no_progress;
+  int          drift_held;   /* drift: fit: the drift rates held at 0 (the first of the two solves) */
 } Calib;
+
+#define CAL_REFINE_CAP 32 /* refine_runs at most */
 
 /* The forward model's bias at the fit (a full-model run there) and the two-fidelity refinement. */
 typedef struct {
   int    have, refined, converged, nfull; /* a reference was run; refined; its steps converged; full-model runs */
   double first[CAL_MAX_PARAMS];           /* the bias from the first full-model run (linearised) */
-  double p[CAL_MAX_PARAMS], se[CAL_MAX_PARAMS];       /* refined values and standard errors */
+  double p[CAL_MAX_PARAMS], se[CAL_MAX_PARAMS];       /* refined values and standard errors (se_data, se_model combined) */
+  double se_data[CAL_MAX_PARAMS], se_model[CAL_MAX_PARAMS]; /* the data's part (Newey-West), the model's (the last step) */
   double bias[CAL_MAX_PARAMS], bias_se[CAL_MAX_PARAMS]; /* the forward fit less the refined one */
+  double steps[CAL_REFINE_CAP][CAL_MAX_PARAMS];       /* each refinement step, relative to the value */
+  int    nsteps;
   double max_diff[CAL_MAX_RUNS];          /* each run's largest model difference at the fit / data range; -1: none */
+  int    max_block[CAL_MAX_RUNS];         /* the block where it is */
   char   failed[1024];                    /* a reference run failed: why ("" otherwise) */
 } CalBias;
+
+/* The standard errors' estimate (calibrate_stats.c): the residuals' lag-1 coefficient (the prewhitening's), Andrews'
+ * alpha (of the innovations), and the longest block's bandwidth S and lags. */
+typedef struct {
+  double alpha, rho, bandwidth;
+  int    lags, longest;
+} CalHacInfo;
+
+/* A hold block's residual trend at the fit that the fitted parameters cannot take up (calibrate_drift.c). */
+typedef struct {
+  int    run, block, warn;
+  double rate, se, z;   /* depth per s, the forward scene's units: the data's depth rises this much faster than the model's */
+  double size;          /* the trend over the hold, relative to the hold's data range */
+  double model_rate;    /* drift measured in this stage: the model's own rate there at the fit (NAN otherwise) */
+} CalTrend;
+
+/* The uncertainty of the fit (calibrate_report.c): the data's part (Newey-West) and the drift rates. */
+typedef struct {
+  double     se[CAL_MAX_PARAMS], white[CAL_MAX_PARAMS]; /* Newey-West, and white (independent residuals) */
+  double     step[CAL_MAX_PARAMS];  /* the Gauss-Newton step left at the fit (in the parameter): TAO's convergence */
+  double     drift_se[CAL_MAX_RUNS];
+  CalHacInfo hac;
+  CalTrend   trend[CAL_MAX_RUNS * CAL_MAX_CURVES];
+  int        ntrend;
+} CalUncertainty;
 
 /* Run the calibrate scene doc; outputs under outdir (or the scene's output.directory). */
 int calibrate_run(YdDoc *doc, const char *outdir, char *err, size_t errlen);
@@ -75,8 +108,27 @@ int cal_invert(int n, double *a, double *b);
 int cal_bias(Calib *c, const double *u, const double *J, const double *inv, const double *se, CalBias *b, char *err,
              size_t errlen);
 /* fit.yaml and the summary on stdout (calibrate_yaml.c). */
-void cal_write_yaml(Calib *c, FILE *fp, const double *u, const double *se, const double *cov, double ssr, PetscInt its,
+void cal_write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty *un, const double *cov, double ssr, PetscInt its,
                     const char *reason, const CalBias *b);
-PetscErrorCode cal_print_summary(Calib *c, const double *u, const double *se, const CalBias *b);
+PetscErrorCode cal_print_summary(Calib *c, const double *u, const CalUncertainty *un, const CalBias *b);
+/* The value to quote, its standard error and its parts (data; model: NAN when not measured; convergence), and where it
+ * comes from. */
+typedef struct {
+  double v, s, data, model, conv;
+  char   why[256];
+} CalQuote;
+void cal_quote(const Calib *c, const double *u, const CalUncertainty *un, const CalBias *b, int k, CalQuote *q);
+
+/* calibrate_stats.c: the covariance of estimates theta = G e (G: q x m, by row) from the residuals r in blocks (nblock
+ * of them, their sizes), prewhitened by an AR(1) and then Newey-West; p fitted quantities; cov and white (q x q). */
+void cal_hac(int q, int m, const double *G, const double *r, const int *blocks, int nblock, int p, double *cov, double *white,
+             CalHacInfo *info);
+void cal_blocks(const Calib *c, int *blocks, int *nblock);
+/* G = -(J^T J)^-1 J^T (n x m) and inv = (J^T J)^-1 from J (n x m, by parameter); 1 if singular (NAN filled). */
+int  cal_influence(int n, int m, const double *J, double *G, double *inv);
+
+/* calibrate_drift.c: the hold blocks' trends at the fit (X: the fit's q columns), and the drift-stage check. */
+int cal_hold_trends(Calib *c, const double *X, int q, const double *r, CalTrend *out, int max);
+int cal_rest_warning(const CalRun *run, const CalTrend *t);
 
 #endif

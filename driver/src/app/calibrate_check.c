@@ -114,25 +114,27 @@ static double size_of(const double *v, int n, int s, int range) {
 /* Data and model of one quantity a factor of 10 apart? The message blames the data column's factor. */
 static int compare(const CalRun *run, const CalCurve *c, int role, const char *what, double data, double model, char *err,
                    size_t errlen) {
-  static const char *roles[4] = {"time", "load", "depth", "value"};
+  char key[96], how[96];
   if (!(data > 0 && model > 0)) return 0;
   double ratio = data / model;
   if (ratio <= SCALE_APART && ratio >= 1 / SCALE_APART) return 0;
-  FAIL("%s:%d: key 'runs[%d].data.factors.%s' (column '%s', factor %g): the data's %s reach %.4g where the first forward "
-       "run's reach %.4g in stage '%s' (residuals[%d]), %.3g times as much: a unit? The factor converts the data to the "
-       "units of the forward scene %s; accept: [scale] if the start is meant to be that far off", run->file, run->line,
-       run->index, roles[role], run->col_name[role], run->factor[role], what, data, model, c->stage_name, c->index, ratio,
-       run->scene);
+  cal_unit_how(run, role, how, sizeof how);
+  FAIL("%s:%d: key '%s' (column '%s', %s): the data's %s reach %.4g where the first forward run's reach %.4g in stage "
+       "'%s' (residuals[%d]), %.3g times as much: a unit? The %s converts the data to the units of the forward scene %s; "
+       "accept: [scale] if the start is meant to be that far off", run->file, run->data_line ? run->data_line : run->line,
+       cal_unit_key(run, role, key, sizeof key), run->col_name[role], how, what, data, model, c->stage_name, c->index,
+       ratio, run->declared[role] == 2 ? "factor" : "unit", run->scene);
 }
 
 int cal_check_scale(const CalRun *run, const char *dir, int accept, int models, char *err, size_t errlen) {
   if (accept & CAL_ACCEPT_SCALE) return 0;
   for (int k = 0; k < run->ncurve; k++) {
     const CalCurve *c = &run->curve[k];
-    if (models) { /* the model's y at the data's x, against the data's y */
-      int yrole = c->kind == CAL_SERIES ? 3 : 2;
-      if (compare(run, c, yrole, c->kind == CAL_SERIES ? "values" : "depths", size_of(c->y, c->n, 1, c->relative),
-                  size_of(c->model, c->n, 1, c->relative), err, errlen))
+    if (models) { /* the model's y at the data's x, against the data's y: a depth's size (the creep over a hold
+                     moves with the parameters, a factor of 10 at a hold at low load); a relative series' range */
+      int yrole = c->kind == CAL_SERIES ? 3 : 2, range = c->relative && c->kind == CAL_SERIES;
+      if (compare(run, c, yrole, c->kind == CAL_SERIES ? "values" : "depths", size_of(c->y, c->n, 1, range),
+                  size_of(c->model, c->n, 1, range), err, errlen))
         return 1;
       continue;
     }

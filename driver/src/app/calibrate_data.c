@@ -111,6 +111,7 @@ static int read_factors(const YdDoc *doc, YdNode *fac, CalRun *run, const char *
       FAIL("%s:%d: key '%s': a factor for a column that is not given (%s.columns.%s is missing)", doc->file, fr->line, sub,
            path, roles[r]);
     if (yd_double(doc, fr, sub, &run->factor[r], err, errlen)) return 1;
+    run->declared[r] = 2;
     if (r < 3 ? !(run->factor[r] > 0) : run->factor[r] == 0)
       FAIL("%s:%d: key '%s': expected a factor %s (the data's unit in the forward scene's units, e.g. 0.001 for nm to "
            "um%s), got %s", doc->file, fr->line, sub, r < 3 ? "> 0" : "other than 0",
@@ -157,6 +158,7 @@ static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path
     FAIL("%s:%d: key '%s.columns.time' is missing: the data rows are assigned to the forward run's stages by their time",
          doc->file, cols->line, path);
   if (read_factors(doc, yd_get(nd, "factors"), run, path, err, errlen)) return 1;
+  if (cal_units_read(doc, nd, run, path, err, errlen)) return 1;
   if (read_time_from(doc, nd, run, path, err, errlen)) return 1;
   snprintf(where, sizeof where, "%s:%d: key '%s.file'", doc->file, f->line, path);
   if (csv_read_columns(run->data_file, where, names, run->ncol, run->col_time, &run->data, &run->rows, err, errlen))
@@ -164,7 +166,7 @@ static int read_data(const YdDoc *doc, YdNode *nd, CalRun *run, const char *path
   for (int i = 0; i < run->rows; i++)
     for (int r = 0; r < 4; r++)
       if (*col[r] >= 0) run->data[i * run->ncol + *col[r]] *= run->factor[r];
-  return yd_check_unused(doc, nd, path, "file, columns, factors, time_from", err, errlen);
+  return yd_check_unused(doc, nd, path, "file, columns, units, factors, time_from", err, errlen);
 }
 
 /* residuals[i].stage: a stage of the forward scene (drive: scene) or of the data (drive: data; when left out,
@@ -374,12 +376,16 @@ int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, 
   if (run->drive && (run->col_load < 0 || run->col_depth < 0))
     FAIL("%s:%d: key '%s.data.columns': drive: data needs the data's load and depth columns (the forward run's load "
          "follows the data's; its depth is compared)", doc->file, v->line, path);
+  if (cal_load_read(doc, item, run, path, err, errlen) || (run->drive && cal_load_fit(run, err, errlen)) ||
+      cal_drift_read(doc, item, run, path, err, errlen))
+    return 1;
   if (read_residuals(doc, item, run, path, err, errlen)) return 1;
-  return yd_check_unused(doc, item, path, "name, scene, drive, reference, options, set, data, residuals", err, errlen);
+  return yd_check_unused(doc, item, path, "name, scene, drive, reference, options, set, data, residuals, drift, load_history",
+                         err, errlen);
 }
 
 void cal_run_free(CalRun *run) {
-  free(run->data), free(run->row_stage);
+  free(run->data), free(run->row_stage), free(run->knot_t), free(run->knot_p);
   for (int c = 0; c < run->ncurve; c++) {
     free(run->curve[c].x), free(run->curve[c].y), free(run->curve[c].t), free(run->curve[c].model);
   }

@@ -26,7 +26,8 @@ typedef struct {
   char    xcol[64], ycol[64]; /* history.csv columns: the data's x (curves.csv) and the model's y */
   char    mcol[64];       /* the history column the model is interpolated in: xcol, or time (drive: data) */
   int     relative;       /* model and data y each less their mean over the block (hold: the creep depth) */
-  double  weight, scale;  /* residual = weight * (model - data) / scale; scale: the data's range of y */
+  double  weight, scale;  /* residual = weight * (model - data) / scale; scale: the data's range of y (or its noise) */
+  double  range;          /* the data's range of y */
   int     n;              /* data rows in the block (fixed at the first evaluation) */
   double *x, *y, *t;      /* data, in the forward scene's units */
   double *model;          /* model y at the data x, of the last evaluation */
@@ -67,7 +68,32 @@ typedef struct {
   int     *row_stage;         /* the data stage of each row, or NULL */
   CalCurve curve[CAL_MAX_CURVES];
   int      ncurve;
+  /* units (calibrate_units.c): each column's unit declared (data.units, data.factors, or units: scene) */
+  char     unit[4][16];       /* data.units.ROLE as given ("": none) */
+  int      declared[4];       /* 1: by a unit, 2: by a factor, 3: units: scene */
+  char     scene_unit[3][16]; /* the forward scene's units of time, force (load) and length (depth) */
+  int      data_line;         /* the 'data' key's line */
+  /* thermal drift of the depth (calibrate_drift.c) */
+  int      drift;             /* CAL_DRIFT_NONE, _MEASURED (in a data stage, removed), _FIT (a nuisance parameter) */
+  int      drift_stage, drift_line, drift_rows; /* _MEASURED: the data stage and its rows used */
+  double   drift_rate, drift_se;  /* depth per s, the forward scene's units: measured, or fitted at the last evaluation */
+  double   drift_t0;          /* the drift counts from the data's first row */
+  /* the load history the forward runs follow, drive: data (calibrate_load.c) */
+  int      load_history;      /* CAL_LOAD_AUTO, _DATA, _FITTED as asked; */
+  int      load_fitted;       /* 1: the forward runs follow the fitted history */
+  double   load_noise, load_rms, load_peak; /* the load's noise (second differences), the data's rms about the fit */
+  int      load_pieces[CAL_MAX_STAGES];     /* linear pieces of the fit in each data stage */
+  int      nknot;
+  double  *knot_t, *knot_p;   /* the fitted history: continuous, linear between its knots (data times) */
+  /* weighting: noise (calibrate_residual.c): each block's residuals divided by its column's noise, not its range */
+  int      weighting;         /* CAL_WEIGHT_RANGE, CAL_WEIGHT_NOISE */
+  double   noise[4];          /* weighting: noise: the noise of the depth and value columns (NAN: too small, range kept) */
 } CalRun;
+
+enum { CAL_WEIGHT_RANGE, CAL_WEIGHT_NOISE };
+
+enum { CAL_DRIFT_NONE, CAL_DRIFT_MEASURED, CAL_DRIFT_FIT };
+enum { CAL_LOAD_AUTO, CAL_LOAD_DATA, CAL_LOAD_FITTED };
 
 /* Read runs[k] from a 'runs:' item of the calibrate scene. 0, or 1 with err filled. */
 int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, size_t errlen);
@@ -99,6 +125,33 @@ int  cal_protocol_find(const YdDoc *doc, CalRun *run, char *err, size_t errlen);
 void cal_protocol_describe(const CalRun *run, char *buf, size_t n);
 /* Write the forward scene (and reference) driven by the data's history into dir: run->driven(_reference). */
 int  cal_protocol_write(CalRun *run, const char *dir, char *err, size_t errlen);
+
+/* calibrate_units.c: data.units (each column's unit converted to the forward scene's; every column's unit declared),
+ * the data's and the forward scene's ranges (the dry run), and the data's loads against the forward scene's. */
+int  cal_units_read(const YdDoc *doc, YdNode *data, CalRun *run, const char *path, char *err, size_t errlen);
+void cal_ranges_describe(const CalRun *run, char *buf, size_t n);
+int  cal_check_load_scale(const CalRun *run, int accept, char *err, size_t errlen);
+/* The key that declares a role's unit ("runs[k].data.units.load" or ".factors.load") and how ("unit mN", "factor 1000"). */
+const char *cal_unit_key(const CalRun *run, int role, char *buf, size_t n);
+const char *cal_unit_how(const CalRun *run, int role, char *buf, size_t n);
+
+/* calibrate_drift.c: drift: fit | {measured_in: STAGE} (read after the data and their stages; a measured drift is
+ * removed from the data's depths there); the drift regressor of a run's residuals (each depth residual's change
+ * per unit drift rate); its projection out of the residuals (drift: fit). */
+int  cal_drift_read(const YdDoc *doc, YdNode *item, CalRun *run, const char *path, char *err, size_t errlen);
+void cal_drift_regressor(const CalRun *run, double *a);
+void cal_drift_project(CalRun *run, double *r);
+
+/* calibrate_load.c: the load history the forward runs follow (drive: data): the data's rows, or a continuous
+ * piecewise-linear least-squares fit when the load is noisy (load_history: auto | fitted | data). */
+int  cal_load_read(const YdDoc *doc, YdNode *item, CalRun *run, const char *path, char *err, size_t errlen);
+int  cal_load_fit(CalRun *run, char *err, size_t errlen);
+/* A series' noise from its second differences (a robust estimate, the median's) over p[0..n-1]: the standard
+ * deviation of independent errors on a curve smooth at the rows' spacing. */
+double cal_noise(const double *p, int n);
+/* The same from the second differences themselves (d[0..n-1], overwritten). */
+double cal_noise_d2(double *d, int n);
+void cal_load_describe(const CalRun *run, char *buf, size_t n);
 
 /* calibrate_check.c: checks that catch a wrong fit at the start (accept: the names of those accepted). */
 enum { CAL_ACCEPT_ROWS = 1, CAL_ACCEPT_SCALE = 2, CAL_ACCEPT_BOUND = 4 };

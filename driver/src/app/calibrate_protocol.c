@@ -20,6 +20,8 @@
 #define HOLD_BAND 0.01   /* a hold: the load within 1 % of the peak */
 #define HOLD_CHANGE 0.05 /* a stage whose load changes by less than 5 % of the peak is a hold */
 #define CYCLE_DROP 0.10  /* a loading whose load falls back by 10 % of the peak: more than one cycle */
+#define NOISY 1.0e-4     /* a load noisier than this (relative to its peak: calibrate_load.c) ... */
+#define SMOOTH_ROWS 10   /* ... is read through its running mean over 21 rows to find its stages */
 
 static double T(const CalRun *run, int i) { return run->data[i * run->ncol + run->col_time]; }
 static double P(const CalRun *run, int i) { return run->data[i * run->ncol + run->col_load]; }
@@ -80,26 +82,40 @@ static int from_column(const YdDoc *doc, CalRun *run, char *err, size_t errlen) 
  * of it, when there are 3 or more), unloading after it. One cycle: a load that falls back within the loading, or
  * rises within the unloading, by 10 % of the peak is an error. */
 static int from_curve(const YdDoc *doc, CalRun *run, char *err, size_t errlen) {
-  int    n = run->rows, imax = 0, ha, hb;
-  double pmax;
+  int     n = run->rows, imax = 0, ha, hb;
+  double  pmax = 0, *p = calloc((size_t)n, sizeof(double)), *raw = calloc((size_t)n, sizeof(double));
+  for (int i = 0; i < n; i++) raw[i] = P(run, i), pmax = fmax(pmax, raw[i]);
+  /* a noisy load (calibrate_load.c's measure) is read through its running mean over 2 SMOOTH_ROWS + 1 rows */
+  int w = cal_noise(raw, n) > NOISY * pmax ? SMOOTH_ROWS : 0;
+  for (int i = 0; i < n; i++) {
+    double s = 0;
+    int    k = 0;
+    for (int j = i - w; j <= i + w; j++)
+      if (j >= 0 && j < n) s += raw[j], k++;
+    p[i] = s / k;
+  }
+  free(raw);
   for (int i = 1; i < n; i++)
-    if (P(run, i) > P(run, imax)) imax = i;
-  pmax = P(run, imax);
-  for (ha = imax; ha > 0 && P(run, ha - 1) >= (1 - HOLD_BAND) * pmax;) ha--;
-  for (hb = imax; hb < n - 1 && P(run, hb + 1) >= (1 - HOLD_BAND) * pmax;) hb++;
+    if (p[i] > p[imax]) imax = i;
+  pmax = p[imax];
+  for (ha = imax; ha > 0 && p[ha - 1] >= (1 - HOLD_BAND) * pmax;) ha--;
+  for (hb = imax; hb < n - 1 && p[hb + 1] >= (1 - HOLD_BAND) * pmax;) hb++;
   int hold = hb - ha >= 2;
   if (!hold) ha = imax + 1, hb = imax;
   if (ha == 1) ha = 0; /* a first stage of one row spans no time */
   double top = -INFINITY, low = INFINITY;
   for (int i = 0; i < n; i++) {
     int rising = i < ha;
-    if (rising ? P(run, i) < top - CYCLE_DROP * pmax : i > hb && P(run, i) > low + CYCLE_DROP * pmax)
+    if (rising ? p[i] < top - CYCLE_DROP * pmax : i > hb && p[i] > low + CYCLE_DROP * pmax) {
+      free(p);
       FAIL("%s:%d: key 'runs[%d].data': the load %s from %g to %g at time %g within the %s: more than one loading cycle? "
            "Give the data's stages as a column (runs[%d].data.columns.stage)", doc->file, run->line, run->index, rising ? "falls" : "rises",
-           rising ? top : low, P(run, i), T(run, i), rising ? "loading" : "unloading", run->index);
-    if (rising) top = fmax(top, P(run, i));
-    if (i > hb) low = fmin(low, P(run, i));
+           rising ? top : low, p[i], T(run, i), rising ? "loading" : "unloading", run->index);
+    }
+    if (rising) top = fmax(top, p[i]);
+    if (i > hb) low = fmin(low, p[i]);
   }
+  free(p);
   if (ha > 0) add_stage(run, "loading", 0, ha - 1);
   if (hold) add_stage(run, "hold", ha, hb);
   if (hb < n - 1) add_stage(run, "unloading", hb + 1, n - 1);
@@ -204,9 +220,17 @@ static void forward_kinds(const YdNode *stages, CalKind *kind) {
 static int write_table(const CalRun *run, int j, const char *file) {
   FILE *fp = fopen(file, "w");
   if (!fp) return 1;
-  fprintf(fp, "# the data's load over stage '%s' (%s, rows %d to %d), from the stage's start\ntime,load\n",
-          run->stage[j].name, run->data_file, run->stage[j].row0 + 1, run->stage[j].row1 + 1);
-  int a = j ? run->stage[j - 1].row1 : 0;
+  fprintf(fp, "# the %s over stage '%s' (%s, rows %d to %d), from the stage's start%s\ntime,load\n",
+          run->load_fitted ? "fitted load history" : "data's load", run->stage[j].name, run->data_file, run->stage[j].row0 + 1,
+          run->stage[j].row1 + 1, run->load_fitted ? ": linear between these knots (docs/calibrate.md, 'A noisy load')" : "");
+  int    a = j ? run->stage[j - 1].row1 : 0;
+  double ta = T(run, a), tb = T(run, run->stage[j].row1), tol = 1e-12 * fmax(fabs(tb), 1);
+  if (run->load_fitted) { /* the fitted history: its knots over the stage (calibrate_load.c) */
+    for (int q = 0; q < run->nknot; q++)
+      if (run->knot_t[q] >= ta - tol && run->knot_t[q] <= tb + tol)
+        fprintf(fp, "%.17g,%.17g\n", fmax(run->knot_t[q] - ta, 0), fmax(run->knot_p[q], 0));
+    return fclose(fp);
+  }
   for (int i = a; i <= run->stage[j].row1; i++) fprintf(fp, "%.17g,%.17g\n", T(run, i) - T(run, a), fmax(P(run, i), 0));
   return fclose(fp);
 }

@@ -13,12 +13,11 @@
  * shorter one shows the full model's numerical noise rather than its slope), until the step is below a fifth
  * of the standard error
  * or 1e-4 of the value. Its fixed point is J^T R(u) = 0: the full model's fit. The last step, a bound on the
- * error it leaves (the steps of a secant method shrink faster than the errors), enters the refined value's
- * standard error with the full model's own s^2 (J^T J)^-1. There s^2 counts the residuals' correlation: what is
- * left at the full model's fit is the data's noise and the full model's own error, and the latter is smooth
- * along a curve (a change of the adaptive steps shifts it as a whole); s^2 = SSR / (m_eff - n) with the AR(1)
- * effective number of residuals m_eff = m (1 - rho1) / (1 + rho1), rho1 the residuals' lag-1 autocorrelation
- * within the blocks (white noise: rho1 = 0, m_eff = m; e.g. Bretherton et al. 1999, J. Climate 12, 1990). */
+ * error it leaves (the steps of a secant method shrink faster than the errors), is the refined value's standard
+ * error's model part; its data part is the Newey-West estimate (calibrate_stats.c) from the full model's residuals
+ * and the updated J: what is left at the full model's fit is the data's noise and the full model's own error, the
+ * latter smooth along a curve (a change of the adaptive steps shifts it as a whole), which the estimate's
+ * bandwidth follows. The two are kept apart (fit.yaml, quote) and combined in quadrature. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,7 +25,6 @@
 
 #include "calibrate.h"
 
-#define REFINE_MAX 6      /* full-model runs */
 #define REFINE_SE 0.2     /* converged: every step below this fraction of its standard error ... */
 #define REFINE_REL 1.0e-4 /* ... or of the value */
 #define SECANT_REL 1.0e-3 /* a step shorter than this (relative) shows the full model's numerical noise, not its slope */
@@ -46,31 +44,20 @@ static void gn_step(const Calib *c, const double *J, const double *inv, const do
 }
 
 /* Each run's largest difference of the full model from the forward model at the fit, relative to each block's data
- * range (the models' curves: cheap as left by the fit's evaluation, full after R). */
-/* The residuals' lag-1 autocorrelation within the blocks (0 when it is negative). */
-static double lag1(const Calib *c, const double *R) {
-  double num = 0, den = 0;
-  for (int j = 0, off = 0; j < c->nrun; j++)
-    for (int k = 0; k < c->run[j].ncurve; k++) {
-      int n = c->run[j].curve[k].n;
-      for (int i = 0; i < n; i++) den += R[off + i] * R[off + i];
-      for (int i = 0; i + 1 < n; i++) num += R[off + i] * R[off + i + 1];
-      off += n;
-    }
-  return den > 0 ? fmax(0, fmin(num / den, 1)) : 0;
-}
-
+ * range (the models' curves: cheap as left by the fit's evaluation, full after R), and its block. */
 static void model_difference(Calib *c, const double *cheap, CalBias *b) {
   int off = 0;
   for (int j = 0; j < c->nrun; j++) {
     CalRun *run = &c->run[j];
-    b->max_diff[j] = run->reference[0] ? 0 : -1;
+    b->max_diff[j] = run->reference[0] ? 0 : -1, b->max_block[j] = 0;
     for (int k = 0; k < run->ncurve; k++) {
       CalCurve *cv = &run->curve[k];
       double    mc = 0, mf = 0;
       for (int i = 0; cv->relative && i < cv->n; i++) mc += cheap[off + i] / cv->n, mf += cv->model[i] / cv->n;
-      for (int i = 0; run->reference[0] && i < cv->n; i++)
-        b->max_diff[j] = fmax(b->max_diff[j], fabs((cheap[off + i] - mc) - (cv->model[i] - mf)) / cv->scale);
+      for (int i = 0; run->reference[0] && i < cv->n; i++) {
+        double d = fabs((cheap[off + i] - mc) - (cv->model[i] - mf)) / cv->range;
+        if (d > b->max_diff[j]) b->max_diff[j] = d, b->max_block[j] = k;
+      }
       off += cv->n;
     }
   }
@@ -102,7 +89,10 @@ int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, c
   double  u[CAL_MAX_PARAMS], du[CAL_MAX_PARAMS], step[CAL_MAX_PARAMS], p0[CAL_MAX_PARAMS];
   double  inv[CAL_MAX_PARAMS * CAL_MAX_PARAMS], moved[CAL_MAX_PARAMS];
   double *R = malloc(sizeof(double) * m), *cheap = malloc(sizeof(double) * m), *J = malloc(sizeof(double) * m * n);
-  double *Rprev = malloc(sizeof(double) * m);
+  double *Rprev = malloc(sizeof(double) * m), *G = malloc(sizeof(double) * m * n), drift[CAL_MAX_RUNS];
+  int     blocks[CAL_MAX_RUNS * CAL_MAX_CURVES], nblock, ndrift = 0;
+  cal_blocks(c, blocks, &nblock);
+  for (int j = 0; j < c->nrun; j++) drift[j] = c->run[j].drift_rate, ndrift += c->run[j].drift == CAL_DRIFT_FIT;
   memcpy(J, J0, sizeof(double) * m * n), memcpy(inv, inv0, sizeof(double) * n * n);
   memset(b, 0, sizeof *b);
   for (int j = 0; j < c->nrun; j++) refs += c->run[j].reference[0] != 0, b->max_diff[j] = -1;
@@ -110,7 +100,7 @@ int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, c
   for (int a = 0; a < n; a++) p0[a] = b->p[a] = cal_param(&c->p[a], u0[a]), b->se[a] = se[a];
   cal_models(c, cheap, 1);
   int big = 0; /* the last step is long enough for a secant */
-  for (int it = 0; refs && it < REFINE_MAX; it++) {
+  for (int it = 0; refs && it < c->refine_runs; it++) {
     char tag[32];
     snprintf(tag, sizeof tag, "full%d", it);
     PetscPrintf(PETSC_COMM_SELF, "%s", it ? "" : "the full model at the fit (each run's reference) ...\n");
@@ -125,17 +115,19 @@ int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, c
       broyden(c, J, inv, moved, Rprev);
     }
     memcpy(Rprev, R, sizeof(double) * m);
-    double ssr = 0, s2, full_se[CAL_MAX_PARAMS], un[CAL_MAX_PARAMS];
+    double ssr = 0, full_se[CAL_MAX_PARAMS], un[CAL_MAX_PARAMS], cov[CAL_MAX_PARAMS * CAL_MAX_PARAMS];
+    double white[CAL_MAX_PARAMS * CAL_MAX_PARAMS], scratch[CAL_MAX_PARAMS * CAL_MAX_PARAMS];
+    CalHacInfo hac;
     for (int i = 0; i < m; i++) ssr += R[i] * R[i];
-    double rho = lag1(c, R), meff = fmax(m * (1 - rho) / (1 + rho), n + 1.0);
-    s2 = m > n ? ssr / (meff - n) : NAN;
+    cal_influence(n, m, J, G, scratch); /* the full model's Newey-West covariance with the current J */
+    cal_hac(n, m, G, R, blocks, nblock, n + ndrift, cov, white, &hac);
     gn_step(c, J, inv, R, du);
     int want = c->refine == 2, small = 1;
     for (int a = 0; a < n; a++) {
       un[a]   = fmin(1, fmax(0, u[a] - du[a]));
       step[a] = cal_param(&c->p[a], un[a]) - cal_param(&c->p[a], u[a]);
       if (!it) b->first[a] = p0[a] - cal_param(&c->p[a], un[a]);
-      full_se[a] = sqrt(s2 * inv[a * n + a]) * cal_dparam(&c->p[a], un[a]);
+      full_se[a] = sqrt(cov[a * n + a]) * cal_dparam(&c->p[a], un[a]);
       want |= c->refine == 1 && fabs(b->first[a]) > se[a];
     }
     PetscPrintf(PETSC_COMM_SELF, "  full-model run %d: misfit %.6e; Gauss-Newton step", it + 1, ssr);
@@ -149,17 +141,21 @@ int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, c
       big          |= fabs(step[a]) > SECANT_REL * fabs(b->p[a]);
       u[a]          = un[a];
       b->p[a]       = cal_param(&c->p[a], u[a]);
+      b->se_data[a] = full_se[a], b->se_model[a] = fabs(step[a]);
       b->se[a]      = sqrt(full_se[a] * full_se[a] + step[a] * step[a]);
+      b->steps[b->nsteps][a] = step[a] / fabs(b->p[a]);
       b->bias[a]    = p0[a] - b->p[a];
       b->bias_se[a] = b->se[a];
       small &= fabs(step[a]) <= fmax(REFINE_SE * full_se[a], REFINE_REL * fabs(b->p[a]));
     }
+    b->nsteps++;
     if (small) {
       b->converged = 1;
       break;
     }
   }
   cal_models(c, cheap, 0); /* curves.csv: the forward model at its fit */
-  free(R), free(cheap), free(J), free(Rprev);
+  for (int j = 0; j < c->nrun; j++) c->run[j].drift_rate = drift[j];
+  free(R), free(cheap), free(J), free(Rprev), free(G);
   return b->failed[0] != 0;
 }

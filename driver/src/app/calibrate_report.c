@@ -1,6 +1,8 @@
 /* The report of a calibration: the Jacobian at the fit by central differences (in the [0, 1] variables TAO
- * works on), standard errors s^2 (J^T J)^-1 with s^2 = SSR / (m - n), correlations, the data against the
- * fitted curves (curves.csv), the forward model's error against its reference (the full model), fit.yaml. */
+ * works on), standard errors for residuals correlated along a curve (Newey-West, calibrate_stats.c; the white
+ * s^2 (J^T J)^-1 beside them), the fitted drift rates and theirs, correlations, the hold blocks' trends, the data
+ * against the fitted curves (curves.csv), the forward model's error against its reference (the full model),
+ * fit.yaml. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,22 +43,88 @@ int cal_invert(int n, double *a, double *b) {
   return 0;
 }
 
-/* J (m x n, column-major by parameter) at u by central differences, one-sided at a bound. */
-static int jacobian(Calib *c, const double *u, double *J, char *err, size_t errlen) {
-  double *rp = malloc(sizeof(double) * c->m * 2), *rm = rp + c->m;
+/* J (m x n, column-major by parameter) at u by central differences, one-sided at a bound or where a forward run
+ * fails on one side (the fit itself then the other point; said in the log); dd (n x nrun): each run's fitted drift
+ * rate's derivative (drift: fit; 0 otherwise). */
+static int jacobian(Calib *c, const double *u, double *J, double *dd, char *err, size_t errlen) {
+  double *rp = malloc(sizeof(double) * c->m * 2), *rm = rp + c->m, dp[CAL_MAX_RUNS], dm[CAL_MAX_RUNS];
   for (int k = 0; k < c->np; k++) {
     double up[CAL_MAX_PARAMS], um[CAL_MAX_PARAMS];
-    char   tag[32];
+    char   tag[32], msg[1024];
     memcpy(up, u, sizeof(double) * c->np), memcpy(um, u, sizeof(double) * c->np);
     up[k] = fmin(1, u[k] + CAL_FD_STEP), um[k] = fmax(0, u[k] - CAL_FD_STEP);
-    snprintf(tag, sizeof tag, "jac%d_plus", k);
-    if (cal_evaluate(c, up, rp, tag, err, errlen)) return free(rp), 1;
-    snprintf(tag, sizeof tag, "jac%d_minus", k);
-    if (cal_evaluate(c, um, rm, tag, err, errlen)) return free(rp), 1;
+    for (int side = 0; side < 2; side++) {
+      double *x = side ? um : up, *r = side ? rm : rp, *d = side ? dm : dp;
+      snprintf(tag, sizeof tag, "jac%d_%s", k, side ? "minus" : "plus");
+      if (cal_evaluate(c, x, r, tag, msg, sizeof msg)) {
+        PetscPrintf(PETSC_COMM_SELF, "  the Jacobian's %s point of %s failed (%s): a one-sided difference from the fit\n",
+                    side ? "lower" : "upper", c->p[k].name, msg);
+        memcpy(x, u, sizeof(double) * c->np);
+        if (up[k] == um[k] || cal_evaluate(c, x, r, "fit", err, errlen)) {
+          if (up[k] == um[k]) snprintf(err, errlen, "%s", msg);
+          return free(rp), 1;
+        }
+      }
+      for (int j = 0; j < c->nrun; j++) d[j] = c->run[j].drift_rate;
+    }
     for (int i = 0; i < c->m; i++) J[k * c->m + i] = (rp[i] - rm[i]) / (up[k] - um[k]);
+    for (int j = 0; j < c->nrun; j++) dd[k * c->nrun + j] = c->run[j].drift == CAL_DRIFT_FIT ? (dp[j] - dm[j]) / (up[k] - um[k]) : 0;
   }
   free(rp);
   return 0;
+}
+
+/* The uncertainty of the fit at u: Newey-West standard errors of the parameters and of the fitted drift rates (their
+ * influence on the residuals' errors: d = -a.e / a.a + sum_k dd_k du_k), the white ones beside them, and each hold
+ * block's trend. X: the fit's columns (J and the drift regressors), filled for the trend check; cov (n x n). */
+static void uncertainty(Calib *c, const double *u, const double *J, const double *dd, const double *r, double *inv,
+                        double *cov, CalUncertainty *un) {
+  int     n = c->np, m = c->m, q = n, drun[CAL_MAX_RUNS], blocks[CAL_MAX_RUNS * CAL_MAX_CURVES], nblock;
+  double *G = malloc(sizeof(double) * m * (n + CAL_MAX_RUNS)), *X = malloc(sizeof(double) * m * (n + CAL_MAX_RUNS));
+  double  full[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)];
+  double  white[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)];
+  memset(un, 0, sizeof *un);
+  cal_influence(n, m, J, G, inv);
+  memcpy(X, J, sizeof(double) * m * n);
+  for (int j = 0, off = 0; j < c->nrun; off += cal_run_size(&c->run[j]), j++) { /* the drift rates' rows */
+    un->drift_se[j] = NAN;
+    if (c->run[j].drift != CAL_DRIFT_FIT) continue;
+    double *a = X + (size_t)q * m, *g = G + (size_t)q * m, aa = 0;
+    for (int i = 0; i < m; i++) a[i] = 0;
+    cal_drift_regressor(&c->run[j], a + off);
+    for (int i = 0; i < m; i++) aa += a[i] * a[i];
+    for (int i = 0; i < m; i++) {
+      g[i] = aa > 0 ? -a[i] / aa : 0;
+      for (int k = 0; k < n; k++) g[i] += dd[k * c->nrun + j] * G[k * m + i];
+    }
+    drun[q - n] = j, q++;
+  }
+  cal_blocks(c, blocks, &nblock);
+  cal_hac(q, m, G, r, blocks, nblock, q, full, white, &un->hac);
+  for (int a = 0; a < n; a++) {
+    for (int b = 0; b < n; b++) cov[a * n + b] = full[a * q + b];
+    un->se[a]    = sqrt(full[a * q + a]) * cal_dparam(&c->p[a], u[a]);
+    un->white[a] = sqrt(white[a * q + a]) * cal_dparam(&c->p[a], u[a]);
+  }
+  for (int k = n; k < q; k++) un->drift_se[drun[k - n]] = sqrt(full[k * q + k]);
+  for (int j = 0, off = 0; j < c->nrun; off += cal_run_size(&c->run[j]), j++) { /* a measured drift's own uncertainty */
+    if (c->run[j].drift != CAL_DRIFT_MEASURED || !(c->run[j].drift_se > 0)) continue;
+    double *a = malloc(sizeof(double) * cal_run_size(&c->run[j]));
+    cal_drift_regressor(&c->run[j], a);
+    for (int k = 0; k < n; k++) { /* an error e in the rate removed leaves e a in the residuals: du = G a e */
+      double ga = 0;
+      for (int i = 0; i < cal_run_size(&c->run[j]); i++) ga += G[k * m + off + i] * a[i];
+      un->se[k] = sqrt(un->se[k] * un->se[k] + pow(ga * c->run[j].drift_se * cal_dparam(&c->p[k], u[k]), 2));
+    }
+    free(a);
+  }
+  for (int a = 0; a < n; a++) { /* G r: the Gauss-Newton step from the fit */
+    double du = 0;
+    for (int i = 0; i < m; i++) du += G[a * m + i] * r[i];
+    un->step[a] = cal_param(&c->p[a], fmin(1, fmax(0, u[a] + du))) - cal_param(&c->p[a], u[a]);
+  }
+  un->ntrend = cal_hold_trends(c, X, q, r, un->trend, CAL_MAX_RUNS * CAL_MAX_CURVES);
+  free(G), free(X);
 }
 
 /* The data against the fitted curves: curves.csv (run, block, x, y, data, model). */
@@ -65,7 +133,7 @@ static int write_curves(Calib *c, char *err, size_t errlen) {
   snprintf(file, sizeof file, "%s/curves.csv", c->outdir);
   FILE *fp = fopen(file, "w");
   if (!fp) FAIL("calibrate: cannot write %s", file);
-  fprintf(fp, "run,block,x_name,y_name,x,data,model\n");
+  fprintf(fp, "run,block,x_name,y_name,x,data,model,drift,stage\n");
   for (int j = 0; j < c->nrun; j++) cal_run_write_curves(&c->run[j], fp);
   fclose(fp);
   return 0;
@@ -78,15 +146,51 @@ static const char *at_bound(const CalParam *p, double v) {
   return NULL;
 }
 
+/* Why the refinement did not converge, from its steps (relative to the value), and what to do. */
+static void not_converged(const Calib *c, const CalBias *b, char *buf, size_t n) {
+  int    k = 0, ns = b->nsteps, swing = 1, shrink = 1;
+  char   steps[256] = "";
+  for (int a = 1; a < c->np; a++) /* the parameter whose last step is the largest */
+    if (fabs(b->steps[ns - 1][a]) > fabs(b->steps[ns - 1][k])) k = a;
+  for (int s = 0; s < ns; s++) {
+    size_t len = strlen(steps);
+    snprintf(steps + len, sizeof steps - len, "%s%+.2g %%", s ? ", " : "", 100 * b->steps[s][k]);
+    if (s > 0) {
+      swing &= b->steps[s][k] * b->steps[s - 1][k] < 0;
+      shrink &= fabs(b->steps[s][k]) < 0.7 * fabs(b->steps[s - 1][k]);
+    }
+  }
+  if (ns == 1)
+    snprintf(buf, n, "one step in %s (%s) is all it had: give it more full-model runs (refine_runs: %d, now %d)", c->p[k].name,
+             steps, 2 * c->refine_runs > CAL_REFINE_CAP ? CAL_REFINE_CAP : 2 * c->refine_runs, c->refine_runs);
+  else if (ns >= 3 && swing)
+    snprintf(buf, n, "its steps in %s swing from side to side (%s): the full model's misfit is not smooth in it at this "
+             "scale, or the forward model's slope is far from the full model's. What to do: give a forward model nearer "
+             "the full model (X_mid rather than X_fast), or a full model with smooth outputs (its error control at a tight "
+             "tolerance; a noisy load history: load_history: fitted); or quote the forward model's fit with its bias "
+             "(bias.first_estimate in fit.yaml) as its model error", c->p[k].name, steps);
+  else if (ns >= 2 && shrink)
+    snprintf(buf, n, "its steps in %s shrink (%s) but had not reached a fifth of the standard error: give it more "
+             "full-model runs (refine_runs: %d, now %d), or a forward model nearer the full model", c->p[k].name, steps,
+             2 * c->refine_runs > CAL_REFINE_CAP ? CAL_REFINE_CAP : 2 * c->refine_runs, c->refine_runs);
+  else
+    snprintf(buf, n, "its steps in %s do not shrink (%s): the forward model's Jacobian does not lead the full model's fit; "
+             "give a forward model nearer the full model (X_mid rather than X_fast), or more full-model runs "
+             "(refine_runs: %d, now %d)", c->p[k].name, steps, 2 * c->refine_runs > CAL_REFINE_CAP ? CAL_REFINE_CAP :
+             2 * c->refine_runs, c->refine_runs);
+}
+
 /* Bound and reference failures after fit.yaml is written: an error unless accepted (accept: [bound]). */
 static int final_checks(Calib *c, const double *u, const CalBias *b, char *err, size_t errlen) {
-  char file[PATH_MAX + 32];
+  char file[PATH_MAX + 32], why[1024];
   snprintf(file, sizeof file, "%s/fit.yaml", c->outdir);
   if (b->failed[0])
     FAIL("%s (fit.yaml has the forward model's fit; its bias is not known): %s", b->failed, file);
-  if (b->refined && !b->converged)
-    FAIL("%s: the refinement on the full model did not converge in %d full-model runs: its last value is in %s (quote), "
-         "with its last step in the standard error", c->doc->file, b->nfull, file);
+  if (b->refined && !b->converged) {
+    not_converged(c, b, why, sizeof why);
+    FAIL("%s: key 'refine': the refinement on the full model did not converge in %d full-model runs: %s. Its last value "
+         "is in %s (quote), its last step counted in the standard error's model part", c->doc->file, b->nfull, why, file);
+  }
   for (int k = 0; k < c->np; k++) {
     const CalParam *p = &c->p[k];
     double          v = b->refined ? b->p[k] : cal_param(p, u[k]);
@@ -108,38 +212,31 @@ static int final_checks(Calib *c, const double *u, const CalBias *b, char *err, 
 int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char *err, size_t errlen) {
   int     n = c->np, m = c->m;
   double *J = malloc(sizeof(double) * m * n), *r = malloc(sizeof(double) * m), ssr = 0;
-  double  JtJ[CAL_MAX_PARAMS * CAL_MAX_PARAMS], inv[CAL_MAX_PARAMS * CAL_MAX_PARAMS], cov[CAL_MAX_PARAMS * CAL_MAX_PARAMS];
-  double  se[CAL_MAX_PARAMS];
+  double  inv[CAL_MAX_PARAMS * CAL_MAX_PARAMS], cov[CAL_MAX_PARAMS * CAL_MAX_PARAMS], dd[CAL_MAX_PARAMS * CAL_MAX_RUNS];
+  double  drift[CAL_MAX_RUNS];
   CalBias b;
+  CalUncertainty *un = calloc(1, sizeof *un);
   char    msg[2048] = "";
   PetscErrorCode ierr = PetscPrintf(PETSC_COMM_SELF, "TAO %s: %s after %d iterations; the Jacobian at the fit by central differences (%d runs)\n",
                                     c->tao_type, reason, (int)its, 2 * n * c->nrun);
-  if (ierr) return free(J), free(r), stage_runner_status(ierr, err);
-  if (jacobian(c, u, J, err, errlen)) return free(J), free(r), 1;
-  if (cal_evaluate(c, u, r, "fit", err, errlen)) return free(J), free(r), 1;
+  if (ierr) return free(J), free(r), free(un), stage_runner_status(ierr, err);
+  if (jacobian(c, u, J, dd, err, errlen)) return free(J), free(r), free(un), 1;
+  if (cal_evaluate(c, u, r, "fit", err, errlen)) return free(J), free(r), free(un), 1;
   for (int i = 0; i < m; i++) ssr += r[i] * r[i];
-  for (int a = 0; a < n; a++)
-    for (int bb = 0; bb < n; bb++) {
-      JtJ[a * n + bb] = 0;
-      for (int i = 0; i < m; i++) JtJ[a * n + bb] += J[a * m + i] * J[bb * m + i];
-    }
-  double s2 = m > n ? ssr / (m - n) : NAN;
-  if (cal_invert(n, JtJ, inv))
-    for (int i = 0; i < n * n; i++) inv[i] = NAN; /* a parameter the data do not see */
-  for (int a = 0; a < n; a++) {
-    for (int bb = 0; bb < n; bb++) cov[a * n + bb] = s2 * inv[a * n + bb];
-    se[a] = sqrt(cov[a * n + a]) * cal_dparam(&c->p[a], u[a]);
-  }
-  cal_bias(c, u, J, inv, se, &b, msg, sizeof msg);
-  if (write_curves(c, err, errlen)) return free(J), free(r), 1;
+  for (int j = 0; j < c->nrun; j++) drift[j] = c->run[j].drift_rate;
+  uncertainty(c, u, J, dd, r, inv, cov, un);
+  cal_bias(c, u, J, inv, un->white, &b, msg, sizeof msg); /* refine: auto: the bias against the white standard error */
+  for (int j = 0; j < c->nrun; j++) c->run[j].drift_rate = drift[j], c->run[j].drift_se = c->run[j].drift == CAL_DRIFT_FIT ? un->drift_se[j] : c->run[j].drift_se;
+  if (write_curves(c, err, errlen)) return free(J), free(r), free(un), 1;
   char file[PATH_MAX + 32];
   snprintf(file, sizeof file, "%s/fit.yaml", c->outdir);
   FILE *fp = fopen(file, "w");
-  if (!fp) return free(J), free(r), snprintf(err, errlen, "calibrate: cannot write %s", file), 1;
-  cal_write_yaml(c, fp, u, se, cov, ssr, its, reason, &b);
+  if (!fp) return free(J), free(r), free(un), snprintf(err, errlen, "calibrate: cannot write %s", file), 1;
+  cal_write_yaml(c, fp, u, un, cov, ssr, its, reason, &b);
   fclose(fp);
   free(J), free(r);
-  ierr = cal_print_summary(c, u, se, &b);
+  ierr = cal_print_summary(c, u, un, &b);
+  free(un);
   if (!ierr)
     ierr = PetscPrintf(PETSC_COMM_SELF, "calibrate %s: misfit %.6e, %d evaluations (%d rejected), %d forward runs, wall %.1f s -> %s/fit.yaml\n",
                        c->name, ssr, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0, c->outdir);

@@ -113,8 +113,38 @@ static int block_rows(CalRun *run, CalCurve *c, double t0, double t1) {
     c->t[c->n] = t, c->x[c->n] = row[xc], c->y[c->n++] = row[yc];
     lo = fmin(lo, row[yc]), hi = fmax(hi, row[yc]);
   }
-  c->scale = hi - lo > 0 ? hi - lo : fmax(fabs(hi), 1e-300);
+  c->scale = c->range = hi - lo > 0 ? hi - lo : fmax(fabs(hi), 1e-300);
   return c->n;
+}
+
+/* weighting: noise: each block's residuals divided by the noise of its data column (depth or value), from the
+ * second differences along each block of that column (pooled; cal_noise), in place of the block's range: the
+ * residuals' sum of squares is then the chi-square of independent errors of that size, the maximum-likelihood
+ * weighting, where the range weighs a block by its units (a hold of 12 nm against a loading of 140 nm: the
+ * loading's rows counted 140 times less than the hold's). A column whose noise is below 1e-6 of its largest
+ * block range (a clean record) keeps the ranges: noted as NAN. */
+static void noise_scales(CalRun *run) {
+  for (int role = 2; role <= 3; role++) {
+    int     total = 0;
+    double  big   = 0;
+    for (int k = 0; k < run->ncurve; k++) total += ((run->curve[k].kind == CAL_SERIES) == (role == 3)) ? run->curve[k].n : 0;
+    run->noise[role] = NAN;
+    if (!total) continue;
+    double *d2 = malloc(sizeof(double) * total);
+    int     n  = 0;
+    for (int k = 0; k < run->ncurve; k++) { /* within each block: none across two blocks */
+      const CalCurve *c = &run->curve[k];
+      if ((c->kind == CAL_SERIES) != (role == 3)) continue;
+      big = fmax(big, c->range);
+      for (int i = 1; i + 1 < c->n; i++) d2[n++] = c->y[i + 1] - 2 * c->y[i] + c->y[i - 1];
+    }
+    double sigma = n >= 3 ? cal_noise_d2(d2, n) : 0;
+    free(d2);
+    if (!(sigma > 1e-6 * big)) continue;
+    run->noise[role] = sigma;
+    for (int k = 0; k < run->ncurve; k++)
+      if ((run->curve[k].kind == CAL_SERIES) == (role == 3)) run->curve[k].scale = sigma;
+  }
 }
 
 int cal_run_setup(CalRun *run, const char *dir, char *err, size_t errlen) {
@@ -131,6 +161,7 @@ int cal_run_setup(CalRun *run, const char *dir, char *err, size_t errlen) {
     if (empty) FAIL("%s: the forward run %s/history.csv has no steps in that stage", block(run, c, where, sizeof where), dir);
     block_rows(run, c, t0, t1); /* a block with fewer than 2 rows: cal_check_rows */
   }
+  if (run->weighting == CAL_WEIGHT_NOISE) noise_scales(run);
   return 0;
 }
 
@@ -192,13 +223,18 @@ int cal_run_residual(CalRun *run, const char *dir, double *r, char *err, size_t 
 }
 
 int cal_run_write_curves(const CalRun *run, FILE *fp) {
+  double t0 = run->data[run->col_time]; /* the drift counts from the data's first row */
   for (int k = 0; k < run->ncurve; k++) {
     const CalCurve *c   = &run->curve[k];
     double          ref = c->relative ? block_mean(c->model, c->n) : 0, ref_data = c->relative ? block_mean(c->y, c->n) : 0;
     double          x0  = strcmp(c->xcol, "time") ? 0 : run->time_shift; /* times as in the data file */
-    for (int i = 0; i < c->n; i++)
-      fprintf(fp, "%s,%s,%s,%s,%.10g,%.10g,%.10g\n", run->name, cal_kind_name(c->kind), c->xcol, c->ycol, c->x[i] - x0,
-              c->y[i] - ref_data, c->model[i] - ref);
+    double          mt  = c->relative ? block_mean(c->t, c->n) - t0 : 0;
+    for (int i = 0; i < c->n; i++) {
+      /* the drift in the depth at the row: added to the model (drift: fit), removed from the data (measured) */
+      double d = run->drift && c->kind != CAL_SERIES ? run->drift_rate * (c->t[i] - t0 - mt) : 0;
+      fprintf(fp, "%s,%s,%s,%s,%.10g,%.10g,%.10g,%.10g,%s\n", run->name, cal_kind_name(c->kind), c->xcol, c->ycol, c->x[i] - x0,
+              c->y[i] - ref_data, c->model[i] - ref + (run->drift == CAL_DRIFT_FIT ? d : 0), d, c->stage_name);
+    }
   }
   return 0;
 }
