@@ -1,8 +1,10 @@
 /* What a calibration tells its user: fit.yaml and the summary on stdout. Both say which number to quote: the
  * refined value when the fit was refined on the full model, else the forward model's fit (with its bias, when a
  * full model measured it). */
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "calibrate.h"
@@ -33,8 +35,42 @@ static const char *num(double x, char *buf, size_t n) {
   return buf;
 }
 
+/* A number written by %g without a point ("1e+08") is a string to YAML 1.1 readers (PyYAML): "1.0e+08" is a float.
+ * The text of fit.yaml copied to fp with such mantissas given their ".0". */
+static void yaml_floats(const char *t, FILE *fp) {
+  for (const char *p = t; *p;) {
+    int start = (p == t || strchr(" [{,:", p[-1])) && (isdigit((unsigned char)*p) || (*p == '-' && isdigit((unsigned char)p[1])));
+    if (!start) {
+      fputc(*p++, fp);
+      continue;
+    }
+    const char *q = p + (*p == '-');
+    while (isdigit((unsigned char)*q)) q++;
+    if (*q == 'e' && (q[1] == '+' || q[1] == '-') && isdigit((unsigned char)q[2])) {
+      fwrite(p, 1, (size_t)(q - p), fp), fputs(".0", fp);
+      p = q;
+    }
+    while (p < q) fputc(*p++, fp);
+  }
+}
+
+static void write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty *un, const double *cov, double ssr, PetscInt its,
+                       const char *reason, const CalBias *b);
+
 void cal_write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty *un, const double *cov, double ssr, PetscInt its,
                     const char *reason, const CalBias *b) {
+  char  *text = NULL;
+  size_t len  = 0;
+  FILE  *mem  = open_memstream(&text, &len);
+  if (!mem) return write_yaml(c, fp, u, un, cov, ssr, its, reason, b);
+  write_yaml(c, mem, u, un, cov, ssr, its, reason, b);
+  fclose(mem);
+  yaml_floats(text, fp);
+  free(text);
+}
+
+static void write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty *un, const double *cov, double ssr, PetscInt its,
+                       const char *reason, const CalBias *b) {
   int         n  = c->np;
   const double *se = un->se;
   char        b1[32], b2[32];
