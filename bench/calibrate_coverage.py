@@ -10,6 +10,7 @@ for each kind of fault:
 
   noise       1 nm of depth noise (independent, normal)
   drift       a thermal drift of 0.05 nm/s over the whole record (3 nm over the 60 s hold), drift: fit
+  drift_noise the drift and 1 nm of depth noise, drift: fit
   both        both, and 0.5 % of the peak load of load noise (the forward runs follow the fitted load history)
   ignored     noise and drift, fitted without a drift option (what the coverage is without it; the hold's warning)
 
@@ -51,6 +52,7 @@ FAULTS = {  # name: (depth noise nm, drift nm/s, load noise, drift option)
     "clean": (0.0, 0.0, 0.0, None),
     "noise": (DEPTH_NOISE, 0.0, 0.0, None),
     "drift": (0.0, DRIFT, 0.0, "fit"),
+    "drift_noise": (DEPTH_NOISE, DRIFT, 0.0, "fit"),
     "both": (DEPTH_NOISE, DRIFT, LOAD_NOISE, "fit"),
     "ignored": (DEPTH_NOISE, DRIFT, 0.0, None),
 }
@@ -204,7 +206,7 @@ def cases(a, log):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--draws", type=int, default=20)
-    ap.add_argument("--faults", default="noise,drift,both,ignored")
+    ap.add_argument("--faults", default="noise,drift,drift_noise,both,ignored")
     ap.add_argument("--cases", action="store_true", help="the issue's cases at one truth, with their CPU")
     ap.add_argument("--seed", type=int, default=37)
     ap.add_argument("--keep", default=None, help="a folder for the work (kept); default a temporary one")
