@@ -24,19 +24,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
-DRIVER_ELASTIC = str(Path(DRIVER).parent / "driver_elastic")
-
-BOX = f"""scene: fe
-mesh: {{geometry: {ROOT}/meshes/box.geo, parameters: {{size: 0.6}}}}
-material: {{umat: elastic, props: [1000, 0.25], nstatv: 0}}
-boundary:
-  fixed: [{{group: x0, components: [x]}}, {{group: y0, components: [y]}}, {{group: z0, components: [z]}}]
-  pressure: [z1]
-stages:
-  - {{name: load, duration: 1, pressure: {{z1: 2}}, steps: {{count: 2}}}}
-"""
+from test_input_classes import BOX, DRIVER, DRIVER_ELASTIC, ROOT  # the elastic box scene and the drivers, named once
 
 CONE = f"""scene: fe
 mesh:

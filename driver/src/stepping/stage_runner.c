@@ -128,6 +128,10 @@ static int progress_line(Run *r, const StepOutcome *o, double h, char *err) {
   return 0;
 }
 
+/* A step's increment d less the previous increment d_prev scaled to its length: (h (h + h_prev)/2) y'' + O(h^3), the
+ * second difference both the 'output' measure (error_ratio) and the stated time-step error (time_error_step) read. */
+static double departure(double d, double d_prev, double h, double h_prev) { return d - h / h_prev * d_prev; }
+
 /* The error estimate of a converged step relative to tol ('output', 'volume'), or -1 when there is none
  * (worst_point, fixed steps, the first step of a stage, an instant step, a solver that reports no outputs). */
 static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
@@ -136,13 +140,13 @@ static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
   if (!sc->adaptive || sc->measure == MEASURE_WORST_POINT || rq->h == 0) return -1;
   if (sc->measure == MEASURE_VOLUME) return rq->first_in_stage || o->vol_err < 0 ? -1 : o->vol_err / sc->tol;
   if (rq->first_in_stage || !st->have_prev || o->nout <= 0 || st->nout != o->nout || st->h_prev <= 0) return -1;
-  double ratio = rq->h / st->h_prev, worst = 0;
+  double worst = 0;
   for (int g = 0; g <= o->group[o->nout - 1]; g++) {
     double num = 0, den = 0, scale = 0;
     for (int k = 0; k < o->nout; k++)
       if (o->group[k] == g) {
         double d = o->out[k] - st->out_prev[k];
-        num += pow(d - ratio * st->dout_prev[k], 2), den += d * d;
+        num += pow(departure(d, st->dout_prev[k], rq->h, st->h_prev), 2), den += d * d;
         scale += fmax(st->out_scale[k] * st->out_scale[k], o->out[k] * o->out[k]);
       }
     double e = sqrt(num) / fmax(fmax(sqrt(den), 1e-6 * sqrt(scale)), 1e-300);
@@ -300,7 +304,7 @@ static void keep_report(Run *r, int k) {
   for (int q = 0; q < r->sv->nreport && k <= RUNNER_MAX_STAGES; q++) st->terr_change[k][q] = k && r->view.held ? st->terr_stage[q] : NAN;
   for (int q = 0; q < r->sv->nreport; q++) st->terr_stage[q] = 0;
   if (k <= RUNNER_MAX_STAGES) r->sv->report(r->sv->ctx, st->report[k]);
-  if (k == 0) r->sv->report(r->sv->ctx, st->rep_prev);
+  if (k == 0) memcpy(st->rep_prev, st->report[0], sizeof st->rep_prev); /* the first step's increment starts here */
 }
 
 /* The time-step error of the reported quantities after an accepted step (docs/adapt.md, "The time-step error").
@@ -321,7 +325,7 @@ static void time_error_step(Run *r, const StepRequest *rq) {
   for (int q = 0; q < r->sv->nreport; q++) {
     double d = v[q] - st->rep_prev[q];
     if (have) {
-      double e = fabs(d - rq->h / st->rep_h_prev * st->drep_prev[q]) * rq->h / (rq->h + st->rep_h_prev);
+      double e = fabs(departure(d, st->drep_prev[q], rq->h, st->rep_h_prev)) * rq->h / (rq->h + st->rep_h_prev);
       st->terr_stage[q] += e;
     }
     st->drep_prev[q] = d, st->rep_prev[q] = v[q];
