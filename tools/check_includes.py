@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The driver's folders are its architecture, and dependencies run one way (driver/README.md, "The layers"):
 
-    app -> stepping -> contact -> {fe, point} -> scene -> material -> io
+    app -> calibrate -> stepping -> contact -> {fe, point} -> scene -> material -> io
 
 A file may include its own folder's headers and those of folders below it, never one above it or beside it (fe and
 point are siblings: neither includes the other); only material/ includes the UMAT's C header camclay9.h (the
@@ -15,7 +15,8 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-LAYER = {"io": 0, "material": 1, "scene": 2, "fe": 3, "point": 3, "contact": 4, "stepping": 5, "app": 6}
+LAYER = {"io": 0, "material": 1, "scene": 2, "fe": 3, "point": 3, "contact": 4, "stepping": 5, "calibrate": 6,
+         "app": 7}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
@@ -43,7 +44,7 @@ def check(src):
                 continue
             if to not in LAYER or LAYER[to] >= LAYER[folder]:
                 bad.append(f"{rel(path)}: includes {target} ({folder} -> {to} runs against "
-                           "app -> stepping -> contact -> {fe, point} -> scene -> material -> io)")
+                           "app -> calibrate -> stepping -> contact -> {fe, point} -> scene -> material -> io)")
     return bad, n
 
 

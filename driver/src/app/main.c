@@ -5,6 +5,7 @@
 #include <petscsys.h>
 #include <string.h>
 
+#include "../calibrate/calibrate.h"
 #include "../contact/contact_options.h"
 #include "../io/options.h"
 #include "../io/keydecl.h"
@@ -17,7 +18,6 @@
 #include "fe_app.h"
 #include "../point/replay.h"
 #include "sweep.h"
-#include "calibrate.h"
 
 /* -help: what the driver runs, every key of the FE, indentation and point scenes from their declarations
  * (scene/scene_keys.c), the other kinds' keys, then (PETSc) every option with its range and default. */
