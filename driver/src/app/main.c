@@ -16,6 +16,7 @@
 #include "../stepping/point_stepper.h"
 #include "fe_adapt.h"
 #include "fe_app.h"
+#include "fe_run.h"
 #include "../point/replay.h"
 #include "sweep.h"
 
