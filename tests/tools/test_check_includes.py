@@ -1,5 +1,6 @@
-"""tools/check_includes.py: the driver's include graph follows its folders' order (issue 24), and the check fails on
-an include that runs upward, on one between siblings and on camclay9.h outside material/ (a check that cannot
+"""tools/check_includes.py: the driver's include graph follows its folders' order (issue 24) and its files depend on
+one another without a cycle (issue 35), and the check fails on an include that runs upward, on one between siblings,
+on camclay9.h outside material/, and on a cycle of calls behind one shared header or of headers (a check that cannot
 fail would prove nothing)."""
 import shutil
 import subprocess
@@ -18,6 +19,7 @@ def test_driver_sources_follow_the_layers():
     r = check(ROOT / "driver" / "src")
     assert r.returncode == 0, r.stdout
     assert ", 0 against the layers" in r.stdout
+    assert ", 0 dependency cycles" in r.stdout
 
 
 def test_each_kind_of_violation_is_caught(tmp_path):
@@ -34,3 +36,26 @@ def test_each_kind_of_violation_is_caught(tmp_path):
     for f in bad:
         assert f.split("/")[1] in r.stdout, r.stdout
     assert ", 3 against the layers" in r.stdout
+
+
+def test_cycles_are_caught(tmp_path):
+    """Main's calibration had it: one header declared the functions of several files, so their includes made no
+    cycle while their calls did (calibrate.c called cal_report, calibrate_report.c called cal_dparam)."""
+    src = tmp_path / "src"
+    shutil.copytree(ROOT / "driver" / "src", src)
+    files = {"io/cyc.h": "int cyc_a(int n);\nint cyc_b(int n);\n",              # one header for two sources
+             "io/cyc_a.c": '#include "cyc.h"\nint cyc_a(int n) { return n ? cyc_b(n - 1) : 0; }\n',
+             "io/cyc_b.c": '#include "cyc.h"\nint cyc_b(int n) { return n ? cyc_a(n - 1) : 1; }\n',
+             "scene/cyc_x.h": '#include "cyc_y.h"\n',                            # headers that include each other
+             "scene/cyc_y.h": '#include "cyc_x.h"\n'}
+    for f, text in files.items():
+        (src / f).write_text(text)
+    r = check(src)
+    assert r.returncode == 1, r.stdout
+    assert ", 0 against the layers" in r.stdout and ", 2 dependency cycles" in r.stdout, r.stdout
+    assert "cycle: io/cyc_a.c -> io/cyc_b.c -> io/cyc_a.c" in r.stdout, r.stdout
+    assert "io/cyc_a.c calls cyc_b (io/cyc_b.c)" in r.stdout and "io/cyc_b.c calls cyc_a (io/cyc_a.c)" in r.stdout
+    assert "cycle: scene/cyc_x.h -> scene/cyc_y.h -> scene/cyc_x.h" in r.stdout, r.stdout
+    (src / "io/cyc_b.c").write_text('#include "cyc.h"\nint cyc_b(int n) { return n; }\n')  # one way only: no cycle
+    r = check(src)
+    assert ", 1 dependency cycles" in r.stdout and "io/cyc_a.c ->" not in r.stdout, r.stdout

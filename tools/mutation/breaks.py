@@ -154,17 +154,17 @@ BREAKS = [
          old="    do k = hard, soft\n      sv(sig_slot(k):sig_slot(k) + 5) = mandel_to_stress", new="    do k = hard, hard\n      sv(sig_slot(k):sig_slot(k) + 5) = mandel_to_stress",
          test="umat.test_objectivity", why="DROT rotates the hard frame's stored tensors only"),
     # calibrate
-    dict(id="calibrate.bound_max_linear", file="driver/src/app/calibrate_report.c",
+    dict(id="calibrate.bound_max_linear", file="driver/src/calibrate/calibrate_report.c",
          old="  if (fabs(v - p->hi) <= 1e-6 * fabs(p->hi - p->lo) ||", new="  if (fabs(v - p->lo) <= 1e-6 * fabs(p->hi - p->lo) ||",
          test="calibrate.checks", k="linear and max", why="a linear parameter at its max not reported as at a bound"),
     # (measured and replaced: the log-scaled max branch's tolerance made 1e-16, and the linear min branch's, passed
     # calibrate.checks, and would pass any test: TAO ends exactly on a bound, where another branch or the tolerance's
     # zero distance still answers; equivalent)
-    dict(id="calibrate.bound_named_wrong", file="driver/src/app/calibrate_report.c",
+    dict(id="calibrate.bound_named_wrong", file="driver/src/calibrate/calibrate_report.c",
          old='(p->log && fabs(log(v / p->lo)) <= 1e-6 * log(p->hi / p->lo))) return "min";',
          new='(p->log && fabs(log(v / p->lo)) <= 1e-6 * log(p->hi / p->lo))) return "max";',
          test="calibrate.checks", k="linear and min", why="a parameter at its min reported at its max"),
-    dict(id="calibrate.fit_yaml_at_max", file="driver/src/app/calibrate_yaml.c",
+    dict(id="calibrate.fit_yaml_at_max", file="driver/src/calibrate/calibrate_yaml.c",
          old='u[k] <= 1e-6 || u[k] >= 1 - 1e-6 ? ", at_bound: true" : ""', new='u[k] <= 1e-6 ? ", at_bound: true" : ""',
          test="calibrate.checks", k="at_each_bound and max", why="fit.yaml does not flag a parameter at its max"),
     # io: numbers, YAML positions, paths, fields

@@ -9,8 +9,6 @@
 #include "../stepping/stage_runner.h"
 #include "run_summary.h"
 
-/* Returns 0 on success, 1 (err filled) on a failed run, 2 on bad input. */
-int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen);
 /* One run of the scene into sc->outdir (created if missing): meshed from its geometry, or from geo (a .geo that
    includes it with another size field) when given; after the stages, when sizes is given, the size field of the
    next mesh, for about growth times base cells (base 0: this mesh's cells; fe/fe_estimate.h), is written there. info: the run's mesh, counters, CPU and

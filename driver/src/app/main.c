@@ -5,6 +5,7 @@
 #include <petscsys.h>
 #include <string.h>
 
+#include "../calibrate/calibrate.h"
 #include "../contact/contact_options.h"
 #include "../io/options.h"
 #include "../io/keydecl.h"
@@ -15,9 +16,9 @@
 #include "../stepping/point_stepper.h"
 #include "fe_adapt.h"
 #include "fe_app.h"
+#include "fe_run.h"
 #include "../point/replay.h"
 #include "sweep.h"
-#include "calibrate.h"
 
 /* -help: what the driver runs, every key of the FE, indentation and point scenes from their declarations
  * (scene/scene_keys.c), the other kinds' keys, then (PETSc) every option with its range and default. */

@@ -20,13 +20,6 @@ static int event_direction(EventKind k) {
 /* ---------------------------------------------------------------------------------------------------- */
 /* The run                                                                                              */
 
-int stage_runner_status(PetscErrorCode ierr, char *err) {
-  if (!ierr) return 0;
-  if (ierr == STEP_ERR_REPORTED && err[0]) return 1;
-  err[0] = '\0';
-  return (int)ierr;
-}
-
 /* A callback of the solver: on an error, return from the calling function with the run's status. */
 #define SOLVER_CALL(call) \
   do { \

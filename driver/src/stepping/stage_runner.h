@@ -93,12 +93,7 @@ typedef struct {
  *   load_shared, resume) return nonzero on any failure, and the runner reports it by the file's name; save and
  *   load may also say a checkpoint file is bad by its BinFile's ok.
  * - replay runs after a step failed for good: its failure only adds a note to that message. */
-#define STEP_ERR_REPORTED PETSC_ERR_USER_INPUT
-#define STEP_FAIL(err, errlen, ...) \
-  do { \
-    snprintf((err), (errlen), __VA_ARGS__); \
-    SETERRQ(PETSC_COMM_SELF, STEP_ERR_REPORTED, "%s", (err)); \
-  } while (0)
+#include "run_status.h" /* STEP_ERR_REPORTED, STEP_FAIL, stage_runner_status */
 
 typedef struct {
   void       *ctx;
@@ -172,9 +167,5 @@ typedef struct RunnerSummary_ {
  * be written, a callback's STEP_FAIL) or 2 (bad input found at run time: a restart that does not match) with err
  * filled; or a PETSc error code (> 2) with err empty. */
 int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *sum, char *err, size_t errlen);
-
-/* The run status of an error code: 0 for 0, 1 for a failure reported in err (STEP_ERR_REPORTED), else the PETSc
- * code itself with err emptied (main prints PETSc's message). */
-int stage_runner_status(PetscErrorCode ierr, char *err);
 
 #endif

@@ -8,8 +8,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../stepping/stage_runner.h"
-#include "calibrate.h"
+#include "../stepping/run_status.h"
+#include "calibrate_drift.h"
+#include "calibrate_refine.h"
+#include "calibrate_report.h"
+#include "calibrate_residual.h"
+#include "calibrate_stats.h"
+#include "calibrate_yaml.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \
@@ -18,30 +23,6 @@
   } while (0)
 
 #define CAL_FD_STEP 0.01 /* in u: 1 % of the bounds' span (of its logarithm on a log scale) */
-
-int cal_invert(int n, double *a, double *b) {
-  for (int i = 0; i < n; i++)
-    for (int j = 0; j < n; j++) b[i * n + j] = i == j;
-  for (int col = 0; col < n; col++) {
-    int piv = col;
-    for (int i = col + 1; i < n; i++)
-      if (fabs(a[i * n + col]) > fabs(a[piv * n + col])) piv = i;
-    if (!(fabs(a[piv * n + col]) > 0)) return 1;
-    for (int j = 0; j < n; j++) {
-      double t = a[col * n + j];
-      a[col * n + j] = a[piv * n + j], a[piv * n + j] = t;
-      t = b[col * n + j], b[col * n + j] = b[piv * n + j], b[piv * n + j] = t;
-    }
-    double d = a[col * n + col];
-    for (int j = 0; j < n; j++) a[col * n + j] /= d, b[col * n + j] /= d;
-    for (int i = 0; i < n; i++)
-      if (i != col) {
-        double f = a[i * n + col];
-        for (int j = 0; j < n; j++) a[i * n + j] -= f * a[col * n + j], b[i * n + j] -= f * b[col * n + j];
-      }
-  }
-  return 0;
-}
 
 /* J (m x n, column-major by parameter) at u by central differences, one-sided at a bound or where a forward run
  * fails on one side (the fit itself then the other point; said in the log); dd (n x nrun): each run's fitted drift
@@ -99,7 +80,7 @@ static void uncertainty(Calib *c, const double *u, const double *J, const double
     }
     drun[q - n] = j, q++;
   }
-  cal_blocks(c, blocks, &nblock);
+  cal_blocks(c->run, c->nrun, blocks, &nblock);
   cal_hac(q, m, G, r, blocks, nblock, q, full, white, &un->hac);
   for (int a = 0; a < n; a++) {
     for (int b = 0; b < n; b++) cov[a * n + b] = full[a * q + b];
@@ -123,7 +104,7 @@ static void uncertainty(Calib *c, const double *u, const double *J, const double
     for (int i = 0; i < m; i++) du += G[a * m + i] * r[i];
     un->step[a] = cal_param(&c->p[a], fmin(1, fmax(0, u[a] + du))) - cal_param(&c->p[a], u[a]);
   }
-  un->ntrend = cal_hold_trends(c, X, q, r, un->trend, CAL_MAX_RUNS * CAL_MAX_CURVES);
+  un->ntrend = cal_hold_trends(c->run, c->nrun, c->m, X, q, r, un->trend, CAL_MAX_RUNS * CAL_MAX_CURVES);
   free(G), free(X);
 }
 

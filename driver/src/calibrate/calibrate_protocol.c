@@ -9,7 +9,8 @@
 
 #include "../io/fsutil.h"
 #include "../io/paths.h"
-#include "calibrate_data.h"
+#include "calibrate_load.h"
+#include "calibrate_protocol.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \

@@ -7,7 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate_data.h"
+#include "calibrate_check.h"
+#include "calibrate_residual.h"
+#include "calibrate_units.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \

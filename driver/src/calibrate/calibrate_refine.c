@@ -19,11 +19,13 @@
  * latter smooth along a curve (a change of the adaptive steps shifts it as a whole), which the estimate's
  * bandwidth follows. The two are kept apart (fit.yaml, quote) and combined in quadrature. */
 #include <math.h>
+#include <petscsys.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate.h"
+#include "calibrate_refine.h"
+#include "calibrate_stats.h"
 
 #define REFINE_SE 0.2     /* converged: every step below this fraction of its standard error ... */
 #define REFINE_REL 1.0e-4 /* ... or of the value */
@@ -91,7 +93,7 @@ int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, c
   double *R = malloc(sizeof(double) * m), *cheap = malloc(sizeof(double) * m), *J = malloc(sizeof(double) * m * n);
   double *Rprev = malloc(sizeof(double) * m), *G = malloc(sizeof(double) * m * n), drift[CAL_MAX_RUNS];
   int     blocks[CAL_MAX_RUNS * CAL_MAX_CURVES], nblock, ndrift = 0;
-  cal_blocks(c, blocks, &nblock);
+  cal_blocks(c->run, c->nrun, blocks, &nblock);
   for (int j = 0; j < c->nrun; j++) drift[j] = c->run[j].drift_rate, ndrift += c->run[j].drift == CAL_DRIFT_FIT;
   memcpy(J, J0, sizeof(double) * m * n), memcpy(inv, inv0, sizeof(double) * n * n);
   memset(b, 0, sizeof *b);

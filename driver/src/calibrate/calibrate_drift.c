@@ -19,7 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate.h"
+#include "calibrate_drift.h"
+#include "calibrate_residual.h"
+#include "calibrate_stats.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \
@@ -124,8 +126,8 @@ void cal_drift_project(CalRun *run, double *r) {
 
 /* Each hold block's residual trend that the fit's columns X (q of them, each m long) cannot take up; warnings into
  * the log and the findings into fit (CalTrend, one per hold block). */
-int cal_hold_trends(Calib *c, const double *X, int q, const double *r, CalTrend *out, int max) {
-  int     m = c->m, nout = 0;
+int cal_hold_trends(const CalRun *runs, int nrun, int m, const double *X, int q, const double *r, CalTrend *out, int max) {
+  int     nout = 0;
   double *g = malloc(sizeof(double) * m), XtX[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)];
   double  inv[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)], Xg[CAL_MAX_PARAMS + CAL_MAX_RUNS];
   for (int a = 0; a < q; a++)
@@ -134,9 +136,9 @@ int cal_hold_trends(Calib *c, const double *X, int q, const double *r, CalTrend 
       for (int i = 0; i < m; i++) XtX[a * q + b] += X[a * m + i] * X[b * m + i];
     }
   int singular = cal_invert(q, XtX, inv);
-  for (int j = 0, off = 0; j < c->nrun; j++)
-    for (int k = 0; k < c->run[j].ncurve; k++) {
-      const CalRun   *run = &c->run[j];
+  for (int j = 0, off = 0; j < nrun; j++)
+    for (int k = 0; k < runs[j].ncurve; k++) {
+      const CalRun   *run = &runs[j];
       const CalCurve *cv  = &run->curve[k];
       int             b0 = off;
       off += cv->n;
@@ -174,8 +176,8 @@ int cal_hold_trends(Calib *c, const double *X, int q, const double *r, CalTrend 
       t->model_rate = NAN;
     }
   /* drift measured in a stage: the model's own rate there at the fit, against the drift measured */
-  for (int j = 0; j < c->nrun; j++) {
-    const CalRun *run = &c->run[j];
+  for (int j = 0; j < nrun; j++) {
+    const CalRun *run = &runs[j];
     if (run->drift != CAL_DRIFT_MEASURED) continue;
     for (int k = 0; k < run->ncurve; k++)
       if (run->curve[k].stage == run->drift_stage && run->drift && run->curve[k].kind == CAL_HOLD && run->drift_rows > 2) {

@@ -27,10 +27,34 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate.h"
+#include "calibrate_stats.h"
 
 #define RHO_MAX 0.99   /* the prewhitening's coefficient at most */
 #define ALPHA_MAX 0.97 /* Andrews' plug-in: the innovations' lag-1 coefficient at most */
+
+int cal_invert(int n, double *a, double *b) {
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) b[i * n + j] = i == j;
+  for (int col = 0; col < n; col++) {
+    int piv = col;
+    for (int i = col + 1; i < n; i++)
+      if (fabs(a[i * n + col]) > fabs(a[piv * n + col])) piv = i;
+    if (!(fabs(a[piv * n + col]) > 0)) return 1;
+    for (int j = 0; j < n; j++) {
+      double t = a[col * n + j];
+      a[col * n + j] = a[piv * n + j], a[piv * n + j] = t;
+      t = b[col * n + j], b[col * n + j] = b[piv * n + j], b[piv * n + j] = t;
+    }
+    double d = a[col * n + col];
+    for (int j = 0; j < n; j++) a[col * n + j] /= d, b[col * n + j] /= d;
+    for (int i = 0; i < n; i++)
+      if (i != col) {
+        double f = a[i * n + col];
+        for (int j = 0; j < n; j++) a[i * n + j] -= f * a[col * n + j], b[i * n + j] -= f * b[col * n + j];
+      }
+  }
+  return 0;
+}
 
 static double lag1(const double *x, const int *blocks, int nblock, double cap) {
   double sxy = 0, sxx = 0;
@@ -84,10 +108,10 @@ void cal_hac(int q, int m, const double *G, const double *r, const int *blocks, 
   free(eta), free(h);
 }
 
-void cal_blocks(const Calib *c, int *blocks, int *nblock) {
+void cal_blocks(const CalRun *runs, int nrun, int *blocks, int *nblock) {
   *nblock = 0;
-  for (int j = 0; j < c->nrun; j++)
-    for (int k = 0; k < c->run[j].ncurve; k++) blocks[(*nblock)++] = c->run[j].curve[k].n;
+  for (int j = 0; j < nrun; j++)
+    for (int k = 0; k < runs[j].ncurve; k++) blocks[(*nblock)++] = runs[j].curve[k].n;
 }
 
 int cal_influence(int n, int m, const double *J, double *G, double *inv) {

@@ -1,15 +1,12 @@
 /* The forward runs of a calibrate scene and their measured data: which forward scene, which CSV (columns,
  * factors to the forward scene's units), whose protocol the forward runs follow (the data's own history, or
- * the forward scene's stages), which residuals (loading, hold, unloading, series), and the residual vector
- * of one forward run's history.csv against the data (docs/calibrate.md). */
-#ifndef CALIBRATE_DATA_H
-#define CALIBRATE_DATA_H
+ * the forward scene's stages), which residuals (loading, hold, unloading, series) (docs/calibrate.md). The types
+ * every file of calibrate/ shares and the functions on them alone; calibrate_data.c reads them from the scene. */
+#ifndef CALIBRATE_RUN_H
+#define CALIBRATE_RUN_H
 
 #include <limits.h>
 #include <stddef.h>
-#include <stdio.h>
-
-#include "../io/yaml_doc.h"
 
 #define CAL_MAX_PARAMS 8
 #define CAL_MAX_RUNS 8
@@ -95,70 +92,12 @@ enum { CAL_WEIGHT_RANGE, CAL_WEIGHT_NOISE };
 enum { CAL_DRIFT_NONE, CAL_DRIFT_MEASURED, CAL_DRIFT_FIT };
 enum { CAL_LOAD_AUTO, CAL_LOAD_DATA, CAL_LOAD_FITTED };
 
-/* Read runs[k] from a 'runs:' item of the calibrate scene. 0, or 1 with err filled. */
-int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, size_t errlen);
-void cal_run_free(CalRun *run);
+/* The checks a scene accepts (accept: their names; calibrate_check.c, calibrate_units.c). */
+enum { CAL_ACCEPT_ROWS = 1, CAL_ACCEPT_SCALE = 2, CAL_ACCEPT_BOUND = 4 };
+
+const char *cal_kind_name(CalKind k);
 /* The scene a forward run (reference 0) or the full-model run (1) is started with. */
 const char *cal_run_scene(const CalRun *run, int reference);
-
-/* Assign the data rows to the residual blocks by the stage times of a first forward run (dir/history.csv),
- * check that they lie within the run's range; fixes the residual count. 0, or 1 with err filled. */
-int cal_run_setup(CalRun *run, const char *dir, char *err, size_t errlen);
-/* Residual count of a set-up run. */
-int cal_run_size(const CalRun *run);
-/* Residuals of the forward run in dir into r (cal_run_size of them). 0, or 1 with err filled (a data point
- * outside the run's range: the evaluation is rejected). */
-int cal_run_residual(CalRun *run, const char *dir, double *r, char *err, size_t errlen);
-/* Write data and model curves of the last evaluation: path (CSV: run,block,x,data,model). */
-int cal_run_write_curves(const CalRun *run, FILE *fp);
-const char *cal_kind_name(CalKind k);
-/* A forward run's history columns (time, stage, x, y of curve c) into h (4 a row). */
-int cal_read_history(const CalRun *run, const char *dir, const char *const names[4], double **h, int *rows, char *err,
-                     size_t errlen);
-/* Time span of a stage in a history read by cal_read_history: rows i0 (the last row before it) to i1. 1 if empty. */
-int cal_stage_span(const double *h, int rows, int stage, int *i0, int *i1);
-
-/* calibrate_protocol.c: the data's own stages (from data.columns.stage, or from the load curve: loading,
- * hold at the peak, unloading), and the forward scene made to follow them (drive: data). */
-int  cal_protocol_find(const YdDoc *doc, CalRun *run, char *err, size_t errlen);
-/* One line per stage into buf (the log). */
-void cal_protocol_describe(const CalRun *run, char *buf, size_t n);
-/* Write the forward scene (and reference) driven by the data's history into dir: run->driven(_reference). */
-int  cal_protocol_write(CalRun *run, const char *dir, char *err, size_t errlen);
-
-/* calibrate_units.c: data.units (each column's unit converted to the forward scene's; every column's unit declared),
- * the data's and the forward scene's ranges (the dry run), and the data's loads against the forward scene's. */
-int  cal_units_read(const YdDoc *doc, YdNode *data, CalRun *run, const char *path, char *err, size_t errlen);
-void cal_ranges_describe(const CalRun *run, char *buf, size_t n);
-int  cal_check_load_scale(const CalRun *run, int accept, char *err, size_t errlen);
-/* The key that declares a role's unit ("runs[k].data.units.load" or ".factors.load") and how ("unit mN", "factor 1000"). */
-const char *cal_unit_key(const CalRun *run, int role, char *buf, size_t n);
-const char *cal_unit_how(const CalRun *run, int role, char *buf, size_t n);
-
-/* calibrate_drift.c: drift: fit | {measured_in: STAGE} (read after the data and their stages; a measured drift is
- * removed from the data's depths there); the drift regressor of a run's residuals (each depth residual's change
- * per unit drift rate); its projection out of the residuals (drift: fit). */
-int  cal_drift_read(const YdDoc *doc, YdNode *item, CalRun *run, const char *path, char *err, size_t errlen);
-void cal_drift_regressor(const CalRun *run, double *a);
-void cal_drift_project(CalRun *run, double *r);
-
-/* calibrate_load.c: the load history the forward runs follow (drive: data): the data's rows, or a continuous
- * piecewise-linear least-squares fit when the load is noisy (load_history: auto | fitted | data). */
-int  cal_load_read(const YdDoc *doc, YdNode *item, CalRun *run, const char *path, char *err, size_t errlen);
-int  cal_load_fit(CalRun *run, char *err, size_t errlen);
-/* A series' noise from its second differences (a robust estimate, the median's) over p[0..n-1]: the standard
- * deviation of independent errors on a curve smooth at the rows' spacing. */
-double cal_noise(const double *p, int n);
-/* The same from the second differences themselves (d[0..n-1], overwritten). */
-double cal_noise_d2(double *d, int n);
-void cal_load_describe(const CalRun *run, char *buf, size_t n);
-
-/* calibrate_check.c: checks that catch a wrong fit at the start (accept: the names of those accepted). */
-enum { CAL_ACCEPT_ROWS = 1, CAL_ACCEPT_SCALE = 2, CAL_ACCEPT_BOUND = 4 };
-/* Every data row in a forward stage, every block with the rows of its kind (indentation data). */
-int cal_check_rows(const CalRun *run, const char *dir, int accept, char *err, size_t errlen);
-/* The data's scale against the first forward run's (a factor of 10 apart: a unit): models 0, the loads (from the
- * history, before the residuals); 1, the depths or values (the models at the data, after them). */
-int cal_check_scale(const CalRun *run, const char *dir, int accept, int models, char *err, size_t errlen);
+void        cal_run_free(CalRun *run);
 
 #endif

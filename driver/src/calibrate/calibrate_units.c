@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate_data.h"
+#include "calibrate_units.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \

@@ -7,7 +7,8 @@
 #include <string.h>
 
 #include "../io/csv_table.h"
-#include "calibrate_data.h"
+#include "calibrate_load.h"
+#include "calibrate_residual.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate_data.h"
+#include "calibrate_load.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \

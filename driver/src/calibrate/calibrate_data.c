@@ -11,20 +11,16 @@
 
 #include "../io/csv_table.h"
 #include "../io/paths.h"
+#include "calibrate_drift.h"
+#include "calibrate_load.h"
+#include "calibrate_protocol.h"
+#include "calibrate_units.h"
 
 #define FAIL(...)                                                                                                   \
   do {                                                                                                              \
     snprintf(err, errlen, __VA_ARGS__);                                                                             \
     return 1;                                                                                                       \
   } while (0)
-
-static const char *kind_names[] = {"loading", "hold", "unloading", "series"};
-const char        *cal_kind_name(CalKind k) { return kind_names[k]; }
-
-const char *cal_run_scene(const CalRun *run, int reference) {
-  if (reference) return run->drive ? run->driven_reference : run->reference;
-  return run->drive ? run->driven : run->scene;
-}
 
 /* The forward scene's kind: 0 point, 1 fe, 2 fe with an indenter; -1 with err naming the key (another kind). */
 static int forward_kind(const YdDoc *doc, const char *key, int line, const char *scene, char *err, size_t errlen) {
@@ -71,7 +67,7 @@ static void data_stage_list(const CalRun *run, char *buf, size_t n) {
   buf[0] = '\0';
   for (int j = 0; j < run->nstage; j++) {
     size_t len = strlen(buf);
-    snprintf(buf + len, n - len, "%s%s (%s)", j ? ", " : "", run->stage[j].name, kind_names[run->stage[j].kind]);
+    snprintf(buf + len, n - len, "%s%s (%s)", j ? ", " : "", run->stage[j].name, cal_kind_name(run->stage[j].kind));
   }
 }
 
@@ -198,7 +194,7 @@ static int read_curve_stage(const YdDoc *doc, YdNode *nd, CalRun *run, CalCurve 
     data_stage_list(run, list, sizeof list);
     if (c->stage < 0)
       FAIL("%s:%d: key '%s': the data have no (further) stage of kind %s for this block: give its stage (the data's "
-           "stages: %s)", doc->file, nd->line, path, kind_names[c->kind], list);
+           "stages: %s)", doc->file, nd->line, path, cal_kind_name(c->kind), list);
     stage = run->stage[c->stage].name;
   }
   snprintf(c->stage_name, sizeof c->stage_name, "%s", stage);
@@ -218,7 +214,7 @@ static int read_curve(const YdDoc *doc, YdNode *nd, CalRun *run, const char *pat
   if (!k || yd_string(doc, k, sub, &s, err, errlen)) return 1;
   int kind = -1;
   for (int i = 0; i < 4; i++)
-    if (!strcmp(s, kind_names[i])) kind = i;
+    if (!strcmp(s, cal_kind_name((CalKind)i))) kind = i;
   if (kind < 0) FAIL("%s:%d: key '%s': expected loading, hold, unloading or series, got '%s'", doc->file, k->line, sub, s);
   c->kind = (CalKind)kind;
   if (read_curve_stage(doc, nd, run, c, path, err, errlen)) return 1;
@@ -244,7 +240,7 @@ static int read_curve(const YdDoc *doc, YdNode *nd, CalRun *run, const char *pat
   snprintf(c->mcol, sizeof c->mcol, "%s", run->drive ? "time" : c->xcol);
   if (need[0] < 0 || need[1] < 0)
     FAIL("%s:%d: key '%s': a %s residual needs the data columns %s and %s (data.columns)", doc->file, nd->line, path,
-         kind_names[kind], c->kind == CAL_SERIES ? "time" : c->kind == CAL_HOLD ? "time" : "load",
+         cal_kind_name((CalKind)kind), c->kind == CAL_SERIES ? "time" : c->kind == CAL_HOLD ? "time" : "load",
          c->kind == CAL_SERIES ? "value" : "depth");
   run->ncurve++;
   return yd_check_unused(doc, nd, path, "kind, stage, weight, model, relative", err, errlen);
@@ -382,11 +378,4 @@ int cal_run_read(const YdDoc *doc, YdNode *item, int k, CalRun *run, char *err, 
   if (read_residuals(doc, item, run, path, err, errlen)) return 1;
   return yd_check_unused(doc, item, path, "name, scene, drive, reference, options, set, data, residuals, drift, load_history",
                          err, errlen);
-}
-
-void cal_run_free(CalRun *run) {
-  free(run->data), free(run->row_stage), free(run->knot_t), free(run->knot_p);
-  for (int c = 0; c < run->ncurve; c++) {
-    free(run->curve[c].x), free(run->curve[c].y), free(run->curve[c].t), free(run->curve[c].model);
-  }
 }

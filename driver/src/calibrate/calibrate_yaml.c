@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibrate.h"
+#include "calibrate_yaml.h"
 
 /* The values to quote, their standard errors in parts, and why: the data's part (Newey-West: the forward fit's, or
  * the full model's at the refined value), the model's (the refinement's last step; the forward model's bias,
