@@ -38,14 +38,14 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   /* GMRES' tolerance of the contact solve is PETSc's (KSPSetFromOptions under the prefix indent_, indent_solver.c): declared
      here too, so that a value outside (0, 1) is refused, by its name, before the run (0: "the linear solver failed"; 1:
      no iteration at all; a negative one: PETSc's own message, after the run had begun) */
-  PetscReal ksp_rtol = o->solver == 1 ? 1e-12 : 1e-2;
+  PetscReal ksp_rtol = o->solver == 1 ? 1e-10 : 1e-2;
   PetscCall(options_real(PetscOptionsObject, "-indent_ksp_rtol",
                          "GMRES' relative tolerance of the contact solve (PETSc's KSP, prefix indent_; direct with a kept factorisation: "
-                         "1e-2; fieldsplit: 1e-12; unused with -indent_refactor_its 0)", ksp_rtol, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
+                         "1e-2; fieldsplit: 1e-10; unused with -indent_refactor_its 0)", ksp_rtol, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
                          &ksp_rtol, NULL));
   PetscCall(options_real(PetscOptionsObject, "-indent_ksp_rtol_tight",
-                         "direct, kept factorisation: GMRES' relative tolerance while the active set changes or Newton iterates to "
-                         "a small residual (-indent_ksp_rtol otherwise, 1e-2)", o->rtol_tight, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
+                         "GMRES' relative tolerance while the active set changes or Newton iterates to a small residual (direct with a "
+                         "kept factorisation, fieldsplit; -indent_ksp_rtol otherwise)", o->rtol_tight, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
                          &o->rtol_tight, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-indent_check_solve",
                          "direct, kept factorisation: compare every solve with a fresh LU solve of the same system (prints the difference)",

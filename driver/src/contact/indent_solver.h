@@ -17,9 +17,14 @@
  *               preconditioned, so its residual is the true one; every row of the system is a force
  *               (contact.h), so its norm weighs the equilibrium, indenter and gap rows alike.
  *               -indent_refactor_its 0: a fresh factorisation at every iteration, LU alone;
- *   fieldsplit  PCFIELDSPLIT on the nest itself: u | (u_r, lambda), Schur complement on the small block,
- *               the displacement block by GAMG (rigid-body near null space) inside GMRES, the Schur
- *               complement preconditioned by its "selfp" approximation assembled here and factored.
+ *   fieldsplit  flexible GMRES on the nest, preconditioned by PCFIELDSPLIT: u | (u_r, lambda), the Schur
+ *               factorisation with one GAMG cycle (rigid-body near null space) for the displacement block and
+ *               the Schur complement's "selfp" approximation, assembled here and factored, for the small block
+ *               (inner solves preonly: the outer GMRES alone iterates). Set up afresh at every Newton
+ *               iteration; its memory grows with the unknowns, not with a factorisation's fill
+ *               (docs/contact.md, "The field split"). The tolerances are the direct path's: -indent_ksp_rtol
+ *               (here 1e-10: looser directions cost the P1 kerogen twin three times the Newton iterations) and
+ *               -indent_ksp_rtol_tight.
  * -indent_solver direct|fieldsplit selects; the solver's options take the prefix indent_ (-indent_ksp_rtol,
  * -indent_ksp_monitor, -indent_mat_mumps_icntl_*, -indent_fieldsplit_u_*, -indent_fieldsplit_contact_*). */
 #ifndef INDENT_SOLVER_H
@@ -43,7 +48,7 @@ typedef struct {
   KSP       ksp;
   PetscInt  refactor_its; /* direct: the cost of a factorisation in Krylov iterations (solve_kept) */
   PetscInt  extra_its;    /* direct: Krylov iterations beyond the first since the last factorisation */
-  PetscReal rtol, rtol_tight; /* kept: GMRES' relative tolerances, loose and tight */
+  PetscReal rtol, rtol_tight; /* GMRES' relative tolerances, loose and tight */
   PetscBool check;        /* -indent_check_solve: a fresh LU solve beside every kept one */
   PetscReal check_max;    /* the largest relative difference seen */
   PetscBool refactor;     /* direct: rebuild it at the next solve */
@@ -60,7 +65,7 @@ PetscErrorCode indent_solver_destroy(IndentSolver *s);
 /* The next solve factors afresh (a new stage, a checkpoint). */
 static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }
 /* Solve J dx = -F for the current blocks; F is given by its parts (R_r on rank 0), dx returned likewise. tight:
- * solve to -indent_ksp_rtol_tight, not -indent_ksp_rtol (kept factorisation only). */
+ * solve to -indent_ksp_rtol_tight, not -indent_ksp_rtol (when it is the smaller). */
 PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
                                    PetscReal *dur, Vec dlam, PetscBool *ok);
 
