@@ -139,7 +139,7 @@ def field_numbers(out, region):
     """Region means of |sigma| at the end of the load and of the hold; within a of the tip at the end of the hold,
     the checkerboard of |sigma| and how far the viscoplastic flow is from isochoric (|tr evp| / |dev evp|, area
     weighted: near 0 is the incompressibility that locks linear triangles)."""
-    from fields_h5 import Fields, dev_norm, tensor_norm, trace
+    from camclay9.fields import Fields, dev_norm, tensor_norm, trace
     from indent_fields import cell_areas, checkerboard, clipped_areas, region_mean, six
     from indent_plots import History, STAGE_COLUMNS
     t0, t1 = History(out, need=STAGE_COLUMNS).hold_times()

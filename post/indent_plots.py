@@ -35,7 +35,7 @@ Every figure goes to --out DIR (default RUN), and the numbers plotted are printe
 Input, written by the driver into RUN: history.csv, one row per converged step (time, stage, stage_name, load,
 depth, ...: docs/driver.md; load per unit thickness in plane strain, depth in um, time in s; only the columns a
 subcommand uses are required), and fields.h5 (docs/driver.md, "Fields"; cell averages of the tensors, read
-through post/fields.py as 11 22 33 12 13 23, strains with engineering shear).
+through camclay9.fields as 11 22 33 12 13 23, strains with engineering shear).
 
 Colour scales of the maps (fields) are robust: they span the --clip .. 100 - --clip percentiles of the
 cells in view (default 1-99 %), so the few singular cells at the tip do not wash the map out; the colour
@@ -56,9 +56,8 @@ import numpy as np
 from matplotlib.figure import Figure   # no pyplot: figures are saved with Agg, no global state
 from matplotlib.tri import Triangulation
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fields_h5 import Fields, dev_norm, tensor_norm, trace  # noqa: E402
-from indent_fields import clipped_areas, region_mean  # noqa: E402
+from camclay9.fields import Fields, dev_norm, tensor_norm, trace
+from indent_fields import clipped_areas, region_mean
 
 HISTORY_COLUMNS = ("time", "stage", "stage_name", "step", "dt", "newton_its", "cutbacks", "load", "depth",
                    "active_nodes", "active_changes", "contact_force", "max_penetration", "min_lambda",

@@ -22,17 +22,14 @@ import os
 import re
 import resource
 import subprocess
-import sys
 import time
 
 import numpy as np
+from camclay9.fields import STRAINS, voigt  # fields.h5's 3x3 tensors as Voigt 11 22 33 12 13 23
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 import make_inputs  # noqa: E402  (tools/calculix is on sys.path of the callers)
-
-sys.path.insert(0, os.path.join(REPO, "post"))
-from fields import STRAINS, voigt  # noqa: E402  (fields.h5's 3x3 tensors as Voigt 11 22 33 12 13 23)
 
 GEO = os.path.join(REPO, "meshes", "cylinder.geo")
 R, H = 12.7, 50.8
