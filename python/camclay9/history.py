@@ -7,9 +7,9 @@ The driver writes three layouts today (docs/driver.md, "Output"); each starts wi
   point        time,step,segment,dt,newton_its,local_its,...      (point/point_solve.c)
 
 `read_history` returns a numpy structured array (one record per row, `h["depth"]`, `h[h["stage"] == 1]`): the
-columns named in INTEGER as int64, `stage_name` as str, every other column as float64, whatever the layout. A
-caller reads columns by name and names those it needs (`need=`), so a later change of the layouts touches this
-module only. Errors are ValueError (FileNotFoundError for a missing file) naming the file, the line, the column and
+columns named in INTEGER as int64, `stage_name` as str, every other column as float64, whatever the layout (it
+does not insist on one: `history_layout` tells which). A caller reads columns by name and names those it needs
+(`need=`), so a later change of the layouts touches this module only. Errors are ValueError (FileNotFoundError for a missing file) naming the file, the line, the column and
 the value.
 """
 import csv
@@ -64,10 +64,10 @@ def read_history(run, need=()):
     if not rows or not rows[0]:
         raise ValueError(f"{path}: empty, expected a header line of column names")
     names = [n.strip() for n in rows[0]]
-    layout(names)
     missing = [n for n in need if n not in names]
     if missing:
-        raise ValueError(f"{path}: no column {', '.join(repr(n) for n in missing)} (columns: {', '.join(names)})")
+        raise ValueError(f"{path}: column(s) {', '.join(repr(n) for n in missing)} missing from the header line "
+                         f"(columns: {', '.join(names)})")
     if len(set(names)) != len(names):
         raise ValueError(f"{path}:1: a column name is repeated: {','.join(names)}")
     body = [r for r in rows[1:] if r]

@@ -41,8 +41,9 @@ def _typed(m):
     return out
 
 
-def summary_line(log):
-    """The last summary line in a run's stdout as a dict: kind ('fe scene', 'indentation', 'point scene'), scene,
+def summary_line(log, index=-1):
+    """The last summary line in a run's stdout (index: which one, 0 the first: a run that adapts its mesh prints one
+    per level, the last the answer) as a dict: kind ('fe scene', 'indentation', 'point scene'), scene,
     steps, cutbacks, wall_s, output_dir, and what the kind prints besides (newton_iterations, umat_calls,
     assembly_s, linear_solves_s, ...; failed True for a point run that failed). ValueError when there is none."""
     found = list(SUMMARY.finditer(log))
@@ -50,8 +51,8 @@ def summary_line(log):
         tail = log[-500:] if log else "(empty)"
         raise ValueError(f"no summary line ('<kind> NAME: N steps, ... -> OUT/history.csv') in the driver's output; "
                          f"its end:\n{tail}")
-    out = _typed(found[-1])
-    out["failed"] = found[-1].group("failed") is not None
+    out = _typed(found[index])
+    out["failed"] = found[index].group("failed") is not None
     return out
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from camclay9 import read_history
 
 from test_calibrate import CAL, DRIVER, ROOT, run
 
@@ -236,9 +237,9 @@ def test_noisy_load_fitted_history(clean, tmp_path):
     n_clean, n_noisy = steps(tmp_path / "run_clean"), steps(tmp_path / "run_noisy")
     print("steps: clean", n_clean, "noisy, fitted history", n_noisy)
     assert n_noisy < 2 * n_clean
-    h = {k: cov.read_csv(tmp_path / f"run_{k}" / "history.csv") for k in ("clean", "noisy")}
+    h = {k: read_history(tmp_path / f"run_{k}", need=("time", "depth")) for k in ("clean", "noisy")}
     t = a[:, head.index("time_s")] - a[0, head.index("time_s")]
-    depth = {k: np.interp(t, v[1][:, v[0].index("time")], v[1][:, v[0].index("depth")]) for k, v in h.items()}
+    depth = {k: np.interp(t, v["time"], v["depth"]) for k, v in h.items()}
     assert np.max(np.abs(depth["noisy"] - depth["clean"])) < 0.005 * np.ptp(depth["clean"])
 
 
