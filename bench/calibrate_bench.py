@@ -54,8 +54,8 @@ def missing_record(scene, make):
         if f"data/{data}" in scene.read_text() and not (CAL / "data" / data).exists():
             if not make:
                 return data
-            subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(driver_path(root=ROOT)), *args, "--out",
-                            str(CAL / "data" / data)], check=True)
+            subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(driver_path(root=ROOT)), *args,
+                            "--out", str(CAL / "data" / data)], check=True)
     return None
 
 

@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9.launch import MPIEXEC
 from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -57,9 +58,9 @@ def scene_text(size, history=HISTORY):
 def run(scene, out, ranks, opts, max_steps=0):
     options = ["-progress_every", "1000000"] + opts.split() + (["-max_steps", str(max_steps)] if max_steps else [])
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")  # one core per rank: CPU time = work
-    # on `ranks` ranks through mpiexec, even 1: the same launch for every row
-    proc = run_driver(scene, out, options, root=ROOT, prefix=["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n",
-                                                              str(ranks)], cwd=ROOT, env=env, timeout=6 * 3600, check=False)
+    # through mpiexec, even on 1 rank: the same launch for every row
+    proc = run_driver(scene, out, options, root=ROOT, prefix=[*MPIEXEC, str(ranks)], cwd=ROOT, env=env, timeout=6 * 3600,
+                      check=False)
     if proc.returncode:
         return dict(failed=(proc.stdout + proc.stderr)[-300:])
     m, s = mesh_line(proc.stdout), summary_line(proc.stdout, index=0)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9.launch import MPIEXEC
 from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -20,8 +21,7 @@ TITLE = "## FE: triaxial cylinder"
 
 
 def run(scene, out, ranks):
-    proc = run_driver(scene, out, root=ROOT, prefix=["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)],
-                      cwd=ROOT, timeout=6 * 3600)
+    proc = run_driver(scene, out, root=ROOT, prefix=[*MPIEXEC, str(ranks)], cwd=ROOT, timeout=6 * 3600)  # 1 rank too
     wall = proc.wall
     cells = mesh_line(proc.stdout)["cells"]
     m = summary_line(proc.stdout, index=0)

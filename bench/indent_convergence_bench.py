@@ -109,8 +109,8 @@ def run(text, out):
     h = read_history(out)
     return dict(wall=wall, cpu=ru.ru_utime + ru.ru_stime, rss_mb=ru.ru_maxrss / 1024, steps=s["steps"],
                 newton=s["newton_iterations"], umat_calls=s["umat_calls"], solve_s=s["linear_solves_s"],
-                krylov=s["krylov_iterations"], factorisations=s["factorisations"], unknowns=mesh_line(stdout)["unknowns"],
-                o={k: float(v) for k, v in outputs(h).items()})
+                krylov=s["krylov_iterations"], factorisations=s["factorisations"],
+                unknowns=mesh_line(stdout)["unknowns"], o={k: float(v) for k, v in outputs(h).items()})
 
 
 def estimate(res, model, h):

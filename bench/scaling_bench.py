@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9.launch import MPIEXEC
 from fe_solver_bench import HISTORY
 from performance_doc import replace_section
 
@@ -49,8 +50,8 @@ def scene_text(msh):
 def run(scene, out, ranks, opts, max_steps):
     options = ["-progress_every", "1000000", "-max_steps", str(max_steps), "-log_view"] + opts.split()
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
-    proc = run_driver(scene, out, options, root=ROOT, prefix=["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n",
-                                                              str(ranks)], cwd=ROOT, env=env, timeout=6 * 3600, check=False)
+    proc = run_driver(scene, out, options, root=ROOT, prefix=[*MPIEXEC, str(ranks)], cwd=ROOT, env=env, timeout=6 * 3600,
+                      check=False)
     wall = proc.wall
     if proc.returncode:
         return dict(failed=(proc.stdout + proc.stderr)[-400:])

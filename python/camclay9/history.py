@@ -7,10 +7,10 @@ The driver writes three layouts today (docs/driver.md, "Output"); each starts wi
   point        time,step,segment,dt,newton_its,local_its,...      (point/point_solve.c)
 
 `read_history` returns a numpy structured array (one record per row, `h["depth"]`, `h[h["stage"] == 1]`): the
-columns named in INTEGER as int64, `stage_name` as str, every other column as float64, whatever the layout (it
-does not insist on one: `history_layout` tells which). A caller reads columns by name and names those it needs
-(`need=`), so a later change of the layouts touches this module only. Errors are ValueError (FileNotFoundError for a missing file) naming the file, the line, the column and
-the value.
+columns named in INTEGER as int64, `stage_name` as str, every other column as float64, whatever the layout (it does
+not insist on one: `history_layout` tells which). A caller reads columns by name and names those it needs (`need=`),
+so a later change of the layouts touches this module only. Errors are ValueError (FileNotFoundError for a missing
+file) naming the file, the line, the column and the value.
 """
 import csv
 from pathlib import Path

@@ -9,7 +9,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import camclay9
+try:
+    import camclay9
+except ImportError as err:  # an error, never a skip: the package is part of the project
+    raise ImportError(f"{err}: tools/setup.sh installs it (pip install python/)") from None
 from camclay9 import (DriverError, driver_command, driver_path, history_layout, mesh_line, read_history,
                       read_summary, reported, run_driver, stage, summary_line)
 

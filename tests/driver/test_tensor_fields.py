@@ -24,6 +24,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
+from camclay9 import run_driver
 from camclay9.fields import voigt
 
 try:
@@ -33,7 +34,6 @@ except ImportError:
 
 ROOT = Path(__file__).resolve().parents[2]
 
-DRIVER_ELASTIC = os.environ.get("DRIVER_ELASTIC", str(ROOT / "build" / "bin" / "driver_elastic"))
 E, NU = 1000.0, 0.25
 G = E / (2 * (1 + NU))
 T13, T23, S33 = 1.5, -0.7, -2.0
@@ -61,13 +61,8 @@ output: {{fields_every: {fields_every}}}
 def run(text, out, ranks=1, args=(), check=True):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    cmd = [DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out), *args]
-    if ranks > 1:
-        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out.parent, timeout=600)
-    if check:
-        assert proc.returncode == 0, proc.stdout + proc.stderr
-    return proc
+    return run_driver(scene, out, args, name="driver_elastic", root=ROOT, ranks=ranks, cwd=out.parent, timeout=600,
+                      check=check)
 
 
 def exact_strain():
