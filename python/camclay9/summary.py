@@ -12,6 +12,12 @@ KEYS = ("scene", "kind", "completed", "mesh", "stages", "counters", "cost", "lev
 STAGE_KEYS = ("name", "end", "change")
 
 
+class Summary(dict):
+    """summary.json's object as a dict, and the file it came from as `.path` (for messages)."""
+
+    path = "summary.json"
+
+
 def summary_path(run):
     """RUN/summary.json for a run directory, or the file itself."""
     run = Path(run)
@@ -36,7 +42,8 @@ def read_summary(run):
         lost = [k for k in STAGE_KEYS if k not in st]
         if lost:
             raise ValueError(f"{path}: stages[{i}] has no key {', '.join(repr(k) for k in lost)}")
-    s["path"] = str(path)
+    s = Summary(s)
+    s.path = str(path)
     return s
 
 
@@ -45,7 +52,7 @@ def stage(summary, name):
     for st in summary["stages"]:
         if st["name"] == name:
             return st
-    raise KeyError(f"{summary.get('path', 'summary.json')}: no stage '{name}' (stages: "
+    raise KeyError(f"{getattr(summary, 'path', 'summary.json')}: no stage '{name}' (stages: "
                    f"{', '.join(st['name'] for st in summary['stages'])})")
 
 
@@ -56,6 +63,6 @@ def reported(summary, stage_name, quantity, what="end"):
     if what not in ("end", "change"):
         raise ValueError(f"what = '{what}': expected 'end' or 'change'")
     if quantity not in st[what]:
-        raise KeyError(f"{summary.get('path', 'summary.json')}: stage '{stage_name}' reports no '{quantity}' "
+        raise KeyError(f"{getattr(summary, 'path', 'summary.json')}: stage '{stage_name}' reports no '{quantity}' "
                        f"(it reports {', '.join(st[what]) or 'nothing'})")
     return st[what][quantity]

@@ -83,7 +83,8 @@ def test_summary():
     assert s["kind"] == "indentation" and s["counters"]["steps"] == 40
     assert stage(s, "hold")["change"]["depth"] == 0.0082
     assert reported(s, "hold", "depth", "change") == 0.0082 and reported(s, "load", "load") == 1000
-    with pytest.raises(KeyError, match="no stage 'unload' \\(stages: start, load, hold\\)"):
+    assert s.path == str(DATA / "summary.json") and "path" not in s  # the file's keys only
+    with pytest.raises(KeyError, match="summary.json: no stage 'unload' \\(stages: start, load, hold\\)"):
         stage(s, "unload")
     with pytest.raises(KeyError, match="reports no 'force'"):
         reported(s, "hold", "force")
