@@ -20,17 +20,14 @@ Converged answers (where each comes from):
 """
 import argparse
 import json
-import os
-import subprocess
-import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import read_summary, run_driver
+from performance_doc import replace_section
 
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+ROOT = Path(__file__).resolve().parents[1]
+
 MEASURABLE = 2e-3   # errors below 0.2 % of the reference are within the references' own uncertainty: no effectivity
 TITLE = "## Adapted meshes: error indicator, adaptation by rerun, the stated mesh error"
 UNLOAD = """  - name: unload
@@ -73,8 +70,7 @@ def run(case, out, levels, order=None, extra=()):
     scene = out.parent / f"{out.name}.yaml"
     scene.write_text(scene_text(case, order))
     t0 = time.time()
-    proc = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out), "-adapt_levels", str(levels), *extra],
-                          capture_output=True, text=True, timeout=7200)
+    proc = run_driver(scene, out, ["-adapt_levels", levels, *extra], root=ROOT, timeout=7200, check=False)
     (out.parent / f"{out.name}.log").write_text(proc.stdout + proc.stderr)
     if proc.returncode:
         raise SystemExit(f"{case}: driver failed ({proc.returncode}): {proc.stderr[-2000:]}")
@@ -99,7 +95,7 @@ def levels_of(out):
     rows = []
     for d in sorted((out / "adapt").glob("level*"), key=lambda p: int(p.name[5:])):
         if (d / "summary.json").exists():
-            s = json.loads((d / "summary.json").read_text())
+            s = read_summary(d)
             q, e = quantities(s)
             rows.append({"level": int(d.name[5:]), "cells": s["mesh"]["cells"], "unknowns": s["mesh"]["unknowns"],
                          "cpu": s["levels"][-1]["cpu_s"], "umat_calls": s["levels"][-1]["umat_calls"], "q": q, "e": e})
@@ -127,8 +123,8 @@ def main():
             done = [d / "summary.json" for d in sorted((base / f"{case}_ref" / "adapt").glob("level*"), key=lambda p: int(p.name[5:]))
                     if (d / "summary.json").exists()]
             if done:
-                ref = quantities(json.loads(done[-1].read_text()))[0]
-                ref["from"] = f"P2, {json.loads(done[-1].read_text())['mesh']['unknowns']} unknowns"
+                ref = quantities(read_summary(done[-1]))[0]
+                ref["from"] = f"P2, {read_summary(done[-1])['mesh']['unknowns']} unknowns"
         results[case] = {"levels": levels_of(out), "reference": ref}
     Path(a.results).parent.mkdir(parents=True, exist_ok=True)
     Path(a.results).write_text(json.dumps(results, indent=1))

@@ -17,21 +17,13 @@ Usage: bench/berkovich_convergence.py [--quick]
 """
 import argparse
 import math
-import os
-import resource
-import subprocess
-import sys
 import tempfile
-import time
 from pathlib import Path
 
-import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import DriverError, mesh_line, read_history, run_driver
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver_elastic"))
 DOC = ROOT / "docs" / "contact.md"
 TITLE = "## The 3D Berkovich against the cone"
 ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
@@ -79,15 +71,12 @@ def run(text, out):
     out.parent.mkdir(parents=True, exist_ok=True)
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    r0, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
-    proc = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, cwd=ROOT)
-    wall, r1 = time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
-    if proc.returncode:
-        raise SystemExit(f"{scene}: the driver failed:\n{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
-    import re
-    return dict(P=h["load"][-1], N=int(re.search(r"(\d+) unknowns", proc.stdout).group(1)), wall=wall,
-                cpu=r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime)
+    try:
+        proc = run_driver(scene, out, name="driver_elastic", root=ROOT, cwd=ROOT, timeout=6 * 3600)
+    except DriverError as err:
+        raise SystemExit(f"{scene}: the driver failed: {err}")
+    h = read_history(out, need=("load",))
+    return dict(P=h["load"][-1], N=mesh_line(proc.stdout)["unknowns"], wall=proc.wall, cpu=proc.cpu)
 
 
 def richardson(hs, Ps):

@@ -31,12 +31,11 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "bench"))
 sys.path.insert(0, str(ROOT / "tools" / "calculix"))
 import same_mesh  # noqa: E402
-from performance_doc import replace_section  # noqa: E402
 
 TITLE = "## CalculiX on the same mesh (issue 13)"
 

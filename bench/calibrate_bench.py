@@ -12,23 +12,18 @@ own_curve.yaml with nano_fast instead of nano_mid). Writes the section "## Calib
 without it such an example is skipped and said so. Long: about 40 min on the shared machine (run it under nice).
 """
 import argparse
-import os
 import re
-import resource
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import yaml
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import DriverError, driver_path, run_driver
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 CAL = ROOT / "input" / "calibrate"
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 TRUE = {"eta_soft": 1.3e10, "eta_hard": 1.3e13}
 TITLE = "## Calibration"
 EXAMPLES = ("own_curve,own_curve_fast,nano_eta_soft,micro_BN_eta_hard,nano_micro_joint,triaxial_creep_lab,"
@@ -59,14 +54,9 @@ def missing_record(scene, make):
         if f"data/{data}" in scene.read_text() and not (CAL / "data" / data).exists():
             if not make:
                 return data
-            subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(DRIVER), *args, "--out",
-                            str(CAL / "data" / data)], check=True)
+            subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(driver_path(root=ROOT)), *args,
+                            "--out", str(CAL / "data" / data)], check=True)
     return None
-
-
-def cpu_children():
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
 
 
 def pct(x, sign="+"):
@@ -114,12 +104,11 @@ def main(argv=None):
                 print(f"{name}: skipped, data/{need} missing (--make-data makes it)", flush=True)
                 continue
             out = Path(tmp) / name
-            t0, c0 = time.perf_counter(), cpu_children()
-            proc = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True)
-            wall, cpu = time.perf_counter() - t0, cpu_children() - c0
-            if proc.returncode:
-                raise SystemExit(f"{scene}: failed:\n{proc.stdout[-1500:]}\n{proc.stderr[-1500:]}")
-            lines.append(row(name, yaml.safe_load((out / "fit.yaml").read_text()), cpu, wall))
+            try:
+                proc = run_driver(scene, out, root=ROOT, timeout=6 * 3600)
+            except DriverError as err:
+                raise SystemExit(f"{scene}: failed: {err}")
+            lines.append(row(name, yaml.safe_load((out / "fit.yaml").read_text()), proc.cpu, proc.wall))
     note = f"\nNot run: {', '.join(skipped)}.\n" if skipped else ""
     section = (f"{TITLE}\n\nCommand: `bench/calibrate_bench.py` (docs/calibrate.md). The examples of `input/calibrate/`, "
                "TAO POUNDERS from a start 3x off, one forward\nrun at a time; synthetic data made by the driver with "

@@ -25,8 +25,6 @@ About 15 s CPU a fit (nano_fast, about 1 s a forward run): 20 draws of 4 faults,
 import argparse
 import contextlib
 import math
-import os
-import resource
 import subprocess
 import sys
 import tempfile
@@ -35,13 +33,11 @@ from pathlib import Path
 
 import numpy as np
 import yaml
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import driver_path, read_history, run_driver
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 CAL = ROOT / "input" / "calibrate"
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 TITLE = "## Measured curves: calibration coverage"
 FORWARD = CAL / "forward" / "nano_fast.yaml"
 PROTOCOL = CAL / "protocols" / "paper_drift_hold.yaml"
@@ -58,13 +54,8 @@ FAULTS = {  # name: (depth noise nm, drift nm/s, load noise, drift option)
 }
 
 
-def cpu_children():
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
-
-
 def read_csv(path):
-    """The numeric columns of a CSV (a text column, as history.csv's stage_name, left out)."""
+    """The numeric columns of a record CSV ('#' lines skipped; history.csv: camclay9.read_history)."""
     with open(path) as f:
         lines = [line.strip().split(",") for line in f if not line.startswith("#")]
     keep = [k for k, v in enumerate(lines[1]) if v.lstrip("-").replace(".", "", 1).replace("e", "", 1).replace("-", "")
@@ -101,7 +92,8 @@ def exact_record(truth, work, log):
     """The record's loads and times from the protocol run at the truth; its depths those of the scene the fit runs
     (driven by those loads) at the truth, interpolated at the record's times: the model is exact."""
     rec = work / "protocol_run.csv"
-    subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(DRIVER), "--scene", str(FORWARD), "--set",
+    subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(driver_path(root=ROOT)), "--scene",
+                    str(FORWARD), "--set",
                     f"eta_soft={truth:.10g}", "--protocol", str(PROTOCOL), "--instrument", "10", "--out", str(rec)],
                    check=True, capture_output=True, timeout=900)
     head, a = read_csv(rec)  # from the first row under load: the paper's loading starts at 22 uN (docs/calibrate.md, Limits)
@@ -110,16 +102,14 @@ def exact_record(truth, work, log):
     dry = work / "dry.yaml"
     dry.write_text(scene_text(rec, "dry", truth, units="factors: {time: 1, load: 1000, depth: 0.001}").replace(
         "weighting: noise\n", ""))  # the scene as any version of calibrate reads it: its forward scene is what is wanted
-    subprocess.run([str(DRIVER), "-input", str(dry), "-output_dir", str(work / "dry"), "-calibrate_dry_run"], check=True,
-                   capture_output=True, timeout=900)
+    run_driver(dry, work / "dry", ["-calibrate_dry_run"], root=ROOT, timeout=900)
     out = work / "truth"
-    subprocess.run([str(DRIVER), "-input", str(work / "dry" / "protocol" / "nano" / "scene.yaml"), "-output_dir", str(out),
-                    "-material_set", f"eta_soft={truth:.17g}", "-progress_every", "1000000"], check=True, capture_output=True,
-                   timeout=900)
-    hh, h = read_csv(out / "history.csv")
+    run_driver(work / "dry" / "protocol" / "nano" / "scene.yaml", out,
+               ["-material_set", f"eta_soft={truth:.17g}", "-progress_every", "1000000"], root=ROOT, timeout=900)
+    h = read_history(out, need=("time", "depth"))
     head, a = read_csv(rec)
     t = a[:, head.index("time_s")] - a[0, head.index("time_s")]  # the forward run's time 0 is the record's first row
-    a[:, head.index("depth_nm")] = 1e3 * np.interp(t, h[:, hh.index("time")], h[:, hh.index("depth")])
+    a[:, head.index("depth_nm")] = 1e3 * np.interp(t, h["time"], h["depth"])
     return head, a
 
 
@@ -136,9 +126,8 @@ def fit(record, truth, fault, work):
     scene = work / f"{fault}.yaml"
     scene.write_text(scene_text(record, fault, 3 * truth, FAULTS[fault][3]))
     out = work / f"out_{fault}"
-    c0, t0 = cpu_children(), time.perf_counter()
-    r = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, timeout=3600)
-    cpu, wall = cpu_children() - c0, time.perf_counter() - t0
+    r = run_driver(scene, out, root=ROOT, timeout=3600, check=False)
+    cpu, wall = r.cpu, r.wall
     (work / f"{fault}.log").write_text(r.stdout + r.stderr)
     if r.returncode:
         return {"fault": fault, "failed": r.stderr.strip()[-300:], "cpu": cpu}

@@ -19,15 +19,14 @@ and counts the draws whose truth lies within 2 of them.
 """
 import argparse
 import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
+from camclay9 import driver_path, read_history, run_driver
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import calibrate_coverage as cov  # noqa: E402
+import calibrate_coverage as cov
 
 TRUTH = 1.7e10
 
@@ -91,11 +90,11 @@ def main(argv=None):
         depth = {}
         for f in (0.99, 1.0, 1.01):
             out = work / f"run_{f}"
-            subprocess.run([str(cov.DRIVER), "-input", str(work / "dry" / "protocol" / "nano" / "scene.yaml"), "-output_dir",
-                            str(out), "-material_set", f"eta_soft={TRUTH * f:.17g}", "-progress_every", "1000000"], check=True,
-                           capture_output=True, timeout=900)
-            hh, h = cov.read_csv(out / "history.csv")
-            depth[f] = 1e3 * np.interp(t, h[:, hh.index("time")], h[:, hh.index("depth")])
+            run_driver(work / "dry" / "protocol" / "nano" / "scene.yaml", out,
+                       ["-material_set", f"eta_soft={TRUTH * f:.17g}", "-progress_every", "1000000"], root=cov.ROOT,
+                       timeout=900)
+            h = read_history(out, need=("time", "depth"))
+            depth[f] = 1e3 * np.interp(t, h["time"], h["depth"])
     stages = sorted(set(seg))
     blocks = [np.nonzero(seg == s)[0] for s in stages]
     holds = [abs(rec[b[-1], head.index("load_mN")] - rec[b[0], head.index("load_mN")]) < 0.05 * rec[:, 1].max() for b in blocks]
@@ -131,5 +130,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    os.environ.setdefault("DRIVER", str(cov.DRIVER))
+    os.environ.setdefault("DRIVER", str(driver_path(root=cov.ROOT)))
     sys.exit(main())

@@ -21,23 +21,15 @@ Usage: bench/contact_p2_rates.py [--repeats 1] [--quick]
 """
 import argparse
 import math
-import os
-import re
-import resource
 import statistics
-import subprocess
-import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import DriverError, mesh_line, read_history, run_driver
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver_elastic"))
 DOC = ROOT / "docs" / "contact.md"
 TITLE = "## P1 and P2: convergence"
 E, NU = 1000.0, 0.3
@@ -81,18 +73,16 @@ def run(text, out, repeats):
     for _ in range(repeats):
         out.parent.mkdir(parents=True, exist_ok=True)
         (out.parent / (out.name + ".yaml")).write_text(text)
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t0 = time.perf_counter()
-        proc = subprocess.run([str(DRIVER), "-input", str(out.parent / (out.name + ".yaml")), "-output_dir", str(out)],
-                              capture_output=True, text=True, cwd=ROOT)
-        walls.append(time.perf_counter() - t0)
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpus.append(r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime)
-        if proc.returncode:
-            raise SystemExit(f"{out}: the driver failed:\n{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+        try:
+            proc = run_driver(out.parent / (out.name + ".yaml"), out, name="driver_elastic", root=ROOT, cwd=ROOT,
+                              timeout=6 * 3600)
+        except DriverError as err:
+            raise SystemExit(f"{out}: the driver failed: {err}")
+        walls.append(proc.wall)
+        cpus.append(proc.cpu)
+    h = read_history(out, need=("stage_name", "load", "depth"))
     h = h[h["stage_name"] == "push"]
-    unknowns = int(re.search(r"(\d+) unknowns", proc.stdout).group(1))
+    unknowns = mesh_line(proc.stdout)["unknowns"]
     return dict(P=h["load"][-1], Ps=h["load"], depth=h["depth"][-1], N=unknowns, wall=statistics.median(walls),
                 cpu=statistics.median(cpus))
 

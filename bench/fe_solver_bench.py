@@ -12,20 +12,16 @@ Usage: bench/fe_solver_bench.py [--sizes 5.3,2.5,1.45] [--repeats 2] [--max-step
 import argparse
 import os
 import re
-import resource
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9.launch import MPIEXEC
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 TITLE = "## FE solver: defaults by measurement"
 PLAIN = "-fe_refactor_its 0 -ksp_type preonly"
 CANDIDATES = {  # name: options (the driver's defaults fill in the rest)
@@ -60,26 +56,20 @@ def scene_text(size, history=HISTORY):
 
 
 def run(scene, out, ranks, opts, max_steps=0):
-    cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), str(DRIVER), "-input", str(scene),
-           "-output_dir", str(out), "-progress_every", "1000000"] + opts.split()
-    if max_steps:
-        cmd += ["-max_steps", str(max_steps)]
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
+    options = ["-progress_every", "1000000"] + opts.split() + (["-max_steps", str(max_steps)] if max_steps else [])
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")  # one core per rank: CPU time = work
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env)
-    wall = time.perf_counter() - t0
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    # through mpiexec, even on 1 rank: the same launch for every row
+    proc = run_driver(scene, out, options, root=ROOT, prefix=[*MPIEXEC, str(ranks)], cwd=ROOT, env=env, timeout=6 * 3600,
+                      check=False)
     if proc.returncode:
         return dict(failed=(proc.stdout + proc.stderr)[-300:])
-    m = re.search(r"(\d+) cells, .*?(\d+) unknowns", proc.stdout)
-    s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks.*assembly ([0-9.]+) s, wall ([0-9.]+) s", proc.stdout)
+    m, s = mesh_line(proc.stdout), summary_line(proc.stdout, index=0)
     k = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups, max RSS ([0-9.]+) MB per rank, "
                   r"([0-9.]+) MB in all, CPU ([0-9.]+) s", proc.stdout)
-    h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
-    return dict(cells=int(m.group(1)), unknowns=int(m.group(2)), steps=int(s.group(1)), newton=int(s.group(2)),
-                cutbacks=int(s.group(3)), assembly=float(s.group(4)), solve_wall=float(s.group(5)), wall=wall,
-                cpu=(r1.ru_utime + r1.ru_stime) - (r0.ru_utime + r0.ru_stime), solver=k.group(1), krylov=int(k.group(2)),
+    h = read_history(out, need=("eps_33",))
+    return dict(cells=m["cells"], unknowns=m["unknowns"], steps=s["steps"], newton=s["newton_iterations"],
+                cutbacks=s["cutbacks"], assembly=s["assembly_s"], solve_wall=s["wall_s"], wall=proc.wall,
+                cpu=proc.cpu, solver=k.group(1), krylov=int(k.group(2)),
                 setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), solve_cpu=float(k.group(6)), eps33=h["eps_33"], time=h["time"],
                 stage=h["stage"])
 

@@ -7,38 +7,31 @@ Writes the section "FE: triaxial cylinder" of docs/performance.md.
 Usage: bench/fe_triaxial.py [--repeats 3]
 """
 import argparse
-import re
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9.launch import MPIEXEC
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = ROOT / "build" / "bin" / "driver"
 TITLE = "## FE: triaxial cylinder"
 
 
 def run(scene, out, ranks):
-    cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), str(DRIVER), "-input", str(scene),
-           "-output_dir", str(out)]
-    t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=ROOT)
-    wall = time.perf_counter() - t0
-    cells = int(re.search(r"(\d+) cells", proc.stdout).group(1))
-    m = re.search(r": (\d+) steps, \d+ Newton iterations, (\d+) cutbacks.*?, (\d+) UMAT calls, assembly ([0-9.]+) s", proc.stdout)
-    h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    proc = run_driver(scene, out, root=ROOT, prefix=[*MPIEXEC, str(ranks)], cwd=ROOT, timeout=6 * 3600)  # 1 rank too
+    wall = proc.wall
+    cells = mesh_line(proc.stdout)["cells"]
+    m = summary_line(proc.stdout, index=0)
+    h = read_history(out, need=("newton_its", "stage", "eps_33"))
     newton = int(h["newton_its"].sum())
     rows = np.where(h["stage"] == 1)[0]
     t = h["time"][rows] - h["time"][rows[0]]
     eps = -(h["eps_33"][rows] - h["eps_33"][rows[0]])
     creep = [float(np.interp(x, t, eps)) for x in (3600.0, 36000.0)]
-    return dict(cells=cells, steps=int(m.group(1)), newton=newton, assembly=float(m.group(4)), wall=wall, creep=creep)
+    return dict(cells=cells, steps=m["steps"], newton=newton, assembly=m["assembly_s"], wall=wall, creep=creep)
 
 
 def main(argv=None):

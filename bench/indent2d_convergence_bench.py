@@ -35,13 +35,13 @@ import time
 from pathlib import Path
 
 import numpy as np
+from camclay9 import read_history
+from indent_convergence_bench import run
+from indent_convergence_doc import richardson
+from performance_doc import replace_section
+from step_control_bench import absolute
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))
-from indent_convergence_bench import run  # noqa: E402
-from indent_convergence_doc import richardson  # noqa: E402
-from performance_doc import replace_section  # noqa: E402
-from step_control_bench import absolute  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))  # the plots' region means (post/ is no package)
 import results_store  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -139,7 +139,7 @@ def field_numbers(out, region):
     """Region means of |sigma| at the end of the load and of the hold; within a of the tip at the end of the hold,
     the checkerboard of |sigma| and how far the viscoplastic flow is from isochoric (|tr evp| / |dev evp|, area
     weighted: near 0 is the incompressibility that locks linear triangles)."""
-    from fields_h5 import Fields, dev_norm, tensor_norm, trace
+    from camclay9.fields import Fields, dev_norm, tensor_norm, trace
     from indent_fields import cell_areas, checkerboard, clipped_areas, region_mean, six
     from indent_plots import History, STAGE_COLUMNS
     t0, t1 = History(out, need=STAGE_COLUMNS).hold_times()
@@ -157,7 +157,7 @@ def field_numbers(out, region):
 def run_rung(skey, order, h_tip, r_fine, tol, tmp, t_call):
     out = Path(tmp) / key(skey, order, h_tip, r_fine, tol).replace(":", "_")
     r = run(scene_text(skey, order, h_tip, r_fine, tol), out)
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+    h = read_history(out, need=("umat_calls",))
     o = r.pop("o")
     r["o"] = dict(h_max=o["depth at end of loading"], creep=o["creep depth"], h_res=o["residual depth"],
                   **field_numbers(out, SCENES[skey][2]))

@@ -11,43 +11,33 @@ docs/indent_accuracy.png.
 Usage: bench/indent_bench.py [--repeats 3] [--quick]
 """
 import argparse
-import os
 import re
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
+from camclay9 import DriverError, mesh_line, read_history, run_driver, summary_line
 from matplotlib.figure import Figure
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))  # a copy, to rebuild meanwhile
 TITLE = "## Indentation"
 
 
 def run(scene_text, out, args=(), ranks=1):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(scene_text)
-    cmd = ["/usr/bin/time", "-f", "maxrss_kB %M", str(DRIVER), "-input", str(scene), "-output_dir", str(out), *args]
-    if ranks > 1:
-        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
-    t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
-    wall = time.perf_counter() - t0
-    if proc.returncode:
-        raise SystemExit(f"{scene}: the driver failed:\n{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
-    m = re.search(r": (\d+) steps, (\d+) Newton iterations .*?, (\d+) cutbacks.*assembly ([0-9.]+) s, linear solves ([0-9.]+) s",
-                  proc.stdout)
+    try:  # $DRIVER: a copy, to rebuild meanwhile
+        proc = run_driver(scene, out, args, root=ROOT, ranks=ranks, prefix=["/usr/bin/time", "-f", "maxrss_kB %M"],
+                          cwd=ROOT, timeout=6 * 3600)
+    except DriverError as err:
+        raise SystemExit(f"{scene}: the driver failed: {err}")
+    s = summary_line(proc.stdout, index=0)
     rss = max(int(x) for x in re.findall(r"maxrss_kB (\d+)", proc.stderr))
-    cells = int(re.search(r"(\d+) cells", proc.stdout).group(1))
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
-    return dict(wall=wall, steps=int(m.group(1)), newton=int(m.group(2)), cutbacks=int(m.group(3)),
-                assembly=float(m.group(4)), linear=float(m.group(5)), rss_MB=rss / 1024, cells=cells, hist=h)
+    return dict(wall=proc.wall, steps=s["steps"], newton=s["newton_iterations"], cutbacks=s["cutbacks"],
+                assembly=s["assembly_s"], linear=s["linear_solves_s"], rss_MB=rss / 1024,
+                cells=mesh_line(proc.stdout)["cells"], hist=read_history(out))
 
 
 def curve_numbers(h, load_factor):

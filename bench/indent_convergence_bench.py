@@ -44,16 +44,13 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from indent_convergence_doc import TITLE, limits, section  # noqa: E402
-from indent_ladders import MODELS, SHORT, key, ladder, ladders, load  # noqa: E402
-from performance_doc import replace_section  # noqa: E402
-from step_control_bench import absolute, outputs  # noqa: E402
+from camclay9 import driver_command, mesh_line, read_history, summary_line
+from indent_convergence_doc import TITLE, limits, section
+from indent_ladders import MODELS, SHORT, key, ladder, ladders, load
+from performance_doc import replace_section
+from step_control_bench import absolute, outputs
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 
 
 def scene(model, h_tip, tol=None, work=None):
@@ -89,9 +86,6 @@ def nested_mesh(text, n, work):
     return re.sub(r"\n  geometry: \S+\n  parameters: \{[^}]*\}", f"\n  file: {msh}", text, count=1)
 
 
-SUMMARY = re.compile(r": (\d+) steps, (\d+) Newton iterations.*?(\d+) UMAT calls.*?linear solves ([0-9.]+) s \(\w+, "
-                     r"(\d+) Krylov iterations, (\d+) factorisations\)")
-
 
 def run(text, out):
     """One rung under nice -n 10: its outputs, and the driver's CPU (user + system, gmsh's meshing included) and
@@ -101,7 +95,8 @@ def run(text, out):
     path.write_text(text)
     t0 = time.perf_counter()
     with open(out.parent / (out.name + ".log"), "w+") as log:
-        proc = subprocess.Popen(["nice", "-n", "10", str(DRIVER), "-input", str(path), "-output_dir", str(out)],
+        # not run_driver: the rung's own CPU and peak memory (wait4) and its log written as it runs
+        proc = subprocess.Popen(driver_command(path, out, root=ROOT, prefix=["nice", "-n", "10"]),
                                 stdout=log, stderr=subprocess.STDOUT, cwd=out.parent)
         _, status, ru = os.wait4(proc.pid, 0)
         proc.returncode = os.waitstatus_to_exitcode(status)
@@ -110,13 +105,12 @@ def run(text, out):
     wall = time.perf_counter() - t0
     if proc.returncode:
         raise RuntimeError(f"{path}: the driver failed:\n{stdout[-2000:]}")
-    s = SUMMARY.search(stdout)
-    n = re.search(r"(\d+) unknowns", stdout)
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
-    return dict(wall=wall, cpu=ru.ru_utime + ru.ru_stime, rss_mb=ru.ru_maxrss / 1024, steps=int(s.group(1)),
-                newton=int(s.group(2)), umat_calls=int(s.group(3)), solve_s=float(s.group(4)), krylov=int(s.group(5)),
-                factorisations=int(s.group(6)), unknowns=int(n.group(1)) if n else None,
-                o={k: float(v) for k, v in outputs(h).items()})
+    s = summary_line(stdout, index=0)
+    h = read_history(out)
+    return dict(wall=wall, cpu=ru.ru_utime + ru.ru_stime, rss_mb=ru.ru_maxrss / 1024, steps=s["steps"],
+                newton=s["newton_iterations"], umat_calls=s["umat_calls"], solve_s=s["linear_solves_s"],
+                krylov=s["krylov_iterations"], factorisations=s["factorisations"],
+                unknowns=mesh_line(stdout)["unknowns"], o={k: float(v) for k, v in outputs(h).items()})
 
 
 def estimate(res, model, h):

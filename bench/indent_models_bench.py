@@ -24,9 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
-from step_control_bench import absolute, outputs, run  # noqa: E402
+from performance_doc import replace_section
+from step_control_bench import absolute, outputs, run
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "driver"))
 from test_sector import gmsh, mirrored_half, msh41  # noqa: E402

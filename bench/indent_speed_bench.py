@@ -14,19 +14,15 @@ docs/performance.md.
 Usage: bench/indent_speed_bench.py [--against 1baa50c] [--repeats 3] [--scenes a,b,...] [--quick]
 """
 import argparse
-import os
 import re
-import resource
 import statistics
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import DriverError, read_history, run_driver, summary_line
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## Indentation speed: the contact solve and the physics"
@@ -59,19 +55,15 @@ def umat_time_per_call():
 
 def run(driver, scene, out, args=()):
     """One run: CPU seconds (children's rusage), the summary line's counts, the history."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    proc = subprocess.run([str(driver), "-input", str(ROOT / "input" / f"{scene}.yaml"), "-output_dir", str(out), *args],
-                          capture_output=True, text=True, cwd=out.parent)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if proc.returncode:
-        raise SystemExit(f"{scene} ({driver}): failed\n{proc.stdout[-1500:]}\n{proc.stderr[-1500:]}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    line = proc.stdout
-    num = lambda pat: int(re.search(pat, line).group(1)) if re.search(pat, line) else 0  # noqa: E731
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
-    return dict(cpu=cpu, steps=num(r": (\d+) steps"), newton=num(r"(\d+) Newton iterations"), rejected=num(r"(\d+) cutbacks"),
-                krylov=num(r"(\d+) Krylov iterations"), factorisations=num(r"(\d+) factorisations") or num(r"(\d+) Newton iterations"),
-                calls=num(r"(\d+) UMAT calls"), outputs=outputs(h), log=proc.stdout)
+    try:
+        proc = run_driver(ROOT / "input" / f"{scene}.yaml", out, args, driver=driver, cwd=out.parent, timeout=6 * 3600)
+    except DriverError as err:
+        raise SystemExit(f"{scene} ({driver}): failed: {err}")
+    s = summary_line(proc.stdout, index=0)
+    num = lambda key: s.get(key, 0)  # noqa: E731
+    return dict(cpu=proc.cpu, steps=num("steps"), newton=num("newton_iterations"), rejected=num("cutbacks"),
+                krylov=num("krylov_iterations"), factorisations=num("factorisations") or num("newton_iterations"),
+                calls=num("umat_calls"), outputs=outputs(read_history(out)), log=proc.stdout)
 
 
 def outputs(h):

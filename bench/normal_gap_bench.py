@@ -25,21 +25,16 @@ Usage: bench/normal_gap_bench.py [--quick] [--doc]
 import argparse
 import json
 import math
-import os
-import re
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import DriverError, mesh_line, read_history, run_driver
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER_ELASTIC", ROOT / "build" / "bin" / "driver_elastic"))
 DOC = ROOT / "docs" / "contact.md"
 READING = ROOT / "bench" / "normal_gap_reading.md"  # the explanation, written by hand, before the measured table
 TITLE = "## The normal gap against γ"
@@ -120,19 +115,15 @@ def run(psi, nu, gap, m, tmp):
     d = Path(tmp) / f"{gap}_{psi}_{nu}"
     d.mkdir(parents=True, exist_ok=True)
     (d / "scene.yaml").write_text(scene(psi, nu, gap, m))
-    c0 = os.times()
-    p = subprocess.run([str(DRIVER), "-input", str(d / "scene.yaml"), "-output_dir", str(d / "out")],
-                       capture_output=True, text=True)
-    c1 = os.times()
-    if p.returncode:
-        raise RuntimeError(f"psi {psi}, nu {nu}, {gap} gap: the driver failed:\n{p.stdout[-1500:]}\n{p.stderr[-1500:]}")
-    hist = np.atleast_1d(np.genfromtxt(d / "out" / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+    try:
+        p = run_driver(d / "scene.yaml", d / "out", name="driver_elastic", root=ROOT, timeout=6 * 3600)
+    except DriverError as err:
+        raise RuntimeError(f"psi {psi}, nu {nu}, {gap} gap: the driver failed: {err}") from None
+    hist = read_history(d / "out", need=("load", "depth"))
     h = math.pi / 2 / math.tan(math.radians(psi))
     rows = hist["depth"] > 0.45 * h
     sneddon = 2 / math.pi * E / (1 - nu * nu) * math.tan(math.radians(psi)) * hist["depth"][rows] ** 2
-    n = re.search(r"(\d+) unknowns", p.stdout)
-    return dict(ratios=(hist["load"][rows] / sneddon).tolist(), unknowns=int(n.group(1)) if n else None,
-                cpu=(c1.children_user - c0.children_user) + (c1.children_system - c0.children_system))
+    return dict(ratios=(hist["load"][rows] / sneddon).tolist(), unknowns=mesh_line(p.stdout)["unknowns"], cpu=p.cpu)
 
 
 def fit_c2(res, psi_min=65):

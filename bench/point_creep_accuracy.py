@@ -10,16 +10,13 @@ Usage: bench/point_creep_accuracy.py [--repeats 5] [--driver build/bin/driver]
 """
 import argparse
 import json
-import re
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import read_history, run_driver, summary_line
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "reference"))
@@ -30,15 +27,13 @@ TIMES = (3600.0, 36000.0)
 
 
 def run(driver, scene, outdir):
-    out = subprocess.run([driver, "-input", str(scene), "-output_dir", str(outdir)], check=True,
-                         capture_output=True, text=True).stdout
-    m = re.search(r": (\d+) steps, (\d+) cutbacks, .*?, ([0-9.eE+-]+) s", out)
-    return int(m.group(1)), int(m.group(2)), float(m.group(3))
+    s = summary_line(run_driver(scene, outdir, driver=driver, root=ROOT, timeout=3600).stdout)
+    return s["steps"], s["cutbacks"], s["wall_s"]
 
 
 def creep_errors(outdir):
     meta = json.loads((outdir / "scene.json").read_text())
-    h = np.genfromtxt(outdir / "history.csv", delimiter=",", names=True)
+    h = read_history(outdir, need=("segment", "eps_33"))
     rows = np.where(h["segment"] == 1)[0]
     t = h["time"][rows] - h["time"][rows[0]]
     eps = h["eps_33"][rows] - h["eps_33"][rows[0]]
@@ -53,7 +48,7 @@ def creep_errors(outdir):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
-    ap.add_argument("--driver", default=str(ROOT / "build" / "bin" / "driver"))
+    ap.add_argument("--driver", default=None, help="the driver (default: $DRIVER or build/bin/driver)")
     a = ap.parse_args(argv)
     base = (ROOT / "input/point/triaxial_creep_theta0.yaml").read_text()
     rows = []

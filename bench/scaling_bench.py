@@ -21,13 +21,12 @@ import time
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fe_solver_bench import HISTORY  # noqa: E402
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9.launch import MPIEXEC
+from fe_solver_bench import HISTORY
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 TITLE = "## FE scaling: 1 and 2 ranks, direct and GAMG"
 SOLVERS = {"direct (default)": "", "GAMG": "-pc_type gamg"}
 EVENTS = {"residual": "CC9 residual+UMAT", "jacobian": "CC9 Jacobian", "pcsetup": "PCSetUp", "ksp": "KSPSolve"}
@@ -49,25 +48,23 @@ def scene_text(msh):
 
 
 def run(scene, out, ranks, opts, max_steps):
-    cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), str(DRIVER), "-input", str(scene),
-           "-output_dir", str(out), "-progress_every", "1000000", "-max_steps", str(max_steps), "-log_view"] + opts.split()
+    options = ["-progress_every", "1000000", "-max_steps", str(max_steps), "-log_view"] + opts.split()
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
-    t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env)
-    wall = time.perf_counter() - t0
+    proc = run_driver(scene, out, options, root=ROOT, prefix=[*MPIEXEC, str(ranks)], cwd=ROOT, env=env, timeout=6 * 3600,
+                      check=False)
+    wall = proc.wall
     if proc.returncode:
         return dict(failed=(proc.stdout + proc.stderr)[-400:])
-    m = re.search(r"(\d+) cells, .*?(\d+) unknowns", proc.stdout)
-    s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks.*wall ([0-9.]+) s", proc.stdout)
+    m, s = mesh_line(proc.stdout), summary_line(proc.stdout, index=0)
     k = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups, max RSS ([0-9.]+) MB per rank, "
                   r"([0-9.]+) MB in all, CPU ([0-9.]+) s", proc.stdout)
     ev = {}
     for key, name in EVENTS.items():  # -log_view: name, count, ratio, max time
         e = re.search(rf"^{re.escape(name)}\s+(\d+) \S+ (\S+)", proc.stdout, re.M)
         ev[key] = float(e.group(2)) if e else 0.0
-    h = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
-    return dict(cells=int(m.group(1)), unknowns=int(m.group(2)), steps=int(s.group(1)), newton=int(s.group(2)),
-                cutbacks=int(s.group(3)), solve_wall=float(s.group(4)), wall=wall, solver=k.group(1), krylov=int(k.group(2)),
+    h = read_history(out, need=("eps_33",))
+    return dict(cells=m["cells"], unknowns=m["unknowns"], steps=s["steps"], newton=s["newton_iterations"],
+                cutbacks=s["cutbacks"], solve_wall=s["wall_s"], wall=wall, solver=k.group(1), krylov=int(k.group(2)),
                 setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), cpu=float(k.group(6)), ev=ev,
                 eps33=h["eps_33"])
 

@@ -16,22 +16,18 @@ Writes the section "## Time-step error control" of docs/performance.md and docs/
 Usage: bench/step_control_bench.py [--repeats 3] [--scenes nano,micro,rate,bedding,triaxial] [--no-table]
 """
 import argparse
-import os
 import re
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
+from camclay9 import DriverError, read_history, run_driver, summary_line
 from matplotlib.figure import Figure
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
 TITLE = "## Time-step error control"
 BEFORE_COMMIT = "9e981b2"  # the scenes as shipped before issue 10
 SCENES = {"nano": "nanoindent_kerogen_axi", "micro": "microindent_BN_axi", "rate": "loading_rate_a1",
@@ -72,18 +68,13 @@ def with_measure(text, measure, tol, unload_tol=None):
 def run(text, out, ranks=1, args=()):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    cmd = [str(DRIVER), "-input", str(scene), "-output_dir", str(out), *args]
-    if ranks > 1:
-        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
-    t0, c0 = time.perf_counter(), os.times()
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out.parent)
-    wall, c1 = time.perf_counter() - t0, os.times()
-    if proc.returncode:
-        raise SystemExit(f"{scene}: the driver failed:\n{proc.stdout[-2000:]}\n{proc.stderr[-2000:]}")
-    m = re.search(r": (\d+) steps, (\d+) Newton iterations.*?, (\d+) UMAT calls", proc.stdout)
-    h = np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
-    return dict(wall=wall, cpu=(c1.children_user - c0.children_user) + (c1.children_system - c0.children_system),
-                steps=int(m.group(1)), newton=int(m.group(2)), calls=int(m.group(3)), hist=h)
+    try:
+        proc = run_driver(scene, out, args, root=ROOT, ranks=ranks, cwd=out.parent, timeout=6 * 3600)
+    except DriverError as err:
+        raise SystemExit(f"{scene}: the driver failed: {err}")
+    s = summary_line(proc.stdout, index=0)
+    return dict(wall=proc.wall, cpu=proc.cpu, steps=s["steps"], newton=s["newton_iterations"], calls=s["umat_calls"],
+                hist=read_history(out))
 
 
 def outputs(h):

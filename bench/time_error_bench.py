@@ -17,16 +17,13 @@ Cases:
 """
 import argparse
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from performance_doc import replace_section  # noqa: E402
+from camclay9 import DriverError, read_summary, run_driver
+from performance_doc import replace_section
 
-DRIVER = Path(os.environ.get("DRIVER", ROOT / "build" / "bin" / "driver"))
+ROOT = Path(__file__).resolve().parents[1]
+
 TITLE = "## Stated time-step error"
 
 # case: (scene, the text the control is in (with {} for its value), its values, finest last; the stage; the quantity)
@@ -46,10 +43,11 @@ def run(case, value, out):
     out.mkdir(parents=True, exist_ok=True)
     scene = out.parent / f"{out.name}.yaml"
     scene.write_text(text)
-    proc = subprocess.run([str(DRIVER), "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, timeout=3600)
-    if proc.returncode:
-        raise SystemExit(f"{case} at {value}: the driver failed:\n{proc.stdout[-2000:]}{proc.stderr[-2000:]}")
-    return json.loads((out / "summary.json").read_text())
+    try:
+        run_driver(scene, out, root=ROOT, timeout=3600)
+    except DriverError as err:
+        raise SystemExit(f"{case} at {value}: the driver failed: {err}")
+    return read_summary(out)
 
 
 def measure(case, root):

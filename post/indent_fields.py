@@ -3,18 +3,14 @@ fixed rectangle of the undeformed mesh (the cells clipped to it, so the mean is 
 does not jump as a centroid crosses the region's edge), nodal averages for maps without the cell-to-cell
 checkerboard, and the checkerboard's size. Tensor fields are read through six() alone.
 """
-import sys
-from pathlib import Path
-
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fields import tensor6  # noqa: E402
+from camclay9.fields import tensor6
 
 
 def six(F, name, k):
     """The (ncells, 6) cell values of tensor field `name` at output k, components 11 22 33 12 13 23 (strains with
-    engineering shear), read by post/fields.py: the one place here that knows how fields.h5 stores a tensor."""
+    engineering shear), read by camclay9.fields: the one place here that knows how fields.h5 stores a tensor."""
     return tensor6(F.f, name, k)
 
 

@@ -35,7 +35,7 @@ Every figure goes to --out DIR (default RUN), and the numbers plotted are printe
 Input, written by the driver into RUN: history.csv, one row per converged step (time, stage, stage_name, load,
 depth, ...: docs/driver.md; load per unit thickness in plane strain, depth in um, time in s; only the columns a
 subcommand uses are required), and fields.h5 (docs/driver.md, "Fields"; cell averages of the tensors, read
-through post/fields.py as 11 22 33 12 13 23, strains with engineering shear).
+through camclay9.fields as 11 22 33 12 13 23, strains with engineering shear).
 
 Colour scales of the maps (fields) are robust: they span the --clip .. 100 - --clip percentiles of the
 cells in view (default 1-99 %), so the few singular cells at the tip do not wash the map out; the colour
@@ -46,9 +46,7 @@ the origin pushing along -y. Tensor norms are Frobenius norms with tensor shear 
 for strains), over all six components (33 is the out-of-plane or hoop component in 2D).
 """
 import argparse
-import csv
 import json
-import re
 import sys
 from pathlib import Path
 
@@ -56,9 +54,10 @@ import numpy as np
 from matplotlib.figure import Figure   # no pyplot: figures are saved with Agg, no global state
 from matplotlib.tri import Triangulation
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fields_h5 import Fields, dev_norm, tensor_norm, trace  # noqa: E402
-from indent_fields import clipped_areas, region_mean  # noqa: E402
+from camclay9 import read_history
+from camclay9.fields import Fields, dev_norm, tensor_norm, trace
+from camclay9.history import history_path
+from indent_fields import clipped_areas, region_mean
 
 HISTORY_COLUMNS = ("time", "stage", "stage_name", "step", "dt", "newton_its", "cutbacks", "load", "depth",
                    "active_nodes", "active_changes", "contact_force", "max_penetration", "min_lambda",
@@ -72,39 +71,18 @@ SUBCOMMANDS = ("ph", "compare", "fields", "vectors", "profile")
 
 # ------------------------------------------------------------------ history.csv
 class History:
-    """The columns of history.csv: float arrays, and `stage_name` a list of str."""
+    """The columns `need` of history.csv (read by camclay9.read_history): float arrays, and `stage_name` a list of
+    str. Errors: SystemExit naming the file (and line, column, value)."""
 
     def __init__(self, run, need=PH_COLUMNS):
-        self.path = path = Path(run) / "history.csv"
-        if not path.is_file():
-            raise SystemExit(f"{path}: no such file (the run's history: one row per converged step)")
-        with open(path, newline="", encoding="utf-8") as fh:
-            lines = [(n, r) for n, r in enumerate(csv.reader(fh), start=1) if r and any(c.strip() for c in r)]
-        if not lines:
-            raise SystemExit(f"{path}: empty file, expected the header line {','.join(HISTORY_COLUMNS)}")
-        header = [c.strip() for c in lines[0][1]]
-        missing = [c for c in need if c not in header]
-        if missing:
-            raise SystemExit(f"{path}: column(s) {', '.join(repr(c) for c in missing)} missing from the header line")
-        rows = lines[1:]
-        if not rows:
+        self.path = path = history_path(run)
+        try:
+            h = read_history(path, need=need)
+        except (OSError, ValueError) as err:
+            raise SystemExit(str(err)) from None
+        if h.size == 0:
             raise SystemExit(f"{path}: no data rows after the header")
-        for n, r in rows:
-            if len(r) != len(header):
-                raise SystemExit(f"{path}:{n}: {len(r)} values, but the header has {len(header)} columns")
-        self.columns = {}
-        for c in need:
-            k = header.index(c)
-            if c == "stage_name":
-                self.columns[c] = [r[k].strip() for _, r in rows]
-                continue
-            vals = np.empty(len(rows))
-            for i, (n, r) in enumerate(rows):
-                try:
-                    vals[i] = float(r[k])
-                except ValueError:
-                    raise SystemExit(f"{path}:{n}: column '{c}': '{r[k]}' is not a number") from None
-            self.columns[c] = vals
+        self.columns = {c: [s.strip() for s in h[c].tolist()] if c == "stage_name" else h[c].astype(float) for c in need}
 
     def __getitem__(self, name):
         return self.columns[name]

@@ -8,17 +8,15 @@ mesh (cells clipped to it), never one cell. The loading-rate regions are scaled 
 the end of loading rounded (h tan 68.26 deg: 0.53, 0.48, 0.43 um for alpha = 0.1, 1, 10), the same for every alpha.
 """
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fields_h5 import Fields, dev_norm, tensor_norm, trace  # noqa: E402
-from indent_fields import cell_areas, checkerboard, clipped_areas, nodal_average, region_mean, six  # noqa: E402
-from indent_plots import History, STAGE_COLUMNS, thin  # noqa: E402
+from camclay9.fields import Fields, dev_norm, tensor_norm, trace
+from indent_fields import cell_areas, checkerboard, clipped_areas, nodal_average, region_mean, six
+from indent_plots import History, STAGE_COLUMNS, thin
 
 A_LR = 0.5
 BENEATH = (-A_LR / 4, A_LR / 4, -A_LR / 2, 0.0)       # Fig. 13's probe and Fig. 12's 'beneath' (bench/indent2d_...)

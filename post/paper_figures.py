@@ -7,18 +7,16 @@ region probes) from post/paper_fields.py; Fig. 17 (both theta with the paper's f
 """
 import contextlib
 import shutil
-import sys
 from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import indent_plots  # noqa: E402
-import triaxial_plots  # noqa: E402
-from lomnitz import lomnitz  # noqa: E402
-import paper_fields  # noqa: E402
-from paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,  # noqa: E402
+import indent_plots
+import triaxial_plots
+from lomnitz import lomnitz
+import paper_fields
+from paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,
                            triaxial_series)
 
 DPI = 90

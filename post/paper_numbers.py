@@ -8,14 +8,12 @@ read with the natural logarithm (post/lomnitz.py; "paper_creep") and with log10 
 same curve / ln 10): the paper does not say which.
 """
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from lomnitz import lomnitz, lomnitz_fit  # noqa: E402
-from paper_fields import A_BED, BENEATH, REGION_KEYS, flow_direction, loading_rate_numbers  # noqa: E402
+from camclay9 import read_history
+from lomnitz import lomnitz, lomnitz_fit
+from paper_fields import A_BED, BENEATH, REGION_KEYS, flow_direction, loading_rate_numbers
 
 ALPHAS = ("0.1", "1", "10")
 THETAS_BEDDING = (0, 30, 45, 60, 90)
@@ -32,7 +30,7 @@ N_FIT = 400            # samples of the resampled Lomnitz fits
 def triaxial_series(run):
     """(t, eps, soft, hard) of the creep stage: time since the deviator, axial creep strain and the mean
     axial viscoplastic strain of each frame since the deviator (compression positive)."""
-    h = np.atleast_1d(np.genfromtxt(Path(run) / "history.csv", delimiter=",", names=True))
+    h = read_history(run, need=("time", "stage", "eps_33", "evp33_soft_mean", "evp33_hard_mean"))
     rows = np.flatnonzero(h["stage"] == h["stage"].max())
     t = h["time"][rows] - h["time"][rows[0]]
 

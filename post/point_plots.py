@@ -24,6 +24,7 @@ import re
 import sys
 from pathlib import Path
 
+import camclay9
 import numpy as np
 from matplotlib.figure import Figure   # no pyplot: figures are saved with Agg, no global state
 
@@ -39,22 +40,12 @@ AXIS_LABEL = ("11", "22", "33")
 
 # ------------------------------------------------------------------ reading and checking the run
 def read_history(path):
-    """history.csv -> dict column name -> 1-D float array. ValueError names the file on any defect."""
-    path = Path(path)
-    with open(path) as fh:
-        header = [h.strip() for h in fh.readline().split(",")]
-    missing = [c for c in HISTORY_COLUMNS if c not in header]
-    if missing:
-        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} in the header line")
-    try:
-        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except ValueError as err:
-        raise ValueError(f"{path}: {err}") from None
-    if data.shape[0] == 0:
+    """history.csv -> dict column name -> 1-D float array (camclay9.read_history). ValueError names the file on any
+    defect."""
+    h = camclay9.read_history(path, need=HISTORY_COLUMNS)
+    if h.size == 0:
         raise ValueError(f"{path}: no data rows after the header")
-    if data.shape[1] != len(header):
-        raise ValueError(f"{path}: {data.shape[1]} values per row but {len(header)} header columns")
-    return {name: data[:, k] for k, name in enumerate(header)}
+    return {name: h[name].astype(float) for name in h.dtype.names}
 
 
 def read_scene(path):

@@ -16,25 +16,19 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from camclay9 import read_history
+from lomnitz import lomnitz, lomnitz_fit
 from matplotlib.figure import Figure
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from lomnitz import lomnitz, lomnitz_fit  # noqa: E402
 
 PAPER = {0: (9.97e-5, 385.0), 90: (6.74e-5, 364.0)}   # Yin et al. 2021, Fig. 17: B, tau
 COMPARE_TIMES = (385.0, 3600.0, 36000.0)               # s after sigma_d: the paper's tau, 1 h, 10 h
 
 
 def load(run):
-    path = Path(run) / "history.csv"
     try:
-        h = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
-    except OSError as e:
-        raise SystemExit(f"{path}: {e}")
-    for col in ("time", "stage", "eps_33", "evp33_hard_mean", "evp33_soft_mean"):
-        if col not in h.dtype.names:
-            raise SystemExit(f"{path}: column '{col}' is missing")
-    return h
+        return read_history(run, need=("time", "stage", "eps_33", "evp33_hard_mean", "evp33_soft_mean"))
+    except (OSError, ValueError) as err:
+        raise SystemExit(str(err)) from None
 
 
 def creep_rows(h):

@@ -23,11 +23,11 @@ import difflib
 import sys
 from pathlib import Path
 
+import doc_quotes
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "post"))
+sys.path.insert(0, str(ROOT / "post"))   # post/ and bench/ are scripts, no package: their generators
 sys.path.insert(0, str(ROOT / "bench"))
-sys.path.insert(0, str(ROOT / "tools"))
-import doc_quotes  # noqa: E402
 import indent2d_convergence_bench as i2d  # noqa: E402
 import paper_doc  # noqa: E402
 import results_store  # noqa: E402

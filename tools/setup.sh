@@ -22,11 +22,37 @@ else
   echo "setup: Debian packages present"
 fi
 
-# Python packages for post/ and the independent reference integrations in tests/.
+# Python packages for post/ and the independent reference integrations in tests/. A Python that is not a
+# virtual environment but is marked externally managed (PEP 668: Debian bookworm's) takes them only with
+# --break-system-packages; pip installs them under /usr/local, beside Debian's own.
 py=${PYTHON:-python3}
+pip_install() {
+  local flags=(--quiet --disable-pip-version-check)
+  if "$py" -c 'import os, sys, sysconfig
+sys.exit(not (sys.prefix == sys.base_prefix
+              and os.path.isfile(os.path.join(sysconfig.get_path("stdlib"), "EXTERNALLY-MANAGED"))))'; then
+    flags+=(--break-system-packages)
+  fi
+  "$py" -m pip install "${flags[@]}" "$@"
+}
 if ! "$py" -c "import numpy, scipy, matplotlib, h5py, yaml, pytest, meshio" 2>/dev/null; then
   echo "setup: installing Python packages from post/requirements.txt"
-  "$py" -m pip install --quiet --disable-pip-version-check -r "$here/post/requirements.txt"
+  pip_install -r "$here/post/requirements.txt"
 else
   echo "setup: Python packages present"
+fi
+
+# The project's own package, camclay9 (python/): reading runs and launching the driver, for post/, bench/,
+# tools/ and tests/. Installed as a copy: reinstalled when the installed files differ from python/camclay9/.
+if ! "$py" - "$here/python/camclay9" <<'CHECK' 2>/dev/null; then
+import filecmp, pathlib, sys
+import camclay9
+src, got = pathlib.Path(sys.argv[1]), pathlib.Path(camclay9.__file__).parent
+sys.exit(any(not filecmp.cmp(f, got / f.name, shallow=False) for f in src.glob("*.py")))
+CHECK
+  echo "setup: installing the Python package camclay9 from python/"
+  isolation=(); "$py" -c "import setuptools, wheel" 2>/dev/null && isolation=(--no-build-isolation)
+  pip_install "${isolation[@]}" --upgrade --force-reinstall --no-deps "$here/python"
+else
+  echo "setup: Python package camclay9 present (the same as python/camclay9)"
 fi

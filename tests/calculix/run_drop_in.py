@@ -7,10 +7,10 @@ import os
 import subprocess
 import sys
 
+from replay import umat_object  # (a script's folder is on sys.path) CAMCLAY9_UMAT_OBJECT, or found in the build folder
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-sys.path.insert(0, HERE)
-from replay import umat_object  # noqa: E402  (CAMCLAY9_UMAT_OBJECT, or found in the build folder)
 
 r = subprocess.run(["bash", os.path.join(REPO, "tools", "calculix", "build_ccx.sh"), umat_object()],
                    capture_output=True, text=True, timeout=3600)

@@ -17,9 +17,9 @@ import sys
 import numpy as np
 import pytest
 
+import replay  # pytest puts this folder on sys.path
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import replay  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 BUILD = os.path.abspath(os.environ.get("CAMCLAY9_BUILD", os.path.join(REPO, "build")))

@@ -24,10 +24,7 @@ import sys
 
 import numpy as np
 import pytest
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from test_calculix import BUILD, REPO, ccx  # noqa: E402,F401  (the build_ccx.sh fixture)
+from test_calculix import BUILD, REPO, ccx  # noqa: F401  (the build_ccx.sh fixture; pytest puts this folder on sys.path)
 
 sys.path.insert(0, os.path.join(REPO, "tools", "calculix"))
 import same_mesh  # noqa: E402

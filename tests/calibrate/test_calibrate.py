@@ -5,7 +5,6 @@ With 1 % noise on the data the fit moves by about its reported standard error. T
 lab creep record (time from the load in minutes, strain in percent) fitted for both viscosities. Bad input stops with a
 message naming the file, key and value. Forward runs are the coarse axisymmetric scenes of
 input/calibrate/forward (about 1 s each)."""
-import os
 import re
 import subprocess
 import sys
@@ -13,16 +12,16 @@ from pathlib import Path
 
 import pytest
 import yaml
+from camclay9 import driver_path, run_driver
 
 ROOT = Path(__file__).resolve().parents[2]
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
+DRIVER = str(driver_path(root=ROOT))
 CAL = ROOT / "input" / "calibrate"
 TRUE = {"eta_soft": 1.3e10, "eta_hard": 1.3e13}
 
 
 def run(scene, outdir, *extra):
-    r = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(outdir), *extra], capture_output=True,
-                       text=True, timeout=600)
+    r = run_driver(scene, outdir, extra, driver=DRIVER, timeout=600, check=False)
     print(r.stdout[-3000:], r.stderr[-2000:])
     return r
 

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from camclay9 import read_history, run_driver
 
 from test_calibrate import CAL, DRIVER, ROOT, run
 
@@ -206,8 +207,7 @@ def test_correlated_noise_standard_error(clean, tmp_path):
 
 
 def steps(out):
-    with open(out / "history.csv") as f:
-        return sum(1 for _ in f) - 1
+    return read_history(out).size
 
 
 def test_noisy_load_fitted_history(clean, tmp_path):
@@ -229,16 +229,14 @@ def test_noisy_load_fitted_history(clean, tmp_path):
     r = run(scene(tmp_path / "clean.yaml", clean_rec, FACTORS), tmp_path / "clean", "-calibrate_dry_run")
     assert r.returncode == 0 and "load history: the data's rows as they are" in r.stdout, r.stdout
     for name in ("clean", "noisy"):
-        p = subprocess.run([DRIVER, "-input", str(tmp_path / name / "protocol" / "nano" / "scene.yaml"), "-output_dir",
-                            str(tmp_path / f"run_{name}"), "-material_set", f"eta_soft={TRUTH}"], capture_output=True, text=True,
-                           timeout=600)
-        assert p.returncode == 0, p.stderr
+        run_driver(tmp_path / name / "protocol" / "nano" / "scene.yaml", tmp_path / f"run_{name}",
+                   ["-material_set", f"eta_soft={TRUTH}"], driver=DRIVER, timeout=600)  # DriverError: it failed
     n_clean, n_noisy = steps(tmp_path / "run_clean"), steps(tmp_path / "run_noisy")
     print("steps: clean", n_clean, "noisy, fitted history", n_noisy)
     assert n_noisy < 2 * n_clean
-    h = {k: cov.read_csv(tmp_path / f"run_{k}" / "history.csv") for k in ("clean", "noisy")}
+    h = {k: read_history(tmp_path / f"run_{k}", need=("time", "depth")) for k in ("clean", "noisy")}
     t = a[:, head.index("time_s")] - a[0, head.index("time_s")]
-    depth = {k: np.interp(t, v[1][:, v[0].index("time")], v[1][:, v[0].index("depth")]) for k, v in h.items()}
+    depth = {k: np.interp(t, v["time"], v["depth"]) for k, v in h.items()}
     assert np.max(np.abs(depth["noisy"] - depth["clean"])) < 0.005 * np.ptp(depth["clean"])
 
 

@@ -23,6 +23,7 @@ import sys
 import numpy as np
 import pytest
 import yaml
+from camclay9 import read_history, run_driver
 
 from test_calibrate import CAL, DRIVER, run
 
@@ -84,10 +85,9 @@ def full_model_curve(record, full_model, tmp_path):
     dry = run(own_scene(tmp_path / "dry.yaml", record, full_model), tmp_path / "dry", "-calibrate_dry_run")
     assert dry.returncode == 0 and "nothing run" in dry.stdout, dry.stderr
     truth = tmp_path / "truth"
-    r = subprocess.run([DRIVER, "-input", str(tmp_path / "dry" / "protocol" / "nano" / "reference.yaml"), "-output_dir",
-                        str(truth), "-material_set", f"eta_soft={TRUE}"], capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0, r.stderr
-    h, rec = read_csv(truth / "history.csv"), read_csv(record)
+    run_driver(tmp_path / "dry" / "protocol" / "nano" / "reference.yaml", truth, ["-material_set", f"eta_soft={TRUE}"],
+               driver=DRIVER, timeout=600)  # DriverError: it failed
+    h, rec = read_history(truth, need=("time", "depth")), read_csv(record)
     depth = np.interp(rec["time_s"], h["time"], h["depth"])
     out = tmp_path / "curve.csv"
     with open(out, "w") as f:

@@ -12,19 +12,17 @@ Expected numbers and where they come from:
 The stated mesh error's effectivity is measured by bench/adapt_bench.py (docs/performance.md, "Adapted meshes"), not
 asserted here: it lies outside [0.5, 2] on several measured cases (docs/adapt.md, "The error estimate").
 """
-import json
 import math
-import os
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
+from camclay9 import driver_path, read_summary, run_driver
 
 from test_contact import ELASTIC, ROLLERS, ROOT, run
 
-BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
+BIN = driver_path(root=ROOT).parent
 SPHERE = "{shape: sphere, radius: 1, contact: contact, gap: vertical}"
 
 
@@ -46,7 +44,7 @@ stages:
 
 
 def summary(out):
-    return json.loads((out / "summary.json").read_text())
+    return read_summary(out)
 
 
 def test_indicator_rate_hertz(tmp_path):
@@ -71,8 +69,7 @@ def drive(scene_text, out, args=(), exe="driver_elastic"):
     """Run a scene without asserting success: (exit status, stdout + stderr)."""
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(scene_text)
-    proc = subprocess.run([str(BIN / exe), "-input", str(scene), "-output_dir", str(out), *args], capture_output=True, text=True,
-                          timeout=300)
+    proc = run_driver(scene, out, args, driver=BIN / exe, timeout=300, check=False)
     return proc.returncode, proc.stdout + proc.stderr
 
 
@@ -236,9 +233,8 @@ def test_your_own_scene_template(tmp_path):
     docs/performance.md ("Adapted meshes", the sphere: 8.196 nm), the residual depth within 1 % (40.44 nm) [reg: this
     code's P2 run], each stated error positive."""
     out = tmp_path / "yours"
-    proc = subprocess.run([str(BIN / "driver"), "-input", str(ROOT / "input" / "your_indent_axi.yaml"), "-output_dir", str(out),
-                           "-adapt_levels", "1"], capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stderr
+    proc = run_driver(ROOT / "input" / "your_indent_axi.yaml", out, ["-adapt_levels", "1"], driver=BIN / "driver",
+                      timeout=600)  # DriverError: it failed
     assert "reported, stage 'hold'" in proc.stdout and "mesh error" in proc.stdout
     st = summary(out)["stages"]
     creep, h_res = 1000 * st[2]["change"]["depth"], 1000 * st[3]["end"]["depth"]

@@ -15,6 +15,7 @@ import re
 
 import numpy as np
 import pytest
+from camclay9 import read_history, summary_line
 
 from test_stage_runner import adaptive, camclay_cone, load_hold, run
 
@@ -50,10 +51,10 @@ def checked(text, out, args=(), np_=1):
     proc = run(text, out, args=[*TIGHT, *args], np_=np_, check=False)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     diffs = [float(x) for x in re.findall(r"solve check: .* = ([0-9.eE+-]+)", proc.stdout)]
-    m = re.search(r"(\d+) Newton iterations .* (\d+) Krylov iterations, (\d+) factorisations", proc.stdout)
-    assert diffs and m, proc.stdout[-2000:]
-    assert_refactor_rule(proc.stdout, factorisations=int(m.group(3)))
-    return run.__globals__["history"](out), max(diffs), int(m.group(1)), int(m.group(3))
+    s = summary_line(proc.stdout, index=0)
+    assert diffs, proc.stdout[-2000:]
+    assert_refactor_rule(proc.stdout, factorisations=s["factorisations"])
+    return read_history(out), max(diffs), s["newton_iterations"], s["factorisations"]
 
 
 def p2(text):
@@ -129,9 +130,8 @@ def test_stalled_steps_are_cut_back(tmp_path):
     def summary(out, window):
         proc = run(scene, out, args=["-indent_stall_window", window], check=False)
         assert proc.returncode == 0, proc.stdout + proc.stderr
-        m = re.search(r"(\d+) Newton iterations .* (\d+) cutbacks \((\d+) by the error measure\)", proc.stdout)
-        assert m, proc.stdout[-2000:]
-        return run.__globals__["history"](out), int(m.group(1)), int(m.group(2)) - int(m.group(3))
+        s = summary_line(proc.stdout, index=0)
+        return read_history(out), s["newton_iterations"], s["cutbacks"] - s["cutbacks_by_error"]
 
     h_off, newton_off, cut_off = summary(tmp_path / "off", "0")
     h_on, newton_on, cut_on = summary(tmp_path / "on", "8")

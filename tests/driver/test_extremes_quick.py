@@ -10,12 +10,11 @@ only catch a change of the large-step behaviour. The tension start lies outside 
 one step and 100 steps return to them along different paths (0.93 there is expected, see docs/extremes.md).
 """
 import csv
-import os
-import subprocess
 from pathlib import Path
 
+from camclay9 import run_driver
+
 ROOT = Path(__file__).resolve().parents[2]
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
 
 # (start, eta) -> largest single-step error measured, for dt > 0 (regression ceilings, +5 %).
 MEASURED = {("confined", 0.0): 3.62e-2, ("confined", 1e13): 3.62e-2, ("confined", 1e30): 1.01e-7,
@@ -24,10 +23,8 @@ MEASURED = {("confined", 0.0): 3.62e-2, ("confined", 1e13): 3.62e-2, ("confined"
 
 
 def test_extremes_sweep_quick(tmp_path):
-    proc = subprocess.run([DRIVER, "-input", str(ROOT / "tests/driver/extremes_quick.yaml"), "-output_dir",
-                           str(tmp_path)], capture_output=True, text=True, cwd=ROOT, timeout=600)
+    proc = run_driver(ROOT / "tests/driver/extremes_quick.yaml", tmp_path, root=ROOT, cwd=ROOT, timeout=600)
     print(proc.stdout.strip())
-    assert proc.returncode == 0, proc.stdout + proc.stderr
     with open(tmp_path / "sweep.csv") as f:
         rows = list(csv.DictReader(f))
     assert len(rows) == 4 * 3 * 2 * 2 * 1 * 3 * 3, len(rows)     # the matrix of extremes_quick.yaml

@@ -5,29 +5,27 @@ range), and a homogeneous triaxial creep box against the material-point driver.
 $DRIVER and $DRIVER_ELASTIC are the driver executables (CTest sets them).
 """
 import math
-import os
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from camclay9 import driver_path, read_history, run_driver
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests" / "reference"))
 import camclay9_reference as ref  # noqa: E402
 
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
-DRIVER_ELASTIC = os.environ.get("DRIVER_ELASTIC", str(ROOT / "build" / "bin" / "driver_elastic"))
+DRIVER = driver_path(root=ROOT)
+DRIVER_ELASTIC = driver_path("driver_elastic", root=ROOT)
 
 
-def run(exe, scene_text, tmp, name):
+def run(exe, scene_text, tmp, name, options=(), ranks=1):
+    """The driver `exe` on a scene (DriverError: it failed): its history and stdout."""
     scene = tmp / f"{name}.yaml"
     scene.write_text(scene_text)
-    proc = subprocess.run([exe, "-input", str(scene), "-output_dir", str(tmp / name)], capture_output=True,
-                          text=True, cwd=ROOT, timeout=600)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return np.atleast_1d(np.genfromtxt(tmp / name / "history.csv", delimiter=",", names=True)), proc.stdout
+    proc = run_driver(scene, tmp / name, options, driver=exe, ranks=ranks, cwd=ROOT, timeout=600)
+    return read_history(tmp / name), proc.stdout
 
 
 BOX = """
@@ -104,11 +102,7 @@ segments:
   - {{name: creep, duration: 3600, load: instant, steps: {{count: 40, spacing: geometric, ratio: 1.15}},
      control: {{11: {{stress: -35}}, 22: {{stress: -35}}, 33: {{stress: -75}}, others: {{stress: 0}}}}}}
 """
-    scene = tmp_path / "point.yaml"
-    scene.write_text(point_scene)
-    subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "point")], check=True,
-                   capture_output=True, cwd=ROOT, timeout=600)
-    pt = np.genfromtxt(tmp_path / "point" / "history.csv", delimiter=",", names=True)
+    pt, _ = run(DRIVER, point_scene, tmp_path, "point")
     fe_rows = np.where(fe["stage"] == 1)[0]
     pt_rows = np.where(pt["segment"] == 1)[0]
     creep_fe = fe["eps_33"][fe_rows] - fe["eps_33"][fe_rows[0]]
@@ -125,16 +119,7 @@ def test_one_and_two_ranks_agree(tmp_path):
     ranks: the same history to 1e-8 (a coarse mesh, hold and 10 min of creep)."""
     text = (ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
     text = text.replace("size: 6.0", "size: 9.0").replace("duration: 36000", "duration: 600")
-    scene = tmp_path / "cyl.yaml"
-    scene.write_text(text)
-    hist = {}
-    for n in (1, 2):
-        out = tmp_path / f"ranks{n}"
-        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(n), DRIVER, "-input", str(scene),
-               "-output_dir", str(out)]
-        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=600)
-        assert proc.returncode == 0, proc.stdout + proc.stderr
-        hist[n] = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    hist = {n: run(DRIVER, text, tmp_path, f"ranks{n}", ranks=n)[0] for n in (1, 2)}
     assert len(hist[1]) == len(hist[2])
     for col in ("time", "eps_33", "eps_11", "evp33_soft_median", "evp33_hard_max"):
         a, b = hist[1][col], hist[2][col]
@@ -152,9 +137,7 @@ def test_newton_converges_quadratically(tmp_path):
         order=2, material="{props: woodford, bedding_angle: 30}",
         initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
         stages="  - {name: load, duration: 1000, pressure: {x1: 35, y1: 35, z1: 60}, steps: {count: 1}}"))
-    proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / "o"), "-snes_monitor"],
-                          capture_output=True, text=True, cwd=ROOT, timeout=600)
-    assert proc.returncode == 0, proc.stdout
+    proc = run_driver(scene, tmp_path / "o", ["-snes_monitor"], driver=DRIVER, cwd=ROOT, timeout=600)
     r = [float(x) for x in re.findall(r"SNES Function norm ([0-9.eE+-]+)", proc.stdout)]
     print("residual sequence:", ", ".join(f"{x:.3e}" for x in r))
     c = [r[k + 1] / r[k] ** 2 for k in range(1, len(r) - 1)]
@@ -205,18 +188,14 @@ def test_restart_matches_uninterrupted_run(tmp_path):
         "duration: 36000", "duration: 3600")
     scene = tmp_path / "cyl.yaml"
     scene.write_text(text)
-    mpi = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", "2", DRIVER, "-input", str(scene)]
 
     def go(out, *extra):
-        proc = subprocess.run(mpi + ["-output_dir", str(out), *extra], capture_output=True, text=True, cwd=ROOT, timeout=600)
-        assert proc.returncode == 0, proc.stdout + proc.stderr
-        return proc.stdout
+        return run_driver(scene, out, extra, driver=DRIVER, ranks=2, cwd=ROOT, timeout=600).stdout
 
     go(tmp_path / "full")
     assert "stopped after 140 steps" in go(tmp_path / "part", "-checkpoint_every", "20", "-max_steps", "140")
     go(tmp_path / "part", "-restart")
-    a = np.genfromtxt(tmp_path / "full" / "history.csv", delimiter=",", names=True)
-    b = np.genfromtxt(tmp_path / "part" / "history.csv", delimiter=",", names=True)
+    a, b = read_history(tmp_path / "full"), read_history(tmp_path / "part")
     assert len(a) == len(b)
     for col in ("time", "eps_33", "sig_33", "evp33_soft_mean", "evp33_hard_q3"):
         err = np.max(np.abs(a[col] - b[col])) / np.max(np.abs(a[col]))
@@ -232,14 +211,9 @@ def test_direct_and_gamg_agree(tmp_path):
     text = BOX.format(order=2, material="{props: woodford, bedding_angle: 90}",
                       initial="{stress: [-35, -35, -35, 0, 0, 0], pressure: {x1: 35, y1: 35, z1: 35}}",
                       stages="  - {name: load, duration: 100, pressure: {x1: 35, y1: 35, z1: 50}, steps: {count: 2}}")
-    scene = tmp_path / "s.yaml"
-    scene.write_text(text)
     res = {}
     for name, opts in (("lu", []), ("gamg", ["-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-12"])):
-        proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(tmp_path / name), *opts],
-                              capture_output=True, text=True, cwd=ROOT, timeout=600)
-        assert proc.returncode == 0, proc.stdout
-        res[name] = np.genfromtxt(tmp_path / name / "history.csv", delimiter=",", names=True)
+        res[name] = run(DRIVER, text, tmp_path, name, opts)[0]
     err = np.max(np.abs(res["lu"]["eps_33"] - res["gamg"]["eps_33"])) / np.max(np.abs(res["lu"]["eps_33"]))
     print(f"direct vs GAMG: {err:.1e}")
     assert err < 1e-8
@@ -273,13 +247,8 @@ def test_phi_field_rank_independent_and_correlated(tmp_path):
         base[base.index("output:"):]
 
     def phi(text, ranks, name):
-        scene = tmp_path / f"{name}.yaml"
-        scene.write_text(text)
-        out = tmp_path / name
-        proc = subprocess.run(["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), DRIVER, "-input",
-                               str(scene), "-output_dir", str(out)], capture_output=True, text=True, cwd=ROOT, timeout=600)
-        assert proc.returncode == 0, proc.stdout + proc.stderr
-        with h5py.File(out / "fields.h5") as f:
+        run(DRIVER, text, tmp_path, name, ranks=ranks)
+        with h5py.File(tmp_path / name / "fields.h5") as f:
             x = f["/mesh/coordinates"][:][f["/mesh/cells"][:]].mean(axis=1)
             return x, f["/fields/phi"][sorted(f["/fields/phi"])[-1]][()]
 

@@ -7,16 +7,14 @@ case, so only round-off and the Krylov tolerance (1e-10) separate them.
 
 $DRIVER is the driver executable (CTest sets it).
 """
-import os
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
+from camclay9 import read_history, run_driver, summary_line
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
 PLAIN = "-fe_refactor_its 0 -ksp_type preonly -pc_factor_mat_solver_type petsc -fe_coo false"
 HISTORY = """stages:
   - {name: hold, duration: 100, pressure: {top: 35, side: 35}, steps: {count: 1}}
@@ -34,18 +32,14 @@ def run(tmp, name, opts, ranks=1):
     if not scene.exists():
         base = (ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/")
         scene.write_text(base[:base.index("stages:")] + HISTORY)
-    cmd = [DRIVER, "-input", str(scene), "-output_dir", str(tmp / name), "-progress_every", "1000000"]
+    options = ["-progress_every", "1000000"]
     if "-max_steps" not in opts and "-restart" not in opts:
-        cmd += ["-max_steps", "25"]
-    if ranks > 1:
-        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
-    proc = subprocess.run(cmd + opts.split(), capture_output=True, text=True, cwd=ROOT, timeout=600)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
+        options += ["-max_steps", "25"]
+    proc = run_driver(scene, tmp / name, options + opts.split(), root=ROOT, ranks=ranks, cwd=ROOT, timeout=600)
     m = re.search(r"fe solver: (\S+), (\d+) Krylov iterations, (\d+) preconditioner set-ups", proc.stdout)
-    s = re.search(r": (\d+) steps, (\d+) Newton iterations, (\d+) cutbacks", proc.stdout)
-    h = np.genfromtxt(tmp / name / "history.csv", delimiter=",", names=True)
-    return dict(solver=m.group(1), krylov=int(m.group(2)), setups=int(m.group(3)), steps=int(s.group(1)),
-                newton=int(s.group(2)), cutbacks=int(s.group(3)), h=h)
+    s = summary_line(proc.stdout)
+    return dict(solver=m.group(1), krylov=int(m.group(2)), setups=int(m.group(3)), steps=s["steps"],
+                newton=s["newton_iterations"], cutbacks=s["cutbacks"], h=read_history(tmp / name))
 
 
 @pytest.fixture(scope="module")

@@ -19,15 +19,14 @@ $DRIVER and $DRIVER_ELASTIC are the driver executables (CTest sets them). Exit 7
 without meshio (post/requirements.txt; tools/setup.sh installs it).
 """
 import os
-import shutil
-import subprocess
-import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+from camclay9 import driver_path, read_history, run_driver
+from camclay9.fields import voigt
 
 try:
     import meshio
@@ -36,10 +35,8 @@ except ImportError:                       # the CTest entry maps exit 77 to "ski
     os._exit(77)
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "post"))
-from fields import voigt  # noqa: E402
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
-DRIVER_ELASTIC = os.environ.get("DRIVER_ELASTIC", str(ROOT / "build" / "bin" / "driver_elastic"))
+DRIVER = driver_path(root=ROOT)
+DRIVER_ELASTIC = driver_path("driver_elastic", root=ROOT)
 E, NU, P = 1000.0, 0.25, 6.0
 ELASTIC = f"{{umat: elastic, props: [{E}, {NU}], nstatv: 0}}"
 LX, LY, LZ = 2.0, 1.0, 1.5
@@ -49,13 +46,7 @@ NSTEPS = 3
 def run(exe, text, out, ranks=1, args=(), check=True):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    cmd = [exe, "-input", str(scene), "-output_dir", str(out), *args]
-    if ranks > 1:
-        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=600)
-    if check:
-        assert proc.returncode == 0, proc.stdout + proc.stderr
-    return proc
+    return run_driver(scene, out, args, driver=exe, ranks=ranks, cwd=ROOT, timeout=600, check=check)
 
 
 def bar_3d(order):
@@ -131,7 +122,7 @@ def test_uniaxial_bar(tmp_path, kind, order, ranks):
     dim = 3 if kind == "3d" else 2
     out = tmp_path / f"{kind}{order}_{ranks}"
     run(DRIVER_ELASTIC, bar_3d(order) if kind == "3d" else bar_2d(kind), out, ranks)
-    hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    hist = read_history(out)
     assert hist.size == NSTEPS + 1              # the initial state and one row per step; fields: the same
     cell_type = {(3, 1): "tetra", (3, 2): "tetra10", (2, 1): "triangle", (2, 2): "triangle6"}[dim, order]
     pts, frames = check_series(out, dim, cell_type, {"stress", "strain", "phi", *INDICATOR}, hist["time"])
@@ -168,7 +159,7 @@ stages:
   - {name: push, duration: 1, indenter: {depth: 0.02}, steps: {count: 2}}
 output: {fields_every: 1}
 """, out, ranks=2)
-    hist = np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+    hist = read_history(out)
     _, frames = check_series(out, 2, "triangle", {"stress", "strain", "evp_hard", "evp_soft", "evp", "pc_hard",
                                                   "pc_soft", "phi", *INDICATOR}, hist["time"])
     assert np.all(frames[-1][2]["phi"][0] == 0.5)

@@ -18,6 +18,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from camclay9 import run_driver
 
 ROOT = Path(__file__).resolve().parents[2]
 DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
@@ -54,8 +55,7 @@ def earlier(tmp_path_factory):
     out = tmp / "out"
     scene = tmp / "good.yaml"
     scene.write_text(BOX)
-    proc = subprocess.run([DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stderr
+    run_driver(scene, out, driver=DRIVER_ELASTIC, timeout=600)  # DriverError: the good run failed
     files = {f.name: f.read_bytes() for f in out.iterdir() if f.name in ("history.csv", "fields.h5", "fields.xmf", "mesh.msh")}
     assert len(files) == 4
     return tmp, out, files

@@ -6,14 +6,13 @@ names the file, the line and the key.
 $DRIVER is the driver executable (CTest sets it); scenes are read from input/point/.
 """
 import json
-import os
 import re
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from camclay9 import read_history, run_driver, summary_line
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests" / "reference"))
@@ -21,27 +20,23 @@ sys.path.insert(0, str(ROOT / "post"))
 import camclay9_reference as ref  # noqa: E402
 import point_plots  # noqa: E402
 
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
 # Every shipped point scene; the full extremes sweep is a benchmark (bench/run_extremes_sweep.sh).
 SCENES = sorted(p for p in (ROOT / "input" / "point").glob("*.yaml") if "scene: sweep" not in p.read_text())
 
 
 def run(scene, outdir, *options, check=True):
-    proc = subprocess.run([DRIVER, "-input", str(scene), "-output_dir", str(outdir), *options],
-                          capture_output=True, text=True, cwd=ROOT, timeout=600)
-    if check and proc.returncode != 0:
-        raise AssertionError(f"driver failed on {scene}:\n{proc.stdout}\n{proc.stderr}")
-    return proc
+    """The driver ($DRIVER or build/bin/driver) on a scene; check: DriverError when it fails."""
+    return run_driver(scene, outdir, options, root=ROOT, cwd=ROOT, timeout=600, check=check)
 
 
 def history(outdir):
-    return np.genfromtxt(Path(outdir) / "history.csv", delimiter=",", names=True)
+    return read_history(outdir)
 
 
 @pytest.mark.parametrize("scene", SCENES, ids=[s.stem for s in SCENES])
 def test_scene_runs_and_plots(scene, tmp_path):
     proc = run(scene, tmp_path)
-    worst = float(re.search(r"worst control residual ([0-9.eE+-]+)", proc.stdout).group(1))
+    worst = summary_line(proc.stdout)["worst_control_residual"]
     assert worst <= 1e-10, proc.stdout                      # mixed control holds to 1e-10 (relative)
     point_plots.main([str(tmp_path)])
     for png in ("stress_path.png", "stress_strain.png"):

@@ -15,19 +15,17 @@ the lab record of the CSV file. history.csv prints 12 significant digits: tolera
 * lab table: eps_33 equals -0.01 x the CSV's axial strain (percent) interpolated linearly at t/60 min.
 * every scene: sigma = phi sigma_hard + (1 - phi) sigma_soft in every row (theory.md §2).
 """
-import os
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
+from camclay9 import read_history, run_driver
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests" / "reference"))
 import camclay9_reference as ref  # noqa: E402
 
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
 PHI, HARD, SOFT = ref.frames(ref.WOODFORD)
 N0 = np.array([0.0, 0.0, 1.0])                       # bedding_angle 0 in every scene used here
 COMP = ["11", "22", "33", "12", "13", "23"]
@@ -43,10 +41,8 @@ CBAR = PHI * C_H + (1 - PHI) * C_S
 
 def run_scene(name, tmp_path):
     out = tmp_path / name
-    proc = subprocess.run([DRIVER, "-input", str(ROOT / "input/point" / f"{name}.yaml"), "-output_dir", str(out)],
-                          capture_output=True, text=True, cwd=ROOT, timeout=600)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return np.genfromtxt(out / "history.csv", delimiter=",", names=True)
+    run_driver(ROOT / "input/point" / f"{name}.yaml", out, root=ROOT, cwd=ROOT, timeout=600)  # DriverError: failed
+    return read_history(out)
 
 
 def cols(h, prefix):

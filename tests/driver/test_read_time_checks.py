@@ -25,6 +25,7 @@ from pathlib import Path
 import pytest
 
 from test_input_classes import BOX, DRIVER, DRIVER_ELASTIC, ROOT  # the elastic box scene and the drivers, named once
+from test_input_classes import earlier  # noqa: F401  (the fixture: an earlier run's results, its own per module)
 
 CONE = f"""scene: fe
 mesh:
@@ -51,20 +52,6 @@ segments:
     control: {33: {strain: -0.001}, others: {stress: -35}}
     steps: {count: 2}
 """
-
-
-@pytest.fixture(scope="module")
-def earlier(tmp_path_factory):
-    """An earlier run's results: every bad run below writes into this directory and must leave them."""
-    tmp = tmp_path_factory.mktemp("read_time")
-    out = tmp / "out"
-    scene = tmp / "good.yaml"
-    scene.write_text(BOX)
-    proc = subprocess.run([DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out)], capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stderr
-    files = {f.name: f.read_bytes() for f in out.iterdir() if f.name in ("history.csv", "fields.h5", "fields.xmf", "mesh.msh")}
-    assert len(files) == 4
-    return tmp, out, files
 
 
 def bad(earlier, text, args=(), exe=None):

@@ -15,17 +15,15 @@ Two scenes: a heterogeneous Cam-Clay IX box on P2 (phi field, bedding at 30 degr
 point a different state) under an instant axial load held in creep, then a lateral ramp; an axisymmetric
 Cam-Clay IX (kerogen) cone indentation, load, hold and unload. Both restart mid-stage (step 5).
 """
-import os
 import shutil
-import subprocess
 from pathlib import Path
 
 import h5py
 import numpy as np
+from camclay9 import read_history, run_driver
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-DRIVER = os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))
 MESHES = ROOT / "meshes"
 TOL = 1e-10
 
@@ -66,16 +64,11 @@ SKIP = ("wall", "umat_calls", "stage_name", "max_penetration")   # timing, rank 
 def run(text, out, ranks=1, args=()):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    cmd = [DRIVER, "-input", str(scene), "-output_dir", str(out), *args]
-    if ranks > 1:
-        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out.parent, timeout=600)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return proc
+    return run_driver(scene, out, args, root=ROOT, ranks=ranks, cwd=out.parent, timeout=600)  # DriverError: failed
 
 
 def history(out):
-    return np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+    return read_history(out)
 
 
 def worst_difference(a, b):

@@ -11,17 +11,15 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
   of the material (BP)."""
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+from camclay9.fields import voigt  # fields.h5 holds full 3x3 tensors
 from test_contact import run, tangent_checks  # the elastic driver on a scene; its history
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "post"))
-from fields import voigt  # noqa: E402  (fields.h5 holds full 3x3 tensors)
 GEO = ROOT / "meshes" / "indent_sector.geo"
 E, NU = 1000.0, 0.3
 ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"

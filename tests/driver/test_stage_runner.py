@@ -15,18 +15,17 @@
 * a run that fails before its first step leaves an earlier run's results untouched.
 """
 import math
-import os
 import re
-import shutil
 import signal
 import subprocess
 import time
 from pathlib import Path
 
 import numpy as np
+from camclay9 import driver_path, read_history, run_driver
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = Path(os.environ.get("DRIVER", str(ROOT / "build" / "bin" / "driver"))).parent
+BIN = driver_path(root=ROOT).parent
 E, NU = 1000.0, 0.3
 ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
 ROLLERS = "[{group: bottom, components: [x, y]}, {group: left, components: [x]}, {group: right, components: [x]}]"
@@ -36,18 +35,12 @@ MESHES = ROOT / "meshes"
 def run(text, out, exe="driver", args=(), np_=1, check=True, timeout=600):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    cmd = [str(BIN / exe), "-input", str(scene), "-output_dir", str(out), *args]
-    if np_ > 1:
-        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(np_), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out.parent, timeout=timeout)
-    if not check:
-        return proc
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return history(out)
+    proc = run_driver(scene, out, args, driver=BIN / exe, ranks=np_, cwd=out.parent, timeout=timeout, check=check)
+    return history(out) if check else proc  # check: DriverError when it fails
 
 
 def history(out):
-    return np.atleast_1d(np.genfromtxt(out / "history.csv", delimiter=",", names=True, dtype=None, encoding="utf-8"))
+    return read_history(out)
 
 
 def camclay_cone(stages, h_tip=0.08):

@@ -7,7 +7,7 @@ Known independently [ind]: the stress in every cell is sigma, the strain C^-1 si
 and the displacement u = (eps_11 x, eps_22 y, 2 eps_13 x + 2 eps_23 y + eps_33 z) at every node (the
 rotation the mirror planes leave). Read back
 - through meshio's XDMF reader (P1 on 1 rank, P2 on 2 ranks): tensors (ncells, 9) whose entries, row by row,
-  are sigma's, the P2 mesh as tetra10 with the exact displacement at the mid-side nodes, and post/fields.py's
+  are sigma's, the P2 mesh as tetra10 with the exact displacement at the mid-side nodes, and camclay9.fields'
   Voigt reading (11 22 33 12 13 23) of the same;
 - through ParaView's default reader for .xmf (pvpython under xvfb-run; skipped, saying why, when Debian's
   paraview and xvfb are not installed): reader Xdmf3ReaderS, quadratic tetrahedra (VTK type 24), 9 components
@@ -19,12 +19,13 @@ earlier run's files, which stay byte for byte).
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+from camclay9 import run_driver
+from camclay9.fields import voigt
 
 try:
     import meshio
@@ -32,10 +33,7 @@ except ImportError:
     meshio = None
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "post"))
-from fields import voigt  # noqa: E402
 
-DRIVER_ELASTIC = os.environ.get("DRIVER_ELASTIC", str(ROOT / "build" / "bin" / "driver_elastic"))
 E, NU = 1000.0, 0.25
 G = E / (2 * (1 + NU))
 T13, T23, S33 = 1.5, -0.7, -2.0
@@ -63,13 +61,8 @@ output: {{fields_every: {fields_every}}}
 def run(text, out, ranks=1, args=(), check=True):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    cmd = [DRIVER_ELASTIC, "-input", str(scene), "-output_dir", str(out), *args]
-    if ranks > 1:
-        cmd = [shutil.which("mpiexec"), "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), *cmd]
-    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=out.parent, timeout=600)
-    if check:
-        assert proc.returncode == 0, proc.stdout + proc.stderr
-    return proc
+    return run_driver(scene, out, args, name="driver_elastic", root=ROOT, ranks=ranks, cwd=out.parent, timeout=600,
+                      check=check)
 
 
 def exact_strain():
@@ -118,7 +111,7 @@ def test_meshio_reads_the_known_shear(runs, order):
     print(f"P{order}: {len(pts)} nodes, {cells[0].type}: stress 13 {stress[0, 2]:.12g} 23 {stress[0, 5]:.12g} 31 {stress[0, 6]:.12g} "
           f"32 {stress[0, 7]:.12g} (exact {T13}, {T23}); errors: stress {err_s:.1e}, strain {err_e:.1e}, displacement {err_u:.1e}")
     assert err_s < 1e-9 and err_e < 1e-9 and err_u < 1e-9
-    assert np.allclose(v, [0, 0, S33, 0, T13, T23], atol=1e-9)                      # post/fields.py: 11 22 33 12 13 23
+    assert np.allclose(v, [0, 0, S33, 0, T13, T23], atol=1e-9)                      # camclay9.fields: 11 22 33 12 13 23
     assert np.allclose(voigt(strain, strain=True)[:, 4], T13 / G, rtol=1e-9)        # engineering gamma_13 back
 
 

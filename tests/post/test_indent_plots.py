@@ -18,11 +18,11 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
+from camclay9.fields import full
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "post"))
 import indent_plots as ip  # noqa: E402
-from fields import full  # noqa: E402
 
 COLUMNS = ip.HISTORY_COLUMNS
 # history rows: (time, stage, name, load, depth)
@@ -72,7 +72,7 @@ def write_fields(run, x, cells, skip=()):
     u[:, :, 0] = 0.1 * D_OUT[:, None] * (g * x[:, 0])[None]
     u[:, :, dim - 1] = -D_OUT[:, None] * g[None]
     gc = np.exp(-np.sum(x[cells].mean(axis=1) ** 2, axis=1))
-    with h5py.File(run / "fields.h5", "w") as f:          # the driver's layout (post/fields_h5.py)
+    with h5py.File(run / "fields.h5", "w") as f:          # the driver's layout (camclay9.fields)
         f["/time"] = T_OUT[:, None]
         f["/mesh/coordinates"] = x
         f["/mesh/cells"] = cells.astype(np.int32)
@@ -80,7 +80,7 @@ def write_fields(run, x, cells, skip=()):
             f[f"/fields/displacement/{k:06d}"] = np.pad(u[k], ((0, 0), (0, 3 - dim)))
             for name, amp, v in (("evp", A_OUT, E0), ("evp_soft", A_OUT, E0), ("evp_hard", 0 * A_OUT, E0),
                                  ("strain", A_OUT, E0), ("stress", S_OUT, S0)):
-                if name not in skip:           # full 3x3 tensors, strains as tensors (post/fields.py)
+                if name not in skip:           # full 3x3 tensors, strains as tensors (camclay9.fields)
                     f[f"/fields/{name}/{k:06d}"] = full(amp[k] * gc[:, None] * v[None, :], strain=name != "stress")
             for name in ("pc_hard", "pc_soft", "phi"):
                 f[f"/fields/{name}/{k:06d}"] = np.ones(len(cells))

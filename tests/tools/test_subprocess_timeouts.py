@@ -1,7 +1,8 @@
 """Every subprocess a test starts has a timeout (issue 38: a broken gap once hung a test's driver run for 20 min of
 CPU). Scanned: the Python of tests/ and the scripts the tests run (tools/reproduce.py, input/calibrate/
-make_synthetic.py): each subprocess.run/call/check_call/check_output names a timeout, and each Popen's
-wait()/communicate() in that file does (or the Popen's owner kills it after a deadline: reproduce.py's --job-timeout);
+make_synthetic.py, the package camclay9's launcher): each subprocess.run/call/check_call/check_output names a
+timeout, and each Popen's wait()/communicate() in that file does (or the Popen's owner kills it after a
+deadline: reproduce.py's --job-timeout);
 every execute_process of the CMake scripts under tests/ names a TIMEOUT. The scanner is checked on snippets without
 them (it must find them)."""
 import ast
@@ -9,7 +10,8 @@ import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-SCRIPTS = [ROOT / "tools" / "reproduce.py", ROOT / "input" / "calibrate" / "make_synthetic.py"]
+SCRIPTS = [ROOT / "tools" / "reproduce.py", ROOT / "input" / "calibrate" / "make_synthetic.py",
+           *sorted((ROOT / "python" / "camclay9").glob("*.py"))]  # the launcher the tests and benchmarks use
 BOUNDED_POPEN = {"tools/reproduce.py": "Job.poll kills a run after --job-timeout (paper.reproduce_quick: 300 s)"}
 
 

@@ -15,9 +15,9 @@ import subprocess
 import sys
 import tempfile
 
+import make_inputs
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import make_inputs  # noqa: E402
 
 
 def run(exe, workdir, threads):

@@ -19,20 +19,17 @@ step for triaxial.yaml's `load: instant`), creep 36000 s.
 - Increments: the same list of times in both (PLANS, fixed) or each code's automatic incrementation.
 """
 import os
-import re
 import resource
 import subprocess
-import sys
 import time
 
+import camclay9
 import numpy as np
+from camclay9.fields import STRAINS, voigt  # fields.h5's 3x3 tensors as Voigt 11 22 33 12 13 23
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 import make_inputs  # noqa: E402  (tools/calculix is on sys.path of the callers)
-
-sys.path.insert(0, os.path.join(REPO, "post"))
-from fields import STRAINS, voigt  # noqa: E402  (fields.h5's 3x3 tensors as Voigt 11 22 33 12 13 23)
 
 GEO = os.path.join(REPO, "meshes", "cylinder.geo")
 R, H = 12.7, 50.8
@@ -213,12 +210,10 @@ def _timed(cmd, **kw):
 
 def run_driver(driver, scene, outdir, opts=()):
     """Run the driver on one rank; steps, Newton iterations and times from its summary line."""
-    r, wall, cpu = _timed([driver, "-input", scene, "-output_dir", outdir, "-progress_every", "0", *opts])
-    if r.returncode != 0:
-        raise RuntimeError(f"driver failed ({scene}, {' '.join(opts)}): {r.stdout[-2000:]}{r.stderr[-2000:]}")
-    m = re.search(r"(\d+) steps, (\d+) Newton iterations, (\d+) cutbacks.*assembly ([0-9.]+) s", r.stdout)
-    return dict(steps=int(m.group(1)), its=int(m.group(2)), cutbacks=int(m.group(3)), wall=wall, cpu=cpu,
-                assembly=float(m.group(4)))
+    r = camclay9.run_driver(scene, outdir, ["-progress_every", "0", *opts], driver=driver, timeout=24 * 3600)
+    s = camclay9.summary_line(r.stdout, index=0)
+    return dict(steps=s["steps"], its=s["newton_iterations"], cutbacks=s["cutbacks"], wall=r.wall, cpu=r.cpu,
+                assembly=s["assembly_s"])
 
 
 def run_ccx(bindir, workdir, name, threads=1, trace=None):
@@ -266,8 +261,8 @@ def trace_history(rec, vol):
 
 
 def driver_history(outdir):
-    h = np.genfromtxt(os.path.join(outdir, "history.csv"), delimiter=",", names=True)
-    return dict(time=h["time"], its=h["newton_its"],
+    h = camclay9.read_history(outdir)
+    return dict(time=h["time"], its=h["newton_its"].astype(float),
                 eps=np.column_stack([h[f"eps_{c}"] for c in ("11", "22", "33", "12", "13", "23")]),
                 sig=np.column_stack([h[f"sig_{c}"] for c in ("11", "22", "33", "12", "13", "23")]),
                 evp33_hard=h["evp33_hard_mean"], evp33_soft=h["evp33_soft_mean"])

@@ -24,9 +24,9 @@ import sys
 import time
 from pathlib import Path
 
+from breaks import BREAKS
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from breaks import BREAKS  # noqa: E402
 
 BEGIN, END = "<!-- mutation table: begin (tools/mutation/run_mutations.py writes it) -->", "<!-- mutation table: end -->"
 NICE = ["nice", "-n", "15"]

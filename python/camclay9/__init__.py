@@ -1,0 +1,19 @@
+"""camclay9: reading the driver's runs and launching it (issue 35).
+
+    from camclay9 import read_history, read_summary, summary_line, run_driver
+    h = read_history("results/indent")            # history.csv by column name: h["depth"], h[h["stage"] == 1]
+    s = read_summary("results/indent")            # summary.json, its keys checked
+    p = run_driver("input/indent.yaml", "results/indent", ["-max_steps", "10"], timeout=600)
+    summary_line(p.stdout)["steps"]               # the log's summary line as a dict
+
+Modules: history (history.csv), summary (summary.json), log (the summary and mesh lines), launch (the driver's
+path and one run), fields (fields.h5 and the tensors' layout). Installed by tools/setup.sh (pip install python/).
+"""
+from .history import history_layout, read_history
+from .launch import DriverError, driver_command, driver_path, repo_root, run_command, run_driver
+from .log import mesh_line, summary_line
+from .summary import read_summary, reported, stage
+
+__all__ = ["read_history", "history_layout", "read_summary", "stage", "reported", "summary_line", "mesh_line",
+           "run_driver", "run_command", "driver_command", "driver_path", "repo_root", "DriverError"]
+__version__ = "0.1.0"

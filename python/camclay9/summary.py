@@ -1,0 +1,68 @@
+"""summary.json of an FE or indentation run (driver/src/app/run_summary.c; docs/adapt.md, "summary.json").
+
+{"scene", "kind", "completed", "mesh", "mesh_error", "stages": [{"name", "end", "change", "mesh_error"?,
+"time_error"}], "counters", "cost", "levels"}: `read_summary` checks those keys and returns the dict; `stage`
+picks a stage by name and `reported` one of its quantities. Errors are ValueError (FileNotFoundError for a missing
+file) naming the file and the key.
+"""
+import json
+from pathlib import Path
+
+KEYS = ("scene", "kind", "completed", "mesh", "stages", "counters", "cost", "levels")
+STAGE_KEYS = ("name", "end", "change")
+
+
+class Summary(dict):
+    """summary.json's object as a dict, and the file it came from as `.path` (for messages)."""
+
+    path = "summary.json"
+
+
+def summary_path(run):
+    """RUN/summary.json for a run directory, or the file itself."""
+    run = Path(run)
+    return run if run.suffix == ".json" else run / "summary.json"
+
+
+def read_summary(run):
+    """The summary of RUN (a run directory or its summary.json), its keys checked."""
+    path = summary_path(run)
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such file (the driver writes it at the end of an FE or indentation run)")
+    try:
+        s = json.loads(path.read_text())
+    except json.JSONDecodeError as err:
+        raise ValueError(f"{path}: not JSON: {err}") from None
+    if not isinstance(s, dict):
+        raise ValueError(f"{path}: expected an object of {', '.join(KEYS)}, got {type(s).__name__}")
+    missing = [k for k in KEYS if k not in s]
+    if missing:
+        raise ValueError(f"{path}: no key {', '.join(repr(k) for k in missing)} (expected {', '.join(KEYS)})")
+    for i, st in enumerate(s["stages"]):
+        lost = [k for k in STAGE_KEYS if k not in st]
+        if lost:
+            raise ValueError(f"{path}: stages[{i}] has no key {', '.join(repr(k) for k in lost)}")
+    s = Summary(s)
+    s.path = str(path)
+    return s
+
+
+def stage(summary, name):
+    """The entry of stage `name` ('start' for the initial state); KeyError naming the file and the stages."""
+    for st in summary["stages"]:
+        if st["name"] == name:
+            return st
+    raise KeyError(f"{getattr(summary, 'path', 'summary.json')}: no stage '{name}' (stages: "
+                   f"{', '.join(st['name'] for st in summary['stages'])})")
+
+
+def reported(summary, stage_name, quantity, what="end"):
+    """A reported quantity (e.g. 'depth') of a stage: its value at the stage's end (what='end') or its change over
+    the stage (what='change')."""
+    st = stage(summary, stage_name)
+    if what not in ("end", "change"):
+        raise ValueError(f"what = '{what}': expected 'end' or 'change'")
+    if quantity not in st[what]:
+        raise KeyError(f"{getattr(summary, 'path', 'summary.json')}: stage '{stage_name}' reports no '{quantity}' "
+                       f"(it reports {', '.join(st[what]) or 'nothing'})")
+    return st[what][quantity]
