@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""The contact solve's two paths against each other (issue 33): CPU and peak memory of the kept MUMPS factorisation
+(`-indent_solver direct`, the default) and of the field split (`-indent_solver fieldsplit`: one GAMG cycle on the
+displacement block, the factored selfp Schur approximation on the contact block, flexible GMRES outside;
+docs/contact.md, "The field split"), and of the field split as it was before (GMRES to 1e-12 inside each block,
+"nested"), on the first steps of the kerogen nanoindentation:
+
+  axi P1    input/nanoindent_kerogen_axi.yaml as shipped (P1), the first 60 steps
+  axi P2    the same block, P2, h_tip 0.02 um: the first 60 steps
+  sector    input/nanoindent_kerogen_sector.yaml (P2), h_tip 0.12, 0.0707, 0.05 um (h_far 4 h_tip): the first 8
+            steps of the loading (the 3D mesh study's rungs, docs/performance.md "3D indentation")
+
+CPU: user + system of the driver and its gmsh (wait4), median of --repeats runs (one run for sector0.05); memory:
+the driver's peak resident set (the largest of the repeats). The same steps are run by every path (-max_steps), so the two compare at equal
+work; the Newton iterations say whether a path's directions cost the Newton extra iterations.
+
+  bench/contact_solver_bench.py [--repeats 3] [--cases axi1,axi2,sector0.12,...] [--no-doc]
+
+Writes the section "## Contact solve: direct against field split" of docs/performance.md.
+"""
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import yaml
+from camclay9 import driver_command, mesh_line, summary_line
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from performance_doc import replace_section  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+TIMEOUT = 3600  # s, one run
+TITLE = "## Contact solve: direct against field split"
+NESTED = ["-indent_fieldsplit_u_ksp_type", "gmres", "-indent_fieldsplit_u_ksp_rtol", "1e-12",
+          "-indent_fieldsplit_contact_ksp_type", "gmres", "-indent_fieldsplit_contact_ksp_rtol", "1e-12"]
+SOLVERS = {"direct": [], "fieldsplit": ["-indent_solver", "fieldsplit"], "fieldsplit, nested": ["-indent_solver", "fieldsplit"] + NESTED}
+# case: (scene in input/, mesh overrides, order, steps, solvers)
+CASES = {
+    "axi1": ("nanoindent_kerogen_axi", {}, None, 60, ("direct", "fieldsplit", "fieldsplit, nested")),
+    "axi2": ("nanoindent_kerogen_axi", {}, 2, 60, ("direct", "fieldsplit", "fieldsplit, nested")),
+    "sector0.12": ("nanoindent_kerogen_sector", {"h_tip": 0.12, "h_far": 0.48}, None, 8, ("direct", "fieldsplit", "fieldsplit, nested")),
+    "sector0.0707": ("nanoindent_kerogen_sector", {"h_tip": 0.07071, "h_far": 0.28284}, None, 8, ("direct", "fieldsplit")),
+    "sector0.05": ("nanoindent_kerogen_sector", {"h_tip": 0.05, "h_far": 0.2}, None, 8, ("direct", "fieldsplit")),
+}
+ONCE = ("sector0.05",)  # one run each: about 40 and 90 s CPU
+
+
+def scene_file(case, work):
+    """The case's scene: the shipped file with an absolute geometry and the case's mesh and order."""
+    name, mesh, order, _, _ = CASES[case]
+    src = ROOT / "input" / f"{name}.yaml"
+    d = yaml.safe_load(src.read_text())
+    d["mesh"]["geometry"] = str((src.parent / d["mesh"]["geometry"]).resolve())
+    d["mesh"]["parameters"].update(mesh)
+    if order:
+        d["mesh"]["order"] = order
+    out = work / f"{case}.yaml"
+    out.write_text(yaml.safe_dump(d, sort_keys=False))
+    return out
+
+
+def run(scene, steps, solver, out):
+    """One run: its CPU [s] (user + system, its children's included) and peak memory [MB] from wait4 (which the
+    package's launcher does not give), and the driver's counts from its summary line."""
+    out.mkdir(parents=True, exist_ok=True)
+    log, cmd = out / "driver.out", driver_command(scene, out, ["-max_steps", steps, *SOLVERS[solver]], root=ROOT)
+    deadline = time.monotonic() + TIMEOUT
+    with open(log, "w") as f:
+        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT)
+        while True:  # wait4 collects the child with its own resources (polled, for the timeout)
+            pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.monotonic() > deadline:
+                proc.kill()
+                os.wait4(proc.pid, 0)
+                raise SystemExit(f"{' '.join(cmd)}: no end after {TIMEOUT} s")
+            time.sleep(0.05)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    text = log.read_text()
+    if proc.returncode:
+        raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}):\n{text[-2000:]}")
+    s, m = summary_line(text), mesh_line(text)
+    return {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
+            "krylov": s["krylov_iterations"], "cpu": ru.ru_utime + ru.ru_stime, "mem": ru.ru_maxrss / 1024}
+
+
+def measure(case, repeats, work):
+    """Every solver of the case, repeats runs each."""
+    scene = scene_file(case, work)
+    rows = []
+    for solver in CASES[case][4]:
+        runs = [run(scene, CASES[case][3], solver, work / f"{case}_{k}") for k in range(repeats)]
+        r = dict(runs[-1], case=case, solver=solver, repeats=repeats, cpu=statistics.median(x["cpu"] for x in runs),
+                 mem=max(x["mem"] for x in runs))
+        print(f"{case:13s} {solver:19s} {r['unknowns']:7d} unknowns  {r['newton']:4d} Newton  {r['krylov']:6d} Krylov  "
+              f"CPU {r['cpu']:7.2f} s  peak {r['mem']:7.0f} MB", flush=True)
+        rows.append(r)
+    return rows
+
+
+def doc(rows, repeats, stamp):
+    L = [TITLE, "",
+         f"Command: `bench/contact_solver_bench.py --repeats {repeats}` ({stamp}; a shared 2-core machine, one rank). "
+         "The first steps of the kerogen nanoindentation on each path (the bench's docstring gives the cases): CPU "
+         "is user + system of the driver, median of the repeats (one run for sector0.05); memory the driver's peak resident "
+         "set. "
+         "'fieldsplit, nested': the field split as it was before issue 33 (GMRES to 1e-12 inside each block).", "",
+         "| case | unknowns | steps | solver | Newton its | Krylov its | CPU [s] | CPU / direct | peak memory [MB] | memory / direct |",
+         "|---|---|---|---|---|---|---|---|---|---|"]
+    base = {r["case"]: r for r in rows if r["solver"] == "direct"}
+    for r in rows:
+        b = base[r["case"]]
+        L.append(f"| {r['case']} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
+                 f"{r['cpu']:.2f} | {r['cpu'] / b['cpu']:.2f} | {r['mem']:.0f} | {r['mem'] / b['mem']:.2f} |")
+    return "\n".join(L) + "\n"
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--no-doc", action="store_true", help="print only; leave docs/performance.md")
+    a = ap.parse_args(argv)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for case in a.cases.split(","):
+            rows += measure(case, 1 if case in ONCE else a.repeats, Path(tmp))
+    section = doc(rows, a.repeats, time.strftime("%Y-%m-%d"))
+    print(section)
+    if not a.no_doc:
+        replace_section(TITLE, section)
+
+
+if __name__ == "__main__":
+    main()
