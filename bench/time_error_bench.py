@@ -11,6 +11,8 @@ the reference, and its uncertainty is the finest run's distance from it.
 Cases:
 - kerogen_axi: input/nanoindent_kerogen_axi.yaml, the output measure's tol 0.03, 0.015 (shipped), 0.005, 0.0025 on the
   load and the hold; the creep depth (the hold's depth change).
+- kerogen_sector: input/nanoindent_kerogen_sector.yaml (3D, P2, the uniform zone as shipped), the same controls: the
+  load stage's steps leave an error in the state the hold starts from, which the hold's own sum does not hold.
 - sphere: input/your_indent_axi.yaml (README, "Your own indentation scene"), tol 0.015 (shipped), 0.0075, 0.00375.
 - triaxial: input/triaxial.yaml on one rank, the creep stage's largest step 2000 s (shipped), 500, 125 s (its step is
   set by the UMAT's control and that cap); the axial strain's change over the creep stage.
@@ -29,6 +31,7 @@ TITLE = "## Stated time-step error"
 # case: (scene, the text the control is in (with {} for its value), its values, finest last; the stage; the quantity)
 CASES = {
     "kerogen_axi": ("nanoindent_kerogen_axi.yaml", "tol: {}", ["1.5e-2", "0.03", "0.005", "0.0025"], "hold", "depth"),
+    "kerogen_sector": ("nanoindent_kerogen_sector.yaml", "tol: {}", ["1.5e-2", "0.03", "0.005", "0.0025"], "hold", "depth"),
     "sphere": ("your_indent_axi.yaml", "tol: {}", ["1.5e-2", "0.0075", "0.00375"], "hold", "depth"),
     "triaxial": ("triaxial.yaml", "max: {}", ["2000", "500", "125"], "creep", "strain_axial"),
 }
