@@ -96,6 +96,7 @@ int point_mixed_step(const UmatMaterial *mat, UmatControl c, const Segment *sg, 
     next->dtime = dt;
     MaterialPointDiag diag;
     material_point_update(mat, phi, c, next, &diag);
+    res->umat_calls++;
     res->pnewdt = diag.pnewdt;
     if (diag.rejected) {
       material_failed_call_keep(&res->failed, mat, phi, c, cur->stress, cur->statev, next);

@@ -10,6 +10,7 @@
 
 typedef struct {
   int      newton;
+  int      umat_calls;    /* the UMAT calls of the step */
   double   control_error; /* largest relative residual of a controlled component at convergence */
   double             pnewdt;
   MaterialFailedCall failed; /* the call that asked for a smaller step (failed.have) */

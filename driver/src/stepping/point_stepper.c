@@ -88,6 +88,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   pt->umat        = rq->umat;
   pt->cur.time[0] = rq->ts0, pt->cur.time[1] = rq->t0;
   int rc = point_mixed_step(&pt->sc->mat, pt->umat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
+  pt->sum->umat_calls += pt->res.umat_calls;
   /* a UMAT that asks for a smaller step: 'converged' with PNEWDT < 1, so the runner cuts by PNEWDT */
   o->converged = !rc || pt->res.failed.have;
   o->pnewdt    = pt->res.pnewdt;
@@ -100,6 +101,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
 static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Point            *pt = ctx;
   const PointScene *sc = pt->sc;
+  if (sc->check_tangent && rq->h > 0) pt->sum->umat_calls += 2 * sc->mat.ntens;
   if (sc->check_tangent && rq->h > 0)
     pt->sum->worst_tangent_error = fmax(pt->sum->worst_tangent_error, point_tangent_check(&sc->mat, pt->umat, &pt->cur, &pt->next));
   pt->sum->worst_control_error = fmax(pt->sum->worst_control_error, pt->res.control_error);
@@ -164,6 +166,21 @@ static const HistColumn columns[] = {
   {"pc_soft", "%.12g", 1, NULL, v_pc_soft, NULL, NULL},
   {"flags", "%d", 1, NULL, v_flags, NULL, NULL},
 };
+
+/* What a point reports (summary.json, with the time-step error of its change over a held segment): the strain
+   along the loading axis (that of the first creep segment, else of the first) and the volumetric strain. */
+static void report(void *ctx, double *v) {
+  const Point      *pt = ctx;
+  const PointScene *sc = pt->sc;
+  int               axis = sc->nseg ? sc->seg[0].axis : 2, n = sc->mat.ntens;
+  for (int s = sc->nseg - 1; s >= 0; s--)
+    if (sc->seg[s].stage.creep) axis = sc->seg[s].axis;
+  double e[3];
+  for (int i = 0; i < 3; i++) e[i] = i < n ? pt->cur.stran[i] : 0.0;
+  v[0] = e[axis], v[1] = e[0] + e[1] + e[2];
+}
+
+static long umat_calls(void *ctx) { return ((Point *)ctx)->sum->umat_calls; }
 
 static const char *stage_name(void *ctx, int s) { return ((Point *)ctx)->sc->seg[s].stage.name; }
 
@@ -239,6 +256,7 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
    * to (Cam-Clay IX's uninitialised-state rule), so that row 0 shows the real initial state. */
   MaterialPointDiag diag;
   material_point_update(&sc->mat, material_phi(&sc->mat), pt.umat, &pt.cur, &diag);
+  sum->umat_calls = 1;
   if (diag.rejected) {
     snprintf(err, errlen, "the UMAT rejected the initial state (a zero increment returned PNEWDT = %g)", pt.cur.pnewdt);
     return 1;
@@ -246,7 +264,8 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   pt.t_start = calloc((size_t)sc->nseg + 1, sizeof(double)), pt.t_end = calloc((size_t)sc->nseg + 1, sizeof(double));
   StepSolver sv = {.ctx = &pt, .kind = "point", .nstage = sc->nseg, .comm = MPI_COMM_SELF, .stage_begin = stage_begin,
                    .solve = solve, .accept = accept, .columns = columns, .ncolumns = sizeof columns / sizeof columns[0],
-                   .history_prepare = history_prepare, .stage_name = stage_name, .progress = progress, .save = save, .load = load, .replay = replay};
+                   .history_prepare = history_prepare, .stage_name = stage_name, .nreport = 2,
+                   .report_names = {"strain_axial", "strain_volumetric"}, .report = report, .umat_calls = umat_calls, .progress = progress, .save = save, .load = load, .replay = replay};
   RunnerOptions opt;
   memset(&opt, 0, sizeof opt);
   if (given) opt = *given;
