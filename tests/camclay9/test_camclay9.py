@@ -107,7 +107,7 @@ def test_summary():
 
 def test_summary_errors(tmp_path):
     (tmp_path / "summary.json").write_text('{"scene": "x", "kind": "fe"}')
-    with pytest.raises(ValueError, match=r"summary\.json: no key 'completed', 'mesh', 'stages'"):
+    with pytest.raises(ValueError, match=r"summary\.json: no key 'completed', 'counters', 'cost', 'mesh', 'stages'"):
         read_summary(tmp_path)
     (tmp_path / "summary.json").write_text('{"scene": ')
     with pytest.raises(ValueError, match="not JSON"):
@@ -206,3 +206,10 @@ def test_run_driver_on_a_point_scene(tmp_path):
     h = read_history(tmp_path / "o")
     assert s["kind"] == "point scene" and s["scene"] == "oedometer" and history_layout(h) == "point"
     assert h.size == s["steps"] + 1 and h["step"][-1] == s["steps"]
+    summ = read_summary(tmp_path / "o")  # a point run's summary.json: its stages, counters and the point's own
+    assert summ["kind"] == "point" and summ["completed"] and summ["counters"]["steps"] == s["steps"]
+    assert summ["counters"]["umat_calls"] >= 1 + s["steps"] and "final_stress" in summ["point"]
+    last = h[-1]
+    assert [st["name"] for st in summ["stages"]][1:] == list(dict.fromkeys(h["stage_name"][1:]))
+    assert reported(summ, last["stage_name"], "strain_volumetric") == pytest.approx(
+        last["eps_11"] + last["eps_22"] + last["eps_33"], rel=1e-9, abs=1e-15)
