@@ -205,6 +205,7 @@ def test_run_driver_on_a_point_scene(tmp_path):
     s = summary_line(p.stdout)
     h = read_history(tmp_path / "o")
     assert s["kind"] == "point scene" and s["scene"] == "oedometer" and history_layout(h) == "point"
+    assert tuple(h.dtype.names[:len(LEAD)]) == LEAD  # the driver's history begins with the shared columns
     assert h.size == s["steps"] + 1 and h["step"][-1] == s["steps"]
     summ = read_summary(tmp_path / "o")  # a point run's summary.json: its stages, counters and the point's own
     assert summ["kind"] == "point" and summ["completed"] and summ["counters"]["steps"] == s["steps"]
