@@ -40,8 +40,8 @@ AXIS_LABEL = ("11", "22", "33")
 
 # ------------------------------------------------------------------ reading and checking the run
 def read_history(path):
-    """history.csv -> dict column name -> 1-D float array (stage_name: str) (camclay9.read_history). ValueError names the file on any
-    defect."""
+    """history.csv -> dict column name -> 1-D float array, stage_name as text (camclay9.read_history). ValueError
+    names the file on any defect."""
     h = camclay9.read_history(path, need=HISTORY_COLUMNS)
     if h.size == 0:
         raise ValueError(f"{path}: no data rows after the header")

@@ -32,7 +32,8 @@ def read_summary(run):
     """The summary of RUN (a run directory or its summary.json), its keys checked."""
     path = summary_path(run)
     if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such file (the driver writes it at the end of every run but a sweep or replay)")
+        raise FileNotFoundError(f"{path}: no such file (the driver writes it at the end of every run but a sweep or "
+                                "replay)")
     try:
         s = json.loads(path.read_text())
     except json.JSONDecodeError as err:

@@ -386,7 +386,8 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
   if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &f, .kind = "fe", .nstage = sc->nstage, .comm = PetscObjectComm((PetscObject)fe_problem_dm(p)),
                    .stage_begin = stage_begin, .solve = solve, .accept = accept, .columns = columns,
-                   .ncolumns = sizeof columns / sizeof columns[0], .stage_name = fe_common_stage_name, .progress = progress, .write_fields = write_fields, .promote = promote,
+                   .ncolumns = sizeof columns / sizeof columns[0], .stage_name = fe_common_stage_name, .progress = progress,
+                   .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
                    .save_shared = save_shared, .load_shared = load_shared,
                    .nreport = 2, .report_names = {"strain_axial", "strain_volumetric"}, .report = report};

@@ -265,7 +265,8 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &d, .kind = "indentation", .nstage = sc->nstage, .comm = comm, .stage_begin = stage_begin,
                    .solve = solve, .accept = accept, .check = check, .columns = columns,
-                   .ncolumns = sizeof columns / sizeof columns[0], .stage_name = fe_common_stage_name, .progress = progress, .write_fields = write_fields, .promote = promote,
+                   .ncolumns = sizeof columns / sizeof columns[0], .stage_name = fe_common_stage_name, .progress = progress,
+                   .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
                    .save_shared = save_shared, .load_shared = load_shared,
                    .nreport = 2, .report_names = {"depth", "load"}, .report = report};

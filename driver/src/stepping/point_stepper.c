@@ -265,7 +265,8 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   StepSolver sv = {.ctx = &pt, .kind = "point", .nstage = sc->nseg, .comm = MPI_COMM_SELF, .stage_begin = stage_begin,
                    .solve = solve, .accept = accept, .columns = columns, .ncolumns = sizeof columns / sizeof columns[0],
                    .history_prepare = history_prepare, .stage_name = stage_name, .nreport = 2,
-                   .report_names = {"strain_axial", "strain_volumetric"}, .report = report, .umat_calls = umat_calls, .progress = progress, .save = save, .load = load, .replay = replay};
+                   .report_names = {"strain_axial", "strain_volumetric"}, .report = report, .umat_calls = umat_calls,
+                   .progress = progress, .save = save, .load = load, .replay = replay};
   RunnerOptions opt;
   memset(&opt, 0, sizeof opt);
   if (given) opt = *given;
