@@ -33,8 +33,8 @@ def run(driver, scene, outdir):
 
 def creep_errors(outdir):
     meta = json.loads((outdir / "scene.json").read_text())
-    h = read_history(outdir, need=("segment", "eps_33"))
-    rows = np.where(h["segment"] == 1)[0]
+    h = read_history(outdir, need=("stage", "eps_33"))
+    rows = np.where(h["stage"] == 1)[0]
     t = h["time"][rows] - h["time"][rows[0]]
     eps = h["eps_33"][rows] - h["eps_33"][rows[0]]
     n, sig0 = [0.0, 0.0, 1.0], -35.0 * np.eye(3)

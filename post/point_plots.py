@@ -32,7 +32,7 @@ from lomnitz import lomnitz, lomnitz_fit
 
 VOIGT = ("11", "22", "33", "12", "13", "23")
 _TENSORS = ("eps", "sig", "sig_hard", "sig_soft", "evp_hard", "evp_soft", "evp")
-HISTORY_COLUMNS = (("time", "step", "segment", "dt", "newton_its", "local_its", "cutbacks")
+HISTORY_COLUMNS = (("time", "stage", "step", "dt", "newton_its", "local_its", "cutbacks")
                    + tuple(f"{name}_{c}" for name in _TENSORS for c in VOIGT)
                    + ("pc_hard", "pc_soft", "flags"))
 AXIS_LABEL = ("11", "22", "33")
@@ -40,12 +40,12 @@ AXIS_LABEL = ("11", "22", "33")
 
 # ------------------------------------------------------------------ reading and checking the run
 def read_history(path):
-    """history.csv -> dict column name -> 1-D float array (camclay9.read_history). ValueError names the file on any
-    defect."""
+    """history.csv -> dict column name -> 1-D float array, stage_name as text (camclay9.read_history). ValueError
+    names the file on any defect."""
     h = camclay9.read_history(path, need=HISTORY_COLUMNS)
     if h.size == 0:
         raise ValueError(f"{path}: no data rows after the header")
-    return {name: h[name].astype(float) for name in h.dtype.names}
+    return {name: h[name] if h[name].dtype.kind == "U" else h[name].astype(float) for name in h.dtype.names}
 
 
 def read_scene(path):
@@ -129,7 +129,7 @@ def segment_rows(hist, k, t_start):
     """(base row, rows of segment k). The base row is the state at the segment start: the segment's
     last row with time <= t_start (a driver that writes the state right after a load jump), else the
     row just before the segment. Returns (None, rows) for a segment without rows."""
-    rows = np.flatnonzero(hist["segment"] == k)
+    rows = np.flatnonzero(hist["stage"] == k)
     if rows.size == 0:
         return None, rows
     at_start = rows[hist["time"][rows] <= t_start + 1e-12 * max(1.0, abs(t_start))]
@@ -185,7 +185,7 @@ def plot_stress_strain(hist, scene, out):
     ax1.plot(ea, q, color="0.7", lw=0.8)
     ax2.plot(ev, p, color="0.7", lw=0.8)
     for k, seg in enumerate(scene["segments"]):
-        rows = hist["segment"] == k
+        rows = hist["stage"] == k
         if rows.any():
             ax1.plot(ea[rows], q[rows], ".", ms=4, label=seg["name"])
             ax2.plot(ev[rows], p[rows], ".", ms=4, label=seg["name"])
@@ -272,10 +272,10 @@ def make_plots(run_dir, out=None):
     hist = read_history(run_dir / "history.csv")
     scene = read_scene(run_dir / "scene.json")
     nseg = len(scene["segments"])
-    bad = np.unique(hist["segment"][(hist["segment"] < 0) | (hist["segment"] >= nseg)])
+    bad = np.unique(hist["stage"][(hist["stage"] < 0) | (hist["stage"] >= nseg)])
     if bad.size:
-        raise ValueError(f"{run_dir / 'history.csv'}: segment index {bad.tolist()} not in scene.json "
-                         f"({nseg} segments)")
+        raise ValueError(f"{run_dir / 'history.csv'}: column 'stage' (the segment's index) has {bad.tolist()}, "
+                         f"not in scene.json ({nseg} segments)")
     plot_stress_path(hist, scene, out)
     plot_stress_strain(hist, scene, out)
     fits = {seg["name"]: plot_creep(hist, scene, k, out)

@@ -97,7 +97,7 @@ TIME_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 def sample_point(h, n, segment, column, unit="h", from_start=False):
     """N times evenly spaced over the segment (after its start); with from_start, time and strain counted from
     the segment's start (a lab creep record: the time since the load, the creep strain)."""
-    idx = np.nonzero(h["segment"].astype(int) == segment)[0]
+    idx = np.nonzero(h["stage"].astype(int) == segment)[0]
     idx = np.concatenate([[idx[0] - 1], idx]) if idx[0] > 0 else idx  # the segment's start: the row before it
     t = h["time"][idx]
     if from_start:  # the instant load's zero-time step: the creep strain counts from after it

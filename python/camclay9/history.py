@@ -1,29 +1,32 @@
 """history.csv of a run: one row per converged step, read by column name.
 
-The driver writes three layouts today (docs/driver.md, "Output"); each starts with its own leading columns:
+Every scene kind writes one layout (docs/driver.md, "history.csv"; driver/src/stepping/history_columns.c): the
+shared leading columns LEAD, then the kind's own, declared once in the driver by name and format:
 
-  fe           time,stage,step,dt,newton_its,cutbacks,...          (fe/fe_stepper.c)
-  indentation  time,stage,stage_name,step,dt,newton_its,...        (stepping/indent_stepper.c)
-  point        time,step,segment,dt,newton_its,local_its,...      (point/point_solve.c)
+  time,stage,stage_name,step,dt,newton_its,cutbacks, then
+  fe           pressure_<group>..., eps_11..., sig_11..., ... reaction_z     (stepping/fe_stepper.c)
+  indentation  load, depth, active_nodes, ... evp_rate                      (stepping/indent_stepper.c)
+  point        local_its, eps_11..., sig_11..., ... pc_hard, pc_soft, flags  (stepping/point_stepper.c)
+
+A point scene's segment is its stage. A history written before the one layout (issue 35) still reads: an old point
+history's `segment` column comes back as `stage` (its `stage_name` is missing, as in an old FE history).
 
 `read_history` returns a numpy structured array (one record per row, `h["depth"]`, `h[h["stage"] == 1]`): the
-columns named in INTEGER as int64, `stage_name` as str, every other column as float64, whatever the layout (it does
-not insist on one: `history_layout` tells which). A caller reads columns by name and names those it needs (`need=`),
-so a later change of the layouts touches this module only. Errors are ValueError (FileNotFoundError for a missing
-file) naming the file, the line, the column and the value.
+columns named in INTEGER as int64, `stage_name` as str, every other column as float64. A caller reads columns by
+name and names those it needs (`need=`); `history_layout` tells the kind by the kind's own columns. Errors are
+ValueError (FileNotFoundError for a missing file) naming the file, the line, the column and the value.
 """
 import csv
 from pathlib import Path
 
 import numpy as np
 
-LAYOUTS = {
-    "fe": ("time", "stage", "step", "dt", "newton_its", "cutbacks"),
-    "indentation": ("time", "stage", "stage_name", "step", "dt", "newton_its", "cutbacks"),
-    "point": ("time", "step", "segment", "dt", "newton_its", "local_its", "cutbacks"),
-}
-INTEGER = frozenset({"stage", "step", "segment", "newton_its", "local_its", "cutbacks", "active_nodes",
-                     "active_changes", "umat_calls", "flags"})
+LEAD = ("time", "stage", "stage_name", "step", "dt", "newton_its", "cutbacks")
+# The kind by a column only its history has (the first match wins).
+KIND_COLUMN = (("point", "local_its"), ("indentation", "depth"), ("fe", "eps_spread"))
+RENAMED = {"segment": "stage"}  # old name -> name in the one layout
+INTEGER = frozenset({"stage", "step", "newton_its", "local_its", "cutbacks", "active_nodes", "active_changes",
+                     "umat_calls", "flags"})
 TEXT = frozenset({"stage_name"})
 
 
@@ -34,12 +37,14 @@ def history_path(run):
 
 
 def layout(names):
-    """'fe', 'indentation' or 'point' from the leading columns; ValueError for none of them."""
-    for kind, lead in LAYOUTS.items():
-        if tuple(names[:len(lead)]) == lead:
-            return kind
-    raise ValueError(f"columns {','.join(names[:7])}...: not a history.csv layout of the driver (expected one of "
-                     + "; ".join(f"{k}: {','.join(v)}" for k, v in LAYOUTS.items()) + ")")
+    """'fe', 'indentation' or 'point' from the kind's own columns; ValueError for none of them."""
+    if "time" in names and "stage" in names and "step" in names:
+        for kind, column in KIND_COLUMN:
+            if column in names:
+                return kind
+    raise ValueError(f"columns {','.join(names[:7])}...: not a history.csv layout of the driver (expected "
+                     f"{','.join(LEAD)}, then a point's local_its, an indentation's depth or an FE scene's "
+                     "eps_spread among the kind's own)")
 
 
 def _value(path, line, name, text):
@@ -64,6 +69,8 @@ def read_history(run, need=()):
     if not rows or not rows[0]:
         raise ValueError(f"{path}: empty, expected a header line of column names")
     names = [n.strip() for n in rows[0]]
+    if "stage" not in names:  # written before the one layout: a point's segment is its stage
+        names = [RENAMED.get(n, n) for n in names]
     missing = [n for n in need if n not in names]
     if missing:
         raise ValueError(f"{path}: column(s) {', '.join(repr(n) for n in missing)} missing from the header line "

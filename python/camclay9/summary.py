@@ -1,14 +1,18 @@
-"""summary.json of an FE or indentation run (driver/src/app/run_summary.c; docs/adapt.md, "summary.json").
+"""summary.json of a run, every kind (driver/src/app/run_summary.c, driver/src/calibrate/calibrate_report.c;
+docs/driver.md, "summary.json").
 
-{"scene", "kind", "completed", "mesh", "mesh_error", "stages": [{"name", "end", "change", "mesh_error"?,
-"time_error"}], "counters", "cost", "levels"}: `read_summary` checks those keys and returns the dict; `stage`
-picks a stage by name and `reported` one of its quantities. Errors are ValueError (FileNotFoundError for a missing
-file) naming the file and the key.
+Every summary has "scene", "kind", "completed", "counters" and "cost"; then the kind's own (KIND_KEYS): an FE or
+indentation run "mesh", "mesh_error", "stages": [{"name", "end", "change", "mesh_error"?, "time_error"}] and
+"levels"; a point run "stages" and "point"; a calibration "parameters" and "misfit". `read_summary` checks those
+keys and returns the dict; `stage` picks a stage by name and `reported` one of its quantities. Errors are
+ValueError (FileNotFoundError for a missing file) naming the file and the key.
 """
 import json
 from pathlib import Path
 
-KEYS = ("scene", "kind", "completed", "mesh", "stages", "counters", "cost", "levels")
+KEYS = ("scene", "kind", "completed", "counters", "cost")
+KIND_KEYS = {"fe": ("mesh", "stages", "levels"), "indentation": ("mesh", "stages", "levels"),
+             "point": ("stages", "point"), "calibrate": ("parameters", "misfit")}
 STAGE_KEYS = ("name", "end", "change")
 
 
@@ -28,17 +32,21 @@ def read_summary(run):
     """The summary of RUN (a run directory or its summary.json), its keys checked."""
     path = summary_path(run)
     if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such file (the driver writes it at the end of an FE or indentation run)")
+        raise FileNotFoundError(f"{path}: no such file (the driver writes it at the end of every run but a sweep or "
+                                "replay)")
     try:
         s = json.loads(path.read_text())
     except json.JSONDecodeError as err:
         raise ValueError(f"{path}: not JSON: {err}") from None
     if not isinstance(s, dict):
         raise ValueError(f"{path}: expected an object of {', '.join(KEYS)}, got {type(s).__name__}")
-    missing = [k for k in KEYS if k not in s]
+    if s.get("kind") not in KIND_KEYS:
+        raise ValueError(f"{path}: key 'kind' is {s.get('kind')!r}, expected one of {', '.join(KIND_KEYS)}")
+    keys = KEYS + KIND_KEYS[s["kind"]]
+    missing = [k for k in keys if k not in s]
     if missing:
-        raise ValueError(f"{path}: no key {', '.join(repr(k) for k in missing)} (expected {', '.join(KEYS)})")
-    for i, st in enumerate(s["stages"]):
+        raise ValueError(f"{path}: no key {', '.join(repr(k) for k in missing)} (expected {', '.join(keys)})")
+    for i, st in enumerate(s.get("stages", [])):
         lost = [k for k in STAGE_KEYS if k not in st]
         if lost:
             raise ValueError(f"{path}: stages[{i}] has no key {', '.join(repr(k) for k in lost)}")
@@ -49,11 +57,11 @@ def read_summary(run):
 
 def stage(summary, name):
     """The entry of stage `name` ('start' for the initial state); KeyError naming the file and the stages."""
-    for st in summary["stages"]:
+    for st in summary.get("stages", []):
         if st["name"] == name:
             return st
     raise KeyError(f"{getattr(summary, 'path', 'summary.json')}: no stage '{name}' (stages: "
-                   f"{', '.join(st['name'] for st in summary['stages'])})")
+                   f"{', '.join(st['name'] for st in summary.get('stages', [])) or 'none'})")
 
 
 def reported(summary, stage_name, quantity, what="end"):

@@ -1,4 +1,5 @@
-"""The package camclay9 (python/, issue 35): its readers on small files of the driver's three history layouts, a
+"""The package camclay9 (python/, issue 35): its readers on small files of the driver's one history layout (and an
+old point history, written before it), a
 summary.json and a log; its launcher on stand-in drivers (a failure, a timeout, a missing executable) and on the
 driver itself (a point scene, under a second). The package is imported as installed by tools/setup.sh, and the
 installed copy must be python/camclay9 as it is now: a stale or missing install fails here, never passes."""
@@ -13,6 +14,7 @@ try:
     import camclay9
 except ImportError as err:  # an error, never a skip: the package is part of the project
     raise ImportError(f"{err}: tools/setup.sh installs it (pip install python/)") from None
+from camclay9.history import LEAD
 from camclay9 import (DriverError, driver_command, driver_path, history_layout, mesh_line, read_history,
                       read_summary, reported, run_driver, stage, summary_line)
 
@@ -48,7 +50,20 @@ def test_history_values_by_name():
     assert ind["depth"][1] == pytest.approx(0.011484643681630201, rel=0, abs=0)
     assert (ind[ind["stage_name"] == "load"]["load"] > -1).all()
     pt = read_history(DATA / "history_point.csv")
-    assert pt["segment"].tolist() == [0, 0] and pt["flags"].dtype == np.int64 and pt["sig_33"][0] == -35.0
+    assert pt["stage"].tolist() == [0, 0] and pt["flags"].dtype == np.int64 and pt["sig_33"][0] == -35.0
+    assert pt["stage_name"].tolist() == ["load", "load"] and fe["stage_name"].tolist() == ["load", "load", "creep"]
+
+
+def test_history_one_layout_and_an_old_point_history():
+    """Every kind's history begins with the same columns; an old point history's segment reads as its stage."""
+    for name in ("fe", "indentation", "point"):
+        head = (DATA / f"history_{name}.csv").read_text().splitlines()[0].split(",")
+        assert tuple(head[:len(LEAD)]) == LEAD, name
+    old = read_history(DATA / "history_point_old.csv")
+    new = read_history(DATA / "history_point.csv")
+    assert history_layout(old) == "point" and "segment" not in old.dtype.names and "stage_name" not in old.dtype.names
+    for name in old.dtype.names:
+        assert old[name].tolist() == new[name].tolist(), name
 
 
 def test_history_run_directory_and_one_row(tmp_path):
@@ -61,7 +76,7 @@ def test_history_run_directory_and_one_row(tmp_path):
 def test_history_errors_name_file_line_column_value(tmp_path):
     lines = (DATA / "history_fe.csv").read_text().splitlines()
     bad = tmp_path / "history.csv"
-    bad.write_text("\n".join([lines[0], lines[1], lines[2].replace("10,0,1,", "10,0,x,", 1)]) + "\n")
+    bad.write_text("\n".join([lines[0], lines[1], lines[2].replace("10,0,load,1,", "10,0,load,x,", 1)]) + "\n")
     with pytest.raises(ValueError, match=r"history\.csv:3: column 'step' has 'x': expected an integer"):
         read_history(bad)
     bad.write_text("\n".join([lines[0], lines[1] + ",7"]) + "\n")
@@ -92,7 +107,7 @@ def test_summary():
 
 def test_summary_errors(tmp_path):
     (tmp_path / "summary.json").write_text('{"scene": "x", "kind": "fe"}')
-    with pytest.raises(ValueError, match=r"summary\.json: no key 'completed', 'mesh', 'stages'"):
+    with pytest.raises(ValueError, match=r"summary\.json: no key 'completed', 'counters', 'cost', 'mesh', 'stages'"):
         read_summary(tmp_path)
     (tmp_path / "summary.json").write_text('{"scene": ')
     with pytest.raises(ValueError, match="not JSON"):
@@ -190,4 +205,12 @@ def test_run_driver_on_a_point_scene(tmp_path):
     s = summary_line(p.stdout)
     h = read_history(tmp_path / "o")
     assert s["kind"] == "point scene" and s["scene"] == "oedometer" and history_layout(h) == "point"
+    assert tuple(h.dtype.names[:len(LEAD)]) == LEAD  # the driver's history begins with the shared columns
     assert h.size == s["steps"] + 1 and h["step"][-1] == s["steps"]
+    summ = read_summary(tmp_path / "o")  # a point run's summary.json: its stages, counters and the point's own
+    assert summ["kind"] == "point" and summ["completed"] and summ["counters"]["steps"] == s["steps"]
+    assert summ["counters"]["umat_calls"] >= 1 + s["steps"] and "final_stress" in summ["point"]
+    last = h[-1]
+    assert [st["name"] for st in summ["stages"]][1:] == list(dict.fromkeys(h["stage_name"][1:]))
+    assert reported(summ, last["stage_name"], "strain_volumetric") == pytest.approx(
+        last["eps_11"] + last["eps_22"] + last["eps_33"], rel=1e-9, abs=1e-15)

@@ -104,7 +104,7 @@ segments:
 """
     pt, _ = run(DRIVER, point_scene, tmp_path, "point")
     fe_rows = np.where(fe["stage"] == 1)[0]
-    pt_rows = np.where(pt["segment"] == 1)[0]
+    pt_rows = np.where(pt["stage"] == 1)[0]
     creep_fe = fe["eps_33"][fe_rows] - fe["eps_33"][fe_rows[0]]
     creep_pt = pt["eps_33"][pt_rows] - pt["eps_33"][pt_rows[0]]
     assert len(creep_fe) == len(creep_pt)

@@ -46,7 +46,7 @@ def test_scene_runs_and_plots(scene, tmp_path):
 def test_mixed_control_holds_prescribed_components(tmp_path):
     run(ROOT / "input/point/triaxial_creep_theta0.yaml", tmp_path / "creep")
     h = history(tmp_path / "creep")
-    creep = h["segment"] == 1
+    creep = h["stage"] == 1
     for comp, target in (("sig_11", -35.0), ("sig_22", -35.0), ("sig_33", -75.0), ("sig_12", 0.0)):
         assert np.max(np.abs(h[comp][creep] - target)) <= 1e-10 * 75, comp
     run(ROOT / "input/point/constant_volume_shear.yaml", tmp_path / "cv")
@@ -82,7 +82,7 @@ segments:
 
 def driver_creep(outdir):
     h = history(outdir)
-    rows = np.where(h["segment"] == 1)[0]
+    rows = np.where(h["stage"] == 1)[0]
     return h["eps_33"][rows[-1]] - h["eps_33"][rows[0]]     # from the instant jump to the end
 
 
@@ -119,7 +119,7 @@ def test_error_of_the_shipped_scene(tmp_path):
     meta = json.loads((out / "scene.json").read_text())
     hold = meta["segments"][0]["t_end"]
     h = history(out)
-    rows = np.where(h["segment"] == 1)[0]
+    rows = np.where(h["stage"] == 1)[0]
     t = h["time"][rows] - h["time"][rows[0]]
     eps = h["eps_33"][rows] - h["eps_33"][rows[0]]
     n = [0.0, 0.0, 1.0]

@@ -89,7 +89,7 @@ def test_isotropic_compression_follows_the_ncl(tmp_path):
     h = run_scene("isotropic_compression", tmp_path)
     check_mixture_rule(h)
     check_ncl(h)
-    seg, p = h["segment"], -h["sig_11"]
+    seg, p = h["stage"], -h["sig_11"]
     load, unload, reload = (np.where(seg == k)[0] for k in range(3))
     check_on_surface_when_flowing(h, load[load > 0])
     assert elastic_rows(h, unload).all()                 # unloading from 120 MPa: elastic
@@ -109,7 +109,7 @@ def test_oedometer(tmp_path):
     check_mixture_rule(h)
     check_ncl(h)
     assert np.max(np.abs(h["eps_11"])) <= 1e-15 and np.max(np.abs(h["eps_22"])) <= 1e-15
-    seg = h["segment"]
+    seg = h["stage"]
     load, unload = np.where(seg == 0)[0], np.where(seg == 1)[0]
     check_on_surface_when_flowing(h, load[load > 0])
     el = unload[elastic_rows(h, unload)]
@@ -127,7 +127,7 @@ def test_stress_relaxation(tmp_path):
     h = run_scene("stress_relaxation", tmp_path)
     check_mixture_rule(h)
     check_ncl(h)
-    relax = np.where(h["segment"] == 1)[0]
+    relax = np.where(h["stage"] == 1)[0]
     j = relax[0]                                         # the instantaneous jump (zero time)
     assert h["time"][j] == h["time"][j - 1]
     sbar = np.linalg.inv(CBAR)

@@ -131,8 +131,8 @@ static PetscErrorCode write_fields(void *ctx, double t, char *err, size_t errlen
   return 0;
 }
 
-static PetscErrorCode history_header(void *ctx, FILE *fp) { return fprintf(fp, "t,step,x\n") < 0; }
-static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) { return fprintf(fp, "%.17g,%d,%.17g\n", row->t, row->step, ((Mock *)ctx)->x) < 0; }
+static HistValue        x_value(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const Mock *)ctx)->x}; }
+static const HistColumn columns[] = {{"x", "%.17g", 1, NULL, x_value, NULL, NULL}};
 
 /* The checkpoint holds the physics' state only: what the runner must restore is its own business. A write or
    read that fails leaves f->ok 0. */
@@ -151,7 +151,7 @@ static PetscErrorCode load(void *ctx, BinFile *f) {
 
 static StepSolver mock_solver(Mock *m) {
   return (StepSolver){.ctx = m, .kind = "mock", .nstage = m->nstage, .comm = PETSC_COMM_SELF, .stage_begin = stage_begin,
-                      .solve = solve, .accept = accept, .check = check, .history_header = history_header, .history_row = history_row,
+                      .solve = solve, .accept = accept, .check = check, .columns = columns, .ncolumns = 1,
                       .write_fields = write_fields, .save = save, .load = load};
 }
 

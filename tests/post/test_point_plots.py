@@ -59,7 +59,7 @@ def write_run(run_dir, drop_column=None):
     cols = {c: np.zeros(n) for c in pp.HISTORY_COLUMNS}
     cols["time"][1:] = times
     cols["step"] = np.arange(n, dtype=float)
-    cols["segment"][2:] = 1
+    cols["stage"][2:] = 1
     cols["dt"][1:] = np.diff(cols["time"])
     v0 = np.array([-35.0, -35.0, -35.0, 0.0, 0.0, 0.0])
     phi = props[0]

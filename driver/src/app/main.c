@@ -4,6 +4,7 @@
  * control), 'replay' (one recorded UMAT call), or, with the FE driver (issue #4), a finite-element scene. */
 #include <petscsys.h>
 #include <string.h>
+#include <time.h>
 
 #include "../calibrate/calibrate.h"
 #include "../contact/contact_options.h"
@@ -17,6 +18,7 @@
 #include "fe_adapt.h"
 #include "fe_app.h"
 #include "fe_run.h"
+#include "run_summary.h"
 #include "../point/replay.h"
 #include "sweep.h"
 
@@ -169,9 +171,16 @@ static int run_point(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
   PetscErrorCode ierr = app_runner_options(&opt);
   int            rc   = 0;
   if (!ierr) {
-    opt.scene_file = doc->file;
+    RunnerSummary rs;
+    clock_t       cpu0 = clock();
+    memset(&rs, 0, sizeof rs);
+    opt.scene_file = doc->file, opt.summary = &rs;
     rc             = point_run(&sc, &opt, &sum, err, errlen);
     ierr           = point_summary(&sc, &sum, rc);
+    rs.failed      = rs.failed || rc;
+    char e2[512]; /* summary.json also after a failure; its own failure only when the run went well */
+    if (sc.outdir[0] && run_summary_point(&sc, &sum, &rs, (double)(clock() - cpu0) / CLOCKS_PER_SEC, e2, sizeof e2) && !rc)
+      rc = 1, snprintf(err, errlen, "%s", e2);
   }
   point_scene_free(&sc);
   return rc ? rc : stage_runner_status(ierr, err);

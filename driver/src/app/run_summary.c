@@ -1,43 +1,27 @@
 /* summary.json (run_summary.h). */
 #include "run_summary.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-/* A number as JSON (no NaN or Inf in JSON: null). */
-static void num(FILE *fp, double v) {
-  if (isfinite(v)) fprintf(fp, "%.10g", v);
-  else fputs("null", fp);
-}
-
-/* A JSON string: quotes, backslashes and control characters escaped. */
-static void str(FILE *fp, const char *v) {
-  fputc('"', fp);
-  for (const unsigned char *c = (const unsigned char *)v; *c; c++) {
-    if (*c == '"' || *c == '\\') fprintf(fp, "\\%c", *c);
-    else if (*c < 0x20) fprintf(fp, "\\u%04x", *c);
-    else fputc(*c, fp);
-  }
-  fputc('"', fp);
-}
+#include "../io/json_write.h"
 
 /* {"name": value, ...} of the reported quantities, from a row of values. */
 static void quantities(FILE *fp, const RunnerSummary *s, const double *v) {
   fputc('{', fp);
   for (int k = 0; k < s->nreport; k++) {
     fprintf(fp, "%s\"%s\": ", k ? ", " : "", s->report_names[k]);
-    num(fp, v[k]);
+    json_num(fp, v[k]);
   }
   fputc('}', fp);
 }
 
-static void stage_entry(FILE *fp, const FeScene *sc, const RunnerSummary *s, const MeshError *me, int k) {
+static void stage_entry(FILE *fp, const char *name, const RunnerSummary *s, const MeshError *me, int k) {
   double change[RUNNER_MAX_REPORT];
   for (int q = 0; q < s->nreport; q++) change[q] = k ? s->report[k][q] - s->report[k - 1][q] : 0;
   fputs("    {\"name\": ", fp);
-  str(fp, k ? sc->stage[k - 1].name : "start");
+  json_str(fp, name);
   fputs(", \"end\": ", fp);
   quantities(fp, s, s->report[k]);
   fputs(", \"change\": ", fp);
@@ -58,49 +42,68 @@ static void stage_entry(FILE *fp, const FeScene *sc, const RunnerSummary *s, con
   fprintf(fp, "}%s\n", k < s->nstages_done ? "," : "");
 }
 
+/* What the stage runner's kinds (fe, indentation, point) share: the reported quantities at the start and each
+   stage's end (stage k - 1 named name[k - 1]), then the counters. */
+static void stages_and_counters(FILE *fp, const char *const *name, const RunnerSummary *s, const MeshError *me) {
+  fputs(",\n  \"stages\": [\n", fp);
+  for (int k = 0; k <= s->nstages_done; k++) stage_entry(fp, k ? name[k - 1] : "start", s, me, k);
+  fprintf(fp, "  ],\n  \"counters\": {\"steps\": %d, \"cutbacks\": %d, \"rejected_by_error\": %d, \"newton_its\": %d, \"umat_calls\": %ld}",
+          s->steps, s->cutbacks, s->rejected_error, s->its, s->umat_calls);
+}
+
 static void level_entry(FILE *fp, const RunInfo *r, int last) {
   fputs("    {\"dir\": ", fp);
-  str(fp, r->dir);
+  json_str(fp, r->dir);
   fprintf(fp, ", \"cells\": %ld, \"unknowns\": %ld, \"error_indicator\": ", r->cells, r->unknowns);
-  num(fp, r->eta);
+  json_num(fp, r->eta);
   fprintf(fp, ", \"cpu_s\": %.3f, \"wall_s\": %.3f, \"steps\": %d, \"cutbacks\": %d, \"newton_its\": %d, \"umat_calls\": %ld}%s\n", r->cpu,
           r->sum.wall, r->sum.steps, r->sum.cutbacks, r->sum.its, r->sum.umat_calls, last ? "" : ",");
 }
 
 int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen) {
-  char                 part[1200], path[1100];
+  char                 part[1200];
   const RunInfo       *a = &levels[nlevels - 1];
   const RunnerSummary *s = &a->sum;
+  const char          *names[RUNNER_MAX_STAGES];
   double               cpu = 0;
-  snprintf(path, sizeof path, "%s/summary.json", dir);
-  snprintf(part, sizeof part, "%s.part", path);
-  FILE *fp = fopen(part, "w");
-  if (!fp) {
-    snprintf(err, errlen, "%s: cannot write: %s", part, strerror(errno));
-    return 1;
-  }
+  FILE                *fp  = json_file_open(dir, "summary.json", part, sizeof part, err, errlen);
+  if (!fp) return 1;
   for (int l = 0; l < nlevels; l++) cpu += levels[l].cpu;
-  fputs("{\n  \"scene\": ", fp);
-  str(fp, sc->name);
-  fprintf(fp, ", \"kind\": \"%s\", \"completed\": %s,\n  \"mesh\": {\"dir\": ", sc->indenter ? "indentation" : "fe", s->failed || s->stopped ? "false" : "true");
-  str(fp, a->dir);
+  for (int k = 0; k < sc->nstage && k < RUNNER_MAX_STAGES; k++) names[k] = sc->stage[k].name;
+  json_summary_head(fp, sc->name, sc->indenter ? "indentation" : "fe", !s->failed && !s->stopped);
+  fputs(",\n  \"mesh\": {\"dir\": ", fp);
+  json_str(fp, a->dir);
   fprintf(fp, ", \"cells\": %ld, \"unknowns\": %ld, \"order\": %d, \"error_indicator\": ", a->cells, a->unknowns, sc->order);
-  num(fp, a->eta);
+  json_num(fp, a->eta);
   fputs("},\n  \"mesh_error\": ", fp);
-  if (me && me->have) fprintf(fp, "{\"how\": \"%s\", \"rate\": %.4g},\n", me->how, me->rate);
-  else fputs("null,\n", fp);
-  fputs("  \"stages\": [\n", fp);
-  for (int k = 0; k <= s->nstages_done; k++) stage_entry(fp, sc, s, me, k);
-  fprintf(fp, "  ],\n  \"counters\": {\"steps\": %d, \"cutbacks\": %d, \"rejected_by_error\": %d, \"newton_its\": %d, \"umat_calls\": %ld},\n", s->steps,
-          s->cutbacks, s->rejected_error, s->its, s->umat_calls);
-  fprintf(fp, "  \"cost\": {\"cpu_s\": %.3f, \"cpu_s_answer\": %.3f},\n  \"levels\": [\n", cpu, a->cpu);
+  if (me && me->have) fprintf(fp, "{\"how\": \"%s\", \"rate\": %.4g}", me->how, me->rate);
+  else fputs("null", fp);
+  stages_and_counters(fp, names, s, me);
+  fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"cpu_s_answer\": %.3f, \"wall_s\": %.3f},\n  \"levels\": [\n", cpu, a->cpu, s->wall);
   for (int l = 0; l < nlevels; l++) level_entry(fp, &levels[l], l == nlevels - 1);
-  fputs("  ]\n}\n", fp);
-  if (fclose(fp) || rename(part, path)) {
-    snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-    return 1;
+  fputs("  ]", fp);
+  return json_file_commit(fp, part, err, errlen);
+}
+
+int run_summary_point(const PointScene *sc, const PointSummary *ps, const RunnerSummary *s, double cpu, char *err, size_t errlen) {
+  char        part[1200];
+  const char *names[RUNNER_MAX_STAGES];
+  FILE       *fp = json_file_open(sc->outdir, "summary.json", part, sizeof part, err, errlen);
+  if (!fp) return 1;
+  for (int k = 0; k < sc->nseg && k < RUNNER_MAX_STAGES; k++) names[k] = sc->seg[k].stage.name;
+  json_summary_head(fp, sc->name, "point", !s->failed && !s->stopped);
+  stages_and_counters(fp, names, s, NULL);
+  fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"wall_s\": %.3f},\n  \"point\": {\"final_stress\": [", cpu, s->wall);
+  for (int i = 0; i < 6; i++) {
+    if (i) fputs(", ", fp);
+    json_num(fp, ps->final_stress[i]);
   }
-  return 0;
+  fprintf(fp, "], \"finite\": %s, \"worst_control_error\": ", ps->finite ? "true" : "false");
+  json_num(fp, ps->worst_control_error);
+  fputs(", \"worst_tangent_error\": ", fp);
+  json_num(fp, sc->check_tangent ? ps->worst_tangent_error : NAN);
+  fputc('}', fp);
+  return json_file_commit(fp, part, err, errlen);
 }
 
 /* " (mesh error m, time-step error t)" of a reported value, each where it was estimated (m >= 0, t finite). */

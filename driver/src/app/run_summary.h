@@ -1,10 +1,11 @@
-/* summary.json: what an FE or indentation run reports, machine-readable (docs/adapt.md, "summary.json"): the
+/* summary.json: what an FE, indentation or point run reports, machine-readable (docs/adapt.md, "summary.json"): the
  * reported quantities at every stage's end and their change over it, with their estimated mesh error when the
  * run adapted its mesh; the mesh, the counters and the cost. */
 #ifndef RUN_SUMMARY_H
 #define RUN_SUMMARY_H
 
 #include "../fe/fe_scene.h"
+#include "../stepping/point_stepper.h"
 #include "../stepping/stage_runner.h"
 
 /* One run on one mesh. */
@@ -30,6 +31,12 @@ typedef struct {
 /* Write dir/summary.json (rank 0; through summary.json.part, renamed once complete). levels: the runs, the last one
    the answer (several when the mesh was adapted). 0, or 1 with err filled. */
 int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen);
+
+/* Write sc->outdir/summary.json of a point run (rank 0): its stages (a point reports no quantities: each stage's
+   "end" and "change" are empty), the counters (sum, the runner's), the cost (cpu: its CPU seconds) and the point's
+   own: the final stress, whether every value stayed finite, the worst control and tangent errors (null: not
+   checked). 0, or 1 with err filled. */
+int run_summary_point(const PointScene *sc, const PointSummary *ps, const RunnerSummary *s, double cpu, char *err, size_t errlen);
 
 /* Print the reported quantities of the last level with their mesh errors (rank 0). */
 void run_summary_print(const FeScene *sc, const RunInfo *last, const MeshError *me);

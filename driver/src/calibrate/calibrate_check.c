@@ -37,7 +37,7 @@ static int row_of(const CalRun *run, double t) {
 
 /* Data rows before the forward run's start or after its end. */
 static int check_outside(const CalRun *run, const char *dir, char *err, size_t errlen) {
-  const char *names[4] = {"time", run->point ? "segment" : "stage", "time", "time"};
+  const char *names[4] = {"time", "stage", "time", "time"};
   double     *h;
   int         rows, out = 0;
   if (cal_read_history(run, dir, names, &h, &rows, err, errlen)) return 1;
@@ -140,7 +140,7 @@ int cal_check_scale(const CalRun *run, const char *dir, int accept, int models, 
         return 1;
       continue;
     }
-    const char *names[4] = {"time", run->point ? "segment" : "stage", c->xcol, c->ycol};
+    const char *names[4] = {"time", "stage", c->xcol, c->ycol};
     double     *h;
     int         rows, i0, i1;
     if (strcmp(c->xcol, "load") || run->drive) continue; /* drive: data: the forward run's loads are the data's */

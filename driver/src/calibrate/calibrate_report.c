@@ -7,7 +7,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
+#include "../io/json_write.h"
 #include "../stepping/run_status.h"
 #include "calibrate_drift.h"
 #include "calibrate_refine.h"
@@ -190,6 +192,41 @@ static int final_checks(Calib *c, const double *u, const CalBias *b, char *err, 
   return 0;
 }
 
+/* summary.json of the calibration (docs/driver.md, "summary.json"): the fitted parameters as quoted (value and
+   standard error), the misfit, TAO's ending, the counters and the cost (CPU: the driver's own and its forward runs'). */
+static int write_summary(Calib *c, const double *u, const CalUncertainty *un, const CalBias *b, double ssr, int its,
+                         const char *reason, int completed, char *err, size_t errlen) {
+  char          part[PATH_MAX + 32];
+  struct rusage self, kids;
+  FILE         *fp = json_file_open(c->outdir, "summary.json", part, sizeof part, err, errlen);
+  if (!fp) return 1;
+  json_summary_head(fp, c->name, "calibrate", completed);
+  fputs(",\n  \"parameters\": {", fp);
+  for (int k = 0; k < c->np; k++) {
+    CalQuote q;
+    cal_quote(c, u, un, b, k, &q);
+    fprintf(fp, "%s\n    ", k ? "," : "");
+    json_str(fp, c->p[k].name);
+    fputs(": {\"value\": ", fp);
+    json_num(fp, q.v);
+    fputs(", \"standard_error\": ", fp);
+    json_num(fp, q.s);
+    fputc('}', fp);
+  }
+  fputs("\n  },\n  \"misfit\": ", fp);
+  json_num(fp, ssr);
+  fputs(", \"ended\": ", fp);
+  json_str(fp, reason);
+  fprintf(fp, ",\n  \"counters\": {\"iterations\": %d, \"evaluations\": %d, \"rejected_evaluations\": %d, \"forward_runs\": %d, "
+              "\"full_model_runs\": %d}", its, c->nevals, c->nrejected, c->nforward, c->nfull);
+  getrusage(RUSAGE_SELF, &self), getrusage(RUSAGE_CHILDREN, &kids);
+  double cpu = self.ru_utime.tv_sec + self.ru_stime.tv_sec + kids.ru_utime.tv_sec + kids.ru_stime.tv_sec +
+               1e-6 * (self.ru_utime.tv_usec + self.ru_stime.tv_usec + kids.ru_utime.tv_usec + kids.ru_stime.tv_usec);
+  fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"wall_s\": %.3f, \"forward_wall_s\": %.3f}", cpu, MPI_Wtime() - c->wall0,
+          c->forward_wall);
+  return json_file_commit(fp, part, err, errlen);
+}
+
 int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char *err, size_t errlen) {
   int     n = c->np, m = c->m;
   double *J = malloc(sizeof(double) * m * n), *r = malloc(sizeof(double) * m), ssr = 0;
@@ -217,9 +254,12 @@ int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char
   fclose(fp);
   free(J), free(r);
   ierr = cal_print_summary(c, u, un, &b);
-  free(un);
   if (!ierr)
     ierr = PetscPrintf(PETSC_COMM_SELF, "calibrate %s: misfit %.6e, %d evaluations (%d rejected), %d forward runs, wall %.1f s -> %s/fit.yaml\n",
                        c->name, ssr, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0, c->outdir);
-  return ierr ? stage_runner_status(ierr, err) : final_checks(c, u, &b, err, errlen);
+  int  rc = ierr ? stage_runner_status(ierr, err) : final_checks(c, u, &b, err, errlen);
+  char e2[512]; /* summary.json also after a failed final check; its own failure only when all went well */
+  if (write_summary(c, u, un, &b, ssr, (int)its, reason, !rc, e2, sizeof e2) && !rc) rc = 1, snprintf(err, errlen, "%s", e2);
+  free(un);
+  return rc;
 }

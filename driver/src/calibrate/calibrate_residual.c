@@ -39,7 +39,7 @@ int cal_read_history(const CalRun *run, const char *dir, const char *const names
 /* The model's columns (time, stage, the interpolation column, y) of one history. */
 static int read_history(const CalRun *run, const CalCurve *c, const char *dir, double **h, int *rows, char *err,
                         size_t errlen) {
-  const char *names[4] = {"time", run->point ? "segment" : "stage", c->mcol, c->ycol};
+  const char *names[4] = {"time", "stage", c->mcol, c->ycol};
   return cal_read_history(run, dir, names, h, rows, err, errlen);
 }
 

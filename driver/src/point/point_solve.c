@@ -1,6 +1,6 @@
 /* One step of a material point under mixed stress/strain control: Newton on the unknown strain components
  * with the UMAT's DDSDDE (the equations of the segment's controls and constraints), a check of DDSDDE
- * against central differences, and the history columns of a point. */
+ * against central differences. */
 #include "point_solve.h"
 
 
@@ -96,6 +96,7 @@ int point_mixed_step(const UmatMaterial *mat, UmatControl c, const Segment *sg, 
     next->dtime = dt;
     MaterialPointDiag diag;
     material_point_update(mat, phi, c, next, &diag);
+    res->umat_calls++;
     res->pnewdt = diag.pnewdt;
     if (diag.rejected) {
       material_failed_call_keep(&res->failed, mat, phi, c, cur->stress, cur->statev, next);
@@ -161,27 +162,3 @@ void point_invariants(const double s[6], int n, double *p, double *q) {
   double d[3] = {t[0] + *p, t[1] + *p, t[2] + *p};
   *q = sqrt(1.5 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2 * (t[3] * t[3] + t[4] * t[4] + t[5] * t[5])));
 }
-
-void point_history_header(FILE *fp) {
-  static const char *c[6] = {"11", "22", "33", "12", "13", "23"};
-  fprintf(fp, "time,step,segment,dt,newton_its,local_its,cutbacks");
-  const char *groups[] = {"eps", "sig", "sig_hard", "sig_soft", "evp_hard", "evp_soft", "evp"};
-  for (int g = 0; g < 7; g++)
-    for (int i = 0; i < 6; i++) fprintf(fp, ",%s_%s", groups[g], c[i]);
-  fprintf(fp, ",pc_hard,pc_soft,flags\n");
-}
-
-void point_history_row(FILE *fp, const UmatMaterial *mat, const UmatCall *c, double t, int step, int seg, double dt,
-                      int newton, int cutbacks) {
-  int                n = mat->ntens;
-  MaterialPointState s;
-  material_point_state(mat, c->statev, &s);
-  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d,%d", t, step, seg, dt, newton, s.local.iterations, cutbacks);
-  for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stran[i] : 0.0);
-  for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", i < n ? c->stress[i] : 0.0);
-  const double *six[5] = {s.sig_hard, s.sig_soft, s.evp_hard, s.evp_soft, s.evp};
-  for (int g = 0; g < 5; g++)
-    for (int i = 0; i < 6; i++) fprintf(fp, ",%.12g", six[g][i]);
-  fprintf(fp, ",%.12g,%.12g,%d\n", s.pc_hard, s.pc_soft, s.local.flags);
-}
-

@@ -10,6 +10,7 @@
 
 typedef struct {
   int      newton;
+  int      umat_calls;    /* the UMAT calls of the step */
   double   control_error; /* largest relative residual of a controlled component at convergence */
   double             pnewdt;
   MaterialFailedCall failed; /* the call that asked for a smaller step (failed.have) */
@@ -28,8 +29,5 @@ int point_mixed_step(const UmatMaterial *mat, UmatControl c, const Segment *sg, 
 double point_tangent_check(const UmatMaterial *mat, UmatControl c, const UmatCall *cur, const UmatCall *next);
 /* p = -tr(sigma)/3 and q (von Mises) of a stress with n components. */
 void point_invariants(const double s[6], int n, double *p, double *q);
-void point_history_header(FILE *fp);
-void point_history_row(FILE *fp, const UmatMaterial *mat, const UmatCall *c, double t, int step, int seg, double dt,
-                       int newton, int cutbacks);
 
 #endif

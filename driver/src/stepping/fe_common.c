@@ -9,6 +9,17 @@
 #include "../fe/fe_state.h"
 #include "../point/point_solve.h"
 
+const char *const fe_common_xyz[3] = {"x", "y", "z"};
+
+HistValue fe_common_umat_calls(const void *ctx, const RunnerRow *row, int k) {
+  return (HistValue){.i = (long)fe_problem_diag(((const FeCommon *)ctx)->p)->umat_calls};
+}
+HistValue fe_common_wall(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = row->wall}; }
+HistValue fe_common_reaction(const void *ctx, const RunnerRow *row, int k) {
+  return (HistValue){.r = fe_problem_diag(((const FeCommon *)ctx)->p)->reaction[k]};
+}
+const char *fe_common_stage_name(void *ctx, int s) { return ((FeCommon *)ctx)->sc->stage[s].name; }
+
 PetscErrorCode fe_common_init(FeCommon *c, FeScene *sc, FeProblem *p, const RunnerOptions *opt) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(c, sizeof *c));

@@ -113,35 +113,31 @@ static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode history_header(void *ctx, FILE *fp) {
-  FeSolver *f  = ctx;
-  FeScene  *sc = f->c.sc;
-  PetscFunctionBeginUser;
-  fprintf(fp, "time,stage,step,dt,newton_its,cutbacks");
-  for (int g = 0; g < sc->npressure; g++) fprintf(fp, ",%s_%s", strchr(sc->pressure_group[g], '.') ? "traction" : "pressure", sc->pressure_group[g]);
-  fprintf(fp, ",eps_11,eps_22,eps_33,eps_12,eps_13,eps_23,sig_11,sig_22,sig_33,sig_12,sig_13,sig_23,eps_spread,evp_rate");
-  const char *fr[2] = {"hard", "soft"}, *st[6] = {"mean", "min", "q1", "median", "q3", "max"};
-  for (int i = 0; i < 2; i++)
-    for (int k = 0; k < 6; k++) fprintf(fp, ",evp33_%s_%s", fr[i], st[k]);
-  fprintf(fp, ",umat_calls,wall,reaction_x,reaction_y,reaction_z\n");
-  PetscFunctionReturn(0);
+/* The FE history's own columns (history_columns.h): the boundary loads, the volume statistics, the costs. */
+static int npressure(const void *ctx) { return ((const FeSolver *)ctx)->c.sc->npressure; }
+static void pressure_label(const void *ctx, int k, char *buf, size_t n) {
+  const char *g = ((const FeSolver *)ctx)->c.sc->pressure_group[k];
+  snprintf(buf, n, "%s_%s", strchr(g, '.') ? "traction" : "pressure", g);
 }
+static HistValue v_pressure(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.now[k]}; }
+static HistValue v_eps(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.stats.strain_mean[k]}; }
+static HistValue v_sig(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.stats.stress_mean[k]}; }
+static HistValue v_spread(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.stats.strain_spread}; }
+static HistValue v_rate(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.stats.evp_rate}; }
+static HistValue v_hard(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.stats.frame_evp[0][k]}; }
+static HistValue v_soft(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = ((const FeSolver *)ctx)->c.stats.frame_evp[1][k]}; }
 
-static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) {
-  FeSolver      *f = ctx;
-  const FeStats *s = &f->c.stats;
-  const FeDiag  *dg = fe_problem_diag(f->c.p);
-  PetscFunctionBeginUser;
-  fprintf(fp, "%.17g,%d,%d,%.17g,%d,%d", row->t, row->stage, row->step, row->dt, row->its, row->cutbacks);
-  for (int k = 0; k < f->c.sc->npressure; k++) fprintf(fp, ",%.12g", f->c.now[k]);
-  for (int i = 0; i < 6; i++) fprintf(fp, ",%.15g", s->strain_mean[i]);
-  for (int i = 0; i < 6; i++) fprintf(fp, ",%.15g", s->stress_mean[i]);
-  fprintf(fp, ",%.6g,%.6g", s->strain_spread, s->evp_rate);
-  for (int i = 0; i < 2; i++)
-    for (int k = 0; k < 6; k++) fprintf(fp, ",%.12g", s->frame_evp[i][k]);
-  fprintf(fp, ",%ld,%.4f,%.12g,%.12g,%.12g\n", (long)dg->umat_calls, row->wall, dg->reaction[0], dg->reaction[1], dg->reaction[2]);
-  PetscFunctionReturn(0);
-}
+static const char *const quantile[6] = {"mean", "min", "q1", "median", "q3", "max"};
+static const HistColumn columns[] = {
+  {"pressure", "%.12g", 0, NULL, v_pressure, npressure, pressure_label},
+  {"eps", "%.15g", 6, hist_tensor_suffix, v_eps, NULL, NULL},
+  {"sig", "%.15g", 6, hist_tensor_suffix, v_sig, NULL, NULL},
+  {"eps_spread", "%.6g", 1, NULL, v_spread, NULL, NULL},
+  {"evp_rate", "%.6g", 1, NULL, v_rate, NULL, NULL},
+  {"evp33_hard", "%.12g", 6, quantile, v_hard, NULL, NULL},
+  {"evp33_soft", "%.12g", 6, quantile, v_soft, NULL, NULL},
+  FE_COMMON_COST_COLUMNS,
+};
 
 static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   FeSolver *f = ctx;
@@ -389,8 +385,9 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
   if (!ierr && !opt->restart) ierr = initial_state(&f);
   if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &f, .kind = "fe", .nstage = sc->nstage, .comm = PetscObjectComm((PetscObject)fe_problem_dm(p)),
-                   .stage_begin = stage_begin, .solve = solve, .accept = accept, .history_header = history_header,
-                   .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
+                   .stage_begin = stage_begin, .solve = solve, .accept = accept, .columns = columns,
+                   .ncolumns = sizeof columns / sizeof columns[0], .stage_name = fe_common_stage_name, .progress = progress,
+                   .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
                    .save_shared = save_shared, .load_shared = load_shared,
                    .nreport = 2, .report_names = {"strain_axial", "strain_volumetric"}, .report = report};

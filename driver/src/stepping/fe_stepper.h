@@ -36,6 +36,16 @@ int fe_stepper_run(FeScene *sc, FeProblem *p, const RunnerOptions *opt, char *er
 int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerOptions *opt, char *err, size_t errlen);
 
 /* Shared by the two. */
+/* The history's cost columns of both (umat_calls, wall, reaction_x/y/z) and a stage's name: the solver's ctx
+   begins with its FeCommon. */
+HistValue   fe_common_umat_calls(const void *ctx, const RunnerRow *row, int k);
+HistValue   fe_common_wall(const void *ctx, const RunnerRow *row, int k);
+HistValue   fe_common_reaction(const void *ctx, const RunnerRow *row, int k);
+const char *fe_common_stage_name(void *ctx, int s);
+extern const char *const fe_common_xyz[3];
+#define FE_COMMON_COST_COLUMNS \
+  {"umat_calls", "%ld", 1, NULL, fe_common_umat_calls, NULL, NULL}, {"wall", "%.4f", 1, NULL, fe_common_wall, NULL, NULL}, \
+    {"reaction", "%.12g", 3, fe_common_xyz, fe_common_reaction, NULL, NULL}
 PetscErrorCode fe_common_init(FeCommon *c, FeScene *sc, FeProblem *p, const RunnerOptions *opt);
 PetscErrorCode fe_common_finish(FeCommon *c);
 void           fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v);

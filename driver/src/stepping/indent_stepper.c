@@ -114,23 +114,29 @@ static PetscErrorCode check(void *ctx, double t, char *err, size_t errlen) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode history_header(void *ctx, FILE *fp) {
-  PetscFunctionBeginUser;
-  fprintf(fp, "time,stage,stage_name,step,dt,newton_its,cutbacks,load,depth,active_nodes,active_changes,contact_force,"
-              "max_penetration,min_lambda,umat_calls,wall,reaction_x,reaction_y,reaction_z,evp_rate\n");
-  PetscFunctionReturn(0);
-}
+/* The indentation history's own columns (history_columns.h): the indenter's load and depth, the contact, the
+   costs, the viscoplastic strain rate. */
+#define IND(ctx) ((const Indent *)(ctx))
+static HistValue v_load(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = whole(IND(ctx), IND(ctx)->load)}; }
+static HistValue v_depth(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = (double)IND(ctx)->in.ur}; }
+static HistValue v_active(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = (int)IND(ctx)->in.nactive}; }
+static HistValue v_changes(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = (int)IND(ctx)->in.changes}; }
+static HistValue v_force(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = whole(IND(ctx), IND(ctx)->force)}; }
+static HistValue v_pen(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = IND(ctx)->pen}; }
+static HistValue v_lmin(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = IND(ctx)->lmin}; }
+static HistValue v_rate(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = row->step ? IND(ctx)->c.stats.evp_rate : 0.0}; }
 
-static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) {
-  Indent       *d  = ctx;
-  const FeDiag *dg = fe_problem_diag(d->c.p);
-  PetscFunctionBeginUser;
-  fprintf(fp, "%.17g,%d,%s,%d,%.17g,%d,%d,%.17g,%.17g,%d,%d,%.17g,%.6g,%.6g,%ld,%.4f,%.12g,%.12g,%.12g,%.6g\n", row->t, row->stage,
-          row->stage_name ? row->stage_name : d->c.sc->stage[0].name, row->step, row->dt, row->its, row->cutbacks,
-          whole(d, d->load), (double)d->in.ur, (int)d->in.nactive, (int)d->in.changes, whole(d, d->force), d->pen, d->lmin, (long)dg->umat_calls, row->wall,
-          dg->reaction[0], dg->reaction[1], dg->reaction[2], row->step ? d->c.stats.evp_rate : 0.0);
-  PetscFunctionReturn(0);
-}
+static const HistColumn columns[] = {
+  {"load", "%.17g", 1, NULL, v_load, NULL, NULL},
+  {"depth", "%.17g", 1, NULL, v_depth, NULL, NULL},
+  {"active_nodes", "%d", 1, NULL, v_active, NULL, NULL},
+  {"active_changes", "%d", 1, NULL, v_changes, NULL, NULL},
+  {"contact_force", "%.17g", 1, NULL, v_force, NULL, NULL},
+  {"max_penetration", "%.6g", 1, NULL, v_pen, NULL, NULL},
+  {"min_lambda", "%.6g", 1, NULL, v_lmin, NULL, NULL},
+  FE_COMMON_COST_COLUMNS,
+  {"evp_rate", "%.6g", 1, NULL, v_rate, NULL, NULL},
+};
 
 static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   Indent *d = ctx;
@@ -258,8 +264,9 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
                        (double)d.in.ct.c, (double)d.in.ct.kn);
   if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &d, .kind = "indentation", .nstage = sc->nstage, .comm = comm, .stage_begin = stage_begin,
-                   .solve = solve, .accept = accept, .check = check, .history_header = history_header,
-                   .history_row = history_row, .progress = progress, .write_fields = write_fields, .promote = promote,
+                   .solve = solve, .accept = accept, .check = check, .columns = columns,
+                   .ncolumns = sizeof columns / sizeof columns[0], .stage_name = fe_common_stage_name, .progress = progress,
+                   .write_fields = write_fields, .promote = promote,
                    .save = save, .load = load, .replay = replay, .umat_calls = umat_calls, .resume = resume,
                    .save_shared = save_shared, .load_shared = load_shared,
                    .nreport = 2, .report_names = {"depth", "load"}, .report = report};

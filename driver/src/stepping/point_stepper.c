@@ -22,6 +22,7 @@ typedef struct {
   int               have_devp;
   double           *t_start, *t_end;
   PointSummary     *sum;
+  MaterialPointState hs; /* the committed state's quantities, for the history's row */
 } Point;
 
 /* Component i of the total viscoplastic strain of a call's state (0 where the UMAT keeps none). */
@@ -87,6 +88,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   pt->umat        = rq->umat;
   pt->cur.time[0] = rq->ts0, pt->cur.time[1] = rq->t0;
   int rc = point_mixed_step(&pt->sc->mat, pt->umat, sg, &pt->cur, target, rq->h, deps, &pt->next, &pt->res);
+  pt->sum->umat_calls += pt->res.umat_calls;
   /* a UMAT that asks for a smaller step: 'converged' with PNEWDT < 1, so the runner cuts by PNEWDT */
   o->converged = !rc || pt->res.failed.have;
   o->pnewdt    = pt->res.pnewdt;
@@ -99,6 +101,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
 static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t errlen) {
   Point            *pt = ctx;
   const PointScene *sc = pt->sc;
+  if (sc->check_tangent && rq->h > 0) pt->sum->umat_calls += 2 * sc->mat.ntens;
   if (sc->check_tangent && rq->h > 0)
     pt->sum->worst_tangent_error = fmax(pt->sum->worst_tangent_error, point_tangent_check(&sc->mat, pt->umat, &pt->cur, &pt->next));
   pt->sum->worst_control_error = fmax(pt->sum->worst_control_error, pt->res.control_error);
@@ -126,16 +129,60 @@ static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t
   return 0;
 }
 
-static PetscErrorCode history_header(void *ctx, FILE *fp) {
-  point_history_header(fp);
-  return 0;
+/* The point history's own columns (history_columns.h): the UMAT's local iterations, strain and stress, the
+   frames' stresses and viscoplastic strains, the preconsolidation pressures and the local flags; history_prepare
+   reads the committed state once a row. */
+static void history_prepare(void *ctx) {
+  Point *pt = ctx;
+  material_point_state(&pt->sc->mat, pt->cur.statev, &pt->hs);
+}
+#define PT(ctx) ((const Point *)(ctx))
+static HistValue v_local(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = PT(ctx)->hs.local.iterations}; }
+static HistValue v_eps(const void *ctx, const RunnerRow *row, int k) {
+  return (HistValue){.r = k < PT(ctx)->sc->mat.ntens ? PT(ctx)->cur.stran[k] : 0.0};
+}
+static HistValue v_sig(const void *ctx, const RunnerRow *row, int k) {
+  return (HistValue){.r = k < PT(ctx)->sc->mat.ntens ? PT(ctx)->cur.stress[k] : 0.0};
+}
+static HistValue v_sig_hard(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.sig_hard[k]}; }
+static HistValue v_sig_soft(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.sig_soft[k]}; }
+static HistValue v_evp_hard(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.evp_hard[k]}; }
+static HistValue v_evp_soft(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.evp_soft[k]}; }
+static HistValue v_evp(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.evp[k]}; }
+static HistValue v_pc_hard(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.pc_hard}; }
+static HistValue v_pc_soft(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = PT(ctx)->hs.pc_soft}; }
+static HistValue v_flags(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = PT(ctx)->hs.local.flags}; }
+
+static const HistColumn columns[] = {
+  {"local_its", "%d", 1, NULL, v_local, NULL, NULL},
+  {"eps", "%.12g", 6, hist_tensor_suffix, v_eps, NULL, NULL},
+  {"sig", "%.12g", 6, hist_tensor_suffix, v_sig, NULL, NULL},
+  {"sig_hard", "%.12g", 6, hist_tensor_suffix, v_sig_hard, NULL, NULL},
+  {"sig_soft", "%.12g", 6, hist_tensor_suffix, v_sig_soft, NULL, NULL},
+  {"evp_hard", "%.12g", 6, hist_tensor_suffix, v_evp_hard, NULL, NULL},
+  {"evp_soft", "%.12g", 6, hist_tensor_suffix, v_evp_soft, NULL, NULL},
+  {"evp", "%.12g", 6, hist_tensor_suffix, v_evp, NULL, NULL},
+  {"pc_hard", "%.12g", 1, NULL, v_pc_hard, NULL, NULL},
+  {"pc_soft", "%.12g", 1, NULL, v_pc_soft, NULL, NULL},
+  {"flags", "%d", 1, NULL, v_flags, NULL, NULL},
+};
+
+/* What a point reports (summary.json, with the time-step error of its change over a held segment): the strain
+   along the loading axis (that of the first creep segment, else of the first) and the volumetric strain. */
+static void report(void *ctx, double *v) {
+  const Point      *pt = ctx;
+  const PointScene *sc = pt->sc;
+  int               axis = sc->nseg ? sc->seg[0].axis : 2, n = sc->mat.ntens;
+  for (int s = sc->nseg - 1; s >= 0; s--)
+    if (sc->seg[s].stage.creep) axis = sc->seg[s].axis;
+  double e[3];
+  for (int i = 0; i < 3; i++) e[i] = i < n ? pt->cur.stran[i] : 0.0;
+  v[0] = e[axis], v[1] = e[0] + e[1] + e[2];
 }
 
-static PetscErrorCode history_row(void *ctx, FILE *fp, const RunnerRow *row) {
-  Point *pt = ctx;
-  point_history_row(fp, &pt->sc->mat, &pt->cur, row->t, row->step, row->stage, row->dt, row->its, row->cutbacks);
-  return 0;
-}
+static long umat_calls(void *ctx) { return ((Point *)ctx)->sum->umat_calls; }
+
+static const char *stage_name(void *ctx, int s) { return ((Point *)ctx)->sc->seg[s].stage.name; }
 
 static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   Point *pt = ctx;
@@ -209,13 +256,16 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
    * to (Cam-Clay IX's uninitialised-state rule), so that row 0 shows the real initial state. */
   MaterialPointDiag diag;
   material_point_update(&sc->mat, material_phi(&sc->mat), pt.umat, &pt.cur, &diag);
+  sum->umat_calls = 1;
   if (diag.rejected) {
     snprintf(err, errlen, "the UMAT rejected the initial state (a zero increment returned PNEWDT = %g)", pt.cur.pnewdt);
     return 1;
   }
   pt.t_start = calloc((size_t)sc->nseg + 1, sizeof(double)), pt.t_end = calloc((size_t)sc->nseg + 1, sizeof(double));
   StepSolver sv = {.ctx = &pt, .kind = "point", .nstage = sc->nseg, .comm = MPI_COMM_SELF, .stage_begin = stage_begin,
-                   .solve = solve, .accept = accept, .history_header = history_header, .history_row = history_row,
+                   .solve = solve, .accept = accept, .columns = columns, .ncolumns = sizeof columns / sizeof columns[0],
+                   .history_prepare = history_prepare, .stage_name = stage_name, .nreport = 2,
+                   .report_names = {"strain_axial", "strain_volumetric"}, .report = report, .umat_calls = umat_calls,
                    .progress = progress, .save = save, .load = load, .replay = replay};
   RunnerOptions opt;
   memset(&opt, 0, sizeof opt);

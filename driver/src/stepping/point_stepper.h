@@ -8,6 +8,7 @@
 
 typedef struct {
   int    steps, cutbacks, failed;
+  long   umat_calls;          /* every UMAT call of the run (the steps tried, the tangent checks, the first) */
   double worst_tangent_error; /* with check_tangent */
   double worst_control_error; /* largest relative residual of a controlled component at convergence */
   double final_stress[6];     /* stress at the end of the run */

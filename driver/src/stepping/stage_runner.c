@@ -70,7 +70,10 @@ static int history_open(Run *r, char *err, size_t errlen) {
     snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
     return 1;
   }
-  SOLVER_CALL(r->sv->history_header(r->sv->ctx, r->hist));
+  if (history_header_write(r->hist, r->sv->columns, r->sv->ncolumns, r->sv->ctx)) {
+    snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
+    return 1;
+  }
   return 0;
 }
 
@@ -97,11 +100,16 @@ static int promote(Run *r) {
   return r->sv->promote && r->sv->promote(r->sv->ctx);
 }
 
-static int history_row(Run *r, int its, double dt, int cut, char *err) {
+static int history_row(Run *r, int its, double dt, int cut, char *err, size_t errlen) {
+  const StepSolver *sv = r->sv;
   if (!r->hist) return 0;
-  RunnerRow row = {r->st.t, dt, wall_since(&r->w0), r->st.stage, r->st.step, its, cut, r->view.name};
-  SOLVER_CALL(r->sv->history_row(r->sv->ctx, r->hist, &row));
-  fflush(r->hist);
+  const char *name = r->view.name ? r->view.name : sv->stage_name ? sv->stage_name(sv->ctx, r->st.stage) : NULL;
+  RunnerRow   row  = {r->st.t, dt, wall_since(&r->w0), r->st.stage, r->st.step, its, cut, name};
+  if (sv->history_prepare) sv->history_prepare(sv->ctx);
+  if (history_row_write(r->hist, sv->columns, sv->ncolumns, sv->ctx, &row) || fflush(r->hist)) {
+    snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
+    return 1;
+  }
   return 0;
 }
 
@@ -378,7 +386,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
       snprintf(err, errlen, "%s: cannot rename the new output files into place", opt->outdir);
       return 1;
     }
-    int rc = history_row(r, o.its, rq.h, cut, err);
+    int rc = history_row(r, o.its, rq.h, cut, err, errlen);
     if (rc || (rc = progress_line(r, &o, rq.h, err))) return rc;
     if (sv->check) SOLVER_CALL(sv->check(sv->ctx, st->t, err, errlen));
     rate_done = !was_instant && r->view.until.kind == EVENT_EVP_RATE_BELOW && o.event[EVENT_EVP_RATE_BELOW] < r->view.until.value;
@@ -430,7 +438,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   if (!opt->restart) {
     r.view.name = NULL; /* row 0: the solver names it */
     keep_report(&r, 0);
-    if ((rc = history_row(&r, 0, 0, 0, err)) || (rc = write_fields(&r, err, errlen))) return rc;
+    if ((rc = history_row(&r, 0, 0, 0, err, errlen)) || (rc = write_fields(&r, err, errlen))) return rc;
   }
   while (!rc && r.st.stage < sv->nstage) {
     rc = opt->max_steps >= 0 && r.st.step >= opt->max_steps ? 3 : run_stage(&r, err, errlen);

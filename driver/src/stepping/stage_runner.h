@@ -75,12 +75,7 @@ typedef struct {
                                       change): no estimate for it, and the next starts afresh */
 } StepOutcome;
 
-/* A row of the history, as the runner knows it; the solver writes its columns. */
-typedef struct {
-  double t, dt, wall;
-  int    stage, step, its, cutbacks;
-  const char *stage_name;
-} RunnerRow;
+#include "history_columns.h" /* RunnerRow, HistColumn: the history's shared columns and the solver's */
 
 /* Errors of the callbacks (docs/driver.md, "Error codes"): every callback but umat_calls returns a PetscErrorCode.
  * - A PETSc failure propagates as PETSc's own code (PetscCall): the runner returns it with err empty, and main
@@ -109,9 +104,13 @@ typedef struct {
   PetscErrorCode (*accept)(void *ctx, const StepRequest *rq, char *err, size_t errlen);
   /* Optional: after each accepted step, a check that can stop the run (STEP_FAIL). */
   PetscErrorCode (*check)(void *ctx, double t, char *err, size_t errlen);
-  /* Output: history columns (rank 0 writes), the solver's part of the progress line, fields. */
-  PetscErrorCode (*history_header)(void *ctx, FILE *fp);
-  PetscErrorCode (*history_row)(void *ctx, FILE *fp, const RunnerRow *row);
+  /* Output: the history's own columns after the shared ones (rank 0 writes; history_columns.h), with
+   * history_prepare (may be NULL) called before each row; the stage's name (for the first row, before its stage
+   * begins); the solver's part of the progress line, fields. */
+  const HistColumn *columns;
+  int               ncolumns;
+  void (*history_prepare)(void *ctx);
+  const char *(*stage_name)(void *ctx, int s);
   PetscErrorCode (*progress)(void *ctx, char *buf, size_t n);
   PetscErrorCode (*write_fields)(void *ctx, double t, char *err, size_t errlen); /* may be NULL */
   PetscErrorCode (*promote)(void *ctx);                                           /* the solver's .part files; may be NULL */

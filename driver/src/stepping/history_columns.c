@@ -1,0 +1,68 @@
+/* history.csv's columns (history_columns.h). */
+#include "history_columns.h"
+
+#include <string.h>
+
+const char *const hist_tensor_suffix[6] = {"11", "22", "33", "12", "13", "23"};
+
+static HistValue v_time(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = row->t}; }
+static HistValue v_stage(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = row->stage}; }
+static HistValue v_name(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.s = row->stage_name}; }
+static HistValue v_step(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = row->step}; }
+static HistValue v_dt(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.r = row->dt}; }
+static HistValue v_its(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = row->its}; }
+static HistValue v_cutbacks(const void *ctx, const RunnerRow *row, int k) { return (HistValue){.i = row->cutbacks}; }
+
+/* The columns every kind begins with; their values from the runner's row. */
+static const HistColumn lead[] = {
+  {"time", "%.17g", 1, NULL, v_time, NULL, NULL},     {"stage", "%d", 1, NULL, v_stage, NULL, NULL},
+  {"stage_name", "%s", 1, NULL, v_name, NULL, NULL},  {"step", "%d", 1, NULL, v_step, NULL, NULL},
+  {"dt", "%.17g", 1, NULL, v_dt, NULL, NULL},         {"newton_its", "%d", 1, NULL, v_its, NULL, NULL},
+  {"cutbacks", "%d", 1, NULL, v_cutbacks, NULL, NULL},
+};
+#define NLEAD ((int)(sizeof lead / sizeof lead[0]))
+
+static int count_of(const HistColumn *c, const void *ctx) { return c->count ? c->count(ctx) : c->n > 1 ? c->n : 1; }
+
+/* One value by its conversion's type (the last letter of fmt, "ld" for a long). */
+static int print_value(FILE *fp, const char *fmt, HistValue v) {
+  size_t n = strlen(fmt);
+  char   last = n ? fmt[n - 1] : 'g';
+  if (last == 's') return fprintf(fp, fmt, v.s ? v.s : "");
+  if (last == 'd' && n > 1 && fmt[n - 2] == 'l') return fprintf(fp, fmt, v.i);
+  if (last == 'd') return fprintf(fp, fmt, (int)v.i);
+  return fprintf(fp, fmt, v.r);
+}
+
+static int header_part(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, int first) {
+  for (int c = 0; c < ncols; c++) {
+    const HistColumn *h = &cols[c];
+    for (int k = 0, n = count_of(h, ctx); k < n; k++, first = 0) {
+      char name[256];
+      if (h->label) h->label(ctx, k, name, sizeof name);
+      else if (h->suffix) snprintf(name, sizeof name, "%s_%s", h->name, h->suffix[k]);
+      else snprintf(name, sizeof name, "%s", h->name);
+      if (fprintf(fp, "%s%s", first ? "" : ",", name) < 0) return 1;
+    }
+  }
+  return 0;
+}
+
+static int row_part(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row, int first) {
+  for (int c = 0; c < ncols; c++) {
+    const HistColumn *h = &cols[c];
+    for (int k = 0, n = count_of(h, ctx); k < n; k++, first = 0)
+      if ((!first && fputc(',', fp) == EOF) || print_value(fp, h->fmt, h->value(ctx, row, k)) < 0) return 1;
+  }
+  return 0;
+}
+
+int history_header_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx) {
+  if (header_part(fp, lead, NLEAD, NULL, 1) || header_part(fp, cols, ncols, ctx, 0)) return 1;
+  return fputc('\n', fp) == EOF;
+}
+
+int history_row_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row) {
+  if (row_part(fp, lead, NLEAD, NULL, row, 1) || row_part(fp, cols, ncols, ctx, row, 0)) return 1;
+  return fputc('\n', fp) == EOF;
+}

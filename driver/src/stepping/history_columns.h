@@ -1,0 +1,46 @@
+/* history.csv from one column declaration (issue 35): every scene kind writes the same leading columns (time,
+ * stage, stage_name, step, dt, newton_its, cutbacks; a point scene's segment is its stage), then its own, each
+ * declared once by its name and the way its value is obtained and printed, so that header and rows cannot drift
+ * apart. docs/driver.md, "history.csv", lists the columns. */
+#ifndef HISTORY_COLUMNS_H
+#define HISTORY_COLUMNS_H
+
+#include <stdio.h>
+
+/* A row of the history, as the stage runner knows it: the shared leading columns and the wall time. */
+typedef struct {
+  double      t, dt, wall;
+  int         stage, step, its, cutbacks;
+  const char *stage_name;
+} RunnerRow;
+
+/* One value: r for the conversions of a double (%g, %f), i for %d and %ld, s for %s. */
+typedef struct {
+  double      r;
+  long        i;
+  const char *s;
+} HistValue;
+
+/* A column, or a group of columns of one conversion: n of them named name_suffix[k] (n 0 or 1 and suffix NULL:
+ * one column named name), or, with count set, count(ctx) of them named by label(ctx, k). value gives the k-th
+ * value of the row (ctx: the solver's). */
+typedef struct {
+  const char        *name;
+  const char        *fmt; /* the printf conversion of a value: "%.17g", "%.4f", "%d", "%ld", "%s" */
+  int                n;
+  const char *const *suffix;
+  HistValue (*value)(const void *ctx, const RunnerRow *row, int k);
+  int (*count)(const void *ctx);
+  void (*label)(const void *ctx, int k, char *buf, size_t len);
+} HistColumn;
+
+/* The suffixes of a symmetric tensor's six components, in the UMAT's order. */
+extern const char *const hist_tensor_suffix[6];
+
+/* The header line: the shared columns, then the kind's (cols, ncols). 0, or nonzero on a write error. */
+int history_header_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx);
+
+/* A row in the same order. */
+int history_row_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row);
+
+#endif
