@@ -16,7 +16,8 @@ work; the Newton iterations say whether a path's directions cost the Newton extr
 
   bench/contact_solver_bench.py [--repeats 3] [--cases axi1,axi2,sector0.12,...] [--no-doc]
 
-Writes the section "## Contact solve: direct against field split" of docs/performance.md.
+Writes the section "## Contact solve: direct against field split" of docs/performance.md and its numbers into the
+results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes (tools/doc_quotes.py).
 """
 import argparse
 import os
@@ -31,7 +32,9 @@ import yaml
 from camclay9 import driver_command, mesh_line, summary_line
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))
 from performance_doc import replace_section  # noqa: E402
+import results_store  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TIMEOUT = 3600  # s, one run
@@ -135,6 +138,10 @@ def main(argv=None):
     print(section)
     if not a.no_doc:
         replace_section(TITLE, section)
+        results_store.save("contact_solver", {
+            "provenance": {"command": f"bench/contact_solver_bench.py --repeats {a.repeats}", "date": time.strftime("%Y-%m-%d")},
+            "rows": [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats")}
+                     for r in rows]})
 
 
 if __name__ == "__main__":

@@ -7,7 +7,8 @@ numbers computed from the store, stands in its document, and --write puts the st
 Coverage: every number of README's main-job paragraph and of its table rows for the 3D kerogen, BN and BP scenes,
 the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
 below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times, the adapted
-scenes' CPU, the kerogen adapted scene's errors: docs/performance.md, "Adapted meshes", whose bench keeps no store).
+scenes' CPU, the kerogen adapted scene's errors: docs/performance.md, "Adapted meshes", whose bench keeps no store);
+and the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json).
 """
 import re
 import sys
@@ -48,6 +49,9 @@ class A(dict):
         return A(v) if isinstance(v, dict) else v
 
 
+S3, S2 = ("sector0.12", "sector0.0707", "sector0.05"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
+
+
 def namespace(store_dir=results_store.STORE):
     paper = results_store.load("paper", store_dir)
     n = paper.get("numbers", {})
@@ -67,9 +71,18 @@ def namespace(store_dir=results_store.STORE):
         return A(r.get("err") or {k: r[k] / ref[k] - 1 for k in ("P", "creep", "h_res")})
 
     fe_row = {(r["size"], r["tol"], r["ranks"]): A(r) for r in fe.get("rows", [])}
+    cs_rows = {(r["case"], r["solver"]): r for r in results_store.load("contact_solver", store_dir).get("rows", [])}
+
+    def cs(case, solver, q):
+        """A number of bench/contact_solver_bench.py's row (case, solver)."""
+        return cs_rows[(case, solver)][q]
+
+    def csr(case, q, solver="fieldsplit", base="direct"):
+        """The ratio of a field-split row's q to the direct path's (or base's) on the same case."""
+        return cs(case, solver, q) / cs(case, base, q)
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row)
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2)
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -94,7 +107,18 @@ def find(text, doc):
 
 R = "README.md"
 C2, C3 = "bench/indent2d_convergence_conclusions.md", "bench/indent_convergence_conclusions.md"
+CT = "docs/contact.md"
 QUOTES = [
+    # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
+    (CT, "the field split's peak memory is «f(csr(S3[0], 'mem'), 2)», «f(csr(S3[1], 'mem'), 2)» and "
+         "«f(csr(S3[2], 'mem'), 2)» of the direct path's («f(cs(S3[2], 'fieldsplit', 'mem'), 0)» against "
+         "«f(cs(S3[2], 'direct', 'mem'), 0)» MB at"),
+    (CT, "about «f(1000 * cs(S3[2], 'fieldsplit', 'mem') / cs(S3[2], 'fieldsplit', 'unknowns'), 0)» kB per unknown against "
+         "«f(1000 * cs(S3[2], 'direct', 'mem') / cs(S3[2], 'direct', 'unknowns'), 0)»)"),
+    (CT, "by «f(min(csr(c, 'cpu') for c in S3), 1)» to «f(max(csr(c, 'cpu') for c in S3), 1)» times in 3D and "
+         "«f(min(csr(c, 'cpu') for c in S2), 1)» to «f(max(csr(c, 'cpu') for c in S2), 1)» in 2D"),
+    (CT, "in the table): «f(min(csr(c, 'cpu', 'fieldsplit, nested', 'fieldsplit') for c in (*S2, S3[0])), 1)» to "
+         "«f(max(csr(c, 'cpu', 'fieldsplit, nested', 'fieldsplit') for c in (*S2, S3[0])), 1)» times"),
     # the main job (defects 1, 5): both readings of eq. 28's log, the run times, Fig. 18's window
     (R, "It takes «f(fe[(6, 1e-06, 2)].wall)» s wall on 2 quiet cores at the default mesh («fe[(6, 1e-06, 2)].cells» tets; "
         "docs/performance.md, \"FE: triaxial cylinder\") and «f(walls.triaxial_theta0)» s in docs/paper.md's latest run"),
