@@ -1,7 +1,9 @@
-/* history.csv's columns (history_columns.h). */
+/* history.csv's columns and its file (history_columns.h). */
 #include "history_columns.h"
 
+#include <errno.h>
 #include <string.h>
+#include <unistd.h>
 
 const char *const hist_tensor_suffix[6] = {"11", "22", "33", "12", "13", "23"};
 
@@ -65,4 +67,40 @@ int history_header_write(FILE *fp, const HistColumn *cols, int ncols, const void
 int history_row_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row) {
   if (row_part(fp, lead, NLEAD, NULL, row, 1) || row_part(fp, cols, ncols, ctx, row, 0)) return 1;
   return fputc('\n', fp) == EOF;
+}
+
+int history_file_open(HistoryFile *h, const char *dir, int restart, long offset, const HistColumn *cols, int ncols, const void *ctx,
+                      char *err, size_t errlen) {
+  snprintf(h->path, sizeof h->path, "%s/history.csv%s", dir, restart ? "" : ".part");
+  if (restart) {
+    if (truncate(h->path, offset) || !(h->fp = fopen(h->path, "a"))) {
+      snprintf(err, errlen, "%s: cannot continue the history at the checkpoint: %s", h->path, strerror(errno));
+      return 1;
+    }
+    return 0;
+  }
+  if (!(h->fp = fopen(h->path, "w")) || history_header_write(h->fp, cols, ncols, ctx)) {
+    snprintf(err, errlen, "%s: cannot write: %s", h->path, strerror(errno));
+    return 1;
+  }
+  return 0;
+}
+
+int history_file_promote(HistoryFile *h, const char *dir) {
+  char final[1024];
+  if (!h->fp) return 0;
+  fflush(h->fp);
+  snprintf(final, sizeof final, "%s/history.csv", dir);
+  if (rename(h->path, final)) return 1;
+  snprintf(h->path, sizeof h->path, "%s", final);
+  return 0;
+}
+
+int history_file_row(HistoryFile *h, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row, char *err,
+                     size_t errlen) {
+  if (history_row_write(h->fp, cols, ncols, ctx, row) || fflush(h->fp)) {
+    snprintf(err, errlen, "%s: cannot write: %s", h->path, strerror(errno));
+    return 1;
+  }
+  return 0;
 }

@@ -43,4 +43,21 @@ int history_header_write(FILE *fp, const HistColumn *cols, int ncols, const void
 /* A row in the same order. */
 int history_row_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row);
 
+/* The history file of a run (rank 0): a fresh run writes history.csv.part, renamed once the first step is done
+ * (history_file_promote), so a run that fails early leaves an earlier run's history in place; a restart continues
+ * history.csv at the offset its checkpoint recorded. fp NULL: no history (another rank, no output directory). */
+typedef struct {
+  FILE *fp;
+  char  path[1024];
+} HistoryFile;
+
+/* Open the history in dir (fresh: with its header). 0, or nonzero with err set. */
+int history_file_open(HistoryFile *h, const char *dir, int restart, long offset, const HistColumn *cols, int ncols, const void *ctx,
+                      char *err, size_t errlen);
+/* history.csv.part -> history.csv in dir. 0, or nonzero on a failed rename. */
+int history_file_promote(HistoryFile *h, const char *dir);
+/* One row, flushed. 0, or nonzero with err set. */
+int history_file_row(HistoryFile *h, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row, char *err,
+                     size_t errlen);
+
 #endif

@@ -31,13 +31,12 @@ typedef struct {
   StepSolver          *sv;
   const RunnerOptions *opt;
   RunState             st;
-  FILE                *hist;
+  HistoryFile          hist;
   int                  rank, promoted, last_ckpt;
   struct timespec      w0;
   double               stage_wall0;
   StageView            view;
   StepGains            gains; /* the step controller's exponents: the options', or the PI default */
-  char                 hist_path[1024];
 } Run;
 
 void stage_view_of(const Stage *g, StageView *v) {
@@ -52,42 +51,19 @@ static double wall_since(const struct timespec *w0) {
   return (double)(w.tv_sec - w0->tv_sec) + 1e-9 * (double)(w.tv_nsec - w0->tv_nsec);
 }
 
-/* The history: a fresh run writes history.csv.part, renamed once the first step is done, so a run that
- * fails early leaves an earlier run's history in place; a restart continues history.csv at the offset the
- * checkpoint recorded. */
+/* The history (history_columns.h, HistoryFile), on rank 0 with an output directory. */
 static int history_open(Run *r, char *err, size_t errlen) {
   const char *dir = r->opt->outdir;
   if (r->rank || !dir || !dir[0]) return 0;
-  snprintf(r->hist_path, sizeof r->hist_path, "%s/history.csv%s", dir, r->opt->restart ? "" : ".part");
-  if (r->opt->restart) {
-    if (truncate(r->hist_path, r->st.history_offset) || !(r->hist = fopen(r->hist_path, "a"))) {
-      snprintf(err, errlen, "%s: cannot continue the history at the checkpoint: %s", r->hist_path, strerror(errno));
-      return 1;
-    }
-    return 0;
-  }
-  if (!(r->hist = fopen(r->hist_path, "w"))) {
-    snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
-    return 1;
-  }
-  if (history_header_write(r->hist, r->sv->columns, r->sv->ncolumns, r->sv->ctx)) {
-    snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
-    return 1;
-  }
-  return 0;
+  return history_file_open(&r->hist, dir, r->opt->restart, r->st.history_offset, r->sv->columns, r->sv->ncolumns, r->sv->ctx, err,
+                           errlen);
 }
 
 /* The first valid output: the new files replace the earlier run's. */
 static int promote(Run *r) {
   if (r->promoted || r->opt->restart) return 0;
   r->promoted = 1;
-  if (r->hist) {
-    char final[1024];
-    fflush(r->hist);
-    snprintf(final, sizeof final, "%s/history.csv", r->opt->outdir);
-    if (rename(r->hist_path, final)) return 1;
-    snprintf(r->hist_path, sizeof r->hist_path, "%s", final);
-  }
+  if (history_file_promote(&r->hist, r->opt->outdir)) return 1;
   if (!r->rank && r->opt->part_file) {
     char final[1024];
     snprintf(final, sizeof final, "%s", r->opt->part_file);
@@ -102,15 +78,11 @@ static int promote(Run *r) {
 
 static int history_row(Run *r, int its, double dt, int cut, char *err, size_t errlen) {
   const StepSolver *sv = r->sv;
-  if (!r->hist) return 0;
+  if (!r->hist.fp) return 0;
   const char *name = r->view.name ? r->view.name : sv->stage_name ? sv->stage_name(sv->ctx, r->st.stage) : NULL;
   RunnerRow   row  = {r->st.t, dt, wall_since(&r->w0), r->st.stage, r->st.step, its, cut, name};
   if (sv->history_prepare) sv->history_prepare(sv->ctx);
-  if (history_row_write(r->hist, sv->columns, sv->ncolumns, sv->ctx, &row) || fflush(r->hist)) {
-    snprintf(err, errlen, "%s: cannot write: %s", r->hist_path, strerror(errno));
-    return 1;
-  }
-  return 0;
+  return history_file_row(&r->hist, sv->columns, sv->ncolumns, sv->ctx, &row, err, errlen);
 }
 
 static int progress_line(Run *r, const StepOutcome *o, double h, char *err) {
@@ -404,8 +376,8 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     }
     if (stage_done) keep_report(r, st->stage + 1), st->stage++, st->in_stage = 0;
     if (opt->checkpoint_every > 0 && st->step % opt->checkpoint_every == 0) {
-      if (r->hist) fflush(r->hist);
-      st->history_offset = r->hist ? ftell(r->hist) : 0;
+      if (r->hist.fp) fflush(r->hist.fp);
+      st->history_offset = r->hist.fp ? ftell(r->hist.fp) : 0;
       if ((rc = checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen))) return rc;
     }
     if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, err, errlen)) ? rc : 3; /* its last step's fields too */
@@ -448,7 +420,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
       break;
     }
   }
-  if (r.hist) fclose(r.hist);
+  if (r.hist.fp) fclose(r.hist.fp);
   long calls = sv->umat_calls ? sv->umat_calls(sv->ctx) : 0;
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
