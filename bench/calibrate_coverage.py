@@ -36,6 +36,9 @@ import yaml
 from camclay9 import driver_path, read_history, run_driver
 from performance_doc import replace_section
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))  # post/ is no package
+import results_store  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 CAL = ROOT / "input" / "calibrate"
 TITLE = "## Measured curves: calibration coverage"
@@ -240,6 +243,9 @@ def main(argv=None):
                      "| largest abs. z | hold trend warned | median CPU [s] |")
         lines.append("|---|---|---|---|---|---|---|---|---|")
         for fault, rs in rows.items():
+            for r in rs:
+                if "failed" not in r:
+                    r["se_rel"] = r["se"] / r["truth"]
             ok = [r for r in rs if "failed" not in r]
             cov = sum(abs(r["z"]) <= 2 for r in ok)
             lines.append(f"| {fault} | {len(rs)} ({len(rs) - len(ok)} failed) | {cov} of {len(rs)} ({100 * cov / len(rs):.0f} %) | "
@@ -248,8 +254,12 @@ def main(argv=None):
                          f"{100 * np.median([r['white'] / r['value'] for r in ok]):.2f} % | "
                          f"{max(abs(r['z']) for r in ok):.2f} | {sum(r['warned'] for r in ok)} of {len(ok)} | "
                          f"{np.median([r['cpu'] for r in ok]):.1f} |")
+    out = []
     if a.cases:
         out = cases(a, log)
+        for r in out:
+            if "failed" not in r:
+                r["se_rel"] = r["se"] / r["truth"]
         base = next(r for r in out if r["name"] == "clean, drift: fit")
         plain = next(r for r in out if r["name"] == "clean, drift: none")
         lines.append("\nThe issue's cases at one truth (eta_soft = 1.83e10, seed fixed), each from 3x above:\n")
@@ -268,7 +278,21 @@ def main(argv=None):
     print(section)
     if not a.no_doc:
         replace_section(title, section)
-        print("written: docs/performance.md")
+        save_store(a, rows, out)
+        print("written: docs/performance.md, docs/results/calibrate_coverage.json")
+
+
+def save_store(a, rows, cases):
+    """The run's numbers into the results store (docs/results/calibrate_coverage.json), under the drift hold's length
+    (docs/calibrate.md quotes them: tools/doc_quotes.py); another hold's entry is kept."""
+    d = results_store.load("calibrate_coverage") or {"holds": {}}
+    keep = ("error", "se_rel", "z", "cpu")
+    d["holds"][f"{a.drift_hold:g}"] = {
+        "provenance": {"command": f"bench/calibrate_coverage.py --draws {a.draws} --faults {','.join(a.faults)}"
+                                  f"{' --cases' if a.cases else ''} --drift-hold {a.drift_hold:g}", "date": time.strftime("%Y-%m-%d")},
+        "draws": {f: [{k: r[k] for k in keep} for r in rs if "failed" not in r] for f, rs in rows.items()},
+        "cases": {r["name"]: {k: r[k] for k in keep} for r in cases if "failed" not in r}}
+    results_store.save("calibrate_coverage", d)
 
 
 if __name__ == "__main__":

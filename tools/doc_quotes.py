@@ -8,7 +8,8 @@ Coverage: every number of README's main-job paragraph and of its table rows for 
 the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
 below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times, the adapted
 scenes' CPU, the kerogen adapted scene's errors: docs/performance.md, "Adapted meshes", whose bench keeps no store);
-and the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json).
+the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json); and
+those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json).
 """
 import re
 import sys
@@ -50,6 +51,7 @@ class A(dict):
 
 
 S3, S2 = ("sector0.12", "sector0.0707", "sector0.05"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
+DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 
 
 def namespace(store_dir=results_store.STORE):
@@ -77,12 +79,19 @@ def namespace(store_dir=results_store.STORE):
         """A number of bench/contact_solver_bench.py's row (case, solver)."""
         return cs_rows[(case, solver)][q]
 
+    cov = results_store.load("calibrate_coverage", store_dir).get("holds", {}).get("300", {})
+
+    def cc(name):
+        """A case of bench/calibrate_coverage.py --cases with the 300 s drift hold ("drift_noise, drift: fit", ...)."""
+        return A(cov["cases"][name])
+
     def csr(case, q, solver="fieldsplit", base="direct"):
         """The ratio of a field-split row's q to the direct path's (or base's) on the same case."""
         return cs(case, solver, q) / cs(case, base, q)
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2)
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2,
+              cc=cc, cd=cov.get("draws", {}), sum=sum, len=len, DN=DN, BO=BO, CF=CF)
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -108,7 +117,18 @@ def find(text, doc):
 R = "README.md"
 C2, C3 = "bench/indent2d_convergence_conclusions.md", "bench/indent_convergence_conclusions.md"
 CT = "docs/contact.md"
+CA = "docs/calibrate.md"
 QUOTES = [
+    # the 300 s drift hold (docs/calibrate.md, "Coverage"; bench/calibrate_coverage.py --drift-hold 300)
+    (CA, "At the same truth the two cases give «pc(cc(DN).error, 2)»"),
+    (CA, "(± «pu(cc(DN).se_rel, 2)») and «pc(cc(BO).error, 2)» (± «pu(cc(BO).se_rel, 2)»), at «f(cc(DN).cpu / cc(CF).cpu, 2)» "
+         "and «f(cc(BO).cpu / cc(CF).cpu, 2)» times the CPU of the clean record's fit. Over «len(cd['drift_noise'])» draws"),
+    (CA, "every error is within «pu(max(abs(r['error']) for r in cd['drift_noise']))» and the truth lies within 2 standard "
+         "errors in «sum(abs(r['z']) <= 2 for r in cd['drift_noise'])» («pu(sum(abs(r['z']) <= 2 for r in cd['drift_noise']) "
+         "/ len(cd['drift_noise']), 0)»)"),
+    (CA, "as well, «sum(abs(r['error']) <= 0.02 for r in cd['both'])» of «len(cd['both'])» errors are within 2 % (the largest "
+         "«pu(max(abs(r['error']) for r in cd['both']))») and «sum(abs(r['z']) <= 2 for r in cd['both'])» are covered "
+         "(«pu(sum(abs(r['z']) <= 2 for r in cd['both']) / len(cd['both']), 0)»)"),
     # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
     (CT, "the field split's peak memory is «f(csr(S3[0], 'mem'), 2)», «f(csr(S3[1], 'mem'), 2)» and "
          "«f(csr(S3[2], 'mem'), 2)» of the direct path's («f(cs(S3[2], 'fieldsplit', 'mem'), 0)» against "
