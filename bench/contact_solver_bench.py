@@ -20,16 +20,14 @@ Writes the section "## Contact solve: direct against field split" of docs/perfor
 results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes (tools/doc_quotes.py).
 """
 import argparse
-import os
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 import yaml
-from camclay9 import driver_command, mesh_line, summary_line
+from camclay9 import driver_command, mesh_line, run_measured, summary_line
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))
@@ -68,29 +66,17 @@ def scene_file(case, work):
 
 
 def run(scene, steps, solver, out):
-    """One run: its CPU [s] (user + system, its children's included) and peak memory [MB] from wait4 (which the
-    package's launcher does not give), and the driver's counts from its summary line."""
+    """One run: its CPU [s] (user + system, its children's included) and peak memory [MB] (camclay9.run_measured),
+    and the driver's counts from its summary line."""
     out.mkdir(parents=True, exist_ok=True)
     log, cmd = out / "driver.out", driver_command(scene, out, ["-max_steps", steps, *SOLVERS[solver]], root=ROOT)
-    deadline = time.monotonic() + TIMEOUT
-    with open(log, "w") as f:
-        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT)
-        while True:  # wait4 collects the child with its own resources (polled, for the timeout)
-            pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
-            if pid:
-                break
-            if time.monotonic() > deadline:
-                proc.kill()
-                os.wait4(proc.pid, 0)
-                raise SystemExit(f"{' '.join(cmd)}: no end after {TIMEOUT} s")
-            time.sleep(0.05)
-    proc.returncode = os.waitstatus_to_exitcode(status)
+    rc, cpu, mem, _ = run_measured(cmd, log, timeout=TIMEOUT)
+    if rc:
+        raise SystemExit(f"{' '.join(cmd)} failed ({rc}):\n{log.read_text()[-2000:]}")
     text = log.read_text()
-    if proc.returncode:
-        raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}):\n{text[-2000:]}")
     s, m = summary_line(text), mesh_line(text)
     return {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
-            "krylov": s["krylov_iterations"], "cpu": ru.ru_utime + ru.ru_stime, "mem": ru.ru_maxrss / 1024}
+            "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem}
 
 
 def measure(case, repeats, work):

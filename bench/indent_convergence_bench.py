@@ -35,7 +35,6 @@ Usage: bench/indent_convergence_bench.py [--models sector2,sector1,bn2,...] [--h
 import argparse
 import json
 import math
-import os
 import re
 import resource
 import subprocess
@@ -44,7 +43,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from camclay9 import driver_command, mesh_line, read_history, summary_line
+from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
 from indent_convergence_doc import TITLE, limits, section
 from indent_ladders import MODELS, SHORT, key, ladder, ladders, load
 from performance_doc import replace_section
@@ -86,28 +85,24 @@ def nested_mesh(text, n, work):
     return re.sub(r"\n  geometry: \S+\n  parameters: \{[^}]*\}", f"\n  file: {msh}", text, count=1)
 
 
+TIMEOUT = 24 * 3600  # s, one rung (the finest 3D rungs take hours)
+
 
 def run(text, out):
     """One rung under nice -n 10: its outputs, and the driver's CPU (user + system, gmsh's meshing included) and
-    peak memory from wait4, counts from its summary line."""
+    peak memory (camclay9.run_measured, wait4), counts from its summary line."""
     out.parent.mkdir(parents=True, exist_ok=True)
     path = out.parent / (out.name + ".yaml")
     path.write_text(text)
-    t0 = time.perf_counter()
-    with open(out.parent / (out.name + ".log"), "w+") as log:
-        # not run_driver: the rung's own CPU and peak memory (wait4) and its log written as it runs
-        proc = subprocess.Popen(driver_command(path, out, root=ROOT, prefix=["nice", "-n", "10"]),
-                                stdout=log, stderr=subprocess.STDOUT, cwd=out.parent)
-        _, status, ru = os.wait4(proc.pid, 0)
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        log.seek(0)
-        stdout = log.read()
-    wall = time.perf_counter() - t0
-    if proc.returncode:
+    log = out.parent / (out.name + ".log")
+    rc, cpu, rss_mb, wall = run_measured(driver_command(path, out, root=ROOT, prefix=["nice", "-n", "10"]), log,
+                                         timeout=TIMEOUT, cwd=out.parent)
+    stdout = log.read_text()
+    if rc:
         raise RuntimeError(f"{path}: the driver failed:\n{stdout[-2000:]}")
     s = summary_line(stdout, index=0)
     h = read_history(out)
-    return dict(wall=wall, cpu=ru.ru_utime + ru.ru_stime, rss_mb=ru.ru_maxrss / 1024, steps=s["steps"],
+    return dict(wall=wall, cpu=cpu, rss_mb=rss_mb, steps=s["steps"],
                 newton=s["newton_iterations"], umat_calls=s["umat_calls"], solve_s=s["linear_solves_s"],
                 krylov=s["krylov_iterations"], factorisations=s["factorisations"],
                 unknowns=mesh_line(stdout)["unknowns"], o={k: float(v) for k, v in outputs(h).items()})

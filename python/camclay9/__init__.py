@@ -10,10 +10,10 @@ Modules: history (history.csv), summary (summary.json), log (the summary and mes
 path and one run), fields (fields.h5 and the tensors' layout). Installed by tools/setup.sh (pip install python/).
 """
 from .history import history_layout, read_history
-from .launch import DriverError, driver_command, driver_path, repo_root, run_command, run_driver
+from .launch import DriverError, driver_command, driver_path, repo_root, run_command, run_driver, run_measured
 from .log import mesh_line, summary_line
 from .summary import read_summary, reported, stage
 
 __all__ = ["read_history", "history_layout", "read_summary", "stage", "reported", "summary_line", "mesh_line",
-           "run_driver", "run_command", "driver_command", "driver_path", "repo_root", "DriverError"]
+           "run_driver", "run_command", "run_measured", "driver_command", "driver_path", "repo_root", "DriverError"]
 __version__ = "0.1.0"

@@ -4,6 +4,8 @@
 environment ($DRIVER for 'driver', $DRIVER_ELASTIC for 'driver_elastic', else the sibling of $DRIVER), else
 ROOT/build/bin/NAME, ROOT the repository (given, or found upward from the current directory).
 
+`run_measured(cmd, log)`: one command with its output to a file, and its own CPU and peak memory (wait4).
+
 `run_driver(scene, out, options)`: runs `driver -input SCENE -output_dir OUT OPTIONS...` (on `ranks` MPI ranks
 through mpiexec, after a `prefix` such as ["nice", "-n", "10"]), always with a timeout, and returns the
 subprocess.CompletedProcess (text stdout and stderr) with its wall and CPU seconds as `.wall` and `.cpu`. With
@@ -93,6 +95,32 @@ def run_command(cmd, timeout=3600, cwd=None, env=None, check=True):
     if check and proc.returncode:
         raise DriverError(cmd, proc.returncode, proc.stdout, proc.stderr, f"exit code {proc.returncode}")
     return proc
+
+
+def run_measured(cmd, log, timeout=3600, cwd=None):
+    """Run a command line with its output (stdout and stderr) written to the file `log` as it runs, within `timeout`
+    seconds, and measure that one process from wait4: its CPU (user + system, its waited-for children's included)
+    and peak resident memory, which run_command's totals over all children cannot give. Returns (exit code, CPU s,
+    peak MB, wall s); DriverError when it cannot start or times out (the process is killed)."""
+    if not timeout or timeout <= 0:
+        raise ValueError(f"timeout = {timeout!r}: expected a positive number of seconds")
+    t0 = time.perf_counter()
+    with open(log, "w") as f:
+        try:
+            proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd)
+        except OSError as err:
+            raise DriverError(cmd, None, "", str(err), "could not start") from None
+        while True:  # wait4 collects the process with its own resources; polled, for the timeout
+            pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.perf_counter() - t0 > timeout:
+                proc.kill()
+                os.wait4(proc.pid, 0)
+                raise DriverError(cmd, None, Path(log).read_text(errors="replace"), "", f"timed out after {timeout:g} s")
+            time.sleep(0.05)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    return proc.returncode, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024, time.perf_counter() - t0
 
 
 def run_driver(scene, out=None, options=(), *, driver=None, name="driver", root=None, ranks=1, prefix=(),

@@ -5,6 +5,7 @@ driver itself (a point scene, under a second). The package is imported as instal
 installed copy must be python/camclay9 as it is now: a stale or missing install fails here, never passes."""
 import filecmp
 import stat
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -16,7 +17,7 @@ except ImportError as err:  # an error, never a skip: the package is part of the
     raise ImportError(f"{err}: tools/setup.sh installs it (pip install python/)") from None
 from camclay9.history import LEAD
 from camclay9 import (DriverError, driver_command, driver_path, history_layout, mesh_line, read_history,
-                      read_summary, reported, run_driver, stage, summary_line)
+                      read_summary, reported, run_driver, run_measured, stage, summary_line)
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = Path(__file__).resolve().parent / "data"
@@ -196,6 +197,17 @@ def test_run_driver_output_failure_timeout(tmp_path):
     assert err.value.returncode is None
     with pytest.raises(ValueError, match="timeout"):
         run_driver("s.yaml", driver=slow, timeout=None)
+
+
+def test_run_measured_memory_exit_code_timeout(tmp_path):
+    """run_measured measures the one process it runs: a child that holds 200 MB (written, so resident) peaks above
+    200 MB and under 200 MB plus an interpreter; its exit code and output are kept; a timeout kills it."""
+    hold = "import sys; b = bytearray(200 * 2**20); b[::4096] = b'x' * len(b[::4096]); print('held'); sys.exit(3)"
+    rc, cpu, mem, wall = run_measured([sys.executable, "-c", hold], tmp_path / "log", timeout=60)
+    assert rc == 3 and (tmp_path / "log").read_text() == "held\n"
+    assert 200 < mem < 200 + 100 and cpu > 0 and wall >= cpu * 0.5
+    with pytest.raises(DriverError, match=r"timed out after 0\.5 s"):
+        run_measured(["sleep", "30"], tmp_path / "log2", timeout=0.5)
 
 
 def test_run_driver_on_a_point_scene(tmp_path):

@@ -211,10 +211,9 @@ static PetscErrorCode check_against_fresh_lu(IndentSolver *s, PetscReal c, Petsc
  * when due, and once more at once when the solve fails on a kept one; refactor_its 0: LU alone, every time.
  * Due: when the Krylov iterations beyond the first, summed over the solves since the factorisation, exceed
  * refactor_its, the cost of a factorisation counted in Krylov iterations (a fresh one solves in one). */
-static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, PetscBool tight, KSPConvergedReason *reason) {
+static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, KSPConvergedReason *reason) {
   PetscInt its = 0;
   PetscFunctionBeginUser;
-  PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscBool fresh = PETSC_FALSE;
   for (int attempt = 0; attempt < 2; attempt++) {
     fresh = s->refactor || !s->Aaij || !s->kept;
@@ -260,9 +259,9 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCall(VecRestoreSubVector(s->F, s->is[1], &sub));
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
-  if (!s->fieldsplit) PetscCall(solve_kept(s, ct->c, tight, &reason));
+  PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  if (!s->fieldsplit) PetscCall(solve_kept(s, ct->c, &reason));
   else {
-    PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
     PetscCall(s->assemble(s->actx));
     PetscCall(assemble_schur_pre(s, ct));
     PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
