@@ -128,14 +128,8 @@ void cal_drift_project(CalRun *run, double *r) {
  * the log and the findings into fit (CalTrend, one per hold block). */
 int cal_hold_trends(const CalRun *runs, int nrun, int m, const double *X, int q, const double *r, CalTrend *out, int max) {
   int     nout = 0;
-  double *g = malloc(sizeof(double) * m), XtX[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)];
-  double  inv[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)], Xg[CAL_MAX_PARAMS + CAL_MAX_RUNS];
-  for (int a = 0; a < q; a++)
-    for (int b = 0; b < q; b++) {
-      XtX[a * q + b] = 0;
-      for (int i = 0; i < m; i++) XtX[a * q + b] += X[a * m + i] * X[b * m + i];
-    }
-  int singular = cal_invert(q, XtX, inv);
+  double *g = malloc(sizeof(double) * m), inv[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)];
+  int     singular = cal_normal_inverse(q, m, X, inv);
   for (int j = 0, off = 0; j < nrun; j++)
     for (int k = 0; k < runs[j].ncurve; k++) {
       const CalRun   *run = &runs[j];
@@ -149,14 +143,7 @@ int cal_hold_trends(const CalRun *runs, int nrun, int m, const double *X, int q,
       for (int i = 0; i < cv->n; i++) g[b0 + i] = cv->weight * (cv->t[i] - mean) / cv->scale;
       if (!singular) { /* g less its projection on X's columns */
         double coef[CAL_MAX_PARAMS + CAL_MAX_RUNS];
-        for (int a = 0; a < q; a++) {
-          Xg[a] = 0;
-          for (int i = 0; i < m; i++) Xg[a] += X[a * m + i] * g[i];
-        }
-        for (int a = 0; a < q; a++) {
-          coef[a] = 0;
-          for (int b = 0; b < q; b++) coef[a] += inv[a * q + b] * Xg[b];
-        }
+        cal_normal_coef(q, m, X, inv, g, coef);
         for (int i = 0; i < m; i++)
           for (int a = 0; a < q; a++) g[i] -= X[a * m + i] * coef[a];
       }

@@ -31,19 +31,6 @@
 #define REFINE_REL 1.0e-4 /* ... or of the value */
 #define SECANT_REL 1.0e-3 /* a step shorter than this (relative) shows the full model's numerical noise, not its slope */
 
-/* The Gauss-Newton step du = inv J^T R at residuals R. */
-static void gn_step(const Calib *c, const double *J, const double *inv, const double *R, double *du) {
-  int    n = c->np, m = c->m;
-  double g[CAL_MAX_PARAMS];
-  for (int a = 0; a < n; a++) {
-    g[a] = 0;
-    for (int i = 0; i < m; i++) g[a] += J[a * m + i] * R[i];
-  }
-  for (int a = 0; a < n; a++) {
-    du[a] = 0;
-    for (int b = 0; b < n; b++) du[a] += inv[a * n + b] * g[b];
-  }
-}
 
 /* Each run's largest difference of the full model from the forward model at the fit, relative to each block's data
  * range (the models' curves: cheap as left by the fit's evaluation, full after R), and its block. */
@@ -68,7 +55,7 @@ static void model_difference(Calib *c, const double *cheap, CalBias *b) {
 /* Broyden's update of J (m x n, by parameter) from the step du (in u) and the residuals' change dR; then inv. */
 static void broyden(const Calib *c, double *J, double *inv, const double *du, const double *dR) {
   int    n = c->np, m = c->m;
-  double dd = 0, JtJ[CAL_MAX_PARAMS * CAL_MAX_PARAMS];
+  double dd = 0;
   for (int a = 0; a < n; a++) dd += du[a] * du[a];
   if (!(dd > 0)) return;
   for (int i = 0; i < m; i++) {
@@ -76,13 +63,7 @@ static void broyden(const Calib *c, double *J, double *inv, const double *du, co
     for (int a = 0; a < n; a++) e -= J[a * m + i] * du[a];
     for (int a = 0; a < n; a++) J[a * m + i] += e * du[a] / dd;
   }
-  for (int a = 0; a < n; a++)
-    for (int bb = 0; bb < n; bb++) {
-      JtJ[a * n + bb] = 0;
-      for (int i = 0; i < m; i++) JtJ[a * n + bb] += J[a * m + i] * J[bb * m + i];
-    }
-  if (cal_invert(n, JtJ, inv))
-    for (int i = 0; i < n * n; i++) inv[i] = NAN;
+  cal_normal_inverse(n, m, J, inv);
 }
 
 int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, const double *se, CalBias *b, char *err,
@@ -123,7 +104,7 @@ int cal_bias(Calib *c, const double *u0, const double *J0, const double *inv0, c
     for (int i = 0; i < m; i++) ssr += R[i] * R[i];
     cal_influence(n, m, J, G, scratch); /* the full model's Newey-West covariance with the current J */
     cal_hac(n, m, G, R, blocks, nblock, n + ndrift, cov, white, &hac);
-    gn_step(c, J, inv, R, du);
+    cal_normal_coef(c->np, c->m, J, inv, R, du); /* the Gauss-Newton step du = inv J^T R */
     int want = c->refine == 2, small = 1;
     for (int a = 0; a < n; a++) {
       un[a]   = fmin(1, fmax(0, u[a] - du[a]));

@@ -114,15 +114,32 @@ void cal_blocks(const CalRun *runs, int nrun, int *blocks, int *nblock) {
     for (int k = 0; k < runs[j].ncurve; k++) blocks[(*nblock)++] = runs[j].curve[k].n;
 }
 
-int cal_influence(int n, int m, const double *J, double *G, double *inv) {
-  double JtJ[CAL_MAX_PARAMS * CAL_MAX_PARAMS];
+int cal_normal_inverse(int n, int m, const double *J, double *inv) {
+  double JtJ[(CAL_MAX_PARAMS + CAL_MAX_RUNS) * (CAL_MAX_PARAMS + CAL_MAX_RUNS)];
   for (int a = 0; a < n; a++)
     for (int b = 0; b < n; b++) {
       JtJ[a * n + b] = 0;
       for (int i = 0; i < m; i++) JtJ[a * n + b] += J[a * m + i] * J[b * m + i];
     }
-  if (cal_invert(n, JtJ, inv)) {
-    for (int i = 0; i < n * n; i++) inv[i] = NAN;
+  if (!cal_invert(n, JtJ, inv)) return 0;
+  for (int i = 0; i < n * n; i++) inv[i] = NAN;
+  return 1;
+}
+
+void cal_normal_coef(int n, int m, const double *J, const double *inv, const double *v, double *coef) {
+  double g[CAL_MAX_PARAMS + CAL_MAX_RUNS];
+  for (int a = 0; a < n; a++) {
+    g[a] = 0;
+    for (int i = 0; i < m; i++) g[a] += J[a * m + i] * v[i];
+  }
+  for (int a = 0; a < n; a++) {
+    coef[a] = 0;
+    for (int b = 0; b < n; b++) coef[a] += inv[a * n + b] * g[b];
+  }
+}
+
+int cal_influence(int n, int m, const double *J, double *G, double *inv) {
+  if (cal_normal_inverse(n, m, J, inv)) {
     for (int i = 0; i < n * m; i++) G[i] = NAN;
     return 1;
   }

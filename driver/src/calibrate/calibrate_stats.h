@@ -19,6 +19,10 @@ void cal_hac(int q, int m, const double *G, const double *r, const int *blocks, 
              CalHacInfo *info);
 /* Each residual block's size, the nrun runs' blocks in order. */
 void cal_blocks(const CalRun *runs, int nrun, int *blocks, int *nblock);
+/* inv = (J^T J)^-1 from J (n x m, by row; n <= CAL_MAX_PARAMS + CAL_MAX_RUNS); 1 if singular (inv NAN filled). */
+int  cal_normal_inverse(int n, int m, const double *J, double *inv);
+/* coef = inv J^T v: the least-squares coefficients of v (m) on J's n rows, inv from cal_normal_inverse. */
+void cal_normal_coef(int n, int m, const double *J, const double *inv, const double *v, double *coef);
 /* G = -(J^T J)^-1 J^T (n x m) and inv = (J^T J)^-1 from J (n x m, by parameter); 1 if singular (NAN filled). */
 int  cal_influence(int n, int m, const double *J, double *G, double *inv);
 
