@@ -160,7 +160,7 @@ def why(n):
     else:
         closing = "The adopted reading (theory.md §5.4) is kept. The model is not tuned to the figures."
     return ["## Why Figs. 17 and 18 cannot both be matched", "",
-            "Measured with an independent integration of the material point (tests/reference, scipy Radau; "
+            "Measured with an independent integration of the material point (camclay9.reference, scipy Radau; "
             "theory.md §5.4), and checked on the cylinder above: the point model gives 6.1e-5 / 1.3e-4 / 2.8e-4 at "
             "385 s / 1 h / 10 h for θ = 0 against the paper's fit 6.9e-5 / 2.3e-4 / 4.5e-4 read with ln (3.0e-5 / "
             "1.0e-4 / 2.0e-4 read with log10).", "",

@@ -8,8 +8,8 @@ Conventions (theory.md §1.1): tension positive; Voigt order 11, 22, 33, 12, 13,
 engineering Voigt (shear doubled) on output; stresses in plain Voigt.  Internally: 3x3 tensors for the
 constitutive functions, Mandel 6-vectors (shear * sqrt 2) for the linear algebra of the mixture.
 
-Run it to see the self-checks against the worked numbers of theory.md §5:
-    python3 tests/reference/camclay9_reference.py
+Run it to see the self-checks against the worked numbers of theory.md §5 (CTest reference.self_check):
+    python3 -m camclay9.reference
 """
 import numpy as np
 from scipy.integrate import solve_ivp
