@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import calculix_mesh
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import read_history, run_driver, summary_line
-from performance_doc import replace_section
 from camclay9 import reference as ref
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -60,7 +60,7 @@ def props(tol):
 def make_mesh(size, path, root=None):
     """gmsh -3 of meshes/cylinder.geo at the element size into `path` (msh 4.1, as the driver meshes a .geo),
     and the same mesh converted without remeshing (gmsh -0) to msh 2.2, `path` + "22", read here. The .geo is the
-    one of the repository `root` (default: the one holding the current directory)."""
+    one of the repository `root` (default: camclay9.repo_root())."""
     geo = os.path.join(camclay9.repo_root(root), "meshes", "cylinder.geo")
     cmds = [["gmsh", geo, "-3", "-format", "msh41", "-setnumber", "R", str(R), "-setnumber", "H", str(H),
              "-setnumber", "size", str(size), "-o", path], ["gmsh", path, "-0", "-format", "msh22", "-o", path + "22"]]

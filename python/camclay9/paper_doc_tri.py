@@ -1,11 +1,11 @@
 """docs/paper.md's triaxial part (Yin, Liu & Borja 2021, §5, Figs. 17-18) and "Why Figs. 17 and 18 cannot both be
-matched": the paper's words, our numbers (post/paper_numbers.py) and verdicts computed from them by the rules
+matched": the paper's words, our numbers (camclay9.paper_numbers) and verdicts computed from them by the rules
 written here, each printed beside its verdict with the margin it leaves (the tolerance at which it would turn).
 
 Eq. 28's logarithm is not stated by the paper: every comparison with its Lomnitz fits is made under both readings,
 ln and log10 (the log10 curve is the ln curve / ln 10).
 """
-from paper_numbers import PAPER_LOMNITZ, SOFT_OVER_HARD
+from camclay9.paper_numbers import PAPER_LOMNITZ, SOFT_OVER_HARD
 
 READINGS = (("ln", "paper_creep", "natural log"), ("log10", "paper_creep_log10", "log10"))
 PAPER_SENTENCE = ("“The discrepancy between the simulated creep responses and the fitted logarithmic curves emanated "
