@@ -21,7 +21,7 @@ import tempfile
 from pathlib import Path
 
 from camclay9 import DriverError, mesh_line, read_history, run_driver
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "contact.md"

@@ -3,7 +3,7 @@
 
 For each element size, one gmsh mesh of the triaxial cylinder (input/triaxial.yaml's physics, phi drawn per
 element by the driver and given to CalculiX per element) runs through the driver (P1, 1 point) and through
-CalculiX (C3D4, 1 point) with the same fixed increments; tools/calculix/same_mesh.py writes both inputs.
+CalculiX (C3D4, 1 point) with the same fixed increments; python/camclay9/calculix_mesh.py writes both inputs.
 
 1. Agreement. Where the full-precision trace of CalculiX stays small (elements x increments <= --trace-max),
    the traced CalculiX is compared with the driver per increment (volume-mean strain and stress, mean axial
@@ -31,11 +31,10 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from performance_doc import replace_section
+from camclay9 import calculix_mesh
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools" / "calculix"))
-import same_mesh  # noqa: E402
 
 TITLE = "## CalculiX on the same mesh (issue 13)"
 
@@ -59,7 +58,7 @@ def top_uz_ccx(dat, sta):
                 if not x.strip():
                     break
                 rows.append(float(x.split()[3]))
-            out.append(float(np.mean(rows)) / same_mesh.SCALE)
+            out.append(float(np.mean(rows)) / calculix_mesh.SCALE)
     times = np.cumsum([r[3] for r in sta])          # exact for the fixed plans; 6 digits per increment otherwise
     assert len(out) == len(times), f"{dat}: {len(out)} printed increments, {len(times)} in the .sta"
     return [(t, u, r[0]) for t, u, r in zip(times, out, sta)]
@@ -70,7 +69,7 @@ def top_uz_driver(outdir):
     import h5py
     with h5py.File(os.path.join(outdir, "fields.h5"), "r") as f:
         xyz = f["/mesh/coordinates"][:]
-        top = np.abs(xyz[:, 2] - same_mesh.H) < 1e-9 * same_mesh.H
+        top = np.abs(xyz[:, 2] - calculix_mesh.H) < 1e-9 * calculix_mesh.H
         times = f["/time"][:, 0]
         return [(t, float(f[f"/fields/displacement/{k:06d}"][:][top, 2].mean())) for k, t in enumerate(times)], int(top.sum())
 
@@ -94,27 +93,27 @@ def median(runs, key):
 
 
 def bench_mesh(a, bindir, size, repeats, plan_name, tmp):
-    plan = same_mesh.PLANS[plan_name]
-    msh = same_mesh.make_mesh(size, str(tmp / f"cyl{size}.msh"))
-    mesh = same_mesh.read_msh22(msh + "22")
+    plan = calculix_mesh.PLANS[plan_name]
+    msh = calculix_mesh.make_mesh(size, str(tmp / f"cyl{size}.msh"))
+    mesh = calculix_mesh.read_msh22(msh + "22")
     ntet, nnode = len(mesh["tets"]), len(mesh["ids"])
-    scene = same_mesh.write_scene(msh, str(tmp / f"scene{size}.yaml"), str(tmp / "out"), 0.0, plan)
+    scene = calculix_mesh.write_scene(msh, str(tmp / f"scene{size}.yaml"), str(tmp / "out"), 0.0, plan)
     first = str(tmp / f"drv{size}")
     incs = sum(round(T / dt) for _, dt, T in plan)
     traced = ntet * incs <= a.trace_max
     # The driver's phi of this mesh: from a whole run where it is compared with the trace, else from the
     # fields written before the first step (-max_steps 1).
-    same_mesh.run_driver(a.driver, scene, first, a.driver_opts[-1].split() + ([] if traced else ["-max_steps", "1"]))
-    cell_of, f = same_mesh.driver_cells(first, mesh)
+    calculix_mesh.run_driver(a.driver, scene, first, a.driver_opts[-1].split() + ([] if traced else ["-max_steps", "1"]))
+    cell_of, f = calculix_mesh.driver_cells(first, mesh)
     with f:
         phi = f["/fields/phi/000000"][:][cell_of]
     wd = tmp / f"ccx{size}"
     wd.mkdir()
-    same_mesh.write_inp(mesh, str(wd / "cyl.inp"), phi, 0.0, plan)
+    calculix_mesh.write_inp(mesh, str(wd / "cyl.inp"), phi, 0.0, plan)
     agree = {}
     if traced:
-        c = same_mesh.run_ccx(bindir, str(wd), "cyl", threads=1, trace=str(wd / "trace.bin"))
-        agree, _, _ = same_mesh.compare(first, mesh, str(wd / "trace.bin"), c["sta"])
+        c = calculix_mesh.run_ccx(bindir, str(wd), "cyl", threads=1, trace=str(wd / "trace.bin"))
+        agree, _, _ = calculix_mesh.compare(first, mesh, str(wd / "trace.bin"), c["sta"])
         os.remove(wd / "trace.bin")
     print(f"size {size}: {ntet} tets, {nnode} nodes, plan {plan_name} ({incs} increments); agreement "
           + (", ".join(f"{k} {v:.1e}" for k, v in agree.items()) or "(trace skipped)"), flush=True)
@@ -125,10 +124,10 @@ def bench_mesh(a, bindir, size, repeats, plan_name, tmp):
         for kind, opt in configs:
             if kind == "driver":
                 out = str(tmp / "out")
-                r = same_mesh.run_driver(a.driver, scene, out, opt.split())
+                r = calculix_mesh.run_driver(a.driver, scene, out, opt.split())
                 printed_d = out
             else:
-                r = same_mesh.run_ccx(bindir, str(wd), "cyl", threads=opt)
+                r = calculix_mesh.run_ccx(bindir, str(wd), "cyl", threads=opt)
             runs[(kind, opt)].append(r)
             print(f"  rep {rep} {kind} {opt or 'default'}: {r['steps']} incs, {r['its']} its, wall {r['wall']:.2f} s, "
                   f"cpu {r['cpu']:.2f} s", flush=True)
@@ -141,24 +140,24 @@ def bench_mesh(a, bindir, size, repeats, plan_name, tmp):
 
 def bench_adaptive(a, bindir, size, tmp):
     """Each code's own step control (PROPS(20) = 1e-6) against its fixed-increment run, one run each."""
-    msh = same_mesh.make_mesh(size, str(tmp / f"ad{size}.msh"))
-    mesh = same_mesh.read_msh22(msh + "22")
+    msh = calculix_mesh.make_mesh(size, str(tmp / f"ad{size}.msh"))
+    mesh = calculix_mesh.read_msh22(msh + "22")
     res = {}
-    for label, plan, tol in (("fixed", same_mesh.PLANS["full"], 0.0), ("adaptive", None, 1e-6)):
+    for label, plan, tol in (("fixed", calculix_mesh.PLANS["full"], 0.0), ("adaptive", None, 1e-6)):
         out = str(tmp / f"ad_{label}")
-        scene = same_mesh.write_scene(msh, str(tmp / f"ad_{label}.yaml"), out, tol, plan)
-        d = same_mesh.run_driver(a.driver, scene, out, a.driver_opts[0].split())
-        cell_of, f = same_mesh.driver_cells(out, mesh)
+        scene = calculix_mesh.write_scene(msh, str(tmp / f"ad_{label}.yaml"), out, tol, plan)
+        d = calculix_mesh.run_driver(a.driver, scene, out, a.driver_opts[0].split())
+        cell_of, f = calculix_mesh.driver_cells(out, mesh)
         with f:
             phi = f["/fields/phi/000000"][:][cell_of]
         drv_uz, _ = top_uz_driver(out)
         wd = tmp / f"adccx_{label}"
         wd.mkdir()
-        same_mesh.write_inp(mesh, str(wd / "cyl.inp"), phi, tol, plan)
-        c = same_mesh.run_ccx(bindir, str(wd), "cyl", threads=1)
+        calculix_mesh.write_inp(mesh, str(wd / "cyl.inp"), phi, tol, plan)
+        c = calculix_mesh.run_ccx(bindir, str(wd), "cyl", threads=1)
         ccx_uz = top_uz_ccx(str(wd / "cyl.dat"), c["sta"])
         loaded = 1e6 + 1                                                    # end of the ramp
-        ramp_step = 1 + max(k for k, st in enumerate(plan or same_mesh.ADAPTIVE) if st[0] == "ramp")
+        ramp_step = 1 + max(k for k, st in enumerate(plan or calculix_mesh.ADAPTIVE) if st[0] == "ramp")
         u_load_d = [u for t, u in drv_uz if abs(t - loaded) < 1e-9 * loaded]
         res[label] = dict(driver=d, ccx=c, u_driver=drv_uz[-1][1], u_ccx=ccx_uz[-1][1],
                           u_load_driver=u_load_d[0], u_load_ccx=[u for _, u, st in ccx_uz if st == ramp_step][-1])
@@ -203,7 +202,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", type=float, nargs="+", default=[6.0, 2.3, 1.4], help="gmsh element sizes [mm]")
     ap.add_argument("--repeats", type=int, nargs="+", default=[3, 3, 1], help="repeats per size")
-    ap.add_argument("--plans", nargs="+", default=["full", "short", "short"], choices=sorted(same_mesh.PLANS),
+    ap.add_argument("--plans", nargs="+", default=["full", "short", "short"], choices=sorted(calculix_mesh.PLANS),
                     help="fixed increments per size: full (76) or short (10)")
     ap.add_argument("--driver-opts", nargs="+", default=["", "-pc_factor_mat_solver_type mumps"],
                     help="PETSc options of each driver configuration, one quoted string each ('' = the driver's defaults; "
@@ -245,7 +244,7 @@ AGREE_TEXT = """One gmsh mesh per row (meshes/cylinder.geo), run by the driver (
 (C3D4, 1 point), with the same UMAT, PROPS (tol = 0), per-element phi (the driver's draw of input/triaxial.yaml,
 written into CalculiX as one material per element), supports, pressures and fixed increments: "full" is the
 76 increments of input/abaqus (hold 1e6 s, ramp the top from 35 to 75 MPa in 1 s, creep 36000 s), "short" the
-first increments of each phase (10). How: tools/calculix/same_mesh.py, docs/calculix.md. **Agreement**, worst
+first increments of each phase (10). How: python/camclay9/calculix_mesh.py, docs/calculix.md. **Agreement**, worst
 relative difference over all increments (per element: over the field outputs at the end of each phase); the
 full-precision columns need the traced CalculiX and are left out on large meshes:
 

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import yaml
 from camclay9 import DriverError, driver_path, run_driver
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 CAL = ROOT / "input" / "calibrate"

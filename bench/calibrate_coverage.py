@@ -4,7 +4,7 @@ records the project makes with its own model, so the model is exact and only the
 nanoindentation record (10 rows a second: depth_nm, load_mN, time_s, segment) of the paper's protocol with a hold
 for thermal drift (protocols/paper_drift_hold.yaml: exp loading to 250 uN, 60 s hold, unloading to 25 uN, 60 s hold,
 unloading), its loads and times from make_synthetic.py, its depths those of the very forward scene the fit runs
-(the scene -calibrate_dry_run writes for the record) at the truth. Each draw takes a truth eta_soft log-uniform in
+(the scene -calibrate_dry_run writes for the record) at the truth (camclay9.instrument_record). Each draw takes a truth eta_soft log-uniform in
 [6e9, 3e10] (not the examples' 1.3e10), a start 3x above it, and fits it (nano_fast, drive: data, weighting: noise)
 for each kind of fault:
 
@@ -25,7 +25,6 @@ About 15 s CPU a fit (nano_fast, about 1 s a forward run): 20 draws of 4 faults,
 import argparse
 import contextlib
 import math
-import subprocess
 import sys
 import tempfile
 import time
@@ -33,17 +32,12 @@ from pathlib import Path
 
 import numpy as np
 import yaml
-from camclay9 import driver_path, read_history, run_driver
-from performance_doc import replace_section
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))  # post/ is no package
-import results_store  # noqa: E402
+from camclay9 import results_store, run_driver
+from camclay9.instrument_record import exact_record, scene_text, write_record
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-CAL = ROOT / "input" / "calibrate"
 TITLE = "## Measured curves: calibration coverage"
-FORWARD = CAL / "forward" / "nano_fast.yaml"
-PROTOCOL = CAL / "protocols" / "paper_drift_hold.yaml"
 DEPTH_NOISE = 1.0     # nm
 DRIFT = 0.05          # nm/s
 LOAD_NOISE = 0.005    # of the peak load
@@ -57,76 +51,6 @@ FAULTS = {  # name: (depth noise nm, drift nm/s, load noise, drift option)
 }
 
 
-def read_csv(path):
-    """The numeric columns of a record CSV ('#' lines skipped; history.csv: camclay9.read_history)."""
-    with open(path) as f:
-        lines = [line.strip().split(",") for line in f if not line.startswith("#")]
-    keep = [k for k, v in enumerate(lines[1]) if v.lstrip("-").replace(".", "", 1).replace("e", "", 1).replace("-", "")
-            .replace("+", "").isdigit() or v in ("nan", "inf")]
-    return [lines[0][k] for k in keep], np.array([[float(r[k]) for k in keep] for r in lines[1:]])
-
-
-def write_record(path, head, a):
-    with open(path, "w") as f:
-        f.write(",".join(head) + "\n")
-        for row in a:
-            f.write(f"{row[0]:.10g},{row[1]:.10g},{row[2]:.10g},{int(row[3])}\n")
-
-
-def scene_text(data, name, start, drift=None, extra="", units="units: {time: s, load: mN, depth: nm}"):
-    """A user's calibrate scene for an instrument record: every column's unit declared."""
-    return f"""scene: calibrate
-name: {name}
-parameters:
-  - {{name: eta_soft, start: {start:.6g}, min: 1.0e9, max: 1.0e12, scale: log}}
-runs:
-  - name: nano
-    scene: {FORWARD}
-    reference: none
-{f'    drift: {drift}' + chr(10) if drift else ''}    data:
-      file: {data}
-      columns: {{time: time_s, load: load_mN, depth: depth_nm, stage: segment}}
-      {units}
-weighting: noise
-{extra}"""
-
-
-def protocol(hold, work):
-    """The record's protocol: protocols/paper_drift_hold.yaml, its drift hold lasting `hold` seconds (60 as shipped)."""
-    if hold == 60:
-        return PROTOCOL
-    d = yaml.safe_load(PROTOCOL.read_text())
-    next(st for st in d["stages"] if st["name"] == "drift")["duration"] = hold
-    out = work / f"protocol_drift_{hold:g}.yaml"
-    out.write_text(yaml.safe_dump(d, sort_keys=False))
-    return out
-
-
-def exact_record(truth, work, log, hold=60):
-    """The record's loads and times from the protocol run at the truth; its depths those of the scene the fit runs
-    (driven by those loads) at the truth, interpolated at the record's times: the model is exact."""
-    rec = work / "protocol_run.csv"
-    subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(driver_path(root=ROOT)), "--scene",
-                    str(FORWARD), "--set",
-                    f"eta_soft={truth:.10g}", "--protocol", str(protocol(hold, work)), "--instrument", "10", "--out", str(rec)],
-                   check=True, capture_output=True, timeout=900)
-    head, a = read_csv(rec)  # from the first row under load: the paper's loading starts at 22 uN (docs/calibrate.md, Limits)
-    a = a[np.argmax(a[:, head.index("load_mN")] > 0):]
-    write_record(rec, head, a)
-    dry = work / "dry.yaml"
-    dry.write_text(scene_text(rec, "dry", truth, units="factors: {time: 1, load: 1000, depth: 0.001}").replace(
-        "weighting: noise\n", ""))  # the scene as any version of calibrate reads it: its forward scene is what is wanted
-    run_driver(dry, work / "dry", ["-calibrate_dry_run"], root=ROOT, timeout=900)
-    out = work / "truth"
-    run_driver(work / "dry" / "protocol" / "nano" / "scene.yaml", out,
-               ["-material_set", f"eta_soft={truth:.17g}", "-progress_every", "1000000"], root=ROOT, timeout=900)
-    h = read_history(out, need=("time", "depth"))
-    head, a = read_csv(rec)
-    t = a[:, head.index("time_s")] - a[0, head.index("time_s")]  # the forward run's time 0 is the record's first row
-    a[:, head.index("depth_nm")] = 1e3 * np.interp(t, h["time"], h["depth"])
-    return head, a
-
-
 def faulty(head, a, fault, rng):
     noise, drift, load_noise, _ = FAULTS[fault]
     b = a.copy()
@@ -138,7 +62,7 @@ def faulty(head, a, fault, rng):
 
 def fit(record, truth, fault, work):
     scene = work / f"{fault}.yaml"
-    scene.write_text(scene_text(record, fault, 3 * truth, FAULTS[fault][3]))
+    scene.write_text(scene_text(record, fault, 3 * truth, FAULTS[fault][3], root=ROOT))
     out = work / f"out_{fault}"
     r = run_driver(scene, out, root=ROOT, timeout=3600, check=False)
     cpu, wall = r.cpu, r.wall
@@ -173,7 +97,7 @@ def coverage(a, log):
         truth = float(math.exp(rng.uniform(math.log(6e9), math.log(3e10))))
         with workdir(a.keep) as tmp:
             work = Path(tmp)
-            head, clean = exact_record(truth, work, log, a.drift_hold)
+            head, clean = exact_record(truth, work, log, a.drift_hold, ROOT)
             for fault in a.faults:
                 rec = work / f"{fault}.csv"
                 write_record(rec, head, faulty(head, clean, fault, np.random.default_rng([a.seed, i])))
@@ -191,7 +115,7 @@ def cases(a, log):
     truth, out = 1.83e10, []
     with workdir(a.keep) as tmp:
         work = Path(tmp)
-        head, clean = exact_record(truth, work, log, a.drift_hold)
+        head, clean = exact_record(truth, work, log, a.drift_hold, ROOT)
         for fault, opt in (("clean", None), ("clean", "fit"), ("ignored", None), ("drift_noise", "fit"), ("both", "fit")):
             spec = FAULTS["ignored"] if fault == "drift_noise" else FAULTS[fault]
             FAULTS[f"{fault}_{opt}"] = (*spec[:3], opt)
@@ -284,7 +208,7 @@ def main(argv=None):
 
 def save_store(a, rows, cases):
     """The run's numbers into the results store (docs/results/calibrate_coverage.json), under the drift hold's length
-    (docs/calibrate.md quotes them: tools/doc_quotes.py); another hold's entry is kept."""
+    (docs/calibrate.md quotes them: camclay9.doc_quotes); another hold's entry is kept."""
     d = results_store.load("calibrate_coverage") or {"holds": {}}
     keep = ("error", "se_rel", "z", "cpu")
     d["holds"][f"{a.drift_hold:g}"] = {

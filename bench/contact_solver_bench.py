@@ -17,7 +17,7 @@ work; the Newton iterations say whether a path's directions cost the Newton extr
   bench/contact_solver_bench.py [--repeats 3] [--cases axi1,axi2,sector0.12,...] [--no-doc]
 
 Writes the section "## Contact solve: direct against field split" of docs/performance.md and its numbers into the
-results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes (tools/doc_quotes.py).
+results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes (camclay9.doc_quotes).
 """
 import argparse
 import statistics
@@ -27,12 +27,8 @@ import time
 from pathlib import Path
 
 import yaml
-from camclay9 import driver_command, mesh_line, run_measured, summary_line
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "post"))
-from performance_doc import replace_section  # noqa: E402
-import results_store  # noqa: E402
+from camclay9 import driver_command, mesh_line, results_store, run_measured, summary_line
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TIMEOUT = 3600  # s, one run

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from camclay9 import mesh_line, read_history, run_driver, summary_line
 from camclay9.launch import MPIEXEC
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## FE solver: defaults by measurement"

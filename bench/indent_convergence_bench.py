@@ -46,7 +46,7 @@ from pathlib import Path
 from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
 from indent_convergence_doc import TITLE, limits, section
 from indent_ladders import MODELS, SHORT, key, ladder, ladders, load
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 from step_control_bench import absolute, outputs
 
 ROOT = Path(__file__).resolve().parents[1]

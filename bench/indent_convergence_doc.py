@@ -2,10 +2,10 @@
 bench/indent_convergence_bench.py: per scene (kerogen, BN, BP) a table per ladder, the converged 3D answer with
 its uncertainty, and every rung against it, the shipped mesh marked; then the reading written by hand in
 bench/indent_convergence_conclusions.md."""
-import math
 import time
 from pathlib import Path
 
+from camclay9.convergence import richardson
 from indent_ladders import MODELS, OUT3, ladder, ladders
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -28,19 +28,6 @@ GROUPS = {
 }
 
 
-def richardson(hs, xs):
-    """The last three rungs (constant ratio): observed order and limit; None where not monotone or contracting."""
-    if len(xs) < 3:
-        return None, None
-    (h1, h2, _), (x1, x2, x3) = hs[-3:], xs[-3:]
-    r = h1 / h2
-    d1, d2 = x1 - x2, x2 - x3
-    if d1 * d2 <= 0 or abs(d2) >= abs(d1):
-        return None, None
-    p = math.log(d1 / d2) / math.log(r)
-    if not 0.5 <= p <= 4:  # erratic: the rungs' differences are the time step's or the contact's noise
-        return p, None
-    return p, x3 + (x3 - x2) / (r ** p - 1)
 
 
 def bracket(hs, xs):

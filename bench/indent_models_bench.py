@@ -18,17 +18,15 @@ Usage: bench/indent_models_bench.py [--repeats 2] [--models half,sector,hexhalf,
 """
 import argparse
 import re
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
+from camclay9.sector_mesh import mesh_sector, mirrored_half, msh41
 from step_control_bench import absolute, outputs, run
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "driver"))
-from test_sector import gmsh, mirrored_half, msh41  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## Indentation: 3D half model, sector and axisymmetric twin"
@@ -54,7 +52,7 @@ def mirrored(tmp):
     elements."""
     text = scene("nanoindent_kerogen_sector")
     par = dict(kv.split(": ") for kv in re.search(r"parameters: \{([^}]*)\}", text).group(1).split(", "))
-    sector = gmsh(tmp / "sector.msh", **par)
+    sector = mesh_sector(tmp / "sector.msh", ROOT, **par)
     half = mirrored_half(sector, tmp / "half.msh")
     t = re.sub(r"  geometry: \S+indent_sector.geo\n  parameters: \{[^}]*\}\n", f"  file: {msh41(half)}\n",
                text).replace("copies: 6", "copies: 2")

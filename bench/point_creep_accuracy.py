@@ -3,7 +3,7 @@
 input/point/triaxial_creep_theta0.yaml run with the UMAT's step tolerance (PROPS(20)) over five decades.
 For each tolerance: the median wall time of repeated runs (the driver's own timing of the run, without
 start-up), the steps taken, and the relative error of the creep strain at 1 h and 10 h against the
-independent Radau integration (tests/reference) with the same hold. Writes a table and a plot into
+independent Radau integration (camclay9.reference) with the same hold. Writes a table and a plot into
 docs/ (performance.md section "Material point: triaxial creep, accuracy against cost").
 
 Usage: bench/point_creep_accuracy.py [--repeats 5] [--driver build/bin/driver]
@@ -16,11 +16,10 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import read_history, run_driver, summary_line
-from performance_doc import replace_section
+from camclay9 import reference as ref
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests" / "reference"))
-import camclay9_reference as ref  # noqa: E402
 
 TOLS = [1e-5, 1e-6, 1e-7, 1e-8, 1e-9]
 TIMES = (3600.0, 36000.0)

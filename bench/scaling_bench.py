@@ -24,7 +24,7 @@ import numpy as np
 from camclay9 import mesh_line, read_history, run_driver, summary_line
 from camclay9.launch import MPIEXEC
 from fe_solver_bench import HISTORY
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## FE scaling: 1 and 2 ranks, direct and GAMG"

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from camclay9 import DriverError, read_history, run_driver, summary_line
 from matplotlib.figure import Figure
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## Time-step error control"

@@ -24,7 +24,7 @@ import json
 from pathlib import Path
 
 from camclay9 import DriverError, read_summary, run_driver
-from performance_doc import replace_section
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
-"""The documents' numbers against the results store (docs/results/*.json, post/results_store.py).
+"""The documents' numbers against the results store (docs/results/*.json, camclay9.results_store).
 
 Usage: tools/doc_numbers.py [--write] [--root DIR]
 
   (default)  check; exit 1, each difference listed, when a document's number differs from the store:
              * docs/paper.md against the text its generator writes from docs/results/paper.json
-               (post/paper_doc.py, render_store);
+               (camclay9.paper_doc, render_store);
              * the sections of docs/performance.md written from a store against what their generators write:
                "## Reproducing the paper" (paper.json) and "## 2D indentation: mesh and element study"
-               (bench/indent2d_convergence_bench.py, indent2d_convergence.json);
-             * every quote of tools/doc_quotes.py (README.md, the hand-written readings): its text, with its
+               (camclay9.indent2d_study, indent2d_convergence.json);
+             * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
                numbers computed from the stores, must stand in its document.
   --write    write those sections and docs/paper.md from the stores, and put the stores' numbers into the quotes'
              places in the documents (where a quote's text is found with other numbers in it).
@@ -23,14 +23,10 @@ import difflib
 import sys
 from pathlib import Path
 
-import doc_quotes
+from camclay9 import doc_quotes, paper_doc, results_store
+from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "post"))   # post/ and bench/ are scripts, no package: their generators
-sys.path.insert(0, str(ROOT / "bench"))
-import indent2d_convergence_bench as i2d  # noqa: E402
-import paper_doc  # noqa: E402
-import results_store  # noqa: E402
 
 PERF_SECTIONS = ("## Reproducing the paper", i2d.TITLE)
 
@@ -54,7 +50,7 @@ def generated(store_dir):
         out[("docs/performance.md", PERF_SECTIONS[0])] = paper_doc.performance_section(paper["meta"])
     s2 = results_store.load(i2d.STORE, store_dir)
     if s2:
-        out[("docs/performance.md", PERF_SECTIONS[1])] = i2d.section(s2, paper)
+        out[("docs/performance.md", PERF_SECTIONS[1])] = i2d.section(s2, paper, ROOT)
     return out
 
 

@@ -11,7 +11,7 @@ Usage: tools/reproduce.py [--quick] [--out DIR] [--driver PATH] [--jobs 2] [--do
   --quick         coarse variants of the same scenes (meshes coarsened, the UMAT's step tolerance 1e-3, the
                   same loads, durations and materials), written as scene files into DIR/scenes; output in
                   out/paper_quick; writes DIR/paper.md (docs/ only with --docs). Exits 1 unless the four
-                  trends the paper states hold (post/paper_numbers.py, check_trends).
+                  trends the paper states hold (camclay9.paper_numbers, check_trends).
 
 Scenes run two at a time (--jobs), each driver on one core; the triaxial cylinders of the full run use
 `mpiexec -n 2` and take both slots. One progress line per scene as it starts and as it ends.
@@ -26,13 +26,10 @@ import time
 from pathlib import Path
 
 import yaml
+from camclay9 import paper_doc, paper_figures, paper_numbers, results_store
+from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "post"))
-import paper_numbers  # noqa: E402
-import paper_figures  # noqa: E402
-import paper_doc  # noqa: E402
-import results_store  # noqa: E402
 
 # key: (scene file in input/, quick overrides). Quick: mesh parameters, a looser step control (the stages'
 # output error measure at QUICK_OUTPUT_TOL, or the UMAT's tol where a scene has none), fields_every. Order: longest first in the full run (the 3D microindentation).
@@ -253,7 +250,8 @@ def main(argv=None):
     paper_doc.write(out / "paper.md", numbers, trends, images, meta, image_dir=out / "figures")
     if docs:
         paper_doc.write(ROOT / "docs" / "paper.md", numbers, trends, images, meta, image_dir=ROOT / "docs" / "paper")
-        print(f"written: {results_store.save('paper', paper_doc.store_data(numbers, images, meta))}")
+        store = paper_doc.store_data(numbers, images, meta)
+        print(f"written: {results_store.save('paper', store, ROOT / 'docs' / 'results')}")
         write_performance(meta)
     print(f"reproduce ({mode}): runs {t_runs:.1f} s, total {meta['wall_total']:.1f} s wall; {out / 'paper.md'}"
           + (f", {ROOT / 'docs' / 'paper.md'}" if docs else ""))
@@ -267,9 +265,7 @@ def main(argv=None):
 def write_performance(meta):
     """The run times into docs/performance.md (section "## Reproducing the paper"), from the same meta data as
     docs/paper.md's (paper_doc.performance_section)."""
-    sys.path.insert(0, str(ROOT / "bench"))
-    from performance_doc import replace_section
-    replace_section("## Reproducing the paper", paper_doc.performance_section(meta))
+    replace_section("## Reproducing the paper", paper_doc.performance_section(meta), ROOT / "docs" / "performance.md")
 
 
 if __name__ == "__main__":

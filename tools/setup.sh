@@ -22,7 +22,8 @@ else
   echo "setup: Debian packages present"
 fi
 
-# Python packages for post/ and the independent reference integrations in tests/. A Python that is not a
+# Python packages for post/ and the package camclay9's shared modules (its plots, the independent reference
+# integration camclay9.reference, the benches' modules). A Python that is not a
 # virtual environment but is marked externally managed (PEP 668: Debian bookworm's) takes them only with
 # --break-system-packages; pip installs them under /usr/local, beside Debian's own.
 py=${PYTHON:-python3}

@@ -7,7 +7,12 @@
     summary_line(p.stdout)["steps"]               # the log's summary line as a dict
 
 Modules: history (history.csv), summary (summary.json), log (the summary and mesh lines), launch (the driver's
-path and one run), fields (fields.h5 and the tensors' layout). Installed by tools/setup.sh (pip install python/).
+path and one run), fields (fields.h5 and the tensors' layout). The code that post/, bench/, tools/ and tests/ share
+(post/README.md, "Shared code"): reference (the independent Radau integration), indent_plots, point_plots,
+triaxial_plots, lomnitz, indent_fields, paper_numbers, paper_fields, paper_figures, paper_doc, paper_doc_2d,
+paper_doc_tri, results_store, doc_quotes, performance_doc, indent2d_study, convergence, normal_gap, instrument_record,
+sector_mesh, calculix_inputs, calculix_mesh, ti_constants; these need the packages of post/requirements.txt
+(matplotlib, scipy, h5py, PyYAML). Installed by tools/setup.sh (pip install python/).
 """
 from .history import history_layout, read_history
 from .launch import DriverError, driver_command, driver_path, repo_root, run_command, run_driver, run_measured

@@ -2,7 +2,8 @@
 
 `driver_path(name, root)`: the executable `name` ('driver', or 'driver_elastic' with the elastic UMAT): from the
 environment ($DRIVER for 'driver', $DRIVER_ELASTIC for 'driver_elastic', else the sibling of $DRIVER), else
-ROOT/build/bin/NAME, ROOT the repository (given, or found upward from the current directory).
+ROOT/build/bin/NAME, ROOT the repository (given, or `repo_root()`: the one of the script being run, else the one of
+the current directory).
 
 `run_measured(cmd, log)`: one command with its output to a file, and its own CPU and peak memory (wait4).
 
@@ -15,6 +16,7 @@ import os
 import resource
 import shlex
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -34,14 +36,16 @@ class DriverError(RuntimeError):
 
 
 def repo_root(start=None):
-    """The repository holding `start` (default: the current directory): the first folder upward with
-    CMakeLists.txt and driver/src. FileNotFoundError when there is none."""
-    here = Path(start or os.getcwd()).resolve()
-    for d in (here, *here.parents):
-        if (d / "CMakeLists.txt").is_file() and (d / "driver" / "src").is_dir():
-            return d
-    raise FileNotFoundError(f"{here}: not inside the repository (no folder upward holds CMakeLists.txt and "
-                            f"driver/src); give root= or set $DRIVER")
+    """The repository holding `start` (default: the one holding the script being run, so that a script of the
+    repository finds its own wherever it is started, else the one holding the current directory: under pytest or
+    python -m): the first folder upward with CMakeLists.txt and driver/src. FileNotFoundError when there is none."""
+    starts = [Path(start)] if start else [Path(sys.argv[0] or ".").parent, Path(os.getcwd())]
+    for here in (s.resolve() for s in starts):
+        for d in (here, *here.parents):
+            if (d / "CMakeLists.txt").is_file() and (d / "driver" / "src").is_dir():
+                return d
+    raise FileNotFoundError(f"{starts[-1].resolve()}: not inside the repository (no folder upward holds CMakeLists.txt "
+                            f"and driver/src); give root= or set $DRIVER")
 
 
 def driver_path(name="driver", root=None):

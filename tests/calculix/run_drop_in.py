@@ -7,7 +7,7 @@ import os
 import subprocess
 import sys
 
-from replay import umat_object  # (a script's folder is on sys.path) CAMCLAY9_UMAT_OBJECT, or found in the build folder
+from replay import umat_object  # beside this script: CAMCLAY9_UMAT_OBJECT, or found in the build folder
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))

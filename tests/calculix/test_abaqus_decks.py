@@ -13,15 +13,13 @@ input/abaqus/KEYWORDS.md and nothing of CalculiX's own.
 """
 import os
 import re
-import sys
 
 import pytest
+from camclay9 import calculix_inputs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 INPUTS = os.path.join(REPO, "input", "abaqus")
-sys.path.insert(0, os.path.join(REPO, "tools", "calculix"))
-import make_inputs  # noqa: E402
 
 # Keyword -> parameters allowed (the table of KEYWORDS.md).
 ALLOWED = {
@@ -64,7 +62,7 @@ def model(deck):
     return [(k, tuple(sorted(p.items())), tuple(d)) for k, p, d in deck if k not in DIFFERENT]
 
 
-@pytest.mark.parametrize("name", sorted(make_inputs.ABAQUS_DECKS))
+@pytest.mark.parametrize("name", sorted(calculix_inputs.ABAQUS_DECKS))
 def test_abaqus_deck(name):
     deck = cards(os.path.join(INPUTS, name))
     with open(os.path.join(INPUTS, "KEYWORDS.md")) as f:
@@ -96,7 +94,7 @@ def test_abaqus_deck(name):
 
 def test_every_listed_keyword_is_used():
     """KEYWORDS.md lists no keyword that no Abaqus deck uses."""
-    used = {k for name in make_inputs.ABAQUS_DECKS for k, _, _ in cards(os.path.join(INPUTS, name))}
+    used = {k for name in calculix_inputs.ABAQUS_DECKS for k, _, _ in cards(os.path.join(INPUTS, name))}
     assert used == set(ALLOWED), set(ALLOWED) - used
 
 

@@ -12,20 +12,18 @@ import filecmp
 import os
 import shutil
 import subprocess
-import sys
 
 import numpy as np
 import pytest
+from camclay9 import calculix_inputs
 
-import replay  # pytest puts this folder on sys.path
+import replay  # beside this file: pytest imports a test's own folder's modules
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 BUILD = os.path.abspath(os.environ.get("CAMCLAY9_BUILD", os.path.join(REPO, "build")))
 INPUTS = os.path.join(REPO, "input", "abaqus")
-sys.path.insert(0, os.path.join(REPO, "tools", "calculix"))
-import make_inputs  # noqa: E402
 
 # Tensor groups of STATEV (0-based slices) compared by relative norm; scalars one by one.
 GROUPS = {"sigma_h": slice(0, 6), "evp_h": slice(6, 12), "pc_h": slice(12, 13), "sigma_s": slice(13, 19),
@@ -57,7 +55,7 @@ def run(ccx, name, workdir, trace):
     """Run input/abaqus/<name>.inp in workdir (single-threaded: the trace wrapper is not thread safe)."""
     os.makedirs(workdir, exist_ok=True)
     shutil.copy(os.path.join(INPUTS, name + ".inp"), workdir)
-    shutil.copy(os.path.join(INPUTS, make_inputs.CYL_INIT), workdir)     # *INCLUDEd by the cylinders
+    shutil.copy(os.path.join(INPUTS, calculix_inputs.CYL_INIT), workdir)     # *INCLUDEd by the cylinders
     env = dict(os.environ, OMP_NUM_THREADS="1", CAMCLAY9_TRACE=os.path.join(workdir, "umat_trace.txt"))
     exe = os.path.join(ccx, "ccx_camclay9_trace" if trace else "ccx_camclay9")
     r = subprocess.run([exe, "-i", name], cwd=workdir, env=env, capture_output=True, text=True, timeout=3600)
@@ -74,7 +72,7 @@ def rel(a, b):
 
 def test_inputs_are_generated(tmp_path):
     """input/abaqus/ is what tools/calculix/make_inputs.py writes."""
-    for name in make_inputs.write(str(tmp_path)):
+    for name in calculix_inputs.write(str(tmp_path)):
         assert filecmp.cmp(tmp_path / name, os.path.join(INPUTS, name), shallow=False), name
 
 
@@ -106,11 +104,11 @@ def test_triaxial_one_element(ccx, umat, tmp_path, theta):
     final = replay.converged(tr["calls"])
 
     # CalculiX's increments are the fixed ones of the input: no cutback, nothing skipped.
-    plan = make_inputs.HOLD + make_inputs.RAMP + make_inputs.CREEP
+    plan = calculix_inputs.HOLD + calculix_inputs.RAMP + calculix_inputs.CREEP
     incs = sorted({(s, k) for s, k, _, _ in final})
     expected = [(s + 1, k + 1) for s, (dt, T) in enumerate(plan) for k in range(round(T / dt))]
     assert incs == expected
-    ramp_step = len(make_inputs.HOLD) + 1
+    ramp_step = len(calculix_inputs.HOLD) + 1
 
     # Every call starts from the state kept at the end of the previous increment (STATEV persist).
     for (s, k, e, p), c in final.items():
@@ -184,10 +182,10 @@ def test_conventions_probe(ccx, umat, tmp_path):
     tr = replay.read_trace(os.path.join(wd, "umat_trace.txt"))
     host_conventions(tr)
     q = replay.read_orientation(inp)
-    e_glob = np.array(make_inputs.PROBE_STRAIN)                       # tensor shear
+    e_glob = np.array(calculix_inputs.PROBE_STRAIN)                       # tensor shear
     final = replay.converged(tr["calls"])
     incs = sorted({(s, k) for s, k, _, _ in final})
-    dt, period = make_inputs.PROBE[0]
+    dt, period = calculix_inputs.PROBE[0]
 
     # DSTRAN arrives in the material frame, with engineering shear (2 eps_ij).
     point = replay.Point(umat, np.concatenate([replay.read_props(inp), q[:, 2]]), [-35, -35, -35, 0, 0, 0])
@@ -260,13 +258,13 @@ def test_cylinder_creep(ccx, umat, tmp_path, theta):
     sta = read_sta(os.path.join(wd, name + ".sta"))
     u = [np.array(b[2]) for b in replay.read_dat(os.path.join(wd, name + ".dat")) if b[0].startswith("displ")]
     assert len(u) == len(sta)
-    ezz = np.array([b[:, 3].mean() / make_inputs.HEIGHT for b in u])
-    spread = max(np.ptp(b[:, 3]) for b in u) / np.abs(ezz * make_inputs.HEIGHT).max()
+    ezz = np.array([b[:, 3].mean() / calculix_inputs.HEIGHT for b in u])
+    spread = max(np.ptp(b[:, 3]) for b in u) / np.abs(ezz * calculix_inputs.HEIGHT).max()
     assert spread < 1e-6                    # the top stays flat: the cylinder deforms homogeneously
 
     q = replay.read_orientation(inp)
     point = replay.Point(umat, np.concatenate([replay.read_props(inp), q[:, 2]]), [-35, -35, -35, 0, 0, 0])
-    periods = [T for _, T, _, _ in make_inputs.CYL_STEPS]
+    periods = [T for _, T, _, _ in calculix_inputs.CYL_STEPS]
     sub, t_total, prev, e_point = 10, 0.0, (0, 0.0), []
     for s, k, _, step_time, dt in sta:
         t0 = prev[1] if prev[0] == s else 0.0

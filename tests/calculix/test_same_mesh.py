@@ -3,13 +3,13 @@
 One gmsh mesh of the triaxial cylinder (meshes/cylinder.geo, element size 8 mm: 625 tetrahedra) runs in the
 driver (P1, 1 point) and in CalculiX 2.20 (C3D4, 1 point) with the same UMAT, PROPS, per-element phi (the
 driver's draw, passed to CalculiX as one material per element), supports, pressures and the same 10 fixed
-increments (hold, ramp of the top pressure, creep: same_mesh.PLANS["short"]). tools/calculix/same_mesh.py
+increments (hold, ramp of the top pressure, creep: calculix_mesh.PLANS["short"]). python/camclay9/calculix_mesh.py
 writes both inputs; docs/calculix.md ("The same mesh in both codes") says how.
 
 Why 1e-8 relative is a fair bound: both solve the same discrete equations (same nodes, same linear
 tetrahedra, same consistent pressure loads p A / 3, same UMAT calls), so they differ only by the stopping of
 their Newton iterations and by rounding. The driver stops at a residual 1e-12 relative (and 1e-10 of the
-load scale); CalculiX at residual and correction ratios 1e-12 (make_inputs.CONTROLS), with its 1e-6
+load scale); CalculiX at residual and correction ratios 1e-12 (calculix_inputs.CONTROLS), with its 1e-6
 force-unit floor made irrelevant by writing its lengths in um. CalculiX symmetrises DDSDDE and so
 converges linearly, which leaves its solution about 1e-10 from the exact one (measured: 2.5e-10 at
 worst, in the mean strain of the first increment). What is read has more digits than that: the driver's
@@ -20,14 +20,12 @@ difference in the physics fails it: CalculiX's phi changed by 1e-6 relative move
 viscoplastic strain by 2.5e-6 and the mean strain by 6e-7 (measured; docs/calculix.md).
 """
 import os
-import sys
 
 import numpy as np
 import pytest
-from test_calculix import BUILD, REPO, ccx  # noqa: F401  (the build_ccx.sh fixture; pytest puts this folder on sys.path)
+from camclay9 import calculix_mesh
+from test_calculix import BUILD, REPO, ccx  # noqa: F401  (the build_ccx.sh fixture, beside this file)
 
-sys.path.insert(0, os.path.join(REPO, "tools", "calculix"))
-import same_mesh  # noqa: E402
 
 DRIVER = os.environ.get("DRIVER", os.path.join(BUILD, "bin", "driver"))
 
@@ -35,21 +33,21 @@ DRIVER = os.environ.get("DRIVER", os.path.join(BUILD, "bin", "driver"))
 def test_driver_and_calculix_agree(ccx, tmp_path):  # noqa: F811
     if not os.path.exists(DRIVER):
         pytest.fail(f"{DRIVER} missing: build the project first (CAMCLAY9_BUILD={BUILD})")
-    msh = same_mesh.make_mesh(8.0, str(tmp_path / "cyl.msh"))
-    mesh = same_mesh.read_msh22(msh + "22")
-    plan = same_mesh.PLANS["short"]
+    msh = calculix_mesh.make_mesh(8.0, str(tmp_path / "cyl.msh"))
+    mesh = calculix_mesh.read_msh22(msh + "22")
+    plan = calculix_mesh.PLANS["short"]
     out = str(tmp_path / "driver")
-    scene = same_mesh.write_scene(msh, str(tmp_path / "scene.yaml"), out, 0.0, plan)
-    d = same_mesh.run_driver(DRIVER, scene, out)
-    cell_of, f = same_mesh.driver_cells(out, mesh)
+    scene = calculix_mesh.write_scene(msh, str(tmp_path / "scene.yaml"), out, 0.0, plan)
+    d = calculix_mesh.run_driver(DRIVER, scene, out)
+    cell_of, f = calculix_mesh.driver_cells(out, mesh)
     with f:
         phi = f["/fields/phi/000000"][:][cell_of]
     assert 0.4 <= phi.min() < phi.max() <= 0.6 and np.std(phi) > 0.02       # the scene's drawn field
     wd = tmp_path / "ccx"
     wd.mkdir()
-    same_mesh.write_inp(mesh, str(wd / "cyl.inp"), phi, 0.0, plan)
-    c = same_mesh.run_ccx(ccx, str(wd), "cyl", threads=1, trace=str(wd / "trace.bin"))
-    worst, dh, th = same_mesh.compare(out, mesh, str(wd / "trace.bin"), c["sta"])
+    calculix_mesh.write_inp(mesh, str(wd / "cyl.inp"), phi, 0.0, plan)
+    c = calculix_mesh.run_ccx(ccx, str(wd), "cyl", threads=1, trace=str(wd / "trace.bin"))
+    worst, dh, th = calculix_mesh.compare(out, mesh, str(wd / "trace.bin"), c["sta"])
     print(f"\n{len(mesh['tets'])} tetrahedra, {len(plan)} phases, {d['steps']} increments; Newton iterations: "
           f"driver {d['its']}, CalculiX {c['its']}; worst relative differences:\n  "
           + ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))

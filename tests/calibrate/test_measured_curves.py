@@ -1,26 +1,23 @@
 """Issue 37: calibration on measured curves: units declared, thermal drift, noisy loads, standard errors for correlated
-residuals, and the refinement's and paths' messages. The records are the project's own model's (bench/
-calibrate_coverage.py's exact_record: the loads and times of an instrument record, 10 rows a second, of the paper's
-nano protocol with a 60 s hold at 10 % of the peak load on unloading, protocols/paper_drift_hold.yaml; its depths those
-of the very forward scene the fit runs, nano_fast driven by those loads, at the truth), so the model is exact and only
-the faults each test adds remain. The truth, 1.7e10, is not the examples' 1.3e10. About 3 min CPU in all."""
+residuals, and the refinement's and paths' messages. The records are the project's own model's
+(camclay9.instrument_record's exact_record, as bench/calibrate_coverage.py makes them: the loads and times of an
+instrument record, 10 rows a second, of the paper's nano protocol with a 60 s hold at 10 % of the peak load on
+unloading, protocols/paper_drift_hold.yaml; its depths those of the very forward scene the fit runs, nano_fast driven
+by those loads, at the truth), so the model is exact and only the faults each test adds remain. The truth, 1.7e10,
+is not the examples' 1.3e10. About 3 min CPU in all."""
 import csv
 import os
 import re
 import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 import yaml
 from camclay9 import read_history, run_driver
-
+from camclay9.instrument_record import exact_record, write_record
 from test_calibrate import CAL, DRIVER, ROOT, run
 
-sys.path.insert(0, str(ROOT / "bench"))
 os.environ.setdefault("DRIVER", DRIVER)
-import calibrate_coverage as cov  # noqa: E402
 
 TRUTH = 1.7e10
 
@@ -29,7 +26,7 @@ TRUTH = 1.7e10
 def clean(tmp_path_factory):
     """The exact record: (columns, rows, its folder)."""
     work = tmp_path_factory.mktemp("record")
-    head, a = cov.exact_record(TRUTH, work, print)
+    head, a = exact_record(TRUTH, work, print, root=ROOT)
     return head, a, work
 
 
@@ -45,7 +42,7 @@ def record(path, head, a, drift=0.0, depth_noise=0.0, load_noise=0.0, seed=1, ar
             e[i] = ar1 * e[i - 1] + np.sqrt(1 - ar1 * ar1) * e[i]
     b[:, d] += drift * (b[:, t] - b[0, t]) + depth_noise * e
     b[:, p] += load_noise * a[:, p].max() * rng.standard_normal(len(b))
-    cov.write_record(path, head, b)
+    write_record(path, head, b)
     return path
 
 
@@ -83,7 +80,7 @@ def test_time_in_minutes_without_a_unit_is_refused(clean, tmp_path):
     b = a.copy()
     b[:, head.index("time_s")] /= 60
     data = tmp_path / "minutes.csv"
-    cov.write_record(data, ["depth_nm", "load_mN", "time_min", "segment"], b)
+    write_record(data, ["depth_nm", "load_mN", "time_min", "segment"], b)
     s = scene(tmp_path / "minutes.yaml", data, "      factors: {load: 1000, depth: 0.001}\n",
               columns="{time: time_min, load: load_mN, depth: depth_nm, stage: segment}")
     r = run(s, tmp_path / "out")

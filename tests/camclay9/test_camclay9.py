@@ -179,6 +179,29 @@ def test_driver_path(tmp_path, monkeypatch):
          "-output_dir", "o", "-x", "1"]
 
 
+def test_repo_root_of_a_script_then_of_the_current_directory(tmp_path):
+    """A script of a repository finds its own repository wherever it is started (the files the shared modules read,
+    docs/results and docs/performance.md among them, are that repository's); python -c, which is no script, finds
+    the current directory's; neither inside a repository: FileNotFoundError naming the current directory."""
+    import subprocess
+    mine, other, outside = tmp_path / "mine", tmp_path / "other", tmp_path / "outside"
+    for repo in (mine, other):
+        (repo / "driver" / "src").mkdir(parents=True)
+        (repo / "CMakeLists.txt").write_text("")
+    outside.mkdir()
+    (mine / "tools").mkdir()
+    script = mine / "tools" / "where.py"
+    script.write_text("import camclay9\nprint(camclay9.repo_root())\n")
+    for cwd in (other, outside):
+        r = subprocess.run([sys.executable, str(script)], cwd=cwd, capture_output=True, text=True, timeout=60)
+        assert r.stdout.strip() == str(mine.resolve()), r.stderr
+    code = "import camclay9; print(camclay9.repo_root())"
+    r = subprocess.run([sys.executable, "-c", code], cwd=other / "driver", capture_output=True, text=True, timeout=60)
+    assert r.stdout.strip() == str(other.resolve()), r.stderr
+    r = subprocess.run([sys.executable, "-c", code], cwd=outside, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1 and f"{outside.resolve()}: not inside the repository" in r.stderr, r.stderr
+
+
 def test_run_driver_output_failure_timeout(tmp_path):
     exe = fake_driver(tmp_path, 'echo "$@"; echo "point scene s: 1 steps, 0 cutbacks, worst control residual 0 '
                                 '(relative), 0.1 s -> $4/history.csv"')

@@ -5,16 +5,14 @@ range), and a homogeneous triaxial creep box against the material-point driver.
 $DRIVER and $DRIVER_ELASTIC are the driver executables (CTest sets them).
 """
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from camclay9 import driver_path, read_history, run_driver
+from camclay9 import reference as ref
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "reference"))
-import camclay9_reference as ref  # noqa: E402
 
 DRIVER = driver_path(root=ROOT)
 DRIVER_ELASTIC = driver_path("driver_elastic", root=ROOT)
@@ -63,7 +61,7 @@ def test_patch_camclay_elastic_range(tmp_path, order):
     """The same with Cam-Clay IX inside its yield surfaces (pc0 = 500 MPa in both frames), bedding normal
     along x1 (theta = 90: the rollers admit a uniform state only when the material axes are the box
     axes): uniform strain C^-1 (sigma - sigma0) with the transversely isotropic mixture stiffness built
-    independently (tests/reference, from theory.md §4.2)."""
+    independently (camclay9.reference, from theory.md §4.2)."""
     n = [1.0, 0.0, 0.0]
     h, _ = run(DRIVER, BOX.format(
         order=order,

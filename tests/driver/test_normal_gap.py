@@ -21,16 +21,14 @@ The test fails if the measured ratio leaves these values:
 The driver runs with a timeout (a broken gap once hung a run for 20 min of CPU).
 """
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from camclay9 import read_history, run_driver
+from camclay9.normal_gap import A, A_R, QUICK, kappa, scene, theory
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench"))
-from normal_gap_bench import A, A_R, QUICK, kappa, scene, theory  # noqa: E402
 
 
 
@@ -38,7 +36,7 @@ def load_ratio(psi, nu, gap, tmp):
     """Mean P / P_Sneddon over the steps from 0.45 h to h, on the benchmark's quick block (400 x 200, P1)."""
     d = tmp / f"{gap}_{psi}_{nu}"
     d.mkdir()
-    (d / "scene.yaml").write_text(scene(psi, nu, gap, QUICK))
+    (d / "scene.yaml").write_text(scene(psi, nu, gap, QUICK, ROOT))
     run_driver(d / "scene.yaml", d / "out", name="driver_elastic", root=ROOT, timeout=300)  # DriverError: failed
     h = read_history(d / "out", need=("load", "depth"))
     rows = h["depth"] > 0.45 * math.pi / 2 / math.tan(math.radians(psi))

@@ -12,13 +12,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from camclay9 import read_history, run_driver, summary_line
+from camclay9 import point_plots, read_history, run_driver, summary_line
+from camclay9 import reference as ref
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "reference"))
-sys.path.insert(0, str(ROOT / "post"))
-import camclay9_reference as ref  # noqa: E402
-import point_plots  # noqa: E402
 
 # Every shipped point scene; the full extremes sweep is a benchmark (bench/run_extremes_sweep.sh).
 SCENES = sorted(p for p in (ROOT / "input" / "point").glob("*.yaml") if "scene: sweep" not in p.read_text())

@@ -1,6 +1,6 @@
 """Physical checks of the shipped material-point scenes (input/point/), each against a number known
 without the UMAT: theory.md's hardening law and yield function (evaluated by the independent
-tests/reference/camclay9_reference.py), the mixture's elastic stiffness (theory.md §2, §4.2, §5.1) and
+python/camclay9/reference.py), the mixture's elastic stiffness (theory.md §2, §4.2, §5.1) and
 the lab record of the CSV file. history.csv prints 12 significant digits: tolerances are 1e-9 relative.
 
 * isotropic compression: every row on each frame's normal compression line pc = pc0 exp(-tr evp/lambda_p)
@@ -15,16 +15,14 @@ the lab record of the CSV file. history.csv prints 12 significant digits: tolera
 * lab table: eps_33 equals -0.01 x the CSV's axial strain (percent) interpolated linearly at t/60 min.
 * every scene: sigma = phi sigma_hard + (1 - phi) sigma_soft in every row (theory.md §2).
 """
-import sys
 from pathlib import Path
 
 import numpy as np
 from camclay9 import read_history, run_driver
 import pytest
+from camclay9 import reference as ref
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "reference"))
-import camclay9_reference as ref  # noqa: E402
 
 PHI, HARD, SOFT = ref.frames(ref.WOODFORD)
 N0 = np.array([0.0, 0.0, 1.0])                       # bedding_angle 0 in every scene used here

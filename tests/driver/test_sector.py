@@ -10,13 +10,13 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
 - bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
   of the material (BP)."""
 import math
-import subprocess
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
 from camclay9.fields import voigt  # fields.h5 holds full 3x3 tensors
+from camclay9.sector_mesh import mesh_sector, mirrored_half, msh41, read_msh
 from test_contact import run, tangent_checks  # the elastic driver on a scene; its history
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,23 +35,6 @@ def fields(out, k=-1):
                 f["mesh/cells"][:])
 
 
-def gmsh(out, **par):
-    """The sector geometry meshed as a gmsh 2.2 file (read by read_msh below)."""
-    args = ["gmsh", "-3", str(GEO), "-format", "msh22", "-o", str(out)]
-    for k, v in par.items():
-        args += ["-setnumber", k, str(v)]
-    subprocess.run(args, check=True, capture_output=True, timeout=600)
-    return out
-
-
-def msh41(path):
-    """The driver reads gmsh format 4.1 only (io/gmsh_mesh.c refuses 2.x: PETSc 3.18 mislabels its physical
-    groups); the 2.2 files of this test (read and written by read_msh, write_msh) converted by gmsh."""
-    out = path.with_name(path.stem + "_41.msh")
-    subprocess.run(["gmsh", str(path), "-0", "-format", "msh41", "-o", str(out)], check=True, capture_output=True, timeout=600)
-    return out
-
-
 @pytest.mark.parametrize("order", [1, 2])
 def test_inclined_mirror_uniform_stress(tmp_path, order):
     """The sector prism (L = 2): mirror planes at azimuth 30 degrees (inclined) and x = 0, the bottom on rollers
@@ -64,7 +47,7 @@ def test_inclined_mirror_uniform_stress(tmp_path, order):
     projected on their normals (those components are carried by the supports directly); P1 only. P2 (the frames
     on edge nodes too): displacements and stresses."""
     p, s, L = 3.0, 5.0, 2.0
-    msh = gmsh(tmp_path / "m.msh", L=L, span=60, h_tip=0.3, h_far=0.6, r_fine=0.3, r_contact=0.5)
+    msh = mesh_sector(tmp_path / "m.msh", L=L, span=60, h_tip=0.3, h_far=0.6, r_fine=0.3, r_contact=0.5)
     text = f"""scene: fe
 mesh: {{file: {msh41(msh)}, order: {order}}}
 material: {ELASTIC}
@@ -127,7 +110,7 @@ def test_rotated_copy_equals_axis_aligned(tmp_path):
     same mesh rotated by Q (40 degrees about (1, 2, 3)), with the mirror's normal Q e_x (every node of it in a frame
     of its own) and the traction Q t: the displacements are Q u, the stresses Q sigma Q^T and the reactions Q R,
     to 1e-10."""
-    msh = gmsh(tmp_path / "m.msh", L=2, span=60, h_tip=0.15, h_far=0.5, r_fine=0.3, r_contact=0.5)
+    msh = mesh_sector(tmp_path / "m.msh", L=2, span=60, h_tip=0.15, h_far=0.5, r_fine=0.3, r_contact=0.5)
     Q = rotation((1, 2, 3), 40)
     names, row, x, elems = read_msh(msh)
     lines = msh.read_text().split("\n")
@@ -164,92 +147,6 @@ stages:
     print(f"rotated copy: displacements {du:.2e}, stresses {ds:.2e}, reactions {dr:.2e} (relative)")
     assert np.abs(u0[:, 0][np.abs(x[:, 0]) < 1e-12]).max() == 0 and np.abs(u0).max() > 1e-4
     assert du < 1e-10 and ds < 1e-10 and dr < 1e-10
-
-
-def read_msh(path):
-    """gmsh 2.2 (ASCII): physical names, nodes (id -> row), elements (type, physical tag, node ids)."""
-    lines = Path(path).read_text().split("\n")
-    i, names, ids, xyz, elems = 0, {}, [], [], []
-    while i < len(lines):
-        if lines[i] == "$PhysicalNames":
-            for j in range(int(lines[i + 1])):
-                d, t, n = lines[i + 2 + j].split(maxsplit=2)
-                names[int(t)] = (int(d), n.strip('"'))
-        elif lines[i] == "$Nodes":
-            for j in range(int(lines[i + 1])):
-                w = lines[i + 2 + j].split()
-                ids.append(int(w[0]))
-                xyz.append([float(v) for v in w[1:4]])
-        elif lines[i] == "$Elements":
-            for j in range(int(lines[i + 1])):
-                w = [int(v) for v in lines[i + 2 + j].split()]
-                elems.append((w[1], w[3], w[3 + w[2]:]))
-        i += 1
-    return names, dict(zip(ids, range(len(ids)))), np.array(xyz), elems
-
-
-def write_msh(path, groups, x, elems):
-    """gmsh 2.2: groups {name: (dim, tag)}, x (nodes 1..n), elems [(type, tag, nodes)]."""
-    out = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", str(len(groups))]
-    out += [f'{d} {t} "{n}"' for n, (d, t) in groups.items()] + ["$EndPhysicalNames", "$Nodes", str(len(x))]
-    out += [f"{k + 1} {a:.17g} {b:.17g} {c:.17g}" for k, (a, b, c) in enumerate(x)] + ["$EndNodes", "$Elements", str(len(elems))]
-    out += [f"{k + 1} {t} 2 {g} {g} " + " ".join(map(str, n)) for k, (t, g, n) in enumerate(elems)] + ["$EndElements", ""]
-    Path(path).write_text("\n".join(out))
-
-
-def mirrored_half(sector_msh, out):
-    """The half x >= 0 of the hexagonal prism as three mirror images of the sector's mesh [30, 90] degrees: its
-    reflection about the plane at 30 degrees ([-30, 30]), and that one's about the plane at -30 degrees ([-90, -30]).
-    Nodes on a reflecting plane are shared; reflected elements are reordered to keep their orientation. The faces
-    on the two inner planes are dropped; the vertical outer faces are grouped by plane: x0 and side_m60, side_0,
-    side_60 (by the azimuth of their outward normal)."""
-    names, row, x0, elems0 = read_msh(sector_msh)
-    byname = {n: t for t, (d, n) in names.items()}
-    x = [tuple(v) for v in x0]
-    copies = [[(t, names[g][1], [row[i] for i in n]) for t, g, n in elems0]]
-    for phi in (30.0, -30.0):
-        m = np.array([math.sin(math.radians(phi)), -math.cos(math.radians(phi)), 0.0])  # the plane's normal
-        image = {}
-        new = []
-        for t, g, nodes in copies[-1]:
-            for i in nodes:
-                if i not in image:
-                    xi = np.array(x[i])
-                    if abs(xi @ m) < 1e-12:
-                        image[i] = i
-                    else:
-                        x.append(tuple(xi - 2 * (xi @ m) * m))
-                        image[i] = len(x) - 1
-            nn = [image[i] for i in nodes]
-            if len(nn) >= 3:
-                nn[0], nn[1] = nn[1], nn[0]
-            new.append((t, g, nn))
-        copies.append(new)
-    x = np.array(x)
-    groups = {"block": (3, 1), "bottom": (2, 2), "top": (2, 3), "contact": (2, 4), "x0": (2, 5), "side_m60": (2, 6),
-              "side_0": (2, 7), "side_60": (2, 8), "tip": (0, 9)}
-    elems = []
-    for c, copy in enumerate(copies):
-        for t, g, nodes in copy:
-            if t == 15 and c > 0:
-                continue
-            if t == 2 and g in ("mirror_a", "mirror_b", "side1"):
-                p = x[nodes]
-                n = np.cross(p[1] - p[0], p[2] - p[0])
-                n /= np.linalg.norm(n)
-                d = p.mean(axis=0) @ n
-                if d < 0:
-                    n, d = -n, -d
-                if d < 1e-9:
-                    if abs(p[:, 0]).max() > 1e-12:
-                        continue   # an inner plane
-                    g = "x0"
-                else:
-                    g = {-60: "side_m60", 0: "side_0", 60: "side_60"}[round(math.degrees(math.atan2(n[1], n[0])))]
-            elems.append((t, groups[g][1], [i + 1 for i in nodes]))
-    assert "side1" in byname
-    write_msh(out, groups, x, elems)
-    return out
 
 
 BERKOVICH_PUSH = """indenter: {shape: berkovich, half_angle: 65.27, contact: contact}
@@ -292,7 +189,7 @@ def test_sector_equals_mirrored_half_model(tmp_path):
     degrees lie under its edges), and the tip node, on the axis, is held there (x and y fixed, as the sector's
     two mirror planes hold it): free, it slides off the apex along one face (by 0.014 at h = 0.1 here), a
     branch that breaks the symmetry and lowers P by 1.3 %."""
-    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
+    sector = mesh_sector(tmp_path / "sector.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
     half = mirrored_half(sector, tmp_path / "half.msh")
     s = run(sector_scene(sector), tmp_path / "s")
     h = run(half_scene(half), tmp_path / "h")
@@ -312,7 +209,7 @@ def test_p2_sector_equals_mirrored_half_model(tmp_path):
     contact nodes have none (its plane x = 0 is axis-aligned), so it is an independent reference. 3 x the
     sector's load equals the half model's to round-off (the mortar integrals in global axes, frames ignored, are
     0.9 % off, 1.1 % at h = 0.1); the sector on 2 ranks (frames on the nodes of facets across the partition) gives its load on 1."""
-    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
+    sector = mesh_sector(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
     half = mirrored_half(sector, tmp_path / "half.msh")
     s = run(sector_scene(sector, order=2), tmp_path / "s")
     h = run(half_scene(half, order=2), tmp_path / "h")
@@ -330,7 +227,7 @@ def test_p2_sector_tangent_against_finite_differences(tmp_path):
     rows rotated (Bt, B) are the exact derivatives of the residual: below 1e-8 at every iterate checked (with
     Bt left in global axes: 1.3e-6). The contact must reach past the tip: at least 4 active multipliers."""
     import re
-    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
+    sector = mesh_sector(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
     text = sector_scene(sector, order=2, indenter="""indenter: {shape: berkovich, half_angle: 65.27, contact: contact}
 stages:
   - {name: push, duration: 1, indenter: {load: 4}, steps: {count: 2}}
@@ -378,7 +275,7 @@ def test_copies_give_the_whole_indenters_load(tmp_path):
     sector under force control to a model load of 2 (an exp load to until.load, a hold, a ramp down) and with
     copies 6 to 12: the same depths at every step (the model solves the same problem), and the loads and the
     contact force 6 times the model's (both to round-off)."""
-    sector = gmsh(tmp_path / "sector.msh", L=2, span=60, h_tip=0.15, h_far=0.5, r_fine=0.3, r_contact=0.6)
+    sector = mesh_sector(tmp_path / "sector.msh", L=2, span=60, h_tip=0.15, h_far=0.5, r_fine=0.3, r_contact=0.6)
 
     def push(total, copies):
         extra = f", copies: {copies}" if copies else ""

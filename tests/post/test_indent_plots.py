@@ -19,10 +19,9 @@ import h5py
 import numpy as np
 import pytest
 from camclay9.fields import full
+from camclay9 import indent_plots as ip
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "post"))
-import indent_plots as ip  # noqa: E402
 
 COLUMNS = ip.HISTORY_COLUMNS
 # history rows: (time, stage, name, load, depth)

@@ -1,15 +1,14 @@
-"""post/paper_numbers.py: the numbers of docs/paper.md and the trend checks of tools/reproduce.py --quick,
+"""camclay9.paper_numbers: the numbers of docs/paper.md and the trend checks of tools/reproduce.py --quick,
 on synthetic runs whose answers are known."""
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from camclay9 import paper_numbers as pn
+from camclay9.lomnitz import lomnitz
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "post"))
-import paper_numbers as pn  # noqa: E402
-from lomnitz import lomnitz  # noqa: E402
 
 
 def write_triaxial(run, t, eps, soft, hard, t_hold=1.0e6):
@@ -81,7 +80,7 @@ def test_stated_errors_of_an_adapted_run(tmp_path):
     lower-bound flag: the creep depth's mesh and time-step errors (the hold's), the residual depth's (the unload's
     end), the number of meshes; a run on one mesh states none."""
     import json
-    import paper_doc
+    from camclay9 import paper_doc
     run = tmp_path / "bn"
     run.mkdir()
     stage = lambda name, me, te: {"name": name, "end": {"depth": 1.0}, "change": {"depth": 0.1}, "mesh_error": me, "time_error": te}

@@ -1,8 +1,8 @@
-"""Tests of post/lomnitz.py and post/point_plots.py.
+"""Tests of camclay9.lomnitz and post/point_plots.py.
 
 (a) the Lomnitz fit recovers the paper's theta = 0 values (B = 9.97e-5, tau = 385 s, theory.md §5.4);
 (b) point_plots runs on a realistic material-point history made by the independent reference
-    integration (tests/reference/camclay9_reference.py): Woodford props, theta = 0, both frames at
+    integration (python/camclay9/reference.py): Woodford props, theta = 0, both frames at
     -35 MPa, jump to diag(-35, -35, -75) MPa and creep for 36000 s;
 (c) a history.csv with a missing column is rejected with the file and the column named.
 """
@@ -13,13 +13,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from camclay9 import reference as ref
+from camclay9 import point_plots as pp
+from camclay9.lomnitz import lomnitz, lomnitz_fit
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "post"))
-sys.path.insert(0, str(ROOT / "tests" / "reference"))
-import camclay9_reference as ref  # noqa: E402
-import point_plots as pp  # noqa: E402
-from lomnitz import lomnitz, lomnitz_fit  # noqa: E402
 
 B_PAPER, TAU_PAPER = 9.97e-5, 385.0
 

@@ -8,11 +8,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from camclay9 import doc_quotes
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
-sys.path.insert(0, str(ROOT / "tools"))
-import doc_quotes  # noqa: E402
 
 DOCS = ("README.md", "docs/paper.md", "docs/performance.md", "docs/contact.md", "docs/calibrate.md",
         "bench/indent2d_convergence_conclusions.md",

@@ -1,7 +1,6 @@
-"""Tests of tools/ti_constants.py against independently known numbers (theory.md 4.3, Table 1 of
+"""Tests of tools/ti_constants.py (camclay9.ti_constants) against independently known numbers (theory.md 4.3, Table 1 of
 Yin, Liu & Borja 2021)."""
 
-import importlib.util
 import json
 import pathlib
 import subprocess
@@ -9,11 +8,9 @@ import sys
 
 import numpy as np
 import pytest
+from camclay9 import ti_constants as ti
 
 TOOL = pathlib.Path(__file__).resolve().parents[2] / "tools" / "ti_constants.py"
-_spec = importlib.util.spec_from_file_location("ti_constants", TOOL)
-ti = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(ti)
 
 # Table 1, hard frame. "converted" is what the scenes use; "original" is the paper's engineering column.
 CONVERTED = dict(lam=2900.0, muT=18000.0, muL=13000.0, a=4100.0, b=6900.0)

@@ -1,19 +1,15 @@
 """Perzyna creep at one point under constant stress (issue #2): the UMAT's backward-Euler creep strain
 converges at first order in the time step, and the finest run agrees with an independent Radau
-integration of the same ODEs (tests/reference/camclay9_reference.py, written from theory.md) to 1e-6.
+integration of the same ODEs (python/camclay9/reference.py, written from theory.md) to 1e-6.
 
 The point is run by the Fortran program creep_point (path in $CREEP_POINT): both frames at -35 MPa,
 an elastic jump (DTIME = 0) to diag(-35, -35, -75) MPa, then held for T = 3600 s.
 """
 import os
 import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reference"))
-import camclay9_reference as ref  # noqa: E402
+from camclay9 import reference as ref
 
 THETA_DEG = 30.0
 T_END = 3600.0

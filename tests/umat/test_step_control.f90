@@ -1,7 +1,7 @@
 !> Step control through PNEWDT with PROPS(20) = tol > 0 (theory.md §3.6, docs/umat.md): a host that
 !> cuts back on PNEWDT < 1 and grows the step by PNEWDT > 1 integrates constant-stress creep with an
 !> error that falls with tol; a rejected step leaves STRESS and STATEV exactly as they came in.
-!> Reference: the Radau integration of tests/reference/camclay9_reference.py (creep_mixture, Woodford,
+!> Reference: the Radau integration of python/camclay9/reference.py (creep_mixture, Woodford,
 !> theta = 30 deg, -35 MPa, jump to diag(-35, -35, -75) MPa): creep strain -1.5808987616e-04 at 3600 s.
 program test_step_control
   use, intrinsic :: iso_fortran_env, only: real64, output_unit

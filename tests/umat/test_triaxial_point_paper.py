@@ -1,6 +1,6 @@
 """Triaxial creep at one point (theory.md §5.4): both frames at -35 MPa, held 1e6 s to steady state,
 then sigma_d = 40 MPa. The UMAT's creep strain at 385, 3600 and 36000 s after loading, for theta = 0 and
-90 degrees, against the independent Radau integration of tests/reference/camclay9_reference.py (same
+90 degrees, against the independent Radau integration of python/camclay9/reference.py (same
 hold, rtol 1e-10): relative error below 1e-5 after Richardson extrapolation of two backward-Euler runs
 (N and 2N geometric steps, every step halved: the error is first order in dt); the finer run alone is
 within 1e-3. The Radau values also reproduce the [VER] table of theory.md §5.4 to its printed two
@@ -9,13 +9,9 @@ digits, and theta = 0 creeps more than theta = 90 (the paper's ordering).
 import math
 import os
 import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reference"))
-import camclay9_reference as ref  # noqa: E402
+from camclay9 import reference as ref
 
 # theory.md §5.4, "intrinsic stress, both frames start at -35 MPa" rows (magnitudes).
 TABLE = {0: {385: 6.1e-5, 3600: 1.3e-4, 36000: 2.8e-4},

@@ -4,7 +4,7 @@
     python3 tools/calculix/bench_ccx.py [--repeat 3] [--core 8 --layers 16] [--threads 1 2]
 
 Builds CalculiX with tools/calculix/build_ccx.sh if needed (CAMCLAY9_BUILD as there), writes the
-theta = 0 cylinder of make_inputs.py with the requested mesh into a temporary folder, runs it with
+theta = 0 cylinder of camclay9.calculix_inputs with the requested mesh into a temporary folder, runs it with
 OMP_NUM_THREADS = 1 and 2, and prints a Markdown table: wall time per increment and per Newton
 iteration (median over the repetitions; CalculiX's own "Total CalculiX Time"), and UMAT calls.
 """
@@ -15,7 +15,7 @@ import subprocess
 import sys
 import tempfile
 
-import make_inputs
+from camclay9 import calculix_inputs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -40,13 +40,13 @@ def main():
     if r.returncode != 0:
         sys.exit(r.stderr)
     exe = os.path.join(r.stdout.strip().splitlines()[-1], "ccx_camclay9")
-    make_inputs.CORE, make_inputs.LAYERS = a.core, a.layers
-    elements = a.layers * len(make_inputs.disk()[1])
+    calculix_inputs.CORE, calculix_inputs.LAYERS = a.core, a.layers
+    elements = a.layers * len(calculix_inputs.disk()[1])
     with tempfile.TemporaryDirectory() as wd:
         with open(os.path.join(wd, "cyl.inp"), "w") as f:
-            f.write(make_inputs.cylinder(0))
-        with open(os.path.join(wd, make_inputs.CYL_INIT), "w") as f:
-            f.write(make_inputs.initial_stress(range(1, elements + 1), 8).split("TYPE=STRESS\n")[1])
+            f.write(calculix_inputs.cylinder(0))
+        with open(os.path.join(wd, calculix_inputs.CYL_INIT), "w") as f:
+            f.write(calculix_inputs.initial_stress(range(1, elements + 1), 8).split("TYPE=STRESS\n")[1])
         print(f"cylinder theta = 0, {elements} C3D8 ({8 * elements} integration points), {a.repeat} runs each\n")
         print("| threads | increments | Newton iterations | total s (median) | ms per increment | ms per iteration |")
         print("|---|---|---|---|---|---|")

@@ -13,7 +13,7 @@
 !>   stran(ntens) dstran(ntens) stress_in(ntens) stress_out(ntens) statev_in(nstatv) statev_out(nstatv)
 !> ddsdde_asym = max|D - D^T| / max|D| of the returned DDSDDE (before CalculiX symmetrises it).
 !>
-!> Compact binary log (for meshes of many elements, tools/calculix/same_mesh.py): when $CAMCLAY9_TRACE_BIN
+!> Compact binary log (for meshes of many elements, python/camclay9/calculix_mesh.py): when $CAMCLAY9_TRACE_BIN
 !> names a file, the text log is not written; instead, per call, a stream record of 4 int32 (jstep(1),
 !> kinc, noel, npt) and 12 + nstatv real64 (stran + dstran, stress_out, statev_out).
 subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &

@@ -1,11 +1,11 @@
 """docs/paper.md's triaxial part (Yin, Liu & Borja 2021, §5, Figs. 17-18) and "Why Figs. 17 and 18 cannot both be
-matched": the paper's words, our numbers (post/paper_numbers.py) and verdicts computed from them by the rules
+matched": the paper's words, our numbers (camclay9.paper_numbers) and verdicts computed from them by the rules
 written here, each printed beside its verdict with the margin it leaves (the tolerance at which it would turn).
 
 Eq. 28's logarithm is not stated by the paper: every comparison with its Lomnitz fits is made under both readings,
 ln and log10 (the log10 curve is the ln curve / ln 10).
 """
-from paper_numbers import PAPER_LOMNITZ, SOFT_OVER_HARD
+from camclay9.paper_numbers import PAPER_LOMNITZ, SOFT_OVER_HARD
 
 READINGS = (("ln", "paper_creep", "natural log"), ("log10", "paper_creep_log10", "log10"))
 PAPER_SENTENCE = ("“The discrepancy between the simulated creep responses and the fitted logarithmic curves emanated "
@@ -160,7 +160,7 @@ def why(n):
     else:
         closing = "The adopted reading (theory.md §5.4) is kept. The model is not tuned to the figures."
     return ["## Why Figs. 17 and 18 cannot both be matched", "",
-            "Measured with an independent integration of the material point (tests/reference, scipy Radau; "
+            "Measured with an independent integration of the material point (camclay9.reference, scipy Radau; "
             "theory.md §5.4), and checked on the cylinder above: the point model gives 6.1e-5 / 1.3e-4 / 2.8e-4 at "
             "385 s / 1 h / 10 h for θ = 0 against the paper's fit 6.9e-5 / 2.3e-4 / 4.5e-4 read with ln (3.0e-5 / "
             "1.0e-4 / 2.0e-4 read with log10).", "",

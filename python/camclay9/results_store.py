@@ -3,7 +3,7 @@
 (tools/reproduce.py: paper.json; bench/indent2d_convergence_bench.py --doc: indent2d_convergence.json; ...), and
 the documents are written from it: docs/paper.md and the generated sections of docs/performance.md by their
 generators, the numbers quoted in README.md and in the hand-written readings by tools/doc_numbers.py --write from
-the quotes of tools/doc_quotes.py. tools/doc_numbers.py (CTest docs.numbers) fails when a document's number
+the quotes of camclay9.doc_quotes. tools/doc_numbers.py (CTest docs.numbers) fails when a document's number
 differs from the store.
 
 A file holds {"provenance": {...}, ...}: where its numbers come from (command, date, and for numbers taken over
@@ -12,21 +12,26 @@ from an earlier document rather than from a run, which and to what digits).
 import json
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-STORE = ROOT / "docs" / "results"
+from camclay9.launch import repo_root
 
 
-def path(name, store=STORE):
-    return Path(store) / f"{name}.json"
+def store_dir(store=None):
+    """The store's folder: `store`, or (None) docs/results of the repository (camclay9.repo_root: the one of the
+    script being run, else of the current directory, as camclay9 finds the driver)."""
+    return Path(store) if store is not None else repo_root() / "docs" / "results"
 
 
-def load(name, store=STORE):
+def path(name, store=None):
+    return store_dir(store) / f"{name}.json"
+
+
+def load(name, store=None):
     """The store file `name` (docs/results/<name>.json) as a dict; {} if it does not exist."""
     p = path(name, store)
     return json.loads(p.read_text(encoding="utf-8")) if p.is_file() else {}
 
 
-def save(name, data, store=STORE):
+def save(name, data, store=None):
     """Write the store file `name`, one value a line, so that a change shows as a small diff (keys in the order the
     generator made them: the documents list some of them in that order)."""
     p = path(name, store)

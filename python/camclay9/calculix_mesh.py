@@ -1,14 +1,15 @@
-"""One gmsh mesh of the triaxial cylinder in the FE driver and in CalculiX (issue 13).
+"""One gmsh mesh of the triaxial cylinder in the FE driver and in CalculiX (issue 13); bench/calculix_compare.py
+and tests/calculix/test_same_mesh.py run it.
 
 The physics of input/triaxial.yaml (input/triaxial.yaml): the cylinder of meshes/cylinder.geo, both frames at
 -35 MPa in equilibrium with 35 MPa on the top and the side, the bottom on rollers, its centre pinned, one rim
 point held in y; phi per element from the seeded normal draw of the scene. The history is the one of
-input/abaqus (make_inputs.py): hold 1e6 s, ramp the top to 75 MPa in 1 s (a ramp: CalculiX has no zero-time
+input/abaqus (camclay9.calculix_inputs): hold 1e6 s, ramp the top to 75 MPa in 1 s (a ramp: CalculiX has no zero-time
 step for triaxial.yaml's `load: instant`), creep 36000 s.
 
 - The mesh: `gmsh -3 -format msh41` of meshes/cylinder.geo; the driver reads that .msh (`mesh.file`), P1
   tetrahedra with 1 point; here it is read from its msh 2.2 conversion (`gmsh -0`, no remeshing); CalculiX reads the same nodes and tetrahedra as C3D4 (1 point), written here with
-  make_inputs.fmt, so that no coordinate is cut by CalculiX's 20-character field (issue 13, item 7).
+  calculix_inputs.fmt, so that no coordinate is cut by CalculiX's 20-character field (issue 13, item 7).
 - phi: the driver draws it per element; the bench runs the driver first, reads its per-cell phi from
   fields.h5 and gives CalculiX one material per element with that phi (15 digits).
 - Pressures: *DSLOAD on the element faces lying on the `top` and `side` triangles of the mesh (the consistent
@@ -25,13 +26,9 @@ import time
 
 import camclay9
 import numpy as np
+from camclay9 import calculix_inputs
 from camclay9.fields import STRAINS, voigt  # fields.h5's 3x3 tensors as Voigt 11 22 33 12 13 23
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-import make_inputs  # noqa: E402  (tools/calculix is on sys.path of the callers)
-
-GEO = os.path.join(REPO, "meshes", "cylinder.geo")
 R, H = 12.7, 50.8
 SCALE = 1000.0                          # CalculiX's length unit: um (see the module docstring)
 PHI = {"mean": 0.5, "std": 0.05, "min": 0.4, "max": 0.6, "seed": 2021}   # input/triaxial.yaml
@@ -39,20 +36,20 @@ PHI = {"mean": 0.5, "std": 0.05, "min": 0.4, "max": 0.6, "seed": 2021}   # input
 # Fixed increments per phase as (increment, period); phase = hold / ramp / creep. "full": the 76 increments
 # of input/abaqus; "short": the first increments of each phase of "full" (10 increments, same lengths).
 PLANS = {
-    "full": [("hold", dt, T) for dt, T in make_inputs.HOLD] + [("ramp", dt, T) for dt, T in make_inputs.RAMP]
-            + [("creep", dt, T) for dt, T in make_inputs.CREEP],
+    "full": [("hold", dt, T) for dt, T in calculix_inputs.HOLD] + [("ramp", dt, T) for dt, T in calculix_inputs.RAMP]
+            + [("creep", dt, T) for dt, T in calculix_inputs.CREEP],
     "short": [("hold", 100., 300.), ("ramp", 0.25, 1.), ("creep", 10., 30.)],
 }
 # Automatic incrementation: (first, period, min, max) per phase, as input/abaqus' cylinder (CYL_STEPS).
-ADAPTIVE = [("hold",) + tuple(make_inputs.CYL_STEPS[0]), ("ramp",) + tuple(make_inputs.CYL_STEPS[1]),
-            ("creep",) + tuple(make_inputs.CYL_STEPS[2])]
+ADAPTIVE = [("hold",) + tuple(calculix_inputs.CYL_STEPS[0]), ("ramp",) + tuple(calculix_inputs.CYL_STEPS[1]),
+            ("creep",) + tuple(calculix_inputs.CYL_STEPS[2])]
 # CalculiX face numbers of a C3D4 (Abaqus convention, CalculiX's C3D4 faces): the local node triples.
 TET_FACES = {1: (0, 1, 2), 2: (0, 3, 1), 3: (1, 3, 2), 4: (2, 3, 0)}
 
 
 def props(tol):
-    """The 20 constants of input/abaqus (make_inputs.PROPS, Yin et al. 2021 Tables 1-2) with PROPS(20) = tol."""
-    nums = [float(x) for line in make_inputs.PROPS.splitlines()
+    """The 20 constants of input/abaqus (calculix_inputs.PROPS, Yin et al. 2021 Tables 1-2) with PROPS(20) = tol."""
+    nums = [float(x) for line in calculix_inputs.PROPS.splitlines()
             if line and line[0] == " " and not line.startswith("**") for x in line.split(",") if x.strip()]
     vals = nums[:20]
     assert len(vals) == 20
@@ -60,10 +57,12 @@ def props(tol):
     return vals
 
 
-def make_mesh(size, path):
+def make_mesh(size, path, root=None):
     """gmsh -3 of meshes/cylinder.geo at the element size into `path` (msh 4.1, as the driver meshes a .geo),
-    and the same mesh converted without remeshing (gmsh -0) to msh 2.2, `path` + "22", read here."""
-    cmds = [["gmsh", GEO, "-3", "-format", "msh41", "-setnumber", "R", str(R), "-setnumber", "H", str(H),
+    and the same mesh converted without remeshing (gmsh -0) to msh 2.2, `path` + "22", read here. The .geo is the
+    one of the repository `root` (default: camclay9.repo_root())."""
+    geo = os.path.join(camclay9.repo_root(root), "meshes", "cylinder.geo")
+    cmds = [["gmsh", geo, "-3", "-format", "msh41", "-setnumber", "R", str(R), "-setnumber", "H", str(H),
              "-setnumber", "size", str(size), "-o", path], ["gmsh", path, "-0", "-format", "msh22", "-o", path + "22"]]
     for cmd in cmds:
         r = subprocess.run(cmd, capture_output=True, text=True)
@@ -115,9 +114,9 @@ def write_inp(mesh, path, phi, tol, plan=None, trace_out=True):
     vol, _ = tet_geometry(mesh)
     tets = mesh["tets"].copy()
     tets[vol < 0] = tets[vol < 0][:, [0, 2, 1, 3]]
-    fmt = make_inputs.fmt
+    fmt = calculix_inputs.fmt
     lines = ["** The triaxial cylinder of input/triaxial.yaml on a gmsh mesh shared with the FE driver",
-             "** (tools/calculix/same_mesh.py): C3D4, lengths in um (x 1000), stresses in MPa.",
+             "** (python/camclay9/calculix_mesh.py): C3D4, lengths in um (x 1000), stresses in MPa.",
              "*HEADING", "Cam-Clay IX triaxial cylinder, same mesh as the driver", "*NODE, NSET=NALL"]
     lines += [f" {i}, {fmt(SCALE * x)}, {fmt(SCALE * y)}, {fmt(SCALE * z)}" for i, (x, y, z) in zip(mesh["ids"], mesh["xyz"])]
     lines.append("*ELEMENT, TYPE=C3D4, ELSET=EALL")
@@ -126,7 +125,7 @@ def write_inp(mesh, path, phi, tol, plan=None, trace_out=True):
     for name, nodes in (("NBOTTOM", np.unique(g["bottom"])), ("NPIN", g["pin"].ravel()), ("NRIM", g["rim"].ravel()),
                         ("NTOP", np.unique(g["top"]))):
         lines.append(f"*NSET, NSET={name}")
-        lines.append(make_inputs.ids_lines(nodes).rstrip("\n"))
+        lines.append(calculix_inputs.ids_lines(nodes).rstrip("\n"))
     m = dict(mesh, tets=tets)
     for name, grp in (("TOP", "top"), ("SIDE", "side")):
         lines.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
@@ -150,7 +149,7 @@ def write_inp(mesh, path, phi, tol, plan=None, trace_out=True):
         phase = st[0]
         card = (f"*STATIC, DIRECT\n {fmt(st[1])}, {fmt(st[2])}\n" if plan is not None else
                 f"*STATIC\n {fmt(st[1])}, {fmt(st[2])}, {fmt(st[3])}, {fmt(st[4])}\n")
-        text += ("*STEP, INC=100000\n" + card + (make_inputs.CONTROLS if k == 0 else "")
+        text += ("*STEP, INC=100000\n" + card + (calculix_inputs.CONTROLS if k == 0 else "")
                  + (loads[phase] if phase not in done else "") + out + "*END STEP\n")
         done.add(phase)
     with open(path, "w") as f:
@@ -174,7 +173,7 @@ def write_scene(msh, path, outdir, tol, plan=None, phi=True):
             steps = f"{{adaptive: true, first: {first!r}, min: {tmin!r}, max: {tmax!r}}}"
         st.append(f"  - {{name: {phase}{k}, duration: {T!r}, pressure: {pres}, steps: {steps}}}")
     phi_line = ("phi: {" + ", ".join(f"{k}: {v}" for k, v in PHI.items()) + "}\n") if phi else ""
-    text = f"""# The triaxial cylinder on a fixed gmsh mesh, shared with CalculiX (tools/calculix/same_mesh.py).
+    text = f"""# The triaxial cylinder on a fixed gmsh mesh, shared with CalculiX (python/camclay9/calculix_mesh.py).
 scene: fe
 name: same_mesh
 units: {{length: mm, force: N, stress: MPa, time: s}}

@@ -1,7 +1,7 @@
 """The 2D fields of the paper's loading-rate and bedding studies (Yin, Liu & Borja 2021, §4, Figs. 9-13 and 15): their
 numbers and their figures, from the runs of tools/reproduce.py.
 
-Every map is drawn from nodal averages (post/indent_fields.py), so the cell-to-cell checkerboard of linear triangles
+Every map is drawn from nodal averages (camclay9.indent_fields), so the cell-to-cell checkerboard of linear triangles
 does not show, on the undeformed mesh with the tip at the origin; the panels of one figure (the three loading rates,
 the hold times) share one colour scale. Every number is a mean over a fixed region or a ring of the undeformed
 mesh (cells clipped to it), never one cell. The loading-rate regions are scaled by A_LR, the contact half-width at
@@ -15,8 +15,8 @@ from matplotlib.figure import Figure
 from matplotlib.tri import Triangulation
 
 from camclay9.fields import Fields, dev_norm, tensor_norm, trace
-from indent_fields import cell_areas, checkerboard, clipped_areas, nodal_average, region_mean, six
-from indent_plots import History, STAGE_COLUMNS, thin
+from camclay9.indent_fields import cell_areas, checkerboard, clipped_areas, nodal_average, region_mean, six
+from camclay9.indent_plots import History, STAGE_COLUMNS, thin
 
 A_LR = 0.5
 BENEATH = (-A_LR / 4, A_LR / 4, -A_LR / 2, 0.0)       # Fig. 13's probe and Fig. 12's 'beneath' (bench/indent2d_...)

@@ -4,7 +4,7 @@ collect(DIR) reads DIR/<scene>/history.csv (and fields.h5 of the loading-rate ru
 (also written to DIR/numbers.json); check_trends(numbers) checks the four trends the paper states and
 that the quick mode asserts. Conventions: creep strain = axial strain since the deviator was applied,
 compression positive; indentation creep depth = h - h(start of hold); Lomnitz law B log(1 + t/tau) (eq. 28)
-read with the natural logarithm (post/lomnitz.py; "paper_creep") and with log10 ("paper_creep_log10": the
+read with the natural logarithm (camclay9.lomnitz; "paper_creep") and with log10 ("paper_creep_log10": the
 same curve / ln 10): the paper does not say which.
 """
 import json
@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 from camclay9 import read_history
-from lomnitz import lomnitz, lomnitz_fit
-from paper_fields import A_BED, BENEATH, REGION_KEYS, flow_direction, loading_rate_numbers
+from camclay9.lomnitz import lomnitz, lomnitz_fit
+from camclay9.paper_fields import A_BED, BENEATH, REGION_KEYS, flow_direction, loading_rate_numbers
 
 ALPHAS = ("0.1", "1", "10")
 THETAS_BEDDING = (0, 30, 45, 60, 90)
@@ -82,7 +82,7 @@ def triaxial_numbers(run, theta):
 
 # ------------------------------------------------------------------ indentation
 def indent_numbers(run):
-    from indent_plots import History, creep_summary
+    from camclay9.indent_plots import History, creep_summary
     h = History(run)
     s = creep_summary(h)
     s["max_depth"] = float(np.max(h["depth"]))

@@ -1,5 +1,5 @@
 """docs/paper.md: what Yin, Liu & Borja (2021) report, what the model gives, and whether they agree, figure by
-figure; written by tools/reproduce.py from the numbers of post/paper_numbers.py. The paper's side is quoted
+figure; written by tools/reproduce.py from the numbers of camclay9.paper_numbers. The paper's side is quoted
 with its section and figure; our side is measured on the runs; the two are never blended.
 
 tools/reproduce.py keeps the numbers, the run's meta data and the figures' list in the results store
@@ -11,10 +11,8 @@ fe_triaxial}.json).
 import shutil
 from pathlib import Path
 
-import paper_doc_2d
-import paper_doc_tri
-import results_store
-from paper_numbers import THETAS_BEDDING, check_trends
+from camclay9 import paper_doc_2d, paper_doc_tri, results_store
+from camclay9.paper_numbers import THETAS_BEDDING, check_trends
 
 REF = "Yin, Liu & Borja (2021)"
 

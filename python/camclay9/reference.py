@@ -8,8 +8,8 @@ Conventions (theory.md §1.1): tension positive; Voigt order 11, 22, 33, 12, 13,
 engineering Voigt (shear doubled) on output; stresses in plain Voigt.  Internally: 3x3 tensors for the
 constitutive functions, Mandel 6-vectors (shear * sqrt 2) for the linear algebra of the mixture.
 
-Run it to see the self-checks against the worked numbers of theory.md §5:
-    python3 tests/reference/camclay9_reference.py
+Run it to see the self-checks against the worked numbers of theory.md §5 (CTest reference.self_check):
+    python3 -m camclay9.reference
 """
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -237,47 +237,51 @@ def _close(a, b, tol, what):
     assert np.allclose(a, b, rtol=0, atol=tol), f'{what}: {a} vs {b}'
 
 
-def _self_check():
-    np.set_printoptions(precision=5, suppress=True, linewidth=130)
-    phi, hard, soft = frames(WOODFORD)
-    el = lambda fr: (fr['lam'], fr['muT'], fr['muL'], fr['a'], fr['b'])
-    nth = lambda deg: np.array([np.sin(np.radians(deg)), 0.0, np.cos(np.radians(deg))])
+def _elastic(fr):
+    return fr['lam'], fr['muT'], fr['muL'], fr['a'], fr['b']
 
-    # §5.1 stiffness matrices
-    C0 = stiffness_voigt(*el(hard), nth(0))
+
+def _normal(deg):
+    return np.array([np.sin(np.radians(deg)), 0.0, np.cos(np.radians(deg))])
+
+
+def _check_stiffness(hard):
+    """§5.1 stiffness matrices (theta = 0, 45, 90, the soft frame, the mixture), §4.3 eigenvalues."""
+    C0 = stiffness_voigt(*_elastic(hard), _normal(0))
     ref0 = np.array([[38900, 2900, 7000, 0, 0, 0], [2900, 38900, 7000, 0, 0, 0], [7000, 7000, 34000, 0, 0, 0],
                      [0, 0, 0, 18000, 0, 0], [0, 0, 0, 0, 13000, 0], [0, 0, 0, 0, 0, 13000]], float)
     _close(C0, ref0, 1e-9, '§5.1 theta=0')
-    C90 = stiffness_voigt(*el(hard), nth(90))
+    C90 = stiffness_voigt(*_elastic(hard), _normal(90))
     ref90 = np.diag([34000, 38900, 38900, 13000, 13000, 18000.])
     ref90[0, 1] = ref90[1, 0] = ref90[0, 2] = ref90[2, 0] = 7000
     ref90[1, 2] = ref90[2, 1] = 2900
     _close(C90, ref90, 1e-9, '§5.1 theta=90')
-    C45 = stiffness_voigt(*el(hard), nth(45))
+    C45 = stiffness_voigt(*_elastic(hard), _normal(45))
     chk = {(0, 0): 34725, (2, 2): 34725, (1, 1): 38900, (0, 1): 4950, (1, 2): 4950, (0, 2): 8725,
            (0, 4): -1225, (2, 4): -1225, (1, 4): 2050, (3, 3): 15500, (5, 5): 15500, (3, 5): -2500,
            (4, 4): 14725, (0, 3): 0, (0, 5): 0, (3, 4): 0, (4, 5): 0}
     for (A, B), v in chk.items():
         _close(C45[A, B], v, 1e-8, f'§5.1 theta=45 C[{A+1},{B+1}]')
         _close(C45[B, A], v, 1e-8, f'§5.1 theta=45 C[{B+1},{A+1}]')
-    ev = np.linalg.eigvalsh(stiffness_mandel(*el(hard), nth(0)))
+    ev = np.linalg.eigvalsh(stiffness_mandel(*_elastic(hard), _normal(0)))
     _close(ev, [26000, 26000, 27260, 36000, 36000, 48540], 2.0, '§4.3 Mandel eigenvalues')
     E, nu = 8000.0, 0.3                                   # soft frame and mixture use unrounded 4615.4/3076.9
     ls, ms = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
-    Cs = stiffness_voigt(ls, ms, ms, 0, 0, nth(0))
+    Cs = stiffness_voigt(ls, ms, ms, 0, 0, _normal(0))
     _close([Cs[0, 0], Cs[0, 1], Cs[3, 3]], [10769.2, 4615.4, 3076.9], 0.06, '§5.1 soft')
     Cmix = 0.5 * C0 + 0.5 * Cs
     _close([Cmix[0, 0], Cmix[0, 1], Cmix[0, 2], Cmix[2, 2], Cmix[3, 3], Cmix[4, 4], Cmix[5, 5]],
            [24834.6, 3757.7, 5807.7, 22384.6, 10538.5, 8038.5, 8038.5], 0.06, '§5.1 mixture')
     print('§5.1 stiffness (theta = 0, 45, 90, soft, mixture): OK')
 
-    # §5.2 projection tensor
-    c = hard['c']
-    Pm0 = c4_to_mandel(projection(*c, nth(0)))
+
+def _check_projection(c):
+    """§5.2 projection tensor, §4.4 its Voigt form; returns the random symmetric S and normal used again."""
+    Pm0 = c4_to_mandel(projection(*c, _normal(0)))
     _close(Pm0, np.diag([0.73, 0.73, 0.93, 0.73, 0.93, 0.93]), 1e-14, '§5.2 theta=0')
-    _close(c4_to_mandel(projection(*c, nth(90))), np.diag([0.93, 0.73, 0.73, 0.93, 0.93, 0.73]), 1e-14,
+    _close(c4_to_mandel(projection(*c, _normal(90))), np.diag([0.93, 0.73, 0.73, 0.93, 0.93, 0.73]), 1e-14,
            '§5.2 theta=90')
-    P45 = projection(*c, nth(45))
+    P45 = projection(*c, _normal(45))
     Pm45 = c4_to_mandel(P45)
     for (A, B), v in {(0, 0): 0.88, (2, 2): 0.88, (0, 2): -0.05, (0, 4): 0.0707, (2, 4): 0.0707, (1, 1): 0.73,
                       (3, 3): 0.83, (4, 4): 0.83, (5, 5): 0.83, (3, 5): 0.10}.items():
@@ -291,18 +295,22 @@ def _self_check():
     Pr = projection(*c, nr)
     _close(Pr, np.einsum('klij->ijkl', Pr), 1e-15, 'P major symmetry')
     print('§5.2 / §4.4 projection tensor: OK')
+    return S, nr
 
-    # §5.3 f, tr N, N at sigma = -35 I
+
+def _check_yield_and_flow(hard, soft, S, nr):
+    """§5.3 f, tr N, N at sigma = -35 I; §1.3 tr N and N = df/dsigma by central differences."""
+    c = hard['c']
     sig = -35.0 * I3
     for deg in (0, 90):
-        f = yield_f(sig, hard['pc0'], hard['M'], c, nth(deg))
+        f = yield_f(sig, hard['pc0'], hard['M'], c, _normal(deg))
         _close(f, 744.70, 0.006, f'§5.3 f_hard theta={deg}')
-    _close(np.diag(project(*c, nth(0), sig)), [-25.55, -25.55, -32.55], 1e-12, '§5.3 sigma\'')
-    N = flow_N(sig, hard['pc0'], hard['M'], c, nth(0))
+    _close(np.diag(project(*c, _normal(0), sig)), [-25.55, -25.55, -32.55], 1e-12, '§5.3 sigma\'')
+    N = flow_N(sig, hard['pc0'], hard['M'], c, _normal(0))
     _close(np.trace(N), -44.15, 0.006, '§5.3 tr N')
     _close(t2mandel(N) / W, [-10.686, -10.686, -22.776, 0, 0, 0], 6e-4, '§5.3 N')
-    _close(yield_f(sig, soft['pc0'], soft['M'], soft['c'], nth(0)), 0.0, 1e-10, '§5.3 f_soft')
-    _close(np.trace(flow_N(sig, soft['pc0'], soft['M'], soft['c'], nth(0))), -35.0, 1e-12, '§5.3 tr N soft')
+    _close(yield_f(sig, soft['pc0'], soft['M'], soft['c'], _normal(0)), 0.0, 1e-10, '§5.3 f_soft')
+    _close(np.trace(flow_N(sig, soft['pc0'], soft['M'], soft['c'], _normal(0))), -35.0, 1e-12, '§5.3 tr N soft')
     rate = f / hard['eta'] * t2mandel(N) / W
     _close(f / hard['eta'], 5.73e-11, 5e-14, '§5.3 f/eta')
     _close(rate[:3] / 1e-10, [-6.1, -6.1, -13.0], 0.06, '§5.3 initial vp rate')
@@ -319,16 +327,19 @@ def _self_check():
             E = 0.5 * h * (np.outer(I3[k], I3[l]) + np.outer(I3[l], I3[k]))
             df = (yield_f(s_r + E, 20.0, hard['M'], c, nr) - yield_f(s_r - E, 20.0, hard['M'], c, nr)) / (2 * h)
             _close(df, N_r[k, l], 1e-7, f'N=df/dsigma ({k}{l})')
-    print(f'§5.3 f_hard = {yield_f(sig, 2.0, 1.46, c, nth(0)):.3f}, tr N = {np.trace(N):.3f}, '
+    print(f'§5.3 f_hard = {yield_f(sig, 2.0, 1.46, c, _normal(0)):.3f}, tr N = {np.trace(N):.3f}, '
           f'N = {np.diag(N)}, f/eta = {f / hard["eta"]:.4e}: OK')
 
-    # single frame vs mixture with phi = 1 / phi = 0 and no stress jump (each frame then at constant stress)
+
+def _check_single_frames(hard, soft):
+    """A single frame against the mixture with phi = 1 / phi = 0 and no stress jump (each frame then at constant
+    stress)."""
     tt = np.array([0.0, 360.0, 3600.0, 36000.0])
     sig_c = np.diag([-35.0, -35.0, -75.0])
     for phi_t, name, fr in ((1.0, 'hard', hard), (0.0, 'soft', soft)):
         pr = list(WOODFORD); pr[0] = phi_t
-        mix = creep_mixture(pr, nth(30), sig_c, sig_c, tt, rtol=1e-11)
-        one = single_frame_constant_stress(fr, nth(30), sig_c, fr['pc0'], tt)
+        mix = creep_mixture(pr, _normal(30), sig_c, sig_c, tt, rtol=1e-11)
+        one = single_frame_constant_stress(fr, _normal(30), sig_c, fr['pc0'], tt)
         _close(mix['stress_' + name], np.tile(mandel2voigt_stress(t2mandel(sig_c)), (len(tt), 1)), 1e-9,
                f'phi={phi_t}: constant frame stress')
         d = np.max(np.abs(mix['evp_' + name] - one['evp'])) / np.max(np.abs(one['evp']))
@@ -337,8 +348,11 @@ def _self_check():
         print(f'phi = {phi_t:g}: mixture vs single_frame_constant_stress ({name}): rel. diff evp {d:.1e}, '
               f'pc {dp:.1e}; pc(36000 s) = {one["pc"][-1]:.4f}')
 
-    # the brief's scenario: both frames at -35 I, overall stress jumps to diag(-35,-35,-75) at 0+ (no hold)
-    n30 = nth(30)
+
+def _check_scenario():
+    """The brief's scenario: both frames at -35 I, the overall stress jumps to diag(-35,-35,-75) at 0+ (no hold)."""
+    sig_c = np.diag([-35.0, -35.0, -75.0])
+    n30 = _normal(30)
     sig0 = -35.0 * I3
     times = np.array([0.0, 360.0, 3600.0])
     r10 = creep_mixture(WOODFORD, n30, sig0, sig_c, times, rtol=1e-10)
@@ -358,18 +372,31 @@ def _self_check():
     print(f'  max |strain(rtol 1e-10) - strain(rtol 1e-12)| / max|strain| = {rel:.1e}')
     assert rel < 1e-8
 
-    # theory.md §5.4: hold at -35 I until steady, then +40 MPa axial (theta = 0 and 90)
+
+def _check_paper_creep():
+    """theory.md §5.4: hold at -35 I until steady, then +40 MPa axial (theta = 0 and 90)."""
+    sig0, sig_c = -35.0 * I3, np.diag([-35.0, -35.0, -75.0])
     print('\n§5.4 check: hold at -35 I for T_hold, then diag(-35,-35,-75); creep eps33 at 385/3600/36000 s')
     tc = np.array([0.0, 385.0, 3600.0, 36000.0])
     for deg, paper in ((0, (6.1e-5, 1.3e-4, 2.8e-4)), (90, (4.5e-5, 7.8e-5, 1.6e-4))):
         for thold in (1e6, 1e7):
-            hold = creep_mixture(WOODFORD, nth(deg), sig0, sig0, [thold])
-            r = creep_mixture(WOODFORD, nth(deg), sig0, sig_c, tc, evp0_hard=hold['evp_hard'][-1],
+            hold = creep_mixture(WOODFORD, _normal(deg), sig0, sig0, [thold])
+            r = creep_mixture(WOODFORD, _normal(deg), sig0, sig_c, tc, evp0_hard=hold['evp_hard'][-1],
                               evp0_soft=hold['evp_soft'][-1])
             cr = -(r['strain'][1:, 2] - r['strain0'][2])
             print(f'  theta = {deg:2d}, T_hold = {thold:.0e} s: pc_hard after hold = {hold["pc_hard"][-1]:.3f}; '
                   f'compressive creep = {cr[0]:.2e}, {cr[1]:.2e}, {cr[2]:.2e}   (theory.md: {paper})')
 
+
+def _self_check():
+    np.set_printoptions(precision=5, suppress=True, linewidth=130)
+    phi, hard, soft = frames(WOODFORD)
+    _check_stiffness(hard)
+    S, nr = _check_projection(hard['c'])
+    _check_yield_and_flow(hard, soft, S, nr)
+    _check_single_frames(hard, soft)
+    _check_scenario()
+    _check_paper_creep()
 
 if __name__ == '__main__':
     _self_check()

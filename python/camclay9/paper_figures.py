@@ -2,7 +2,7 @@
 
 P-h and creep curves come from post/indent_plots.py and post/triaxial_plots.py (their output is logged to
 DIR/figures/plots.log); the 2D fields (Figs. 9-13, 15: nodal averages, one colour scale across the loading rates,
-region probes) from post/paper_fields.py; Fig. 17 (both theta with the paper's fits under both readings of eq.
+region probes) from camclay9.paper_fields; Fig. 17 (both theta with the paper's fits under both readings of eq.
 28's log) and Fig. 18's soft/hard ratio are drawn here. draw_all returns {figure id: [(png path, caption)]}.
 """
 import contextlib
@@ -12,11 +12,9 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-import indent_plots
-import triaxial_plots
-from lomnitz import lomnitz
-import paper_fields
-from paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,
+from camclay9 import indent_plots, paper_fields, triaxial_plots
+from camclay9.lomnitz import lomnitz
+from camclay9.paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,
                            triaxial_series)
 
 DPI = 90
@@ -40,7 +38,7 @@ def _plot(log, argv, main=indent_plots.main):
 
 
 def _fields(log, draw, *args):
-    """A figure of post/paper_fields.py; its failure (a missing output) is logged, not raised."""
+    """A figure of camclay9.paper_fields; its failure (a missing output) is logged, not raised."""
     try:
         return draw(*args)
     except SystemExit as e:

@@ -12,13 +12,9 @@ the numbers of docs/contact.md's reading "The field split" (bench/contact_solver
 those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json).
 """
 import re
-import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "post"))
-import paper_doc_tri  # noqa: E402
-import results_store  # noqa: E402
+from camclay9 import paper_doc_tri, results_store
+
 
 MINUS = "\u2212"
 
@@ -54,7 +50,7 @@ S3, S2 = ("sector0.12", "sector0.0707", "sector0.05"), ("axi1", "axi2")  # bench
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 
 
-def namespace(store_dir=results_store.STORE):
+def namespace(store_dir=None):
     paper = results_store.load("paper", store_dir)
     n = paper.get("numbers", {})
     tri = results_store.int_keys(n.get("triaxial", {}))

@@ -1,9 +1,9 @@
-"""docs/paper.md's 2D studies (Yin, Liu & Borja 2021, §4, Figs. 7-15): the paper's words, our numbers (post/paper_fields.py,
-post/paper_numbers.py) and a verdict for every figure that states a result. Each verdict follows a rule written here
+"""docs/paper.md's 2D studies (Yin, Liu & Borja 2021, §4, Figs. 7-15): the paper's words, our numbers
+(camclay9.paper_fields, camclay9.paper_numbers) and a verdict for every figure that states a result. Each verdict follows a rule written here
 from the paper's sentence, not from our runs; the rule is printed with the verdict.
 """
-from paper_fields import HOLD_TIMES, ZONE_CUTOFFS, ZONE_LEVELS
-from paper_numbers import ALPHAS, THETAS_BEDDING
+from camclay9.paper_fields import HOLD_TIMES, ZONE_CUTOFFS, ZONE_LEVELS
+from camclay9.paper_numbers import ALPHAS, THETAS_BEDDING
 
 TILT = 2.0        # deg: a principal flow axis within this of the load axis is no tilt (Fig. 15)
 TIMES11 = tuple(f"{t:g}" for t in HOLD_TIMES)   # Fig. 11's panels: its rules are evaluated at each of these hold times
@@ -169,7 +169,7 @@ def loading_rate(n, trends, images, rel, img):
          "10 “stresses relax in the zones directly beneath the indenter” (Fig. 12); the stress “at a point in contact with "
          "the tip” increases during the hold for α = 0.1 and decreases for α = 1 and 10 (Fig. 13).", "",
          "**Ours** (the shipped scenes' model: README, “Which model each scene uses”; regions of the undeformed mesh, a = "
-         f"{_f((S['1'].get('regions') or {}).get('a_ref'), 'g')} µm the contact half-width rounded; post/paper_fields.py).", "",
+         f"{_f((S['1'].get('regions') or {}).get('a_ref'), 'g')} µm the contact half-width rounded; camclay9.paper_fields).", "",
          "| α | h at end of load [µm] | creep depth in 2000 s [µm] | mean / max ‖εvp‖ within 0.5 µm, start of hold | "
          "Δ‖σ‖ over the hold, region beneath the tip [MPa] | ‖σ‖ checkerboard within a |", "|---|---|---|---|---|---|"]
     for a, s in S.items():

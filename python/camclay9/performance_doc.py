@@ -1,0 +1,20 @@
+"""docs/performance.md is made of sections, one per benchmark, each starting with a '## ' title: a benchmark replaces
+its own section and leaves the others (the benches of bench/, tools/reproduce.py; the shell scripts through
+bench/performance_doc.py)."""
+from camclay9.launch import repo_root
+
+HEADER = "# Performance\n\nBenchmarks print numbers and write them here; none is a timed test.\n"
+
+
+def replace_section(title, section, path=None):
+    """Replace the section that starts with 'title' (up to the next '## ') by 'section', or append it. path: the
+    document (default: docs/performance.md of the repository, camclay9.repo_root)."""
+    path = path or repo_root() / "docs" / "performance.md"
+    text = path.read_text() if path.exists() else HEADER
+    if title in text:
+        head, _, rest = text.partition(title)
+        tail = rest[rest.find("\n## "):] if "\n## " in rest else ""
+        text = head + section.rstrip("\n") + "\n" + tail
+    else:
+        text = text.rstrip() + "\n\n" + section
+    path.write_text(text)
