@@ -425,6 +425,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
   sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
+  sum->ran = 1, sum->replaced = r.promoted || opt->restart;
   sum->nreport = sv->report ? sv->nreport : 0, sum->nstages_done = PetscMin(r.st.stage, RUNNER_MAX_STAGES);
   for (int k = 0; k < sum->nreport; k++) sum->report_names[k] = sv->report_names[k];
   memcpy(sum->report, r.st.report, sizeof sum->report);
