@@ -19,21 +19,19 @@ import shutil
 from pathlib import Path
 
 from camclay9 import driver_path, read_history, run_driver
+from test_contact import ELASTIC, ROLLERS, ROOT
+from test_stage_runner import MESHES, camclay_cone  # Cam-Clay IX kerogen under a cone, coarse axisymmetric
 
-ROOT = Path(__file__).resolve().parents[2]
 BIN = driver_path(root=ROOT).parent
-MESHES = ROOT / "meshes"
-ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
-ROLLERS = "[{group: bottom, components: [x, y]}, {group: left, components: [x]}, {group: right, components: [x]}]"
 # the UMAT's own control at a tolerance no step meets: every step is cut to the minimum, then fails for good
 IMPOSSIBLE = "{adaptive: true, first: 1, min: 0.5, error: {measure: worst_point, tol: 1.0e-30}}"
 
 
-def run(text, out, args=(), exe="driver", ranks=1):
+def run(text, out, args=(), exe="driver", ranks=1, timeout=600):
     """The driver on a scene (written beside out): its process, whatever its exit status."""
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    return run_driver(scene, out, args, driver=BIN / exe, ranks=ranks, cwd=out.parent, timeout=600, check=False)
+    return run_driver(scene, out, args, driver=BIN / exe, ranks=ranks, cwd=out.parent, timeout=timeout, check=False)
 
 
 def summary(path):
@@ -98,25 +96,9 @@ def test_first_step_failure_keeps_earlier_summary(tmp_path):
     check_failure(s, read_history(tmp_path / "part.csv"), "fe", "creep", [], 0)
 
 
-def cone(stages):
-    """Cam-Clay IX kerogen under a cone, coarse axisymmetric, 1 um units."""
-    return f"""scene: fe
-mesh:
-  geometry: {MESHES}/indent_block2d.geo
-  parameters: {{W: 2, H: 2, half: 1, h_tip: 0.08, h_far: 0.3, r_fine: 0.4, r_contact: 0.9}}
-  kinematics: axisymmetric
-material: {{props: woodford, set: {{phi: 0}}}}
-boundary:
-  fixed: {ROLLERS}
-indenter: {{shape: cone, half_angle: 70.3, contact: contact}}
-stages:
-{stages}
-"""
-
-
 def test_indentation_failure_after_steps(tmp_path):
     out = tmp_path / "cone"
-    proc = run(cone("  - {name: load, duration: 10, indenter: {load: 150}, steps: {count: 4}}\n"
+    proc = run(camclay_cone("  - {name: load, duration: 10, indenter: {load: 150}, steps: {count: 4}}\n"
                     f"  - {{name: hold, duration: 100, indenter: {{load: hold}}, steps: {IMPOSSIBLE}}}"), out)
     assert proc.returncode == 1, proc.stderr
     s = summary(out / "summary.json")
@@ -213,3 +195,18 @@ def test_restart_from_older_layout(tmp_path):
     proc = run(POINT, out, ["-restart"])
     assert proc.returncode == 0, proc.stderr
     assert summary(out / "summary.json")["completed"] is True and len(read_history(out)) == 10
+
+
+def test_restart_beside_older_fe_history_on_two_ranks(tmp_path):
+    """An FE history without stage_name (the layout before it) on 2 ranks: rank 0 reads the history, and every rank
+    stops with its message (no rank waits in the run)."""
+    out = tmp_path / "box"
+    assert run(box("{count: 4}"), out, ["-checkpoint_every", "2", "-max_steps", "2"], ranks=2).returncode == 0
+    lines = (out / "history.csv").read_text().split("\n")
+    old = [",".join(c for k, c in enumerate(line.split(",")) if k != 2) for line in lines]   # no stage_name
+    (out / "history.csv").write_text("\n".join(old))
+    before = {f.name: f.read_bytes() for f in out.iterdir()}
+    proc = run(box("{count: 4}"), out, ["-restart"], ranks=2, timeout=120)   # a rank left waiting: the timeout fails it
+    print(proc.stderr.strip())
+    assert proc.returncode == 2 and "column 3 is 'step', this driver writes 'stage_name'" in proc.stderr
+    assert {f.name: f.read_bytes() for f in out.iterdir()} == before

@@ -94,17 +94,19 @@ static int header_differs(const char *path, const HistColumn *cols, int ncols, c
   return rc;
 }
 
+int history_file_check(const char *dir, const HistColumn *cols, int ncols, const void *ctx, char *err, size_t errlen) {
+  char path[1024], which[300];
+  snprintf(path, sizeof path, "%s/history.csv", dir);
+  if (header_differs(path, cols, ncols, ctx, which, sizeof which) != 1) return 0;
+  snprintf(err, errlen, "-restart: %s has the columns of an older history layout (%s): it and its checkpoint were written by an "
+           "older driver and cannot be continued: run the scene again from its start, without -restart; nothing was written", path, which);
+  return 2;
+}
+
 int history_file_open(HistoryFile *h, const char *dir, int restart, long offset, const HistColumn *cols, int ncols, const void *ctx,
                       char *err, size_t errlen) {
   snprintf(h->path, sizeof h->path, "%s/history.csv%s", dir, restart ? "" : ".part");
   if (restart) {
-    char which[300];
-    if (header_differs(h->path, cols, ncols, ctx, which, sizeof which) == 1) {
-      snprintf(err, errlen, "-restart: %s has the columns of an older history layout (%s): it and its checkpoint were written by an "
-               "older driver and cannot be continued: run the scene again from its start, without -restart; nothing was written",
-               h->path, which);
-      return 2;
-    }
     if (truncate(h->path, offset) || !(h->fp = fopen(h->path, "a"))) {
       snprintf(err, errlen, "%s: cannot continue the history at the checkpoint: %s", h->path, strerror(errno));
       return 1;

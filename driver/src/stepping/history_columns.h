@@ -51,8 +51,12 @@ typedef struct {
   char  path[1024];
 } HistoryFile;
 
-/* Open the history in dir (fresh: with its header; a restart: once its header is the one this driver writes). 0; 1
-   (cannot write) or 2 (a restart whose history.csv has another layout: an older driver's, nothing touched) with err set. */
+/* Before a restart reads its checkpoint (rank 0): whether dir/history.csv has the header this driver writes. 0 (the
+   same, or no header to read: its continuation reports that), or 2 with err naming the first column that differs (an
+   older driver's layout, which this run cannot continue). */
+int history_file_check(const char *dir, const HistColumn *cols, int ncols, const void *ctx, char *err, size_t errlen);
+
+/* Open the history in dir (fresh: with its header). 0, or nonzero with err set. */
 int history_file_open(HistoryFile *h, const char *dir, int restart, long offset, const HistColumn *cols, int ncols, const void *ctx,
                       char *err, size_t errlen);
 /* history.csv.part -> history.csv in dir. 0, or nonzero on a failed rename. */

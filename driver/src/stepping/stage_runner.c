@@ -399,12 +399,16 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
     snprintf(err, errlen, "-checkpoint_every %d: expected a number of steps >= 0 (0: no checkpoints)", opt->checkpoint_every);
     return 2;
   }
-  if (opt->restart) {
-    int rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen);
-    if (rc) return rc;
+  if (opt->restart) { /* the history's layout first: reading the checkpoint resumes the solver's files (the fields) */
+    int rc = !r.rank && opt->outdir && opt->outdir[0] ? history_file_check(opt->outdir, sv->columns, sv->ncolumns, sv->ctx, err, errlen) : 0;
+    MPI_Bcast(&rc, 1, MPI_INT, 0, sv->comm); /* rank 0 holds the history: every rank stops with its message */
+    MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, sv->comm);
+    if (rc || (rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen))) return rc;
   }
   if (!opt->restart) r.st.mesh_hash = binfile_hash(opt->mesh_file);
   int rc = history_open(&r, err, errlen);
+  MPI_Bcast(&rc, 1, MPI_INT, 0, sv->comm); /* as above */
+  MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, sv->comm);
   if (rc) return rc;
   clock_gettime(CLOCK_MONOTONIC, &r.w0);
   if (!opt->restart) {
