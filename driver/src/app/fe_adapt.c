@@ -151,6 +151,11 @@ static int run_level(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *o
     MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
     if (rc) return rc;
   }
+  if (!rank) { /* kept only once the level is run to its end (level_save): a failed or stopped level is never reused */
+    char kept[700];
+    snprintf(kept, sizeof kept, "%s/level.txt", dir);
+    remove(kept);
+  }
   PetscPrintf(PETSC_COMM_WORLD, "adapt: level %d of %d into %s\n", k, sc->adapt.levels, dir);
   /* gmsh makes more cells than a size field predicts (its gradation, the boundary's sizes), by a ratio that
      changes little from level to level: the targets grow by growth from the last prediction, not from the cells
@@ -172,9 +177,10 @@ static unsigned long long level_key(const YdDoc *doc, const FeScene *sc) {
   return h;
 }
 
-/* level.txt of a level (rank 0): its key, its RunInfo's numbers and reported quantities. */
+/* level.txt of a level run to its end (rank 0): its key, its RunInfo's numbers and reported quantities. */
 static void level_save(const RunInfo *r, unsigned long long key) {
   char  path[700];
+  if (r->sum.failed || r->sum.stopped) return; /* stopped by -max_steps: not the level a later run may reuse */
   snprintf(path, sizeof path, "%s/level.txt", r->dir);
   FILE *fp = fopen(path, "w");
   if (!fp) return; /* only a cache: the next run runs the level again */
@@ -242,6 +248,10 @@ int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, 
     }
     fresh = 1;
     rc    = run_level(doc, sc, isc, opt, outdir, k, k ? &lv[k - 1] : NULL, &lv[k], err, errlen);
+    if (rc && !rank) { /* the level's summary beside its files; OUT's as summary.json.part: nothing of OUT was replaced */
+      run_summary_failed(sc, lv[k].dir, lv, k + 1, k, lv[k].sum.replaced, rc, err);
+      run_summary_failed(sc, outdir, lv, k + 1, k, 0, rc, err);
+    }
     if (rc) break;
     if (!rank) level_save(&lv[k], key);
     n    = k + 1;
@@ -250,13 +260,14 @@ int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, 
       printf("adapt: level %d: %ld cells, %ld unknowns, %.1f s CPU\n", k, lv[k].cells, lv[k].unknowns, lv[k].cpu);
       run_summary_print(sc, &lv[k], me.have ? &me : NULL);
       /* the level's own summary.json, its estimate from the levels so far */
-      if (run_summary_write(sc, lv[k].dir, lv, n, &me, err, errlen)) printf("adapt: %s\n", err);
+      RunEnd end = {NULL, -1, lv[k].sum.replaced};
+      if (run_summary_write(sc, lv[k].dir, lv, n, &me, &end, err, errlen)) printf("adapt: %s\n", err);
     }
     if (stop) break;
   }
   snprintf(sc->outdir, sizeof sc->outdir, "%s", outdir);
   if (rc) return rc;
-  if (!rank) rc = publish(outdir, lv[n - 1].dir, err, errlen) || run_summary_write(sc, outdir, lv, n, &me, err, errlen);
+  if (!rank) rc = publish(outdir, lv[n - 1].dir, err, errlen) || run_summary_write(sc, outdir, lv, n, &me, NULL, err, errlen);
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
   return rc;

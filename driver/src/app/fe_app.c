@@ -170,6 +170,7 @@ int fe_app_run_once(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *op
   double t0 = cpu_seconds();
   int    rank, bad = 0;
   memset(info, 0, sizeof *info);
+  info->eta = NAN; /* until after_run: a failed run's summary says null */
   snprintf(info->dir, sizeof info->dir, "%s", sc->outdir);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (!rank) bad = fs_prepare_output_dir(sc->outdir, err, errlen);

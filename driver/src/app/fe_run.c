@@ -56,8 +56,9 @@ int fe_app_run(YdDoc *doc, const char *outdir_override, char *err, size_t errlen
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (!rc && !rank) {
     run_summary_print(&sc, &info, NULL);
-    rc = run_summary_write(&sc, sc.outdir, &info, 1, NULL, err, errlen);
-  }
+    RunEnd end = {NULL, -1, info.sum.replaced};
+    rc         = run_summary_write(&sc, sc.outdir, &info, 1, NULL, &end, err, errlen);
+  } else if (rc && !rank) run_summary_failed(&sc, sc.outdir, &info, 1, -1, info.sum.replaced, rc, err);
   MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   return rc;
 }

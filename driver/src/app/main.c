@@ -178,8 +178,12 @@ static int run_point(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
     rc             = point_run(&sc, &opt, &sum, err, errlen);
     ierr           = point_summary(&sc, &sum, rc);
     rs.failed      = rs.failed || rc;
-    char e2[512]; /* summary.json also after a failure; its own failure only when the run went well */
-    if (sc.outdir[0] && run_summary_point(&sc, &sum, &rs, (double)(clock() - cpu0) / CLOCKS_PER_SEC, e2, sizeof e2) && !rc)
+    /* summary.json also after a failure once the run got past its set-up (not after bad input, rc 2), as
+       summary.json.part while the run has no results of its own; its own failure only when the run went well */
+    char   e2[512], msg[2048];
+    RunEnd end = {rc ? msg : NULL, -1, rs.replaced};
+    if (rc) run_summary_error(rc, err, msg, sizeof msg);
+    if (sc.outdir[0] && rs.ran && rc != 2 && run_summary_point(&sc, &sum, &rs, (double)(clock() - cpu0) / CLOCKS_PER_SEC, &end, e2, sizeof e2) && !rc)
       rc = 1, snprintf(err, errlen, "%s", e2);
   }
   point_scene_free(&sc);

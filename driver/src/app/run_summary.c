@@ -2,6 +2,7 @@
 #include "run_summary.h"
 
 #include <math.h>
+#include <petscsys.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -42,13 +43,43 @@ static void stage_entry(FILE *fp, const char *name, const RunnerSummary *s, cons
   fprintf(fp, "}%s\n", k < s->nstages_done ? "," : "");
 }
 
+void run_summary_error(int rc, const char *err, char *buf, size_t n) {
+  const char *text = NULL;
+  if (err && err[0]) snprintf(buf, n, "%s", err);
+  else if (rc > 2 && !PetscErrorMessage(rc, &text, NULL) && text) snprintf(buf, n, "a PETSc error (code %d): %s", rc, text);
+  else snprintf(buf, n, "a PETSc error (code %d): the run's log says more", rc);
+}
+
+/* Whether the run completed: every stage ran, not stopped by -max_steps, no failure after the stages. */
+static int completed(const RunnerSummary *s, const RunEnd *end) { return !s->failed && !s->stopped && !(end && end->error); }
+
+/* "failure": null, or where the run failed: the stage it was in (index s->nstages_done, the stages before it done;
+   null past the last), the time reached, with adaptation the level, and the run's message. */
+static void failure_entry(FILE *fp, const char *const *name, int nname, const RunnerSummary *s, const RunEnd *end) {
+  fputs(",\n  \"failure\": ", fp);
+  if (!end || !end->error) {
+    fputs("null", fp);
+    return;
+  }
+  fputs("{\"stage\": ", fp);
+  if (s->nstages_done < nname) json_str(fp, name[s->nstages_done]);
+  else fputs("null", fp);
+  fprintf(fp, ", \"stage_index\": %d, \"time\": ", s->nstages_done);
+  json_num(fp, s->t);
+  if (end->level >= 0) fprintf(fp, ", \"level\": %d", end->level);
+  fputs(", \"error\": ", fp);
+  json_str(fp, end->error);
+  fputc('}', fp);
+}
+
 /* What the stage runner's kinds (fe, indentation, point) share: the reported quantities at the start and each
-   stage's end (stage k - 1 named name[k - 1]), then the counters. */
-static void stages_and_counters(FILE *fp, const char *const *name, const RunnerSummary *s, const MeshError *me) {
+   stage's end (stage k - 1 named name[k - 1], of nname), the counters, and the failure. */
+static void stages_and_counters(FILE *fp, const char *const *name, int nname, const RunnerSummary *s, const MeshError *me, const RunEnd *end) {
   fputs(",\n  \"stages\": [\n", fp);
   for (int k = 0; k <= s->nstages_done; k++) stage_entry(fp, k ? name[k - 1] : "start", s, me, k);
   fprintf(fp, "  ],\n  \"counters\": {\"steps\": %d, \"cutbacks\": %d, \"rejected_by_error\": %d, \"newton_its\": %d, \"umat_calls\": %ld}",
           s->steps, s->cutbacks, s->rejected_error, s->its, s->umat_calls);
+  failure_entry(fp, name, nname, s, end);
 }
 
 static void level_entry(FILE *fp, const RunInfo *r, int last) {
@@ -60,7 +91,8 @@ static void level_entry(FILE *fp, const RunInfo *r, int last) {
           r->sum.wall, r->sum.steps, r->sum.cutbacks, r->sum.its, r->sum.umat_calls, last ? "" : ",");
 }
 
-int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen) {
+int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, const RunEnd *end,
+                      char *err, size_t errlen) {
   char                 part[1200];
   const RunInfo       *a = &levels[nlevels - 1];
   const RunnerSummary *s = &a->sum;
@@ -69,8 +101,9 @@ int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels,
   FILE                *fp  = json_file_open(dir, "summary.json", part, sizeof part, err, errlen);
   if (!fp) return 1;
   for (int l = 0; l < nlevels; l++) cpu += levels[l].cpu;
-  for (int k = 0; k < sc->nstage && k < RUNNER_MAX_STAGES; k++) names[k] = sc->stage[k].name;
-  json_summary_head(fp, sc->name, sc->indenter ? "indentation" : "fe", !s->failed && !s->stopped);
+  int                  nname = sc->nstage < RUNNER_MAX_STAGES ? sc->nstage : RUNNER_MAX_STAGES;
+  for (int k = 0; k < nname; k++) names[k] = sc->stage[k].name;
+  json_summary_head(fp, sc->name, sc->indenter ? "indentation" : "fe", completed(s, end));
   fputs(",\n  \"mesh\": {\"dir\": ", fp);
   json_str(fp, a->dir);
   fprintf(fp, ", \"cells\": %ld, \"unknowns\": %ld, \"order\": %d, \"error_indicator\": ", a->cells, a->unknowns, sc->order);
@@ -78,21 +111,31 @@ int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels,
   fputs("},\n  \"mesh_error\": ", fp);
   if (me && me->have) fprintf(fp, "{\"how\": \"%s\", \"rate\": %.4g}", me->how, me->rate);
   else fputs("null", fp);
-  stages_and_counters(fp, names, s, me);
+  stages_and_counters(fp, names, nname, s, me, end);
   fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"cpu_s_answer\": %.3f, \"wall_s\": %.3f},\n  \"levels\": [\n", cpu, a->cpu, s->wall);
   for (int l = 0; l < nlevels; l++) level_entry(fp, &levels[l], l == nlevels - 1);
   fputs("  ]", fp);
-  return json_file_commit(fp, part, err, errlen);
+  return json_file_close(fp, part, !end || end->final, err, errlen);
 }
 
-int run_summary_point(const PointScene *sc, const PointSummary *ps, const RunnerSummary *s, double cpu, char *err, size_t errlen) {
+void run_summary_failed(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, int level, int final, int rc, const char *err) {
+  char   msg[4096], e2[1400];
+  RunEnd end = {msg, level, final};
+  if (rc == 2 || !levels[nlevels - 1].sum.ran) return;
+  run_summary_error(rc, err, msg, sizeof msg);
+  if (run_summary_write(sc, dir, levels, nlevels, NULL, &end, e2, sizeof e2)) printf("summary of the failed run: %s\n", e2);
+}
+
+int run_summary_point(const PointScene *sc, const PointSummary *ps, const RunnerSummary *s, double cpu, const RunEnd *end, char *err,
+                      size_t errlen) {
   char        part[1200];
   const char *names[RUNNER_MAX_STAGES];
   FILE       *fp = json_file_open(sc->outdir, "summary.json", part, sizeof part, err, errlen);
   if (!fp) return 1;
-  for (int k = 0; k < sc->nseg && k < RUNNER_MAX_STAGES; k++) names[k] = sc->seg[k].stage.name;
-  json_summary_head(fp, sc->name, "point", !s->failed && !s->stopped);
-  stages_and_counters(fp, names, s, NULL);
+  int         nname = sc->nseg < RUNNER_MAX_STAGES ? sc->nseg : RUNNER_MAX_STAGES;
+  for (int k = 0; k < nname; k++) names[k] = sc->seg[k].stage.name;
+  json_summary_head(fp, sc->name, "point", completed(s, end));
+  stages_and_counters(fp, names, nname, s, NULL, end);
   fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"wall_s\": %.3f},\n  \"point\": {\"final_stress\": [", cpu, s->wall);
   for (int i = 0; i < 6; i++) {
     if (i) fputs(", ", fp);
@@ -103,7 +146,7 @@ int run_summary_point(const PointScene *sc, const PointSummary *ps, const Runner
   fputs(", \"worst_tangent_error\": ", fp);
   json_num(fp, sc->check_tangent ? ps->worst_tangent_error : NAN);
   fputc('}', fp);
-  return json_file_commit(fp, part, err, errlen);
+  return json_file_close(fp, part, !end || end->final, err, errlen);
 }
 
 /* " (mesh error m, time-step error t)" of a reported value, each where it was estimated (m >= 0, t finite). */

@@ -28,15 +28,37 @@ typedef struct {
   double change[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
 } MeshError;
 
+/* How a run ended, for its summary (docs/driver.md, "summary.json"; NULL: it completed or -max_steps stopped it,
+   and its files are in place). */
+typedef struct {
+  const char *error; /* the run's message (NULL: no failure) */
+  int         level; /* with adaptation: the level that failed (-1: none) */
+  int         final; /* 1: summary.json; 0: the run has no results of its own in the directory (its first step failed;
+                        an adaptation that failed before its answer was published): summary.json.part, the earlier
+                        run's summary.json left in place */
+} RunEnd;
+
+/* The message of a run's status rc for its summary: err, or PETSc's text of the code (err empty). */
+void run_summary_error(int rc, const char *err, char *buf, size_t n);
+
 /* Write dir/summary.json (rank 0; through summary.json.part, renamed once complete). levels: the runs, the last one
-   the answer (several when the mesh was adapted). 0, or 1 with err filled. */
-int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, char *err, size_t errlen);
+   the answer (several when the mesh was adapted; after a failure the level that failed); end: how it ended. 0, or 1
+   with err filled. */
+int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, const RunEnd *end,
+                      char *err, size_t errlen);
+
+/* After an FE or indentation run that failed with status rc and message err (rank 0): its summary (run_summary_write,
+   the failure's stage, time and message; level: the level that failed, -1: one mesh; final as RunEnd's), written
+   only when the run that failed got past its set-up (RunnerSummary.ran) and was not refused as bad input (rc 2). Its
+   own failure to write is printed: err stays the run's message. */
+void run_summary_failed(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, int level, int final, int rc, const char *err);
 
 /* Write sc->outdir/summary.json of a point run (rank 0): its stages (a point reports no quantities: each stage's
    "end" and "change" are empty), the counters (sum, the runner's), the cost (cpu: its CPU seconds) and the point's
    own: the final stress, whether every value stayed finite, the worst control and tangent errors (null: not
-   checked). 0, or 1 with err filled. */
-int run_summary_point(const PointScene *sc, const PointSummary *ps, const RunnerSummary *s, double cpu, char *err, size_t errlen);
+   checked); end: how it ended (as for run_summary_write). 0, or 1 with err filled. */
+int run_summary_point(const PointScene *sc, const PointSummary *ps, const RunnerSummary *s, double cpu, const RunEnd *end, char *err,
+                      size_t errlen);
 
 /* Print the reported quantities of the last level with their mesh errors (rank 0). */
 void run_summary_print(const FeScene *sc, const RunInfo *last, const MeshError *me);

@@ -35,12 +35,14 @@ FILE *json_file_open(const char *dir, const char *name, char *part, size_t n, ch
   return fp;
 }
 
-int json_file_commit(FILE *fp, const char *part, char *err, size_t errlen) {
+int json_file_commit(FILE *fp, const char *part, char *err, size_t errlen) { return json_file_close(fp, part, 1, err, errlen); }
+
+int json_file_close(FILE *fp, const char *part, int final, char *err, size_t errlen) {
   char   path[1200];
   size_t len = strlen(part);
-  snprintf(path, sizeof path, "%.*s", (int)(len > 5 ? len - 5 : len), part); /* without ".part" */
+  snprintf(path, sizeof path, "%.*s", (int)(len > 5 && final ? len - 5 : len), part); /* without ".part" */
   fputs("\n}\n", fp);
-  if (fclose(fp) || rename(part, path)) {
+  if (fclose(fp) || (final && rename(part, path))) {
     snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
     return 1;
   }

@@ -23,4 +23,8 @@ FILE *json_file_open(const char *dir, const char *name, char *part, size_t n, ch
 /* Close the object ("\n}\n"), the file, and rename part to its final name. 0, or 1 with err filled. */
 int json_file_commit(FILE *fp, const char *part, char *err, size_t errlen);
 
+/* As json_file_commit, but with final 0 the file keeps its .part name (a run that has no results of its own yet
+   leaves an earlier run's file in place: docs/driver.md, "summary.json"). */
+int json_file_close(FILE *fp, const char *part, int final, char *err, size_t errlen);
+
 #endif

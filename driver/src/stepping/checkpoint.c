@@ -10,7 +10,9 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC 0x43433952 /* "CC9R" */
-#define CKPT_VERSION 6 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState; 6: their time-step errors */
+#define CKPT_VERSION 7 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState; 6: their time-step errors;
+                          7: a point's UMAT call count in its state (PointSummary.umat_calls), and the one history layout (a point's
+                          segment column is stage, an FE history has stage_name: a format-6 checkpoint's history.csv has the old one) */
 
 static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
   snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);
@@ -160,8 +162,10 @@ static void refusal_message(int code, int step, int bad, int other, const Runner
              step, opt->outdir, opt->mesh_file ? opt->mesh_file : "this run's");
   else if (code == 3)
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s was written by another version of the driver (checkpoint "
-                          "format %d; this driver reads format %d): run the scene afresh, without -restart; nothing was written",
-             step, opt->outdir, other, CKPT_VERSION);
+                          "format %d; this driver reads format %d): %s; nothing was written", step, opt->outdir, other, CKPT_VERSION,
+             other < CKPT_VERSION ? "a checkpoint of an older layout (its state and the history's columns are not this driver's) "
+                                    "cannot be continued: run the scene again from its start, without -restart"
+                                  : "a newer driver's: continue it with that driver, or run the scene again from its start without -restart");
   else
     snprintf(err, errlen, "-restart: the checkpoint of step %d in %s is missing or incomplete on at least one rank (first: rank %d, "
                           "checkpoint.%d.rank%d.bin): nothing was written", step, opt->outdir, bad, step, bad);

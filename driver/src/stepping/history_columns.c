@@ -2,6 +2,8 @@
 #include "history_columns.h"
 
 #include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -67,6 +69,38 @@ int history_header_write(FILE *fp, const HistColumn *cols, int ncols, const void
 int history_row_write(FILE *fp, const HistColumn *cols, int ncols, const void *ctx, const RunnerRow *row) {
   if (row_part(fp, lead, NLEAD, NULL, row, 1) || row_part(fp, cols, ncols, ctx, row, 0)) return 1;
   return fputc('\n', fp) == EOF;
+}
+
+/* Where the header of the history at path differs from the one this driver writes: 0 (the same), or 1 with the first
+   differing column (1-based) and both names in err, or -1 (no header read: left to the truncation to report). */
+static int header_differs(const char *path, const HistColumn *cols, int ncols, const void *ctx, char *err, size_t errlen) {
+  char  *mine = NULL, *theirs = NULL;
+  size_t nm = 0, nt = 0;
+  FILE  *fp = fopen(path, "r"), *mem = open_memstream(&mine, &nm);
+  int    rc = -1;
+  if (fp && mem && getline(&theirs, &nt, fp) > 0 && !history_header_write(mem, cols, ncols, ctx) && !fflush(mem)) {
+    const char *a = theirs, *b = mine;
+    int         col = 1;
+    for (; *a && *a == *b; a++, b++) col += *a == ',';
+    rc = *a != *b;
+    if (rc) {
+      while (a > theirs && a[-1] != ',') a--, b--; /* the differing column's start: the same in both */
+      snprintf(err, errlen, "column %d is '%.*s', this driver writes '%.*s'", col, (int)strcspn(a, ",\r\n"), a, (int)strcspn(b, ",\n"), b);
+    }
+  }
+  if (fp) fclose(fp);
+  if (mem) fclose(mem);
+  free(mine), free(theirs);
+  return rc;
+}
+
+int history_file_check(const char *dir, const HistColumn *cols, int ncols, const void *ctx, char *err, size_t errlen) {
+  char path[1024], which[300];
+  snprintf(path, sizeof path, "%s/history.csv", dir);
+  if (header_differs(path, cols, ncols, ctx, which, sizeof which) != 1) return 0;
+  snprintf(err, errlen, "-restart: %s has the columns of an older history layout (%s): it and its checkpoint were written by an "
+           "older driver and cannot be continued: run the scene again from its start, without -restart; nothing was written", path, which);
+  return 2;
 }
 
 int history_file_open(HistoryFile *h, const char *dir, int restart, long offset, const HistColumn *cols, int ncols, const void *ctx,

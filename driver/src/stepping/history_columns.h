@@ -51,6 +51,11 @@ typedef struct {
   char  path[1024];
 } HistoryFile;
 
+/* Before a restart reads its checkpoint (rank 0): whether dir/history.csv has the header this driver writes. 0 (the
+   same, or no header to read: its continuation reports that), or 2 with err naming the first column that differs (an
+   older driver's layout, which this run cannot continue). */
+int history_file_check(const char *dir, const HistColumn *cols, int ncols, const void *ctx, char *err, size_t errlen);
+
 /* Open the history in dir (fresh: with its header). 0, or nonzero with err set. */
 int history_file_open(HistoryFile *h, const char *dir, int restart, long offset, const HistColumn *cols, int ncols, const void *ctx,
                       char *err, size_t errlen);

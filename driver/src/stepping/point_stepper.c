@@ -221,9 +221,10 @@ static PetscErrorCode replay(void *ctx, const char *dir, char *msg, size_t n) {
   return 0;
 }
 
-static void write_json(const PointScene *sc, const double *t_start, const double *t_end) {
+/* scene.json (name: scene.json.part while the run has no results of its own: an earlier run's stays). */
+static void write_json(const PointScene *sc, const double *t_start, const double *t_end, const char *name) {
   char path[1100];
-  snprintf(path, sizeof path, "%s/scene.json", sc->outdir);
+  snprintf(path, sizeof path, "%s/%s", sc->outdir, name);
   FILE *fp = fopen(path, "w");
   if (!fp) return;
   fprintf(fp, "{\"name\": \"%s\", \"ntens\": %d, \"props\": [", sc->name, sc->mat.ntens);
@@ -280,7 +281,8 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   sum->finite = 1;
   for (int i = 0; i < sc->mat.ntens; i++) sum->finite &= isfinite(pt.cur.stress[i]);
   for (int i = 0; i < sc->mat.nstatv; i++) sum->finite &= isfinite(pt.cur.statev[i]);
-  if (sc->outdir[0]) write_json(sc, pt.t_start, pt.t_end);
+  if (sc->outdir[0] && rs.ran && rc != 2) /* not after bad input (a refused restart): nothing written */
+    write_json(sc, pt.t_start, pt.t_end, rs.replaced ? "scene.json" : "scene.json.part");
   free(pt.t_start);
   free(pt.t_end);
   return rc;

@@ -399,12 +399,16 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
     snprintf(err, errlen, "-checkpoint_every %d: expected a number of steps >= 0 (0: no checkpoints)", opt->checkpoint_every);
     return 2;
   }
-  if (opt->restart) {
-    int rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen);
-    if (rc) return rc;
+  if (opt->restart) { /* the history's layout first: reading the checkpoint resumes the solver's files (the fields) */
+    int rc = !r.rank && opt->outdir && opt->outdir[0] ? history_file_check(opt->outdir, sv->columns, sv->ncolumns, sv->ctx, err, errlen) : 0;
+    MPI_Bcast(&rc, 1, MPI_INT, 0, sv->comm); /* rank 0 holds the history: every rank stops with its message */
+    MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, sv->comm);
+    if (rc || (rc = checkpoint_read(sv, opt, &r.st, &r.last_ckpt, err, errlen))) return rc;
   }
   if (!opt->restart) r.st.mesh_hash = binfile_hash(opt->mesh_file);
   int rc = history_open(&r, err, errlen);
+  MPI_Bcast(&rc, 1, MPI_INT, 0, sv->comm); /* as above */
+  MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, sv->comm);
   if (rc) return rc;
   clock_gettime(CLOCK_MONOTONIC, &r.w0);
   if (!opt->restart) {
@@ -425,6 +429,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
   sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
+  sum->ran = 1, sum->replaced = r.promoted || opt->restart;
   sum->nreport = sv->report ? sv->nreport : 0, sum->nstages_done = PetscMin(r.st.stage, RUNNER_MAX_STAGES);
   for (int k = 0; k < sum->nreport; k++) sum->report_names[k] = sv->report_names[k];
   memcpy(sum->report, r.st.report, sizeof sum->report);

@@ -150,6 +150,9 @@ typedef struct {
 
 typedef struct RunnerSummary_ {
   int    steps, cutbacks, its, rejected_error, failed, stopped;
+  int    ran;      /* the run got past its set-up (the history's first row written, or a checkpoint read): only then is
+                      there a summary to write */
+  int    replaced; /* the run's files replaced an earlier run's (its first step done, or a restart continuing them) */
   long   umat_calls; /* all ranks */
   double t, wall;
   /* the scene's reported quantities (StepSolver.report) at the start (0) and at the end of stage s (s + 1), for
