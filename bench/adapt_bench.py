@@ -4,6 +4,7 @@ reported quantities against the case's converged answer, the mesh error each lev
 (the effectivity), cells, unknowns and CPU. Writes the section "Adapted meshes" of docs/performance.md.
 
     bench/adapt_bench.py [--cases lr1,sector,axi,sphere,bn] [--levels N] [--results out/adapt_bench.json] [--no-run] [--doc]
+                         [--keep-references]
 
 Converged answers (where each comes from):
 - lr1: loading_rate_a1 with an unload to zero in 20 s added: the 2D study's P2 ladder to h_tip 0.0071 (docs/performance.md,
@@ -109,6 +110,8 @@ def main():
     ap.add_argument("--results", default="out/adapt_bench.json")
     ap.add_argument("--no-run", action="store_true")
     ap.add_argument("--doc", action="store_true")
+    ap.add_argument("--keep-references", action="store_true",
+                    help="axi, sphere: take the reference runs already in out/adapt_bench (their answers do not depend on the estimate)")
     a = ap.parse_args()
     base = Path("out/adapt_bench")
     results = json.loads(Path(a.results).read_text()) if Path(a.results).exists() else {}
@@ -116,7 +119,7 @@ def main():
         out = base / case
         if not a.no_run:
             run(case, out, a.levels)
-            if CASES[case][3] is None and case in ("axi", "sphere"):   # the reference: P2 on its own meshes, a level more
+            if CASES[case][3] is None and case in ("axi", "sphere") and not a.keep_references:   # the reference: P2 on its own meshes, a level more
                 run(case, base / f"{case}_ref", a.levels + 1, order=2)
         ref = CASES[case][3]
         if ref is None and case in ("axi", "sphere"):   # the reference run's answer, or its last level done

@@ -78,27 +78,36 @@ static int publish(const char *outdir, const char *level_dir, char *err, size_t 
   return 0;
 }
 
-/* One quantity's error from its values on the levels (docs/adapt.md, "The error estimate"): the last change over the
-   predicted ratio of errors at the assumed rate r, error ~ cells^-r; from three levels, the change before it reduced
-   at that rate when it is the larger, so that a last change that is small by chance (meshes of one density scatter)
-   does not pass for convergence. */
-static double quantity_error(const double *q, const double *cells, int n, double r) {
-  const double rho = cells[n - 1] / cells[n - 2], gain = pow(rho, r);
-  double       d = fabs(q[n - 1] - q[n - 2]);
-  if (n >= 3) d = fmax(d, fabs(q[n - 2] - q[n - 3]) / gain);
-  return d / (gain - 1);
+/* The ratio by which the reported quantities' errors fall from level l - 1 to level l (docs/adapt.md, "The error
+   estimate"): the square of the fall of the error indicator, the run's own estimate of its energy error (an output's
+   error goes as the energy errors of the problem and of its dual: Becker & Rannacher, Acta Numerica 10 (2001) 1-102).
+   Where the indicator fell by less than 10 % the levels predict nothing: the assumed rate of uniform refinement,
+   the energy error ~ cells^(-k/d), squared, in its place. */
+static double error_ratio(const RunInfo *lv, int l, int order, int dim) {
+  const double g = pow(lv[l - 1].eta / lv[l].eta, 2);
+  return isfinite(g) && g > 1.21 ? g : pow((double)lv[l].cells / lv[l - 1].cells, 2.0 * order / dim);
+}
+
+/* One quantity's error from its values q on the levels 0..n-1 and the ratios g (g[l]: level l - 1's error over level
+   l's): Richardson's, the last change over g - 1; from three levels, the level before's own estimate reduced by g
+   when it is the larger, so that a last change small by chance (meshes of one density scatter) does not pass for
+   convergence. */
+static double quantity_error(const double *q, const double *g, int n) {
+  double e = fabs(q[n - 1] - q[n - 2]) / (g[n - 1] - 1);
+  if (n >= 3) e = fmax(e, fabs(q[n - 2] - q[n - 3]) / (g[n - 2] - 1) / g[n - 1]);
+  return e;
 }
 
 /* The mesh error of every reported quantity from the levels' answers (docs/adapt.md, "The error estimate"). */
 static void estimate(const RunInfo *levels, int n, int order, int dim, MeshError *me) {
-  double cells[16], end[16], change[16];
+  double g[16], end[16], change[16];
   memset(me, 0, sizeof *me);
   if (n < 2 || n > 16) return;
   const RunnerSummary *a = &levels[n - 1].sum;
-  me->have = 1, me->rate = (double)order / dim;
-  me->how  = n >= 3 ? "the larger of the last change and the change before it reduced at the assumed rate, over the predicted ratio of errors (docs/adapt.md)"
-                    : "the last change over the predicted ratio of errors at the assumed rate (docs/adapt.md)";
-  for (int l = 0; l < n; l++) cells[l] = (double)levels[l].cells;
+  for (int l = 1; l < n; l++) g[l] = error_ratio(levels, l, order, dim);
+  me->have = 1, me->ratio = g[n - 1];
+  me->how  = n >= 3 ? "the larger of the last change and the level before's estimate, each over the fall of the squared error indicator (docs/adapt.md)"
+                    : "the last change over the fall of the squared error indicator (docs/adapt.md)";
   for (int k = 0; k <= a->nstages_done; k++)
     for (int q = 0; q < a->nreport; q++) {
       for (int l = 0; l < n; l++) {
@@ -106,8 +115,8 @@ static void estimate(const RunInfo *levels, int n, int order, int dim, MeshError
         end[l]    = k <= s->nstages_done ? s->report[k][q] : NAN;
         change[l] = k > 0 && k <= s->nstages_done ? s->report[k][q] - s->report[k - 1][q] : 0;
       }
-      me->end[k][q]    = quantity_error(end, cells, n, me->rate);
-      me->change[k][q] = quantity_error(change, cells, n, me->rate);
+      me->end[k][q]    = quantity_error(end, g, n);
+      me->change[k][q] = quantity_error(change, g, n);
     }
 }
 

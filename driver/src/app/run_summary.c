@@ -109,7 +109,7 @@ int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels,
   fprintf(fp, ", \"cells\": %ld, \"unknowns\": %ld, \"order\": %d, \"error_indicator\": ", a->cells, a->unknowns, sc->order);
   json_num(fp, a->eta);
   fputs("},\n  \"mesh_error\": ", fp);
-  if (me && me->have) fprintf(fp, "{\"how\": \"%s\", \"rate\": %.4g}", me->how, me->rate);
+  if (me && me->have) fprintf(fp, "{\"how\": \"%s\", \"ratio\": %.4g}", me->how, me->ratio);
   else fputs("null", fp);
   stages_and_counters(fp, names, nname, s, me, end);
   fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"cpu_s_answer\": %.3f, \"wall_s\": %.3f},\n  \"levels\": [\n", cpu, a->cpu, s->wall);

@@ -22,7 +22,7 @@ typedef struct {
    and of its change over stage s (change[s + 1]); have 0: no estimate (one mesh). */
 typedef struct {
   int    have;
-  double rate;                                              /* the convergence rate used, error ~ cells^-rate */
+  double ratio;                                             /* the last level's predicted fall of the errors (fe_adapt.c) */
   const char *how;                                          /* how it was made, for the log and the summary */
   double end[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
   double change[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT];
