@@ -3,8 +3,10 @@ docs/driver.md, "summary.json").
 
 Every summary has "scene", "kind", "completed", "counters" and "cost"; then the kind's own (KIND_KEYS): an FE or
 indentation run "mesh", "mesh_error", "stages": [{"name", "end", "change", "mesh_error"?, "time_error"}] and
-"levels"; a point run "stages" and "point"; a calibration "parameters" and "misfit". `read_summary` checks those
-keys and returns the dict; `stage` picks a stage by name and `reported` one of its quantities. Errors are
+"levels"; a point run "stages" and "point"; a calibration "parameters" and "misfit". FE, indentation and point
+summaries also have "failure" (null, or where the run failed: docs/driver.md), not checked, so that summaries of
+earlier builds still read. A run that failed before its first step was done writes summary.json.part (beside its
+history.csv.part), which `read_summary` reads when given that file. `read_summary` checks those keys and returns the dict; `stage` picks a stage by name and `reported` one of its quantities. Errors are
 ValueError (FileNotFoundError for a missing file) naming the file and the key.
 """
 import json
@@ -23,9 +25,9 @@ class Summary(dict):
 
 
 def summary_path(run):
-    """RUN/summary.json for a run directory, or the file itself."""
+    """RUN/summary.json for a run directory, or the file itself (summary.json or summary.json.part)."""
     run = Path(run)
-    return run if run.suffix == ".json" else run / "summary.json"
+    return run if run.suffix == ".json" or run.name.endswith(".json.part") else run / "summary.json"
 
 
 def read_summary(run):
@@ -33,7 +35,7 @@ def read_summary(run):
     path = summary_path(run)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no such file (the driver writes it at the end of every run but a sweep or "
-                                "replay)")
+                                "replay; a run that failed before its first step was done writes summary.json.part)")
     try:
         s = json.loads(path.read_text())
     except json.JSONDecodeError as err:

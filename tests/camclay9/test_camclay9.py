@@ -113,6 +113,12 @@ def test_summary_errors(tmp_path):
     (tmp_path / "summary.json").write_text('{"scene": ')
     with pytest.raises(ValueError, match="not JSON"):
         read_summary(tmp_path)
+    # a run that failed before its first step was done: summary.json.part, read when named
+    part = tmp_path / "summary.json.part"
+    part.write_text((DATA / "summary.json").read_text())
+    assert read_summary(part).path == str(part)
+    with pytest.raises(FileNotFoundError, match="summary.json.part"):
+        read_summary(tmp_path / "none")
 
 
 # ------------------------------------------------------------------ the log
