@@ -229,8 +229,8 @@ def bn_text(adapted=False):
             f"against the adapted meshes' {bp['adapted']['h_res'][-1]:.3f} µm. "
             + ("The runs of Figs. 3–5 here are the adapted scenes (input/nanoindent_kerogen_sector_adapt.yaml, "
                "microindent_BN_sector_adapt.yaml, microindent_BP_adapt.yaml): the table gives the mesh and time-step errors "
-               "each states (docs/adapt.md; the mesh error from a run's own levels errs high, by about 1 to 30 times where "
-               "it was measured: docs/performance.md, \"Adapted meshes\"), and BN's and BP's residual depths against the "
+               "each states (docs/adapt.md; docs/performance.md, \"Adapted meshes\", measures the stated mesh error against "
+               "converged answers: it is not a bound), and BN's and BP's residual depths against the "
                "converged values of their adapted ladders, which run one level further: they are no longer lower bounds."
                if adapted else
                "The residual depths and profiles of BN and BP (Figs. 4–5) are lower bounds; the adapted scenes "
