@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Meshes made for the answer (issue 32; docs/adapt.md): each case adapted from a coarse start, every level's
 reported quantities against the case's converged answer, the mesh error each level states beside its true error
-(the effectivity), cells, unknowns and CPU. Writes the section "Adapted meshes" of docs/performance.md.
+(the effectivity), cells, unknowns and CPU. --doc writes the cases of --cases into the results store
+docs/results/adapt_bench.json and, from it, the section "Adapted meshes" of docs/performance.md (camclay9.adapt_study).
 
     bench/adapt_bench.py [--cases lr1,sector,axi,sphere,bn] [--levels N] [--results out/adapt_bench.json] [--no-run] [--doc]
                          [--keep-references]
@@ -25,13 +26,12 @@ import json
 import time
 from pathlib import Path
 
-from camclay9 import read_summary, run_driver
+from camclay9 import read_summary, results_store, run_driver
+from camclay9.adapt_study import STORE, TITLE, section
 from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 
-MEASURABLE = 2e-3   # errors below 0.2 % of the reference are within the references' own uncertainty: no effectivity
-TITLE = "## Adapted meshes: error indicator, adaptation by rerun, the stated mesh error"
 UNLOAD = """  - name: unload
     duration: 20
     indenter: {load: 0}
@@ -116,7 +116,8 @@ def main():
     ap.add_argument("--levels", type=int, default=3)
     ap.add_argument("--results", default="out/adapt_bench.json")
     ap.add_argument("--no-run", action="store_true")
-    ap.add_argument("--doc", action="store_true")
+    ap.add_argument("--doc", action="store_true", help="write docs/results/adapt_bench.json and the section of docs/performance.md")
+    ap.add_argument("--note", default="shared 2-core machine, CPU of one rank", help="machine load, for the section")
     ap.add_argument("--keep-references", action="store_true",
                     help="axi, sphere: take the reference runs already in out/adapt_bench (their answers do not depend on the estimate)")
     a = ap.parse_args()
@@ -124,6 +125,8 @@ def main():
     results = json.loads(Path(a.results).read_text()) if Path(a.results).exists() else {}
     for case in a.cases.split(","):
         out = base / case
+        if a.no_run and case in results and not (out / "adapt").is_dir():
+            continue   # its runs are not here: the levels kept in --results
         if not a.no_run:
             run(case, out, a.levels)
             if CASES[case][3] is None and case in ("axi", "sphere") and not a.keep_references:   # the reference: P2 on its own meshes, a level more
@@ -140,51 +143,15 @@ def main():
         results[case] = {"levels": levels_of(out), "reference": ref}
     Path(a.results).parent.mkdir(parents=True, exist_ok=True)
     Path(a.results).write_text(json.dumps(results, indent=1))
-    text = doc(results, a)
+    store = {"provenance": {"command": "`bench/adapt_bench.py --cases CASE --levels N` for each case, N its table's last level, "
+                                       f"then `bench/adapt_bench.py --cases {a.cases} --no-run --doc`",
+                            "date": time.strftime("%Y-%m-%d", time.gmtime()), "note": a.note},
+             "cases": {c: results[c] for c in a.cases.split(",")}}
+    text = section(store, ROOT)
     print(text)
     if a.doc:
+        print(f"written: {results_store.save(STORE, store)}")
         replace_section(TITLE, text)
-
-
-def cell(q, e, ref, k):
-    if k not in q:
-        return "—"
-    s = f"{q[k]:.5g}"
-    if ref and isinstance(ref.get(k), float):
-        err = q[k] - ref[k]
-        s += f" ({err / ref[k]:+.2%}"
-        if e.get(k) == e.get(k):   # not NaN
-            s += f"; est. ±{abs(e[k]) / abs(ref[k]):.2%}"
-            if abs(err) >= MEASURABLE * abs(ref[k]):   # else within the reference's own uncertainty
-                s += f", eff. {abs(e[k]) / abs(err):.2g}"
-        s += ")"
-    elif e.get(k) == e.get(k):
-        s += f" (est. ±{abs(e[k]) / abs(q[k]):.2%})"
-    return s
-
-
-def doc(results, a):
-    lines = [TITLE, "", "Command: `bench/adapt_bench.py --cases CASE --levels N` for each case, N its table's last level, then "
-             f"`bench/adapt_bench.py --cases {a.cases} --no-run --doc` ({time.strftime('%Y-%m-%d')}; shared 2-core machine, CPU of "
-             "one rank). Each case starts from a coarse mesh "
-             "and is rerun on meshes made from its error indicator (docs/adapt.md), about twice the cells per level. In brackets: "
-             "the error against the case's converged answer (the bench's docstring says where each comes from), the mesh error "
-             "the level states (est., relative) and the effectivity (eff. = stated / true error, given where the true error is at "
-             "least 0.2 %, the references' own uncertainty; the issue asks for 0.5 to 2).", ""]
-    for case, r in results.items():
-        ref = r["reference"]
-        keys = [k for k in ("h_max", "P", "creep", "h_res") if any(k in lv["q"] for lv in r["levels"])]
-        lines += [f"**{case}** (reference: {json.dumps(ref) if ref else 'none'})", "",
-                  "| level | cells | unknowns | CPU [s] | UMAT calls | " + " | ".join(keys) + " |",
-                  "|---|---|---|---|---|" + "---|" * len(keys)]
-        for lv in r["levels"]:
-            lines.append(f"| {lv['level']} | {lv['cells']} | {lv['unknowns']} | {lv['cpu']:.0f} | {lv['umat_calls'] / 1e6:.1f} M | "
-                         + " | ".join(cell(lv["q"], lv["e"], ref, k) for k in keys) + " |")
-        lines.append("")
-    conclusions = Path(__file__).with_name("adapt_conclusions.md")
-    if conclusions.exists():   # the reading, written by hand from the rows above
-        lines += [conclusions.read_text().rstrip(), ""]
-    return "\n".join(lines) + "\n"
 
 
 if __name__ == "__main__":
