@@ -65,7 +65,7 @@ def make_mesh(size, path, root=None):
     cmds = [["gmsh", geo, "-3", "-format", "msh41", "-setnumber", "R", str(R), "-setnumber", "H", str(H),
              "-setnumber", "size", str(size), "-o", path], ["gmsh", path, "-0", "-format", "msh22", "-o", path + "22"]]
     for cmd in cmds:
-        r = subprocess.run(cmd, capture_output=True, text=True)
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
         if r.returncode != 0 or not os.path.exists(cmd[-1]):
             raise RuntimeError(f"{' '.join(cmd)} failed: {r.stdout[-2000:]}{r.stderr[-2000:]}")
     return path
@@ -197,11 +197,11 @@ output: {{directory: {outdir}}}
     return path
 
 
-def _timed(cmd, **kw):
-    """Run; wall time and CPU time (user + system of the child) in seconds."""
+def _timed(cmd, timeout=7200, **kw):
+    """Run (killed after `timeout` seconds); wall time and CPU time (user + system of the child) in seconds."""
     c0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    r = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, **kw)
     wall = time.perf_counter() - t0
     c1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     return r, wall, (c1.ru_utime - c0.ru_utime) + (c1.ru_stime - c0.ru_stime)
