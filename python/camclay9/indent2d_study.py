@@ -44,7 +44,8 @@ LADDERS = {
     "lr01f": ("loading rate α = 0.1, P2, r_fine 0.9", "lr01", 2, "h_tip", 0.9, [0.02, 0.02 / R2, 0.01, 0.01 / R2]),
     "lr10f": ("loading rate α = 10, P2, r_fine 0.9", "lr10", 2, "h_tip", 0.9, [0.02, 0.02 / R2, 0.01, 0.01 / R2]),
 }
-SHIPPED = {"lr": ("loading_rate_a1", 2, 0.01414, 0.9), "bed": ("bedding_theta45", 2, 0.25, 10.0)}  # scene, order, h_tip, r_fine
+SHIPPED = {"lr": ("loading_rate_a1", 2, 0.01414, 0.9), "bed": ("bedding_theta45", 2, 0.25, 10.0),  # scene, order, h_tip, r_fine
+           "lr01": ("loading_rate_a0.1", 2, 0.01414, 0.9), "lr10": ("loading_rate_a10", 2, 0.01414, 0.9)}
 STORE = "indent2d_convergence"   # docs/results/indent2d_convergence.json (camclay9.results_store)
 
 

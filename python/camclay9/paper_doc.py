@@ -111,11 +111,18 @@ def mesh2d_effect(n, quick=False):
     own = None if quick else (n["indent"].get("loading_rate_a1") or {}).get("creep_depth")
     own_txt = (f"; the shipped scene's own mesh (its h_far rounded, another mesh of the same density) {_pct(own / ref['lr']['creep']['value'] - 1)} "
                "in creep depth" if own else "")
+    rates = ""
+    for sk, alpha in (("lr01", "0.1"), ("lr10", "10")):
+        r = [r for r in st["rungs"].values() if r.get("scene") == sk and r["order"] == 2 and abs(r["h_tip"] - 0.01414) < 1e-5]
+        if r and sk in ref:
+            rates += f"; at α = {alpha} the same mesh {_pct(r[0]['o']['creep'] / ref[sk]['creep']['value'] - 1)} in creep depth"
+    if rates:
+        rates += " (their ladders have three or four rungs: docs/performance.md)"
     return ("against the converged 2D answer (docs/performance.md, 2D indentation: mesh and element study; α = 1 and "
-            f"θ = 45 only): loading rate (h_tip 0.0141 µm) {_pct(e['lr']['h_max'])} (depth at the end of loading), "
+            f"θ = 45, creep depth also α = 0.1 and 10): loading rate (h_tip 0.0141 µm) {_pct(e['lr']['h_max'])} (depth at the end of loading), "
             f"{_pct(e['lr']['creep'])} (creep depth), {_pct(e['lr']['h_res'])} (residual depth, with an unload added), "
             f"{_pct(e['lr']['sig_hold'])} (stress under the tip at the hold's end), {_pct(e['lr']['dsig'])} (its change "
-            f"over the hold, Fig. 13's quantity){own_txt}; bedding (45°) {_pct(e['bed']['h_max'])}, {_pct(e['bed']['creep'])}, "
+            f"over the hold, Fig. 13's quantity){own_txt}{rates}; bedding (45°) {_pct(e['bed']['h_max'])}, {_pct(e['bed']['creep'])}, "
             f"{_pct(e['bed']['h_res'])}, {_pct(e['bed']['sig_hold'])}, {_pct(e['bed']['dsig'])}")
 
 
