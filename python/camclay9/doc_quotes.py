@@ -14,6 +14,7 @@ those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, cali
 import re
 
 from camclay9 import paper_doc_tri, results_store
+from camclay9.indent2d_study import key
 
 
 MINUS = "\u2212"
@@ -59,8 +60,7 @@ def namespace(store_dir=None):
 
     def rung2(sk, h_tip, r_fine, order=2):
         """A 2D study rung's errors against its scene's converged answer."""
-        r = next(r for r in i2["rungs"].values() if r.get("scene") == sk and r["order"] == order and not r.get("tol")
-                 and abs(r["h_tip"] - h_tip) < 1e-3 * h_tip and r["r_fine"] == r_fine)
+        r = i2["rungs"][key(sk, order, h_tip, r_fine)]
         return A({k: r["o"][k] / i2["reference"][sk][k]["value"] - 1 for k in r["o"]} | {"cpu": r["cpu"], "unknowns": r["unknowns"]})
 
     def err3(key):

@@ -63,6 +63,12 @@ def key(skey, order, h_tip, r_fine, tol=None):
     return f"{skey}:P{order}:h{h_tip:.4g}:r{r_fine:.4g}" + (f"@{tol:g}" if tol else "")
 
 
+def shipped_rung(rungs, skey):
+    """The rung of `rungs` (a store's "rungs") with the shipped scene's order, h_tip and r_fine (SHIPPED), or None."""
+    _, order, h_tip, r_fine = SHIPPED[skey]
+    return rungs.get(key(skey, order, h_tip, r_fine))
+
+
 def ladder_rows(res, ladder):
     rows = [res.get(key(*g)) for g in rungs(ladder)]
     return [r for r in rows if r and "failed" not in r]

@@ -12,6 +12,7 @@ import shutil
 from pathlib import Path
 
 from camclay9 import paper_doc_2d, paper_doc_tri, results_store
+from camclay9.indent2d_study import shipped_rung
 from camclay9.paper_numbers import THETAS_BEDDING, check_trends
 
 REF = "Yin, Liu & Borja (2021)"
@@ -103,9 +104,7 @@ def mesh2d_effect(n, quick=False):
     ref = st.get("reference", {})
     if "lr" not in ref or "bed" not in ref:
         return "not measured"
-    rung = {sk: next(r for r in st["rungs"].values() if r.get("scene") == sk and r["order"] == 2 and not r.get("tol")
-                     and abs(r["h_tip"] - h) < 1e-3 * h and r["r_fine"] == rf) for sk, h, rf in (("lr", 0.01414, 0.9),
-                                                                                                  ("bed", 0.25, 10.0))}
+    rung = {sk: shipped_rung(st["rungs"], sk) for sk in ("lr", "bed")}
     e = {sk: {k: rung[sk]["o"][k] / ref[sk][k]["value"] - 1 for k in ("h_max", "creep", "h_res", "sig_hold", "dsig")}
          for sk in rung}
     own = None if quick else (n["indent"].get("loading_rate_a1") or {}).get("creep_depth")
@@ -113,9 +112,9 @@ def mesh2d_effect(n, quick=False):
                "in creep depth" if own else "")
     rates = ""
     for sk, alpha in (("lr01", "0.1"), ("lr10", "10")):
-        r = [r for r in st["rungs"].values() if r.get("scene") == sk and r["order"] == 2 and abs(r["h_tip"] - 0.01414) < 1e-5]
+        r = shipped_rung(st["rungs"], sk)
         if r and sk in ref:
-            rates += f"; at α = {alpha} the same mesh {_pct(r[0]['o']['creep'] / ref[sk]['creep']['value'] - 1)} in creep depth"
+            rates += f"; at α = {alpha} the same mesh {_pct(r['o']['creep'] / ref[sk]['creep']['value'] - 1)} in creep depth"
     if rates:
         rates += " (their ladders have three or four rungs: docs/performance.md)"
     return ("against the converged 2D answer (docs/performance.md, 2D indentation: mesh and element study; α = 1 and "

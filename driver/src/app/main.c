@@ -183,7 +183,7 @@ static int run_point(YdDoc *doc, const char *outdir, PetscBool check, PetscInt r
     char   e2[512], msg[2048];
     RunEnd end = {rc ? msg : NULL, -1, rs.replaced};
     if (rc) run_summary_error(rc, err, msg, sizeof msg);
-    if (sc.outdir[0] && rs.ran && rc != 2 && run_summary_point(&sc, &sum, &rs, (double)(clock() - cpu0) / CLOCKS_PER_SEC, &end, e2, sizeof e2) && !rc)
+    if (sc.outdir[0] && run_summary_due(rc, &rs) && run_summary_point(&sc, &sum, &rs, (double)(clock() - cpu0) / CLOCKS_PER_SEC, &end, e2, sizeof e2) && !rc)
       rc = 1, snprintf(err, errlen, "%s", e2);
   }
   point_scene_free(&sc);

@@ -43,6 +43,8 @@ static void stage_entry(FILE *fp, const char *name, const RunnerSummary *s, cons
   fprintf(fp, "}%s\n", k < s->nstages_done ? "," : "");
 }
 
+int run_summary_due(int rc, const RunnerSummary *s) { return s->ran && rc != 2; }
+
 void run_summary_error(int rc, const char *err, char *buf, size_t n) {
   const char *text = NULL;
   if (err && err[0]) snprintf(buf, n, "%s", err);
@@ -121,7 +123,7 @@ int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels,
 void run_summary_failed(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, int level, int final, int rc, const char *err) {
   char   msg[4096], e2[1400];
   RunEnd end = {msg, level, final};
-  if (rc == 2 || !levels[nlevels - 1].sum.ran) return;
+  if (!run_summary_due(rc, &levels[nlevels - 1].sum)) return;
   run_summary_error(rc, err, msg, sizeof msg);
   if (run_summary_write(sc, dir, levels, nlevels, NULL, &end, e2, sizeof e2)) printf("summary of the failed run: %s\n", e2);
 }

@@ -38,6 +38,10 @@ typedef struct {
                         run's summary.json left in place */
 } RunEnd;
 
+/* Whether a run that ended with status rc has a summary to write: it got past its set-up (RunnerSummary.ran) and was
+   not refused as bad input (rc 2). */
+int run_summary_due(int rc, const RunnerSummary *s);
+
 /* The message of a run's status rc for its summary: err, or PETSc's text of the code (err empty). */
 void run_summary_error(int rc, const char *err, char *buf, size_t n);
 

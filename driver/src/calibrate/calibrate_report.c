@@ -224,7 +224,7 @@ static int write_summary(Calib *c, const double *u, const CalUncertainty *un, co
                1e-6 * (self.ru_utime.tv_usec + self.ru_stime.tv_usec + kids.ru_utime.tv_usec + kids.ru_stime.tv_usec);
   fprintf(fp, ",\n  \"cost\": {\"cpu_s\": %.3f, \"wall_s\": %.3f, \"forward_wall_s\": %.3f}", cpu, MPI_Wtime() - c->wall0,
           c->forward_wall);
-  return json_file_commit(fp, part, err, errlen);
+  return json_file_close(fp, part, 1, err, errlen);
 }
 
 int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char *err, size_t errlen) {

@@ -35,8 +35,6 @@ FILE *json_file_open(const char *dir, const char *name, char *part, size_t n, ch
   return fp;
 }
 
-int json_file_commit(FILE *fp, const char *part, char *err, size_t errlen) { return json_file_close(fp, part, 1, err, errlen); }
-
 int json_file_close(FILE *fp, const char *part, int final, char *err, size_t errlen) {
   char   path[1200];
   size_t len = strlen(part);
