@@ -16,8 +16,9 @@ work; the Newton iterations say whether a path's directions cost the Newton extr
 
   bench/contact_solver_bench.py [--repeats 3] [--cases axi1,axi2,sector0.12,...] [--no-doc]
 
-Writes the section "## Contact solve: direct against field split" of docs/performance.md and its numbers into the
-results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes (camclay9.doc_quotes).
+Writes its numbers into the results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes
+(camclay9.doc_quotes), and the section "## Contact solve: direct against field split" of docs/performance.md from
+that store (camclay9.contact_solver_study; tools/doc_numbers.py checks the section against the store).
 """
 import argparse
 import statistics
@@ -28,11 +29,11 @@ from pathlib import Path
 
 import yaml
 from camclay9 import driver_command, mesh_line, results_store, run_measured, summary_line
+from camclay9 import contact_solver_study as study
 from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TIMEOUT = 3600  # s, one run
-TITLE = "## Contact solve: direct against field split"
 NESTED = ["-indent_fieldsplit_u_ksp_type", "gmres", "-indent_fieldsplit_u_ksp_rtol", "1e-12",
           "-indent_fieldsplit_contact_ksp_type", "gmres", "-indent_fieldsplit_contact_ksp_rtol", "1e-12"]
 SOLVERS = {"direct": [], "fieldsplit": ["-indent_solver", "fieldsplit"], "fieldsplit, nested": ["-indent_solver", "fieldsplit"] + NESTED}
@@ -89,23 +90,6 @@ def measure(case, repeats, work):
     return rows
 
 
-def doc(rows, repeats, stamp):
-    L = [TITLE, "",
-         f"Command: `bench/contact_solver_bench.py --repeats {repeats}` ({stamp}; a shared 2-core machine, one rank). "
-         "The first steps of the kerogen nanoindentation on each path (the bench's docstring gives the cases): CPU "
-         "is user + system of the driver, median of the repeats (one run for sector0.05); memory the driver's peak resident "
-         "set. "
-         "'fieldsplit, nested': the field split as it was before issue 33 (GMRES to 1e-12 inside each block).", "",
-         "| case | unknowns | steps | solver | Newton its | Krylov its | CPU [s] | CPU / direct | peak memory [MB] | memory / direct |",
-         "|---|---|---|---|---|---|---|---|---|---|"]
-    base = {r["case"]: r for r in rows if r["solver"] == "direct"}
-    for r in rows:
-        b = base[r["case"]]
-        L.append(f"| {r['case']} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
-                 f"{r['cpu']:.2f} | {r['cpu'] / b['cpu']:.2f} | {r['mem']:.0f} | {r['mem'] / b['mem']:.2f} |")
-    return "\n".join(L) + "\n"
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--repeats", type=int, default=3)
@@ -116,14 +100,15 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         for case in a.cases.split(","):
             rows += measure(case, 1 if case in ONCE else a.repeats, Path(tmp))
-    section = doc(rows, a.repeats, time.strftime("%Y-%m-%d"))
+    stamp = time.strftime("%Y-%m-%d")
+    store = {"provenance": {"command": f"bench/contact_solver_bench.py --repeats {a.repeats}", "date": stamp},
+             "rows": [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats")}
+                      for r in rows]}
+    section = study.section(store)   # the section from the store's numbers, as tools/doc_numbers.py checks it
     print(section)
     if not a.no_doc:
-        replace_section(TITLE, section)
-        results_store.save("contact_solver", {
-            "provenance": {"command": f"bench/contact_solver_bench.py --repeats {a.repeats}", "date": time.strftime("%Y-%m-%d")},
-            "rows": [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats")}
-                     for r in rows]})
+        replace_section(study.TITLE, section)
+        results_store.save(study.STORE, store)
 
 
 if __name__ == "__main__":

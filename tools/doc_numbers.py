@@ -8,8 +8,9 @@ Usage: tools/doc_numbers.py [--write] [--root DIR]
                (camclay9.paper_doc, render_store);
              * the sections of docs/performance.md written from a store against what their generators write:
                "## Reproducing the paper" (paper.json), "## 2D indentation: mesh and element study"
-               (camclay9.indent2d_study, indent2d_convergence.json) and "## Adapted meshes: ..."
-               (camclay9.adapt_study, adapt_bench.json);
+               (camclay9.indent2d_study, indent2d_convergence.json), "## Adapted meshes: ..."
+               (camclay9.adapt_study, adapt_bench.json) and "## Contact solve: direct against field split"
+               (camclay9.contact_solver_study, contact_solver.json);
              * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
                numbers computed from the stores, must stand in its document.
   --write    write those sections and docs/paper.md from the stores, and put the stores' numbers into the quotes'
@@ -24,12 +25,14 @@ import difflib
 import sys
 from pathlib import Path
 
-from camclay9 import adapt_study, doc_quotes, paper_doc, results_store
+from camclay9 import adapt_study, contact_solver_study, doc_quotes, paper_doc, results_store
 from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
 
-PERF_SECTIONS = ("## Reproducing the paper", i2d.TITLE, adapt_study.TITLE)
+# the sections written by a generator module from its own store alone: its STORE, TITLE and section(store, root)
+STUDIES = (adapt_study, contact_solver_study)
+PERF_SECTIONS = ("## Reproducing the paper", i2d.TITLE) + tuple(study.TITLE for study in STUDIES)
 
 
 def section_of(text, title):
@@ -52,9 +55,10 @@ def generated(store_dir):
     s2 = results_store.load(i2d.STORE, store_dir)
     if s2:
         out[("docs/performance.md", PERF_SECTIONS[1])] = i2d.section(s2, paper, ROOT)
-    s3 = results_store.load(adapt_study.STORE, store_dir)
-    if s3:
-        out[("docs/performance.md", PERF_SECTIONS[2])] = adapt_study.section(s3, ROOT)
+    for study in STUDIES:
+        s = results_store.load(study.STORE, store_dir)
+        if s:
+            out[("docs/performance.md", study.TITLE)] = study.section(s, ROOT)
     return out
 
 
