@@ -2,22 +2,25 @@
 """FE benchmark of input/triaxial.yaml (issue #4): time to solution at three mesh sizes and two step
 tolerances, the creep error against the finest run, the time per Newton iteration split into assembly
 (UMAT calls included) and the rest (linear solves), and 1 vs 2 MPI ranks. Median of repeated runs.
-Writes the section "FE: triaxial cylinder" of docs/performance.md.
+Writes its numbers into the results store (docs/results/fe_triaxial.json, which README.md and docs/paper.md quote) and
+the section "FE: triaxial cylinder" of docs/performance.md from that store (camclay9.fe_triaxial_study;
+tools/doc_numbers.py checks the section against the store).
 
 Usage: bench/fe_triaxial.py [--repeats 3]
 """
 import argparse
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
-from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9 import fe_triaxial_study as study
+from camclay9 import mesh_line, read_history, results_store, run_driver, summary_line
 from camclay9.launch import MPIEXEC
 from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-TITLE = "## FE: triaxial cylinder"
 
 
 def run(scene, out, ranks):
@@ -32,6 +35,20 @@ def run(scene, out, ranks):
     eps = -(h["eps_33"][rows] - h["eps_33"][rows[0]])
     creep = [float(np.interp(x, t, eps)) for x in (3600.0, 36000.0)]
     return dict(cells=cells, steps=m["steps"], newton=newton, assembly=m["assembly_s"], wall=wall, creep=creep)
+
+
+def store_rows(results):
+    """The store's rows (camclay9.fe_triaxial_study): each run's numbers, its time per Newton iteration split into
+    assembly and the rest, and its creep's relative errors against the finest run's."""
+    finest = study.finest([dict(size=size, tol=tol, creep=r["creep"]) for size, tol, _, r in results])["creep"]
+    rows = []
+    for size, tol, ranks, r in results:
+        e = [abs(c - f) / abs(f) for c, f in zip(r["creep"], finest)]
+        per = 1e3 / max(r["newton"], 1)
+        rows.append(dict(size=size, tol=tol, ranks=ranks, cells=r["cells"], steps=r["steps"], newton=r["newton"],
+                         wall=r["wall"], assembly_ms=r["assembly"] * per, rest_ms=(r["wall"] - r["assembly"]) * per,
+                         err_1h=e[0], err_10h=e[1]))
+    return rows
 
 
 def main(argv=None):
@@ -52,24 +69,13 @@ def main(argv=None):
             results.append((size, tol, ranks, r))
             print(f"size {size} tol {tol:g} ranks {ranks}: {r['cells']} cells, {r['steps']} steps, {r['newton']} Newton, "
                   f"wall {r['wall']:.1f} s (assembly {r['assembly']:.1f} s), creep 1 h {r['creep'][0]:.4e}, 10 h {r['creep'][1]:.4e}")
-    finest = min(results, key=lambda x: (x[0], x[1]))[3]["creep"]
-    lines = ["| element size [mm] | tol | ranks | cells | steps | Newton its | wall [s] | assembly per Newton it. [ms] | rest per Newton it. [ms] | creep error 1 h | creep error 10 h |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for size, tol, ranks, r in results:
-        e = [abs(c - f) / abs(f) for c, f in zip(r["creep"], finest)]
-        per = 1e3 / max(r["newton"], 1)
-        lines.append(f"| {size:g} | {tol:g} | {ranks} | {r['cells']} | {r['steps']} | {r['newton']} | {r['wall']:.1f} | "
-                     f"{r['assembly'] * per:.2f} | {(r['wall'] - r['assembly']) * per:.2f} | {e[0]:.1e} | {e[1]:.1e} |")
-    section = (f"{TITLE}\n\nCommand: `bench/fe_triaxial.py --repeats {a.repeats}` (medians of the repeats). The scene\n"
-               "`input/triaxial.yaml` (hold to steady state, then 10 h of creep) at three element sizes and two step\n"
-               "tolerances (PROPS 20), P1 tetrahedra, direct solver (MUMPS on 2 ranks). Wall time includes meshing\n"
-               "and MPI start-up; the assembly time is the element loop with its UMAT calls (rank 0's clock);\n"
-               "the rest is mostly the LU factorisations. Errors: relative to the finest run (size 3, tol 1e-7); between\n"
-               "meshes they include a different draw of the phi field (phi is drawn per element), so they do not fall\n"
-               "monotonically with the element size; between tolerances on one mesh they are the time-stepping error.\n\n"
-               + "\n".join(lines) + "\n")
-    replace_section(TITLE, section)
-    print("written: docs/performance.md")
+    store = {"provenance": {"command": f"bench/fe_triaxial.py --repeats {a.repeats}", "date": time.strftime("%Y-%m-%d"),
+                            "section": f"docs/performance.md, '{study.TITLE[3:]}'"},
+             "rows": store_rows(results), "shipped": {"size": 6, "tol": 1e-6}}   # input/triaxial.yaml's
+    section = study.section(store)   # the section from the store's numbers, as tools/doc_numbers.py checks it
+    replace_section(study.TITLE, section)
+    results_store.save(study.STORE, store)
+    print(f"written: docs/performance.md, docs/results/{study.STORE}.json")
 
 
 if __name__ == "__main__":

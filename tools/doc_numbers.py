@@ -9,8 +9,9 @@ Usage: tools/doc_numbers.py [--write] [--root DIR]
              * the sections of docs/performance.md written from a store against what their generators write:
                "## Reproducing the paper" (paper.json), "## 2D indentation: mesh and element study"
                (camclay9.indent2d_study, indent2d_convergence.json), "## Adapted meshes: ..."
-               (camclay9.adapt_study, adapt_bench.json) and "## Contact solve: direct against field split"
-               (camclay9.contact_solver_study, contact_solver.json);
+               (camclay9.adapt_study, adapt_bench.json), "## Contact solve: direct against field split"
+               (camclay9.contact_solver_study, contact_solver.json) and "## FE: triaxial cylinder"
+               (camclay9.fe_triaxial_study, fe_triaxial.json);
              * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
                numbers computed from the stores, must stand in its document.
   --write    write those sections and docs/paper.md from the stores, and put the stores' numbers into the quotes'
@@ -25,13 +26,13 @@ import difflib
 import sys
 from pathlib import Path
 
-from camclay9 import adapt_study, contact_solver_study, doc_quotes, paper_doc, results_store
+from camclay9 import adapt_study, contact_solver_study, doc_quotes, fe_triaxial_study, paper_doc, results_store
 from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
 
 # the sections written by a generator module from its own store alone: its STORE, TITLE and section(store, root)
-STUDIES = (adapt_study, contact_solver_study)
+STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study)
 PERF_SECTIONS = ("## Reproducing the paper", i2d.TITLE) + tuple(study.TITLE for study in STUDIES)
 
 
