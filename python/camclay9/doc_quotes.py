@@ -8,8 +8,11 @@ Coverage: every number of README's main-job paragraph and of its table rows for 
 the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
 below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times, the adapted
 scenes' CPU, the kerogen adapted scene's errors: docs/performance.md, "Adapted meshes", whose bench keeps no store);
-the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json); and
-those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json).
+the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json);
+those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json); and those of
+the 3D section's reading (bench/indent_convergence_conclusions.md, which docs/performance.md carries) that
+indent3d.json holds: the kerogen reference, the rungs and the shipped mesh's cost it keeps, BN's and BP's ladders
+(not their steps and CPU, nor the rungs and the finer run that the store does not keep).
 """
 import re
 
@@ -34,6 +37,11 @@ def f(x, d=1):
 
 def g(x, spec):
     return format(x, spec)
+
+
+def th(x, d=0):
+    """Fixed decimals, thousands apart by a space ("1 057.0")."""
+    return f"{x:,.{d}f}".replace(",", " ")
 
 
 class A(dict):
@@ -81,13 +89,17 @@ def namespace(store_dir=None):
         """A case of bench/calibrate_coverage.py --cases with the 300 s drift hold ("drift_noise, drift: fit", ...)."""
         return A(cov["cases"][name])
 
+    def e3(key, q):
+        """A kerogen rung's error in output q as the section's tables print it ("+1.8", "-21.7"; the % after it)."""
+        return format(100 * err3(key)[q], "+.1f")
+
     def csr(case, q, solver="fieldsplit", base="direct"):
         """The ratio of a field-split row's q to the direct path's (or base's) on the same case."""
         return cs(case, solver, q) / cs(case, base, q)
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2,
-              cc=cc, cd=cov.get("draws", {}), sum=sum, len=len, DN=DN, BO=BO, CF=CF)
+              cc=cc, cd=cov.get("draws", {}), sum=sum, len=len, DN=DN, BO=BO, CF=CF, th=th, e3=e3)
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -102,11 +114,14 @@ def render(text, ns):
     return PART.sub(lambda m: str(eval(m.group(1), {"__builtins__": {}, **ns})), text)
 
 
+def pattern(text):
+    """The quote's text with any numbers in its «» places, as a regular expression."""
+    return "".join(re.escape(p) if i % 2 == 0 else NUMBER for i, p in enumerate(PART.split(text)))
+
+
 def find(text, doc):
-    """The place in doc where the quote's text stands with any numbers in its «» places (one line), or None."""
-    parts = PART.split(text)
-    pattern = "".join(re.escape(p) if i % 2 == 0 else NUMBER for i, p in enumerate(parts))
-    m = re.search(pattern, doc)
+    """The place in doc where the quote's text stands with any numbers in its «» places, or None."""
+    m = re.search(pattern(text), doc)
     return m.group(0) if m else None
 
 
@@ -219,4 +234,46 @@ QUOTES = [
          "«pu(1 - k.reference.P / k.rungs['axi2_0.01']['P'] / k.berkovich_cone_elastic, 0)» below the elastic one, and the shipped\n"
          "  twin, P1 at h_tip 0.02, is «pc(err3('axi1_0.02').P)» in load, «pc(err3('axi1_0.02').creep, 0)» in creep depth and "
          "«pc(err3('axi1_0.02').h_res)» in residual depth"),
+    # the 3D section's reading (bench/indent_convergence_conclusions.md, carried into docs/performance.md: READINGS of
+    # tools/doc_numbers.py): the kerogen reference, the rungs it quotes, the shipped cost; BN's and BP's ladders
+    (C3, "P2 ladder's last three rungs: P = «k.reference.P» µN ± «pu(k.reference.hw.P)» (the rungs"),
+    (C3, "µN at p 0.8), creep depth «k.reference.creep» nm ± «pu(k.reference.hw.creep)»,\n  residual depth "
+         "«k.reference.h_res» nm ± «pu(k.reference.hw.h_res)». The P1"),
+    *[(C3, f"| {label} | {h} | {n} | «k.rungs['{key}']['cpu']» | {calls} M | «e3('{key}', 'P')»% | «e3('{key}', 'creep')»% | "
+           f"«e3('{key}', 'h_res')»% |") for label, h, n, key, calls in (
+        ("60° sector, P2", "0.2", 1648, "sector2_0.2", 1.4), ("60° sector, P2, h_far 8 h_tip", "0.12", 4704, "sector2f8_0.12", 4.9),
+        ("60° sector, P2, h_far 8 h_tip (shipped before)", "0.1", 7982, "sector2f8_0.1", 9.0))],
+    (C3, "| **60° sector, P2 (h_far 4 h_tip): shipped now** | 0.12 | «k.rungs['sector2_0.12']['unknowns']» | "
+         "«k.rungs['sector2_0.12']['cpu']» | «k.shipped_cost.umat_calls_M» M | «e3('sector2_0.12', 'P')»% | "
+         "«e3('sector2_0.12', 'creep')»% | «e3('sector2_0.12', 'h_res')»% | ✓ |"),
+    (C3, "(0.48 µm): «pc(err3('sector2_0.12').P)», «pc(err3('sector2_0.12').creep)», «pc(err3('sector2_0.12').h_res)»,"),
+    (C3, "(«k.shipped_cost.umat_calls_M» M UMAT calls against 9.0 M), which was «pc(err3('sector2f8_0.1').creep)» in creep"),
+    (C3, "the margin in P («pc(err3('sector2_0.12').P)» against the reference's ± «pu(k.reference.hw.P)»)"),
+    (C3, "(h_far 8 h_tip) is «pc(err3('sector2f8_0.12').creep)» in creep\n  and «pc(err3('sector2f8_0.12').h_res)» in "
+         "residual depth"),
+    (C3, "median «k.shipped_cost.cpu_median» s (the mesh before: «k.shipped_cost.cpu_before_repick» s), "
+         "«f(k.shipped_cost.umat_calls_M, 2)» M UMAT"),
+    (C3, "so the ratio to the physics is «k.shipped_cost.ratio_to_umat»"),
+    (C3, "(h_tip 0.1, «f(k.rungs['sector2f8_0.1']['P'], 1)» µN, «k.rungs['sector2f8_0.1']['creep']» nm, "
+         "«f(k.rungs['sector2f8_0.1']['h_res'], 1)» nm)"),
+    (C3, "**«pc(err3('sector2f8_0.1').creep)» in creep\n  depth** and «pc(err3('sector2f8_0.1').h_res)» in residual depth"),
+    (C3, "\n  ".join(f"| «bn.p2.h_tip[{i}]»{note} | «th(bn.p2.unknowns[{i}])» | «th(bn.p2.P[{i}], 1)» | «f(bn.p2.creep[{i}], 1)» | "
+                     f"«f(bn.p2.h_res[{i}], 3)» | {rest} |" for i, (note, rest) in enumerate((   # steps and CPU: not in the store
+                         ("", "788 | 19"), ("", "804 | 72"), (" (shipped)", "794 | (321 s wall, loaded)"), ("", "789 | 955"),
+                         (" (issue 25)", "702 | 355"))))),
+    (C3, "on P1, h_tip «', '.join(g(x, 'g') for x in bn.p1.h_tip)» µm"),
+    (C3, "P «', '.join(th(x, 1) for x in bn.p1.P)» mN; creep depth «', '.join(f(x) for x in bn.p1.creep)» nm; residual depth "
+         "«', '.join(f(x, 3) for x in bn.p1.h_res[:2])»,\n  «', '.join(f(x, 3) for x in bn.p1.h_res[2:])» µm"),
+    (C3, "(P2: «g(bn.p2.h_res[2] - bn.p2.h_res[1], '+.3f')», «g(bn.p2.h_res[3] - bn.p2.h_res[2], '+.3f')», "
+         "«g(bn.p2.h_res[4] - bn.p2.h_res[3], '+.3f')» µm per rung"),
+    (C3, "near the twin's «f(bn.twin_h_res, 2)» µm (the shipped 3D mesh about «pu(bn.p2.h_res[2] / bn.twin_h_res - 1, 0)» low, "
+         "the finest 3D rung about «pu(bn.p2.h_res[-1] / bn.twin_h_res - 1, 0)»)"),
+    (C3, "converge it in 3D: «f(bn.adapted.h_res[0], 3)» and\n  «f(bn.adapted.h_res[1], 3)» µm on levels of "
+         "«f(bn.adapted.unknowns[0] / 1000, 1)» k and «f(bn.adapted.unknowns[1] / 1000, 1)» k unknowns, "
+         "«pu(bn.adapted.h_res[1] / bn.twin_h_res - 1)» above the twin; BP «f(bp.adapted.h_res[0], 3)» and "
+         "«f(bp.adapted.h_res[1], 3)» µm"),
+    (C3, "µm: P «', '.join(f(x) for x in bp.p2.P)» mN (limit «bp.p2.P_limit», p 2.2: the shipped mesh "
+         "«pc(bp.p2.P[1] / bp.p2.P_limit - 1, 2)»);\n  creep depth «', '.join(f(x) for x in bp.p2.creep)» nm"),
+    (C3, "residual depth «', '.join(f(x, 3) for x in bp.p2.h_res)» µm (limit\n  «bp.p2.h_res_limit», p 1.2: the shipped mesh "
+         "about «pu(bp.p2.h_res[1] / bp.p2.h_res_limit - 1, 0)» low, as BN's); «', '.join(f(x, 0) for x in bp.p2.cpu)» s CPU"),
 ]
