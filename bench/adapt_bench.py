@@ -17,6 +17,7 @@ Converged answers (where each comes from):
 - axi, sphere: a fine run in the same invocation: the case on P2 with its size field four levels finer than the last adapted
   level of P1 ("reference" rows), i.e. another element order on its own meshes. sphere_coarse: the sphere from a coarse
   first mesh (h_tip 0.1 um, h_far 0.3 um), against the sphere's reference (run the sphere first).
+- sector_p1: the same sector on P1 elements from the same coarse start, against the same answer.
 - bn, bp: microindent_BN_sector and microindent_BP: no 3D answer is known (no reference run: their rows give the levels'
   own changes); BN's axisymmetric twin converges to a residual depth of 2.112 um (docs/performance.md, the 3D mesh
   study), which BN's 3D value should approach.
@@ -44,6 +45,9 @@ CASES = {
             {"h_max": 194.91, "creep": 35.47, "h_res": 125.64}),
     "sector": ("nanoindent_kerogen_sector.yaml", {"h_tip: 0.12, h_far: 0.48": "h_tip: 0.2, h_far: 0.8"}, False,
                {"P": 537.5, "creep": 15.35, "h_res": 137.3}),
+    # the sector on P1 elements from the same coarse start: what the element order buys on adapted meshes
+    "sector_p1": ("nanoindent_kerogen_sector.yaml", {"h_tip: 0.12, h_far: 0.48": "h_tip: 0.2, h_far: 0.8",
+                                                     "order: 2": "order: 1"}, False, {"P": 537.5, "creep": 15.35, "h_res": 137.3}),
     "axi": ("nanoindent_kerogen_axi.yaml", {}, False, None),
     "sphere": ("nanoindent_kerogen_axi.yaml", {"indenter: {shape: cone, half_angle: 70.3, contact: contact}":
                                                "indenter: {shape: sphere, radius: 2, contact: contact}",
