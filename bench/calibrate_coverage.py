@@ -15,8 +15,10 @@ for each kind of fault:
   ignored     noise and drift, fitted without a drift option (what the coverage is without it; the hold's warning)
 
 and counts the draws whose truth lies within 2 reported standard errors (fit.yaml's quote). Also, once, the issue's
-cases at a fixed truth (1.83e10) with their CPU against the clean record's (--cases). Writes the section
-"## Measured curves: calibration coverage" of docs/performance.md.
+cases at a fixed truth (1.83e10) with their CPU against the clean record's (--cases). Keeps the numbers under the
+drift hold's length in docs/results/calibrate_coverage.json, then writes the section "## Measured curves: calibration
+coverage" of docs/performance.md (another hold: its own section) from that entry (camclay9.coverage_study), which
+tools/doc_numbers.py checks.
 
   bench/calibrate_coverage.py [--draws 20] [--faults noise,drift,both,ignored] [--cases] [--seed 37] [--keep DIR]
 
@@ -32,12 +34,12 @@ from pathlib import Path
 
 import numpy as np
 import yaml
+from camclay9 import coverage_study as study
 from camclay9 import results_store, run_driver
 from camclay9.instrument_record import exact_record, scene_text, write_record
 from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-TITLE = "## Measured curves: calibration coverage"
 DEPTH_NOISE = 1.0     # nm
 DRIFT = 0.05          # nm/s
 LOAD_NOISE = 0.005    # of the peak load
@@ -143,80 +145,27 @@ def main(argv=None):
     ap.add_argument("--no-doc", action="store_true", help="print only; leave docs/performance.md")
     a = ap.parse_args(argv)
     a.faults = a.faults.split(",")
-    title = TITLE if a.drift_hold == 60 else f"{TITLE}, a {a.drift_hold:g} s drift hold"
-    hold_opt = "" if a.drift_hold == 60 else f" --drift-hold {a.drift_hold:g}"
 
     def log(msg):
         print(msg, flush=True)
 
     rows = coverage(a, log) if a.draws else {}
-    lines = [f"{title}\n",
-             f"Command: `bench/calibrate_coverage.py --draws {a.draws}{' --cases' if a.cases else ''}{hold_opt}"
-             f"{' --faults ' + ','.join(a.faults) if a.draws else ''}` (docs/calibrate.md, "
-             "\"Measured curves\"). Synthetic instrument records made by the project's own model, so that the model is exact "
-             "and only the data's faults remain: the paper's nano protocol with a "
-             f"{a.drift_hold:g} s hold at 10 % of the peak load on unloading (protocols/paper_drift_hold.yaml"
-             f"{'' if a.drift_hold == 60 else ', its drift hold lengthened'}), 10 rows a second, the depths those of the forward scene the fit "
-             "runs (nano_fast driven by the record's loads) at the truth. Each draw: a truth eta_soft log-uniform in "
-             "[6e9, 3e10], a start 3x above it, `weighting: noise`; faults: depth noise 1 nm; drift 0.05 nm/s over the "
-             "whole record (`drift: fit`); both, with load noise 0.5 % of the peak (the fitted load history); "
-             "ignored: noise and drift fitted without a drift option. Covered: the truth within 2 reported standard "
-             "errors (fit.yaml's quote; Newey-West). CPU: the driver and its forward processes.\n"]
-    if rows:
-        lines.append("| fault | draws | covered (within 2 s.e.) | median abs. error | median s.e. | median s.e. if white "
-                     "| largest abs. z | hold trend warned | median CPU [s] |")
-        lines.append("|---|---|---|---|---|---|---|---|---|")
-        for fault, rs in rows.items():
-            for r in rs:
-                if "failed" not in r:
-                    r["se_rel"] = r["se"] / r["truth"]
-            ok = [r for r in rs if "failed" not in r]
-            cov = sum(abs(r["z"]) <= 2 for r in ok)
-            lines.append(f"| {fault} | {len(rs)} ({len(rs) - len(ok)} failed) | {cov} of {len(rs)} ({100 * cov / len(rs):.0f} %) | "
-                         f"{100 * np.median([abs(r['error']) for r in ok]):.2f} % | "
-                         f"{100 * np.median([r['se'] / r['truth'] for r in ok]):.2f} % | "
-                         f"{100 * np.median([r['white'] / r['value'] for r in ok]):.2f} % | "
-                         f"{max(abs(r['z']) for r in ok):.2f} | {sum(r['warned'] for r in ok)} of {len(ok)} | "
-                         f"{np.median([r['cpu'] for r in ok]):.1f} |")
-    out = []
-    if a.cases:
-        out = cases(a, log)
-        for r in out:
-            if "failed" not in r:
-                r["se_rel"] = r["se"] / r["truth"]
-        base = next(r for r in out if r["name"] == "clean, drift: fit")
-        plain = next(r for r in out if r["name"] == "clean, drift: none")
-        lines.append("\nThe issue's cases at one truth (eta_soft = 1.83e10, seed fixed), each from 3x above:\n")
-        lines.append("| record, drift option | eta_soft | error | s.e. (white) | truth in s.e. | forward runs | CPU [s] | "
-                     "CPU / clean (same option) | drift fitted [nm/s] | load history |")
-        lines.append("|---|---|---|---|---|---|---|---|---|---|")
-        for r in out:
-            if "failed" in r:
-                lines.append(f"| {r['name']} | failed: {r['failed']} |")
-                continue
-            ref = base if "fit" in r["name"] else plain
-            lines.append(f"| {r['name']} | {r['value']:.5g} | {pct(r['error'])} | {100 * r['se'] / r['truth']:.2f} % "
-                         f"({100 * r['white'] / r['value']:.2f} %) | {r['z']:+.2f} | {r['runs']} | {r['cpu']:.1f} | "
-                         f"{r['cpu'] / ref['cpu']:.2f} | {r['drift'] if r['drift'] is not None else '—'} | {r['load']} |")
-    section = "\n".join(lines) + "\n"
+    cases_run = cases(a, log) if a.cases else []
+    for r in [r for rs in rows.values() for r in rs] + cases_run:
+        if "failed" not in r:
+            r["se_rel"], r["white_rel"] = r["se"] / r["truth"], r["white"] / r["value"]
+    entry = {"provenance": {"draws": a.draws, "faults": a.faults, "hold": a.drift_hold, "cases": a.cases,
+                            "date": time.strftime("%Y-%m-%d")},
+             "draws": {f: [study.keep(r, study.DRAW_KEYS) for r in rs] for f, rs in rows.items()},
+             "cases": [study.keep(r, study.CASE_KEYS) for r in cases_run]}
+    section = study.section(entry, a.drift_hold)
     print(section)
     if not a.no_doc:
-        replace_section(title, section)
-        save_store(a, rows, out)
-        print("written: docs/performance.md, docs/results/calibrate_coverage.json")
-
-
-def save_store(a, rows, cases):
-    """The run's numbers into the results store (docs/results/calibrate_coverage.json), under the drift hold's length
-    (docs/calibrate.md quotes them: camclay9.doc_quotes); another hold's entry is kept."""
-    d = results_store.load("calibrate_coverage") or {"holds": {}}
-    keep = ("error", "se_rel", "z", "cpu")
-    d["holds"][f"{a.drift_hold:g}"] = {
-        "provenance": {"command": f"bench/calibrate_coverage.py --draws {a.draws} --faults {','.join(a.faults)}"
-                                  f"{' --cases' if a.cases else ''} --drift-hold {a.drift_hold:g}", "date": time.strftime("%Y-%m-%d")},
-        "draws": {f: [{k: r[k] for k in keep} for r in rs if "failed" not in r] for f, rs in rows.items()},
-        "cases": {r["name"]: {k: r[k] for k in keep} for r in cases if "failed" not in r}}
-    results_store.save("calibrate_coverage", d)
+        d = results_store.load(study.STORE) or {"holds": {}}
+        d["holds"][f"{a.drift_hold:g}"] = entry   # another hold's entry is kept
+        results_store.save(study.STORE, d)
+        replace_section(study.title(a.drift_hold), section)
+        print("written: docs/results/calibrate_coverage.json, docs/performance.md")
 
 
 if __name__ == "__main__":

@@ -29,7 +29,7 @@ import difflib
 import sys
 from pathlib import Path
 
-from camclay9 import adapt_study, contact_solver_study, doc_quotes, fe_triaxial_study, paper_doc, results_store
+from camclay9 import adapt_study, contact_solver_study, coverage_study, doc_quotes, fe_triaxial_study, paper_doc, results_store
 from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -64,6 +64,9 @@ def generated(store_dir):
     s2 = results_store.load(i2d.STORE, store_dir)
     if s2:
         out[("docs/performance.md", PERF_SECTIONS[1])] = i2d.section(s2, paper, ROOT)
+    cov = results_store.load(coverage_study.STORE, store_dir)
+    for title, text in (coverage_study.sections(cov) if cov else {}).items():
+        out[("docs/performance.md", title)] = text
     for study in STUDIES:
         s = results_store.load(study.STORE, store_dir)
         if s:

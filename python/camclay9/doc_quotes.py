@@ -15,6 +15,7 @@ indent3d.json holds: the kerogen reference, the rungs and the shipped mesh's cos
 (not their steps and CPU, nor the rungs and the finer run that the store does not keep).
 """
 import re
+import statistics
 
 from camclay9 import paper_doc_tri, results_store
 from camclay9.indent2d_study import key
@@ -57,6 +58,7 @@ class A(dict):
 
 S3, S2 = ("sector0.12", "sector0.0707", "sector0.05"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
+CN, IG = "clean, drift: none", "ignored, drift: none"
 
 
 def namespace(store_dir=None):
@@ -83,11 +85,25 @@ def namespace(store_dir=None):
         """A number of bench/contact_solver_bench.py's row (case, solver)."""
         return cs_rows[(case, solver)][q]
 
-    cov = results_store.load("calibrate_coverage", store_dir).get("holds", {}).get("300", {})
+    holds = results_store.load("calibrate_coverage", store_dir).get("holds", {})
+    cov, cov6 = holds.get("300", {}), holds.get("60", {})
 
-    def cc(name):
-        """A case of bench/calibrate_coverage.py --cases with the 300 s drift hold ("drift_noise, drift: fit", ...)."""
-        return A(cov["cases"][name])
+    def cc(name, entry=cov):
+        """A case of bench/calibrate_coverage.py --cases ("drift_noise, drift: fit", ...), the 300 s drift hold's or
+        another entry's."""
+        return A(next(r for r in entry["cases"] if r.get("name") == name))
+
+    def cc6(name):
+        """A case with the shipped protocol's 60 s drift hold."""
+        return cc(name, cov6)
+
+    def rmsz(rows):
+        """The rms of a fault's errors in units of their reported standard errors (1 when those are right)."""
+        return (sum(r["z"] ** 2 for r in rows) / len(rows)) ** 0.5
+
+    def covered(rows):
+        """How many of a fault's draws have the truth within 2 reported standard errors."""
+        return sum(abs(r["z"]) <= 2 for r in rows)
 
     def e3(key, q):
         """A kerogen rung's error in output q as the section's tables print it ("+1.8", "-21.7"; the % after it)."""
@@ -99,7 +115,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2,
-              cc=cc, cd=cov.get("draws", {}), sum=sum, len=len, DN=DN, BO=BO, CF=CF, th=th, e3=e3)
+              cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -130,6 +146,23 @@ C2, C3 = "bench/indent2d_convergence_conclusions.md", "bench/indent_convergence_
 CT = "docs/contact.md"
 CA = "docs/calibrate.md"
 QUOTES = [
+    # the shipped protocol's 60 s drift hold (docs/calibrate.md, "Coverage"; bench/calibrate_coverage.py --cases)
+    (CA, "the two noisy cases give «pc(cc6(DN).error, 2)» (± «pu(cc6(DN).se_rel, 2)») and «pc(cc6(BO).error, 2)» "
+         "(± «pu(cc6(BO).se_rel, 2)»), at «f(cc6(DN).cpu / cc6(CF).cpu, 2)» and «f(cc6(BO).cpu / cc6(CF).cpu, 2)» times the CPU"),
+    (CA, "and with the drift ignored «pc(cc6(IG).error, 0)» (the hold's trend warned)"),
+    (CA, "noise leaves η_s a standard error of about «pu(cc6(DN).se_rel, 0)» on this record "
+         "(«pu(median([r['se_rel'] for r in cd6['noise']]), 1)» with no drift to fit)"),
+    (CA, "Over «len(cd6['noise'])» draws the truth lies within 2 reported standard errors in «covered(cd6['noise'])» with 1 nm of"),
+    (CA, "depth noise, «covered(cd6['drift'])» with the drift alone"),
+    (CA, "covers), «covered(cd6['drift_noise'])» with noise and drift, «covered(cd6['both'])» with load noise as well and "
+         "«covered(cd6['ignored'])» with the drift ignored."),
+    # is the standard error right (docs/calibrate.md, "Coverage"): the 300 s and 60 s draws
+    (CA, "over the 300 s record's «len(cd['drift_noise'])» draws with noise and drift,"),
+    (CA, "have an rms of «f(rmsz(cd['drift_noise']), 2)» (1 for a right standard error)"),
+    (CA, "2 of them in «covered(cd['drift_noise'])». With 0.5 % load noise"),
+    (CA, "the rms is «f(rmsz(cd['both']), 2)» and «covered(cd['both'])» of «len(cd['both'])»"),
+    (CA, "draws are covered (the 60 s record: «covered(cd6['both'])» of «len(cd6['both'])»)"),
+    (CA, "«f(rmsz(cd['both']), 1)» times too narrow (the rms above)"),
     # the 300 s drift hold (docs/calibrate.md, "Coverage"; bench/calibrate_coverage.py --drift-hold 300)
     (CA, "At the same truth the two cases give «pc(cc(DN).error, 2)»"),
     (CA, "(± «pu(cc(DN).se_rel, 2)») and «pc(cc(BO).error, 2)» (± «pu(cc(BO).se_rel, 2)»), at «f(cc(DN).cpu / cc(CF).cpu, 2)» "
@@ -140,6 +173,7 @@ QUOTES = [
     (CA, "as well, «sum(abs(r['error']) <= 0.02 for r in cd['both'])» of «len(cd['both'])» errors are within 2 % (the largest "
          "«pu(max(abs(r['error']) for r in cd['both']))») and «sum(abs(r['z']) <= 2 for r in cd['both'])» are covered "
          "(«pu(sum(abs(r['z']) <= 2 for r in cd['both']) / len(cd['both']), 0)»)"),
+    (CA, "300 s record stopped at a local minimum («pc(cc(CN).error, 0)»; TAO reported no progress"),
     # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
     (CT, "the field split's peak memory is «f(csr(S3[0], 'mem'), 2)», «f(csr(S3[1], 'mem'), 2)» and "
          "«f(csr(S3[2], 'mem'), 2)» of the direct path's («f(cs(S3[2], 'fieldsplit', 'mem'), 0)» against "
