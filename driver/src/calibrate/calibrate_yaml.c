@@ -199,6 +199,10 @@ static void write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty
   fprintf(fp, "}\n");
 }
 
+/* The misfit need not be convex in the parameters: a clean record fitted without a drift option from 3x above its truth
+ * stopped at +363 % with only this warning (docs/calibrate.md, "Coverage"). */
+#define LOCAL_MINIMUM "Or the fit stopped at a local minimum of the misfit: rerun it from another start"
+
 PetscErrorCode cal_print_summary(Calib *c, const double *u, const CalUncertainty *un, const CalBias *b) {
   char         part[160];
   const double *se = un->se;
@@ -219,11 +223,11 @@ PetscErrorCode cal_print_summary(Calib *c, const double *u, const CalUncertainty
                               "model's, z = %.1f, %.2g %% of the hold's data range over the hold. Thermal drift? %s\n", run->name,
                               cv->index, cv->stage_name, tr->rate, lu, tr->rate / run->factor[2], tr->z, 100 * tr->size,
                               run->drift == CAL_DRIFT_FIT ? "The drift is fitted already: the forward model misses the hold's shape (its bias: "
-                                                            "a reference); or the drift is not constant"
+                                                            "a reference); or the drift is not constant. " LOCAL_MINIMUM
                                                           : "Give runs[k].drift: fit (the rate fitted beside the parameters), or "
                                                             "{measured_in: STAGE} (a hold where the material is at rest; "
                                                             "docs/calibrate.md, 'Thermal drift'). Or the forward model's own "
-                                                            "error over the hold: a full model (reference) measures it"));
+                                                            "error over the hold: a full model (reference) measures it. " LOCAL_MINIMUM));
       if (cal_rest_warning(run, tr))
         PetscCall(PetscPrintf(PETSC_COMM_SELF, "warning: run %s: the drift was measured in stage '%s', where the model's own depth "
                               "moves at %.3g %s/s at the fit, %.0f %% of the drift measured (%.3g +- %.2g): the correction took the "
