@@ -36,7 +36,7 @@ import numpy as np
 import yaml
 from camclay9 import coverage_study as study
 from camclay9 import results_store, run_driver
-from camclay9.instrument_record import exact_record, scene_text, write_record
+from camclay9.instrument_record import SHIPPED_DRIFT_HOLD, exact_record, scene_text, write_record
 from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -139,9 +139,9 @@ def main(argv=None):
     ap.add_argument("--cases", action="store_true", help="the issue's cases at one truth, with their CPU")
     ap.add_argument("--seed", type=int, default=37)
     ap.add_argument("--keep", default=None, help="a folder for the work (kept); default a temporary one")
-    ap.add_argument("--drift-hold", type=float, default=60,
-                    help="seconds of the drift hold at 10 %% of the peak load (60: protocols/paper_drift_hold.yaml as "
-                         "shipped; another length writes its own section)")
+    ap.add_argument("--drift-hold", type=float, default=SHIPPED_DRIFT_HOLD,
+                    help="seconds of the drift hold at 10 %% of the peak load (default: protocols/paper_drift_hold.yaml "
+                         "as shipped; another length writes its own section)")
     ap.add_argument("--no-doc", action="store_true", help="print only; leave docs/performance.md")
     a = ap.parse_args(argv)
     a.faults = a.faults.split(",")

@@ -34,9 +34,9 @@ from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
 
-# the sections written by a generator module from its own store alone: its STORE, TITLE and section(store, root)
-STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study)
-PERF_SECTIONS = ("## Reproducing the paper", i2d.TITLE) + tuple(study.TITLE for study in STUDIES)
+# the sections written by a generator module from its own store alone: its STORE, and TITLE with section(store, root),
+# or sections(store) for a store behind several sections ({title: text})
+STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study, coverage_study)
 
 # Sections whose tables no store holds yet (their runs' results were not kept) but whose reading, written by hand, the
 # section's generator carries over from a file (bench/indent_convergence_doc.py): the section must end with that text,
@@ -60,17 +60,15 @@ def generated(store_dir):
     out = {}
     if paper:
         out[("docs/paper.md", None)] = paper_doc.render_store(paper)
-        out[("docs/performance.md", PERF_SECTIONS[0])] = paper_doc.performance_section(paper["meta"])
+        out[("docs/performance.md", paper_doc.PERFORMANCE_TITLE)] = paper_doc.performance_section(paper["meta"])
     s2 = results_store.load(i2d.STORE, store_dir)
     if s2:
-        out[("docs/performance.md", PERF_SECTIONS[1])] = i2d.section(s2, paper, ROOT)
-    cov = results_store.load(coverage_study.STORE, store_dir)
-    for title, text in (coverage_study.sections(cov) if cov else {}).items():
-        out[("docs/performance.md", title)] = text
+        out[("docs/performance.md", i2d.TITLE)] = i2d.section(s2, paper, ROOT)
     for study in STUDIES:
         s = results_store.load(study.STORE, store_dir)
-        if s:
-            out[("docs/performance.md", study.TITLE)] = study.section(s, ROOT)
+        texts = (study.sections(s) if hasattr(study, "sections") else {study.TITLE: study.section(s, ROOT)}) if s else {}
+        for title, text in texts.items():
+            out[("docs/performance.md", title)] = text
     return out
 
 

@@ -265,7 +265,7 @@ def main(argv=None):
 def write_performance(meta):
     """The run times into docs/performance.md (section "## Reproducing the paper"), from the same meta data as
     docs/paper.md's (paper_doc.performance_section)."""
-    replace_section("## Reproducing the paper", paper_doc.performance_section(meta), ROOT / "docs" / "performance.md")
+    replace_section(paper_doc.PERFORMANCE_TITLE, paper_doc.performance_section(meta), ROOT / "docs" / "performance.md")
 
 
 if __name__ == "__main__":

@@ -4,6 +4,8 @@ the sections against it). A hold's entry: its provenance (the command's draws, f
 cases ran), each fault's draws and the cases, each row with the numbers the tables print."""
 import numpy as np
 
+from camclay9.instrument_record import SHIPPED_DRIFT_HOLD
+
 STORE = "calibrate_coverage"
 TITLE = "## Measured curves: calibration coverage"
 # the numbers a draw's or a case's row keeps (fractions, not per cent; the CPU in seconds)
@@ -11,9 +13,19 @@ DRAW_KEYS = ("error", "se_rel", "white_rel", "z", "cpu", "warned")
 CASE_KEYS = ("name", "value", "error", "se_rel", "white_rel", "z", "runs", "cpu", "drift", "load")
 
 
+def lengthened(hold):
+    """Whether a drift hold of `hold` seconds is not the shipped protocol's (then it has its own section)."""
+    return float(hold) != SHIPPED_DRIFT_HOLD
+
+
 def title(hold):
-    """The section's title for a drift hold of `hold` seconds (60: the shipped protocol's)."""
-    return TITLE if float(hold) == 60 else f"{TITLE}, a {float(hold):g} s drift hold"
+    """The section's title for a drift hold of `hold` seconds."""
+    return f"{TITLE}, a {float(hold):g} s drift hold" if lengthened(hold) else TITLE
+
+
+def covered(rows):
+    """How many of the rows (draws or cases) have the truth within 2 reported standard errors (|z| <= 2)."""
+    return sum(abs(r["z"]) <= 2 for r in rows)
 
 
 def keep(row, keys):
@@ -24,7 +36,7 @@ def keep(row, keys):
 
 
 def command(p):
-    hold = "" if float(p["hold"]) == 60 else f" --drift-hold {float(p['hold']):g}"
+    hold = f" --drift-hold {float(p['hold']):g}" if lengthened(p["hold"]) else ""
     faults = f" --faults {','.join(p['faults'])}" if p["draws"] else ""
     return f"bench/calibrate_coverage.py --draws {p['draws']}{' --cases' if p['cases'] else ''}{hold}{faults}"
 
@@ -34,7 +46,7 @@ def intro(p):
     return (f"Command: `{command(p)}` ({p['date']}; docs/calibrate.md, \"Measured curves\"). Synthetic instrument records "
             "made by the project's own model, so that the model is exact and only the data's faults remain: the paper's "
             f"nano protocol with a {hold:g} s hold at 10 % of the peak load on unloading (protocols/paper_drift_hold.yaml"
-            f"{'' if hold == 60 else ', its drift hold lengthened'}), 10 rows a second, the depths those of the forward "
+            f"{', its drift hold lengthened' if lengthened(hold) else ''}), 10 rows a second, the depths those of the forward "
             "scene the fit runs (nano_fast driven by the record's loads) at the truth. Each draw: a truth eta_soft "
             "log-uniform in [6e9, 3e10], a start 3x above it, `weighting: noise`; faults: depth noise 1 nm; drift 0.05 "
             "nm/s over the whole record (`drift: fit`); both, with load noise 0.5 % of the peak (the fitted load "
@@ -47,7 +59,7 @@ def draws_table(draws):
              "| largest abs. z | hold trend warned | median CPU [s] |", "|---|---|---|---|---|---|---|---|---|"]
     for fault, rs in draws.items():
         ok = [r for r in rs if "failed" not in r]
-        cov = sum(abs(r["z"]) <= 2 for r in ok)
+        cov = covered(ok)
         lines.append(f"| {fault} | {len(rs)} ({len(rs) - len(ok)} failed) | {cov} of {len(rs)} ({100 * cov / len(rs):.0f} %) | "
                      f"{100 * np.median([abs(r['error']) for r in ok]):.2f} % | "
                      f"{100 * np.median([r['se_rel'] for r in ok]):.2f} % | "

@@ -17,7 +17,7 @@ indent3d.json holds: the kerogen reference, the rungs and the shipped mesh's cos
 import re
 import statistics
 
-from camclay9 import paper_doc_tri, results_store
+from camclay9 import coverage_study, paper_doc_tri, results_store
 from camclay9.indent2d_study import key
 
 
@@ -101,10 +101,6 @@ def namespace(store_dir=None):
         """The rms of a fault's errors in units of their reported standard errors (1 when those are right)."""
         return (sum(r["z"] ** 2 for r in rows) / len(rows)) ** 0.5
 
-    def covered(rows):
-        """How many of a fault's draws have the truth within 2 reported standard errors."""
-        return sum(abs(r["z"]) <= 2 for r in rows)
-
     def e3(key, q):
         """A kerogen rung's error in output q as the section's tables print it ("+1.8", "-21.7"; the % after it)."""
         return format(100 * err3(key)[q], "+.1f")
@@ -115,7 +111,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2,
-              cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
+              cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -168,11 +164,11 @@ QUOTES = [
     (CA, "(± «pu(cc(DN).se_rel, 2)») and «pc(cc(BO).error, 2)» (± «pu(cc(BO).se_rel, 2)»), at «f(cc(DN).cpu / cc(CF).cpu, 2)» "
          "and «f(cc(BO).cpu / cc(CF).cpu, 2)» times the CPU of the clean record's fit. Over «len(cd['drift_noise'])» draws"),
     (CA, "every error is within «pu(max(abs(r['error']) for r in cd['drift_noise']))» and the truth lies within 2 standard "
-         "errors in «sum(abs(r['z']) <= 2 for r in cd['drift_noise'])» («pu(sum(abs(r['z']) <= 2 for r in cd['drift_noise']) "
+         "errors in «covered(cd['drift_noise'])» («pu(covered(cd['drift_noise']) "
          "/ len(cd['drift_noise']), 0)»)"),
     (CA, "as well, «sum(abs(r['error']) <= 0.02 for r in cd['both'])» of «len(cd['both'])» errors are within 2 % (the largest "
-         "«pu(max(abs(r['error']) for r in cd['both']))») and «sum(abs(r['z']) <= 2 for r in cd['both'])» are covered "
-         "(«pu(sum(abs(r['z']) <= 2 for r in cd['both']) / len(cd['both']), 0)»)"),
+         "«pu(max(abs(r['error']) for r in cd['both']))») and «covered(cd['both'])» are covered "
+         "(«pu(covered(cd['both']) / len(cd['both']), 0)»)"),
     (CA, "300 s record stopped at a local minimum («pc(cc(CN).error, 0)»; TAO reported no progress"),
     # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
     (CT, "the field split's peak memory is «f(csr(S3[0], 'mem'), 2)», «f(csr(S3[1], 'mem'), 2)» and "

@@ -57,10 +57,13 @@ weighting: noise
 {extra}"""
 
 
+SHIPPED_DRIFT_HOLD = 60   # s, the drift hold of protocols/paper_drift_hold.yaml as shipped
+
+
 def protocol(hold, work, root=None):
-    """The record's protocol: protocols/paper_drift_hold.yaml, its drift hold lasting `hold` seconds (60 as shipped)."""
+    """The record's protocol: protocols/paper_drift_hold.yaml, its drift hold lasting `hold` seconds."""
     shipped = calibrate_inputs(root) / "protocols" / "paper_drift_hold.yaml"
-    if hold == 60:
+    if hold == SHIPPED_DRIFT_HOLD:
         return shipped
     d = yaml.safe_load(shipped.read_text())
     next(st for st in d["stages"] if st["name"] == "drift")["duration"] = hold
@@ -69,7 +72,7 @@ def protocol(hold, work, root=None):
     return out
 
 
-def exact_record(truth, work, log, hold=60, root=None):
+def exact_record(truth, work, log, hold=SHIPPED_DRIFT_HOLD, root=None):
     """The record's loads and times from the protocol run at the truth; its depths those of the scene the fit runs
     (driven by those loads) at the truth, interpolated at the record's times: the model is exact."""
     rec = work / "protocol_run.csv"

@@ -316,10 +316,13 @@ def timings(meta):
                 f"| with plots | {meta['wall_total']:.1f} | |", ""]
 
 
+PERFORMANCE_TITLE = "## Reproducing the paper"
+
+
 def performance_section(meta):
-    """The section "## Reproducing the paper" of docs/performance.md, from the same meta data as docs/paper.md's run
-    times (docs/results/paper.json): one set of numbers for both documents."""
-    return ("## Reproducing the paper\n\n"
+    """The section PERFORMANCE_TITLE of docs/performance.md, from the same meta data as docs/paper.md's run times
+    (docs/results/paper.json): one set of numbers for both documents."""
+    return (f"{PERFORMANCE_TITLE}\n\n"
             "Command: `tools/reproduce.sh` (every scene of the paper as shipped, 2 at a time, then the figures and "
             f"docs/paper.md). The whole run of {meta.get('whole_run_date', meta['date'])}: runs {meta['wall_runs']:.0f} s, in all "
             f"{meta['wall_total']:.0f} s wall on 2 cores ({meta.get('load_note', 'load not recorded')}). Wall time of each "
