@@ -73,7 +73,9 @@ def fit(record, truth, fault, work):
         return {"fault": fault, "failed": r.stderr.strip()[-300:], "cpu": cpu}
     f = yaml.safe_load((out / "fit.yaml").read_text())
     q = {k: float(v) if k in ("value", "std_error") else v for k, v in f["quote"]["eta_soft"].items()}
+    se_load = q.get("std_error_load")
     res = {"fault": fault, "truth": truth, "value": q["value"], "se": q["std_error"], "white": float(f["parameters"]["eta_soft"]["white_std_error"]),
+           "se_load_rel": None if se_load is None else float(se_load) / q["value"],
            "error": q["value"] / truth - 1, "z": (q["value"] - truth) / q["std_error"], "cpu": cpu, "wall": wall,
            "runs": f["cost"]["forward_runs"], "warned": "its residuals show a trend" in r.stdout,
            "drift": f["runs"]["nano"].get("drift", {}).get("rate_data_units"),

@@ -9,8 +9,8 @@ from camclay9.instrument_record import SHIPPED_DRIFT_HOLD
 STORE = "calibrate_coverage"
 TITLE = "## Measured curves: calibration coverage"
 # the numbers a draw's or a case's row keeps (fractions, not per cent; the CPU in seconds)
-DRAW_KEYS = ("error", "se_rel", "white_rel", "z", "cpu", "warned")
-CASE_KEYS = ("name", "value", "error", "se_rel", "white_rel", "z", "runs", "cpu", "drift", "load")
+DRAW_KEYS = ("error", "se_rel", "white_rel", "se_load_rel", "z", "cpu", "warned")
+CASE_KEYS = ("name", "value", "error", "se_rel", "white_rel", "se_load_rel", "z", "runs", "cpu", "drift", "load")
 
 
 def lengthened(hold):
@@ -32,7 +32,7 @@ def keep(row, keys):
     """A bench row as the store keeps it: a failed row keeps its message."""
     if "failed" in row:
         return {k: row[k] for k in ("name", "failed") if k in row}
-    return {k: row[k] for k in keys}
+    return {k: row.get(k) for k in keys}
 
 
 def command(p):
@@ -51,18 +51,28 @@ def intro(p):
             "log-uniform in [6e9, 3e10], a start 3x above it, `weighting: noise`; faults: depth noise 1 nm; drift 0.05 "
             "nm/s over the whole record (`drift: fit`); both, with load noise 0.5 % of the peak (the fitted load "
             "history); ignored: noise and drift fitted without a drift option. Covered: the truth within 2 reported "
-            "standard errors (fit.yaml's quote; Newey-West). CPU: the driver and its forward processes.\n")
+            "standard errors (fit.yaml's quote: the data's part by Newey-West, and with a fitted load history its share, "
+            "from -calibrate_load_draws forward runs, docs/calibrate.md \"A noisy load\"). CPU: the driver and its forward "
+            "processes.\n")
+
+
+def load_part(values):
+    """The load history's share of the s.e. (relative) as the tables print it: the median of those measured, or a dash."""
+    v = [x for x in values if x is not None]
+    return f"{100 * np.median(v):.2f} %" if v else "—"
 
 
 def draws_table(draws):
-    lines = ["| fault | draws | covered (within 2 s.e.) | median abs. error | median s.e. | median s.e. if white "
-             "| largest abs. z | hold trend warned | median CPU [s] |", "|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| fault | draws | covered (within 2 s.e.) | median abs. error | median s.e. | its load history's part "
+             "| median s.e. if white | largest abs. z | hold trend warned | median CPU [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for fault, rs in draws.items():
         ok = [r for r in rs if "failed" not in r]
         cov = covered(ok)
         lines.append(f"| {fault} | {len(rs)} ({len(rs) - len(ok)} failed) | {cov} of {len(rs)} ({100 * cov / len(rs):.0f} %) | "
                      f"{100 * np.median([abs(r['error']) for r in ok]):.2f} % | "
                      f"{100 * np.median([r['se_rel'] for r in ok]):.2f} % | "
+                     f"{load_part([r.get('se_load_rel') for r in ok])} | "
                      f"{100 * np.median([r['white_rel'] for r in ok]):.2f} % | "
                      f"{max(abs(r['z']) for r in ok):.2f} | {sum(r['warned'] for r in ok)} of {len(ok)} | "
                      f"{np.median([r['cpu'] for r in ok]):.1f} |")
@@ -73,15 +83,16 @@ def cases_table(cases):
     named = {r["name"]: r for r in cases if "failed" not in r}
     base, plain = named.get("clean, drift: fit"), named.get("clean, drift: none")
     lines = ["\nThe issue's cases at one truth (eta_soft = 1.83e10, seed fixed), each from 3x above:\n",
-             "| record, drift option | eta_soft | error | s.e. (white) | truth in s.e. | forward runs | CPU [s] | "
-             "CPU / clean (same option) | drift fitted [nm/s] | load history |", "|---|---|---|---|---|---|---|---|---|---|"]
+             "| record, drift option | eta_soft | error | s.e. (white) | its load history's part | truth in s.e. | forward runs | "
+             "CPU [s] | CPU / clean (same option) | drift fitted [nm/s] | load history |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in cases:
         if "failed" in r:
             lines.append(f"| {r.get('name', '?')} | failed: {r['failed']} |")
             continue
         ref = base if "fit" in r["name"] else plain
         lines.append(f"| {r['name']} | {r['value']:.5g} | {100 * r['error']:+.2f} % | {100 * r['se_rel']:.2f} % "
-                     f"({100 * r['white_rel']:.2f} %) | {r['z']:+.2f} | {r['runs']} | {r['cpu']:.1f} | "
+                     f"({100 * r['white_rel']:.2f} %) | {load_part([r.get('se_load_rel')])} | {r['z']:+.2f} | {r['runs']} | {r['cpu']:.1f} | "
                      f"{r['cpu'] / ref['cpu']:.2f} | {r['drift'] if r['drift'] is not None else '—'} | {r['load']} |")
     return lines
 

@@ -59,7 +59,8 @@ typedef struct {
 } MainOptions;
 
 static PetscErrorCode main_options(MainOptions *m) {
-  PetscBool          traceback = PETSC_FALSE, dry = PETSC_FALSE; /* dry: read by calibrate.c */
+  PetscBool          traceback = PETSC_FALSE, dry = PETSC_FALSE; /* dry, load_draws: read by calibrate.c */
+  PetscInt           load_draws = CAL_LOAD_DRAWS;
   const char *const  forms[]   = {"none", "text", "markdown"};
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof *m));
@@ -76,6 +77,9 @@ static PetscErrorCode main_options(MainOptions *m) {
   PetscCall(options_bool(PetscOptionsObject, "-calibrate_dry_run",
                          "calibrate scenes: write the forward scenes that follow the data, say the stages found, run nothing", dry, &dry,
                          NULL));
+  PetscCall(options_int(PetscOptionsObject, "-calibrate_load_draws",
+                        "calibrate scenes: forward runs at the fit for a fitted load history's share of the standard errors (0: none)",
+                        CAL_LOAD_DRAWS, 0, CAL_LOAD_DRAWS_MAX, &load_draws, NULL));
   PetscCall(options_elist(PetscOptionsObject, "-key_reference",
                           "print every scene key's declaration (markdown: docs/driver.md's Key reference) and run nothing", forms, 3, 0,
                           &m->key_reference, NULL));

@@ -412,9 +412,13 @@ static int write_protocols(Calib *c, char *err, size_t errlen) {
   return 0;
 }
 
-/* -calibrate_dry_run: say what each run's forward runs follow, write the scenes that follow the data, and stop. */
+/* -calibrate_load_draws (declared with the driver's options, app/main.c); -calibrate_dry_run: say what each run's forward
+ * runs follow, write the scenes that follow the data, and stop. */
 static PetscErrorCode dry_run(Calib *c, PetscBool *dry) {
+  PetscInt draws = CAL_LOAD_DRAWS;
   PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-calibrate_load_draws", &draws, NULL));
+  c->load_draws = (int)draws;
   *dry = PETSC_FALSE;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-calibrate_dry_run", dry, NULL));
   for (int j = 0; *dry && j < c->nrun; j++) PetscCall(describe_run(c, &c->run[j]));

@@ -38,6 +38,7 @@ typedef struct {
   double       last_u[CAL_MAX_PARAMS], last_f; /* the previous TAO iterate, for the no-progress stop */
   int          stalled, no_progress;
   int          drift_held;   /* drift: fit: the drift rates held at 0 (the first of the two solves) */
+  int          load_draws;   /* -calibrate_load_draws: forward runs for a fitted load history's share of the errors */
 } Calib;
 
 /* Parameters from u in [0, 1]^n, and dp/du. */

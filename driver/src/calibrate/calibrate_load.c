@@ -10,6 +10,7 @@
  * which a smooth load hardly moves: sigma = 1.4826 median|d2| / sqrt(6) (the median's robust scale). A load is
  * noisy when sigma exceeds 1e-4 of its peak (a clean record written with 10 digits: below 1e-5). */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,11 +71,11 @@ double cal_noise(const double *p, int n) {
   return sigma;
 }
 
-/* The continuous piecewise-linear least-squares fit over the knots tau (nk of them) into c: tridiagonal normal
- * equations of the hat functions, solved by elimination. */
-static void fit_knots(const CalRun *run, const double *tau, int nk, double *c) {
-  double *d = calloc((size_t)nk, sizeof(double)), *e = calloc((size_t)nk, sizeof(double)), *b = calloc((size_t)nk, sizeof(double));
-  double  tr = 0;
+/* The normal equations of the continuous piecewise-linear least-squares fit over the knots tau (nk of them): the hat
+ * functions' Gram matrix, tridiagonal (d its diagonal, e its off-diagonal), and b the load's projections. */
+static void normal_knots(const CalRun *run, const double *tau, int nk, double *d, double *e, double *b) {
+  double tr = 0;
+  for (int q = 0; q < nk; q++) d[q] = e[q] = b[q] = 0;
   for (int i = 0, q = 0; i < run->rows; i++) {
     while (q < nk - 2 && T(run, i) >= tau[q + 1]) q++;
     double s = (T(run, i) - tau[q]) / (tau[q + 1] - tau[q]);
@@ -83,12 +84,42 @@ static void fit_knots(const CalRun *run, const double *tau, int nk, double *c) {
   }
   for (int q = 0; q < nk; q++) tr += d[q];
   for (int q = 0; q < nk; q++) d[q] += 1e-12 * tr / nk; /* a knot with no row nearby: held, not singular */
-  for (int q = 1; q < nk; q++) {                       /* forward elimination (e: the super- and sub-diagonal) */
+}
+
+/* The fit's knot values c, by elimination of the tridiagonal normal equations. */
+static void fit_knots(const CalRun *run, const double *tau, int nk, double *c) {
+  double *d = calloc((size_t)nk, sizeof(double)), *e = calloc((size_t)nk, sizeof(double)), *b = calloc((size_t)nk, sizeof(double));
+  normal_knots(run, tau, nk, d, e, b);
+  for (int q = 1; q < nk; q++) { /* forward elimination (e: the super- and sub-diagonal) */
     double f = e[q - 1] / d[q - 1];
     d[q] -= f * e[q - 1], b[q] -= f * b[q - 1];
   }
   c[nk - 1] = b[nk - 1] / d[nk - 1];
   for (int q = nk - 2; q >= 0; q--) c[q] = (b[q] - e[q] * c[q + 1]) / d[q];
+  free(d), free(e), free(b);
+}
+
+/* A sign of +-1 from (draw, run, knot): SplitMix64's finaliser (Steele, Lea & Flood 2014) of their combination. */
+static double rademacher(int draw, int run, int q) {
+  uint64_t z = 0x9E3779B97F4A7C15ull * (uint64_t)(1 + draw) ^ 0xBF58476D1CE4E5B9ull * (uint64_t)(1 + run) ^ (uint64_t)q;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return (z ^ (z >> 31)) & 1 ? 1.0 : -1.0;
+}
+
+void cal_load_draw(const CalRun *run, int draw, double *p) {
+  int     nk = run->nknot;
+  double *d = calloc((size_t)nk, sizeof(double)), *e = calloc((size_t)nk, sizeof(double)), *b = calloc((size_t)nk, sizeof(double));
+  normal_knots(run, run->knot_t, nk, d, e, b);
+  for (int q = 0; q < nk; q++) { /* Cholesky, N = L L^T: L's diagonal into d, its sub-diagonal into e */
+    d[q] = sqrt(d[q] - (q ? e[q - 1] * e[q - 1] : 0));
+    if (q + 1 < nk) e[q] /= d[q];
+  }
+  double sigma = run->load_noise, dq = 0;
+  for (int q = nk - 1; q >= 0; q--) { /* L^T dc = sigma z: dc has the covariance sigma^2 N^-1 */
+    dq    = (sigma * rademacher(draw, run->index, q) - (q + 1 < nk ? e[q] * dq : 0)) / d[q];
+    p[q]  = run->knot_p[q] + dq;
+  }
   free(d), free(e), free(b);
 }
 

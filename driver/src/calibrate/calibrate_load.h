@@ -15,5 +15,9 @@ double cal_noise(const double *p, int n);
 /* The same from the second differences themselves (d[0..n-1], overwritten). */
 double cal_noise_d2(double *d, int n);
 void cal_load_describe(const CalRun *run, char *buf, size_t n);
+/* The fitted history's knots moved by one draw of their own uncertainty into p[0..nknot-1]: knot_p + sigma L^-T z,
+ * N = L L^T the fit's normal matrix, sigma the load's noise, z random signs fixed by (draw, the run's index), so that
+ * the moves have the knots' least-squares covariance sigma^2 N^-1. */
+void cal_load_draw(const CalRun *run, int draw, double *p);
 
 #endif

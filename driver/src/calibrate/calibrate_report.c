@@ -12,6 +12,8 @@
 #include "../io/json_write.h"
 #include "../stepping/run_status.h"
 #include "calibrate_drift.h"
+#include "calibrate_load.h"
+#include "calibrate_protocol.h"
 #include "calibrate_refine.h"
 #include "calibrate_report.h"
 #include "calibrate_residual.h"
@@ -108,6 +110,66 @@ static void uncertainty(Calib *c, const double *u, const double *J, const double
   }
   un->ntrend = cal_hold_trends(c->run, c->nrun, c->m, X, q, r, un->trend, CAL_MAX_RUNS * CAL_MAX_CURVES);
   free(G), free(X);
+}
+
+/* One draw of the fitted load histories' uncertainty (cal_load_draw) into rd: every run that follows a fitted history
+ * run at the parameters p with its knots moved (its scene and tables under D/forward/loadI), its residuals (the fitted
+ * drift profiled out, as at the fit) into rd; the other runs' are the fit's, r. The runs' scenes are restored. */
+static int load_draw(Calib *c, const double *p, int draw, const double *r, double *rd, char *err, size_t errlen) {
+  memcpy(rd, r, sizeof(double) * c->m);
+  for (int j = 0, off = 0; j < c->nrun; off += cal_run_size(&c->run[j]), j++) {
+    CalRun *run = &c->run[j];
+    char    dir[PATH_MAX + 64], runs[PATH_MAX + 128];
+    if (!run->load_fitted) continue;
+    double *keep = run->knot_p, *moved = malloc(sizeof(double) * (size_t)run->nknot);
+    cal_load_draw(run, draw, moved);
+    run->knot_p = moved;
+    snprintf(dir, sizeof dir, "%s/forward/load%d", c->outdir, draw);
+    snprintf(runs, sizeof runs, "%s/%s", dir, run->name);
+    int bad = cal_protocol_write(run, dir, err, errlen), rc = bad ? 0 : cal_forward(c, run, cal_run_scene(run, 0), p, runs);
+    run->knot_p = keep, free(moved);
+    if (!bad && rc) bad = 1, snprintf(err, errlen, "its forward run failed (exit code %d; its log: %.900s/forward.log)", rc, runs);
+    if (!bad) bad = cal_run_residual(run, runs, rd + off, err, errlen);
+    if (!bad && run->drift == CAL_DRIFT_FIT) cal_drift_project(run, rd + off);
+    char e2[512];
+    if (cal_protocol_write(run, c->outdir, e2, sizeof e2) && !bad) bad = 1, snprintf(err, errlen, "%s", e2);
+    if (bad) return 1;
+  }
+  return 0;
+}
+
+/* The fitted load histories' share of the standard errors (docs/calibrate.md, "A noisy load"). A run that follows a
+ * fitted history follows one estimate of the load: its knots carry the load's noise, covariance sigma^2 N^-1
+ * (calibrate_load.c), which the data's part does not hold. To first order the parameters move by du = G dr, dr the
+ * residuals' change under a change dc of the knots (G = -(J^T J)^-1 J^T, as for the data's part), so
+ * var(du_a) = E[(w.z)^2] = |w|^2 for dc = sigma L^-T z, z of independent random signs, w fixed: Hutchinson's (1990)
+ * estimator, here the mean of (du_a)^2 over c->load_draws forward runs at the fit (its relative spread at most
+ * sqrt(2 / draws)). NAN without a fitted history, with no draws, or when a draw's run fails (said in the log). */
+static PetscErrorCode load_share(Calib *c, const double *u, const double *J, const double *inv, const double *r, CalUncertainty *un) {
+  int     n = c->np, m = c->m, any = 0;
+  double  p[CAL_MAX_PARAMS], var[CAL_MAX_PARAMS] = {0}, coef[CAL_MAX_PARAMS + CAL_MAX_RUNS], *rd;
+  char    msg[1024];
+  PetscFunctionBeginUser;
+  for (int k = 0; k < n; k++) un->load[k] = NAN, p[k] = cal_param(&c->p[k], u[k]);
+  for (int j = 0; j < c->nrun; j++) any |= c->run[j].load_fitted;
+  un->load_draws = any ? c->load_draws : 0;
+  if (!any || c->load_draws < 1) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(m, &rd));
+  for (int i = 0; i < c->load_draws; i++) {
+    if (load_draw(c, p, i, r, rd, msg, sizeof msg)) {
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "warning: the fitted load history's share of the standard errors is not measured: "
+                            "draw %d: %s\n", i, msg));
+      un->load_draws = 0;
+      PetscCall(PetscFree(rd));
+      PetscFunctionReturn(0);
+    }
+    for (int l = 0; l < m; l++) rd[l] -= r[l];
+    cal_normal_coef(n, m, J, inv, rd, coef);
+    for (int k = 0; k < n; k++) var[k] += coef[k] * coef[k] / c->load_draws;
+  }
+  for (int k = 0; k < n; k++) un->load[k] = sqrt(var[k]) * cal_dparam(&c->p[k], u[k]);
+  PetscCall(PetscFree(rd));
+  PetscFunctionReturn(0);
 }
 
 /* The data against the fitted curves: curves.csv (run, block, x, y, data, model). */
@@ -243,6 +305,9 @@ int cal_report(Calib *c, const double *u, PetscInt its, const char *reason, char
   for (int i = 0; i < m; i++) ssr += r[i] * r[i];
   for (int j = 0; j < c->nrun; j++) drift[j] = c->run[j].drift_rate;
   uncertainty(c, u, J, dd, r, inv, cov, un);
+  ierr = load_share(c, u, J, inv, r, un);
+  if (!ierr && cal_evaluate(c, u, r, "fit", err, errlen)) return free(J), free(r), free(un), 1; /* the fit's curves and drift */
+  if (ierr) return free(J), free(r), free(un), stage_runner_status(ierr, err);
   cal_bias(c, u, J, inv, un->white, &b, msg, sizeof msg); /* refine: auto: the bias against the white standard error */
   for (int j = 0; j < c->nrun; j++) c->run[j].drift_rate = drift[j], c->run[j].drift_se = c->run[j].drift == CAL_DRIFT_FIT ? un->drift_se[j] : c->run[j].drift_se;
   if (write_curves(c, err, errlen)) return free(J), free(r), free(un), 1;

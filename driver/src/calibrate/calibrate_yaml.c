@@ -19,7 +19,9 @@ void cal_quote(const Calib *c, const double *u, const CalUncertainty *un, const 
   q->data  = b->refined ? b->se_data[k] : un->se[k];
   q->model = b->refined ? b->se_model[k] : b->have && !b->failed[0] ? fabs(b->first[k]) : NAN;
   q->conv  = b->refined ? 0 : fabs(un->step[k]);
-  q->s     = sqrt(q->data * q->data + (isnan(q->model) ? 0 : q->model * q->model) + q->conv * q->conv);
+  q->load  = un->load[k];
+  q->s     = sqrt(q->data * q->data + (isnan(q->model) ? 0 : q->model * q->model) + (isnan(q->load) ? 0 : q->load * q->load) +
+                  q->conv * q->conv);
   if (b->failed[0]) snprintf(q->why, sizeof q->why, "the forward model's fit; its bias is unknown (the full-model run failed)");
   else if (b->refined)
     snprintf(q->why, sizeof q->why, "refined on the full model (%d full-model runs%s)", b->nfull, b->converged ? "" : ", NOT converged");
@@ -77,16 +79,17 @@ static void write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty
   fprintf(fp, "# calibrate %s: TAO %s, %d iterations (%s), %d evaluations (%d rejected), %d forward runs, wall %.1f s\n",
           c->name, c->tao_type, (int)its, reason, c->nevals, c->nrejected, c->nforward, MPI_Wtime() - c->wall0);
   fprintf(fp, "# quote: the values to quote, with their standard errors and where they come from (docs/calibrate.md).\n"
-              "# std_error = sqrt(data^2 + model^2 + convergence^2): data, the data's noise (Newey-West, residuals correlated along each\n"
-              "# block, docs/calibrate.md 'Standard errors'); model, the forward model's (the refinement's last step, or the bias left in; null: not measured);\n"
-              "# convergence, TAO's (the Gauss-Newton step left at the forward fit)\n");
+              "# std_error = sqrt(data^2 + model^2 + load^2 + convergence^2): data, the data's noise (Newey-West, residuals correlated along\n"
+              "# each block, docs/calibrate.md 'Standard errors'); model, the forward model's (the refinement's last step, or the bias left in;\n"
+              "# null: not measured); load, the fitted load history's (its knots' noise, from load_draws forward runs; null: the forward\n"
+              "# runs follow no fitted history, docs/calibrate.md 'A noisy load'); convergence, TAO's (the Gauss-Newton step left at the forward fit)\n");
   fprintf(fp, "quote:\n");
   for (int k = 0; k < n; k++) {
     CalQuote q;
     cal_quote(c, u, un, b, k, &q);
     fprintf(fp, "  %s: {value: %.8g, std_error: %.3g, relative_std_error: %.3g, std_error_data: %.3g, std_error_model: %s, "
-                "std_error_convergence: %.3g, from: \"%s\"}\n", c->p[k].name, q.v, q.s, q.s / fabs(q.v), q.data,
-            num(q.model, b1, sizeof b1), q.conv, q.why);
+                "std_error_load: %s, std_error_convergence: %.3g, from: \"%s\"}\n", c->p[k].name, q.v, q.s, q.s / fabs(q.v), q.data,
+            num(q.model, b1, sizeof b1), num(q.load, b2, sizeof b2), q.conv, q.why);
   }
   fprintf(fp, "# parameters: the forward model's fit; std_error: for residuals correlated along each block (prewhitened by an AR(1),\n"
               "# Andrews & Monahan 1992; then Newey-West 1987, the bandwidth by Andrews' 1991 AR(1) rule);\n"
@@ -249,8 +252,11 @@ PetscErrorCode cal_print_summary(Calib *c, const double *u, const CalUncertainty
                             "(%+.2g %%)\n", "", b->p[k], b->se[k], b->bias[k], b->bias_se[k], 100 * b->bias[k] / p));
     CalQuote q;
     cal_quote(c, u, un, b, k, &q);
-    if (isnan(q.model)) snprintf(part, sizeof part, "data %.2g, model not measured, convergence %.2g", q.data, q.conv);
-    else snprintf(part, sizeof part, "data %.2g, model %.2g, convergence %.2g", q.data, q.model, q.conv);
+    if (isnan(q.model)) snprintf(part, sizeof part, "data %.2g, model not measured", q.data);
+    else snprintf(part, sizeof part, "data %.2g, model %.2g", q.data, q.model);
+    size_t len = strlen(part);
+    if (!isnan(q.load)) snprintf(part + len, sizeof part - len, ", load history %.2g", q.load), len = strlen(part);
+    snprintf(part + len, sizeof part - len, ", convergence %.2g", q.conv);
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "quote: %s = %.8g +- %.2g (%.2g %%; %s): %s\n", c->p[k].name, q.v, q.s,
                           100 * q.s / fabs(q.v), part, q.why));
   }

@@ -15,6 +15,8 @@ typedef struct {
   double     se[CAL_MAX_PARAMS], white[CAL_MAX_PARAMS]; /* Newey-West, and white (independent residuals) */
   double     step[CAL_MAX_PARAMS];  /* the Gauss-Newton step left at the fit (in the parameter): TAO's convergence */
   double     drift_se[CAL_MAX_RUNS];
+  double     load[CAL_MAX_PARAMS]; /* the fitted load histories' share (NAN: no fitted history, or not measured) */
+  int        load_draws;           /* the forward runs it took */
   CalHacInfo hac;
   CalTrend   trend[CAL_MAX_RUNS * CAL_MAX_CURVES];
   int        ntrend;
@@ -24,10 +26,10 @@ typedef struct {
 void cal_write_yaml(Calib *c, FILE *fp, const double *u, const CalUncertainty *un, const double *cov, double ssr, PetscInt its,
                     const char *reason, const CalBias *b);
 PetscErrorCode cal_print_summary(Calib *c, const double *u, const CalUncertainty *un, const CalBias *b);
-/* The value to quote, its standard error and its parts (data; model: NAN when not measured; convergence), and where it
- * comes from. */
+/* The value to quote, its standard error and its parts (data; model: NAN when not measured; load: the fitted load
+ * history's, NAN without one; convergence), and where it comes from. */
 typedef struct {
-  double v, s, data, model, conv;
+  double v, s, data, model, load, conv;
   char   why[256];
 } CalQuote;
 void cal_quote(const Calib *c, const double *u, const CalUncertainty *un, const CalBias *b, int k, CalQuote *q);
