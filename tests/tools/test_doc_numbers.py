@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import doc_quotes
+from camclay9 import doc_quotes, point_creep_study, results_store, time_error_study, umat_time_study
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -72,6 +72,7 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/performance.md", "| -0.785 % | 0.702 % | 0.89 |", "| -0.785 % | 0.702 % | 0.98 |"),  # stated time-step error: an effectivity
     ("docs/performance.md", "| elastic | 2054 | 2447 |", "| elastic | 2054 | 2403 |"),    # UMAT: instructions per call
     ("docs/performance.md", "the library +3 % and +33 %", "the library +3 % and +22 %"),  # UMAT: the reading's figures
+    ("docs/performance.md", "| 1e-07 | 396 | 0 | 7.50 |", "| 1e-07 | 396 | 0 | 5.90 |"),  # material point: a median wall time
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -86,3 +87,25 @@ def test_a_store_value_changed_fails_the_check(tree):
     edit(tree / "docs" / "results" / "indent3d.json", '"P": 537.5', '"P": 540.0')   # the kerogen 3D reference
     r = run("--root", str(tree))
     assert r.returncode == 1 and "README.md" in r.stdout and "P 540.0 µN" in r.stdout
+
+
+def _drop(store, path):
+    """The store with the key at path (a tuple of keys and indices) removed; the key's name."""
+    *at, key = path
+    d = store
+    for k in at:
+        d = d[k]
+    del d[key]
+    return key
+
+
+@pytest.mark.parametrize("study, path", [
+    (time_error_study, ("cases", "sphere", "rows", 1, "stated")),
+    (umat_time_study, ("rows", 2, "after_nocache")),
+    (point_creep_study, ("rows", 3, "err_10h")),
+])
+def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
+    store = results_store.load(study.STORE)
+    key = _drop(store, path)
+    with pytest.raises(ValueError, match=rf"docs/results/{study.STORE}\.json: .*{key}"):
+        study.section(store)
