@@ -91,7 +91,7 @@ def main():
     (root / "results.json").write_text(json.dumps(results, indent=1) + "\n")
     earlier = [case for case in results if case not in run_now]
     provenance = {"command": "bench/time_error_bench.py" + (f" --cases {a.cases}" if earlier else ""),
-                  "date": time.strftime("%Y-%m-%d"), "machine": a.machine}
+                  "date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": a.machine}
     if earlier:
         provenance["note"] = f"cases {', '.join(earlier)} from an earlier run's {root.name}/results.json"
     store = {"provenance": provenance, "cases": results}
