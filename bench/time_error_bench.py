@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The time-step error a run states (docs/adapt.md, "The time-step error"): each case at its shipped step control and
-at finer ones; the stated error of each held stage's change against its true error. Writes the section "Stated
-time-step error" of docs/performance.md.
+at finer ones; the stated error of each held stage's change against its true error. Keeps every number its table
+prints in the results store docs/results/time_error.json and writes the section "Stated time-step error" of
+docs/performance.md from it (camclay9.time_error_study, which tools/doc_numbers.py checks).
 
-    bench/time_error_bench.py [--out out/time_error_bench] [--no-doc]
+    bench/time_error_bench.py [--out out/time_error_bench] [--cases A,B] [--machine NOTE] [--no-doc]
 
 The true error: backward Euler under these controls is first order (docs/performance.md, "Time-step error control":
 the errors halve with the tol), so the value at the finest two controls, extrapolated to zero (2 v(c/2) - v(c)), is
@@ -21,14 +22,14 @@ Cases:
 """
 import argparse
 import json
+import time
 from pathlib import Path
 
-from camclay9 import DriverError, read_summary, run_driver
+from camclay9 import DriverError, read_summary, results_store, run_driver
+from camclay9 import time_error_study as study
 from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-
-TITLE = "## Stated time-step error"
 
 # case: (scene, the text the control is in (with {} for its value), its values, finest last; the stage; the quantity)
 CASES = {
@@ -75,40 +76,30 @@ def measure(case, root):
     return {"stage": stage, "quantity": q, "reference": ref, "uncertainty": abs(fine[0]["value"] - ref), "rows": rows}
 
 
-def section(results):
-    lines = [TITLE, "",
-             "Command: `bench/time_error_bench.py` (cases and references in its docstring). Each held stage's change is "
-             "stated with the sum of its steps' local error estimates (docs/adapt.md, \"The time-step error\"); here "
-             "against its true error, from the finest two controls extrapolated (first order). Effectivity = stated / true. "
-             "kerogen_sector_load varies the load stage's control alone (the hold's stays 0.015): its true error is the "
-             "share of the load stage's steps, which the stated error, the hold's own, does not hold (no effectivity).",
-             "", "| case | change of | control | steps | CPU [s] | value | true error | stated | effectivity |",
-             "|---|---|---|---|---|---|---|---|---|"]
-    for case, r in results.items():
-        for row in r["rows"]:
-            eff = "—" if row["effectivity"] is None else f"{row['effectivity']:.2f}"
-            lines.append(f"| {case} | {r['quantity']} over '{r['stage']}' | {row['control']} | {row['steps']} | {row['cpu_s']:.1f} | "
-                         f"{row['value']:.6g} | {100 * row['true'] / abs(r['reference']):+.3f} % | "
-                         f"{100 * row['stated'] / abs(r['reference']):.3f} % | {eff} |")
-        lines.append(f"| {case} | reference | | | | {r['reference']:.6g} | ± {100 * r['uncertainty'] / abs(r['reference']):.3f} % | | |")
-    return "\n".join(lines) + "\n"
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=str(ROOT / "out" / "time_error_bench"))
-    ap.add_argument("--no-doc", action="store_true")
+    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
     ap.add_argument("--cases", default=",".join(CASES), help="run these; the others' results from OUT/results.json")
+    ap.add_argument("--machine", default="a shared 2-core machine, one rank",
+                    help="the machine note the store and the section carry (default: %(default)s)")
     a = ap.parse_args()
     root = Path(a.out)
     kept = json.loads((root / "results.json").read_text()) if (root / "results.json").is_file() else {}
     run_now = a.cases.split(",")
     results = {case: measure(case, root) if case in run_now else kept[case] for case in CASES if case in run_now or case in kept}
     (root / "results.json").write_text(json.dumps(results, indent=1) + "\n")
-    text = section(results)
+    earlier = [case for case in results if case not in run_now]
+    provenance = {"command": "bench/time_error_bench.py" + (f" --cases {a.cases}" if earlier else ""),
+                  "date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": a.machine}
+    if earlier:
+        provenance["note"] = f"cases {', '.join(earlier)} from an earlier run's {root.name}/results.json"
+    store = {"provenance": provenance, "cases": results}
+    text = study.section(store)   # the section from the store's numbers, as tools/doc_numbers.py checks it
     print(text)
     if not a.no_doc:
-        replace_section(TITLE, text)
+        replace_section(study.TITLE, text)
+        results_store.save(study.STORE, store)
 
 
 if __name__ == "__main__":

@@ -9,12 +9,12 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import doc_quotes
+from camclay9 import doc_quotes, point_creep_study, results_store, time_error_study, umat_time_study
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
 
-DOCS = ("README.md", "docs/paper.md", "docs/performance.md", "docs/contact.md", "docs/calibrate.md",
+DOCS = ("README.md", "docs/paper.md", "docs/performance.md", "docs/contact.md", "docs/calibrate.md", "docs/adapt.md",
         "bench/indent2d_convergence_conclusions.md",
         "bench/indent_convergence_conclusions.md")
 
@@ -69,6 +69,12 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/calibrate.md", "the two noisy cases give −2.36 %", "the two noisy cases give −2.63 %"),  # the 60 s drift hold's
     ("docs/performance.md", "| drift | 20 (0 failed) | 19 of 20 (95 %) |", "| drift | 20 (0 failed) | 18 of 20 (90 %) |"),
     ("bench/indent2d_convergence_conclusions.md", "its creep depth, 35.09 nm, is −1.0 %", "its creep depth, 35.27 nm, is −0.4 %"),
+    ("docs/performance.md", "| -0.785 % | 0.702 % | 0.89 |", "| -0.785 % | 0.702 % | 0.98 |"),  # stated time-step error: an effectivity
+    ("docs/adapt.md", "1.03–1.05 on the 3D kerogen sector", "1.02–1.05 on the 3D kerogen sector"),   # its reading
+    ("docs/adapt.md", "splits into 0.54 % from the load", "splits into 0.45 % from the load"),
+    ("docs/performance.md", "| elastic | 2054 | 2447 |", "| elastic | 2054 | 2403 |"),    # UMAT: instructions per call
+    ("docs/performance.md", "the library +3 % and +33 %", "the library +3 % and +22 %"),  # UMAT: the reading's figures
+    ("docs/performance.md", "| 1e-07 | 396 | 0 | 7.50 |", "| 1e-07 | 396 | 0 | 5.90 |"),  # material point: a median wall time
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -83,3 +89,25 @@ def test_a_store_value_changed_fails_the_check(tree):
     edit(tree / "docs" / "results" / "indent3d.json", '"P": 537.5', '"P": 540.0')   # the kerogen 3D reference
     r = run("--root", str(tree))
     assert r.returncode == 1 and "README.md" in r.stdout and "P 540.0 µN" in r.stdout
+
+
+def _drop(store, path):
+    """The store with the key at path (a tuple of keys and indices) removed; the key's name."""
+    *at, key = path
+    d = store
+    for k in at:
+        d = d[k]
+    del d[key]
+    return key
+
+
+@pytest.mark.parametrize("study, path", [
+    (time_error_study, ("cases", "sphere", "rows", 1, "stated")),
+    (umat_time_study, ("rows", 2, "after_nocache")),
+    (point_creep_study, ("rows", 3, "err_10h")),
+])
+def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
+    store = results_store.load(study.STORE)
+    key = _drop(store, path)
+    with pytest.raises(ValueError, match=rf"docs/results/{study.STORE}\.json: .*{key}"):
+        study.section(store)
