@@ -175,9 +175,12 @@ QUOTES = [
     (CA, "over the 300 s record's «len(cd['drift_noise'])» draws with noise and drift,"),
     (CA, "have an rms of «f(rmsz(cd['drift_noise']), 2)» (1 for a right standard error)"),
     (CA, "2 of them in «covered(cd['drift_noise'])». With 0.5 % load noise"),
-    (CA, "the rms is «f(rmsz(cd['both']), 2)» and «covered(cd['both'])» of «len(cd['both'])»"),
-    (CA, "draws are covered (the 60 s record: «covered(cd6['both'])» of «len(cd6['both'])»)"),
-    (CA, "«f(rmsz(cd['both']), 1)» times too narrow (the rms above)"),
+    (CA, "With it the rms is «f(rmsz(cd['both']), 2)» and «covered(cd['both'])» of «len(cd['both'])» draws are covered "
+         "(«pu(covered(cd['both']) / len(cd['both']), 0)»; the"),
+    (CA, "60 s record: «covered(cd6['both'])» of «len(cd6['both'])»), the part a median «pu(median([r['se_load_rel'] for r in "
+         "cd['both']]), 2)» of η_s against the whole standard error's «pu(median([r['se_rel'] for r in cd['both']]), 2)»."),
+    (CA, "the noisy-load case's fit took «f(cc(BO).cpu / cc(CF).cpu, 2)» times the clean record's CPU (300 s hold; "
+         "«f(cc6(BO).cpu / cc6(CF).cpu, 2)»"),
     # the 300 s drift hold (docs/calibrate.md, "Coverage"; bench/calibrate_coverage.py --drift-hold 300)
     (CA, "At the same truth the two cases give «pc(cc(DN).error, 2)»"),
     (CA, "(± «pu(cc(DN).se_rel, 2)») and «pc(cc(BO).error, 2)» (± «pu(cc(BO).se_rel, 2)»), at «f(cc(DN).cpu / cc(CF).cpu, 2)» "
