@@ -28,7 +28,7 @@ from pathlib import Path
 import yaml
 from camclay9 import DriverError, driver_path, results_store, run_driver
 from camclay9 import calibrate_study as study
-from camclay9.performance_doc import replace_section
+from camclay9.performance_doc import publish
 
 ROOT = Path(__file__).resolve().parents[1]
 CAL = ROOT / "input" / "calibrate"
@@ -137,12 +137,7 @@ def main(argv=None):
     provenance = {"command": "bench/calibrate_bench.py" + (f" --examples {a.examples}" if a.examples != EXAMPLES else ""),
                   "date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": a.machine}
     store = {"provenance": provenance, "true": TRUE, "examples": examples, "not_run": not_run}
-    text = study.section(store)   # the section from the store's numbers, as tools/doc_numbers.py checks it
-    print(text)
-    if not a.no_doc:
-        replace_section(study.TITLE, text)
-        results_store.save(study.STORE, store)
-        print("written: docs/performance.md, docs/results/calibrate_bench.json")
+    publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
 
 
 if __name__ == "__main__":

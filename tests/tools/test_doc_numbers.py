@@ -9,7 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import calibrate_study, doc_quotes, point_creep_study, results_store, time_error_study, umat_time_study
+from camclay9 import (calibrate_study, doc_quotes, indent_ranks_study, point_creep_study, results_store, time_error_study,
+                      umat_time_study)
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -76,6 +77,8 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/performance.md", "the library +3 % and +33 %", "the library +3 % and +22 %"),  # UMAT: the reading's figures
     ("docs/performance.md", "| 1e-07 | 396 | 0 | 7.50 |", "| 1e-07 | 396 | 0 | 5.90 |"),  # material point: a median wall time
     ("docs/performance.md", "eta_hard 1.306658e+13 (+0.51 % ± 0.5 %)", "eta_hard 1.306658e+13 (+0.51 % ± 0.34 %)"),  # calibration
+    ("docs/performance.md", "| microindent_BP | 2 | 56.2 | 110.7 |", "| microindent_BP | 2 | 52.6 | 110.7 |"),  # 1 and 2 ranks
+    ("docs/performance.md", "1.1–1.5× in wall time", "1.1–1.6× in wall time"),                      # their reading's range
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -108,6 +111,8 @@ def _drop(store, path):
     (point_creep_study, ("rows", 3, "err_10h")),
     (calibrate_study, ("examples", 2, "cpu_s")),
     (calibrate_study, ("examples", 0, "quote", "eta_soft", "relative_std_error")),
+    (indent_ranks_study, ("rows", 5, "h_res_vs_1")),
+    (indent_ranks_study, ("rows", 2, "wall_s")),
 ])
 def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
     store = results_store.load(study.STORE)
