@@ -126,6 +126,12 @@ def median_run(text, tmp, tag, repeats, ranks=1):
     return r
 
 
+def same_mesh(a, b):
+    """Whether two scenes' texts give the same mesh (its geometry, parameters and element order)."""
+    mesh = re.compile(r"^\s*(?:geometry|parameters|order):.*$", re.M)
+    return mesh.findall(a) == mesh.findall(b)
+
+
 def scene_runs(key, tmp, repeats, no_before):
     """Part 1, one scene: its reference, then its runs before and shipped (camclay9.step_control_study's scene)."""
     name, ranks = SCENES[key], 2 if key == "triaxial" else 1
@@ -139,7 +145,8 @@ def scene_runs(key, tmp, repeats, no_before):
         rows.append({"variant": label, "steps": r["steps"], "newton": r["newton"], "calls": r["calls"], "wall_s": r["wall"],
                      "cpu_s": r["cpu"], "errors": errors(outputs(r["hist"]), ref)})
         print(f"  {study.scene_lines({'name': name, 'rows': rows[-1:], 'uncertainty': unc})[0]}", flush=True)
-    return {"name": name, "reference": ref, "uncertainty": unc, "rows": rows}
+    return {"name": name, "reference": ref, "uncertainty": unc, "rows": rows,
+            "before_mesh_differs": not no_before and not same_mesh(before(name), text)}
 
 
 def table_row(r, ref, **what):
@@ -182,13 +189,15 @@ def plot(table):
     fig.savefig(ROOT / "docs" / "step_control.png", dpi=100)
 
 
+def kept_note(old):
+    pv = old.get("provenance", {})
+    return {"note": f"from the run of {pv.get('date')} (`{pv.get('command')}`), kept in the store"}
+
+
 def kept_scenes(old):
     """{name: scene} of the store's part as it stood, each with its own provenance (that run's, unless it has one):
     the scenes not run now keep their rows."""
-    pv = old.get("provenance", {})
-    return {s["name"]: {**s, "provenance": s.get("provenance")
-                        or {"note": f"from the run of {pv.get('date')} (`{pv.get('command')}`), kept in the store"}}
-            for s in old.get("scenes", [])}
+    return {s["name"]: {**s, "provenance": s.get("provenance") or kept_note(old)} for s in old.get("scenes", [])}
 
 
 def main(argv=None):
@@ -196,7 +205,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--scenes", default="nano,micro,rate,bedding,triaxial",
                     help="run these; the part's other scenes keep their rows from the store (default: %(default)s)")
-    ap.add_argument("--no-table", action="store_true", help="skip part 2")
+    ap.add_argument("--no-table", action="store_true", help="skip part 2 (the store's table, if any, is kept)")
     ap.add_argument("--no-before", action="store_true", help="skip the 'before' runs (the 3D ones take 10 min each)")
     ap.add_argument("--part", choices=sorted(study.TITLES), default="axi",
                     help="the store's part and section to write (3d: the 3D half models' section)")
@@ -212,6 +221,8 @@ def main(argv=None):
     old = store["parts"].get(a.part, {})
     kept = kept_scenes(old)
     scenes = [done.get(n) or kept[n] for n in SCENES.values() if n in done or n in kept]
+    if table is None and old.get("table"):   # --no-table: the part's table kept, with its run's provenance
+        table = {**old["table"], "provenance": old["table"].get("provenance") or kept_note(old)}
     command = (f"bench/step_control_bench.py --repeats {a.repeats} --scenes {a.scenes}{' --no-table' if a.no_table else ''}"
                f"{' --no-before' if a.no_before else ''}{' --part ' + a.part if a.part != 'axi' else ''}")
     part = {"provenance": {"command": command, "date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": a.machine},
@@ -219,7 +230,7 @@ def main(argv=None):
     part.update({k: v for k, v in old.items() if k not in part})   # the earlier runs' figures the text quotes
     store["parts"][a.part] = part
     publish(study.TITLES[a.part], study.section(store, part=a.part), study.STORE, store, write=not a.no_doc)
-    if table and not a.no_doc:
+    if not a.no_table and not a.no_doc:   # the plot of this run's table (a kept one's stands)
         plot(table)
         print("written: docs/step_control.png")
 

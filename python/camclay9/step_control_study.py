@@ -6,12 +6,14 @@ The store: {"parts": {part: {...}}}, part "axi" (the first section) and "3d" (th
 {"command", "date", "machine", ...}, "scenes": [...], "table": {...} or null, and the figures the section's
 hand-written text quotes from earlier runs, each with its own "note" saying where it was taken from ("quiet" in "axi";
 "sector_tol" and "issue10_before" in "3d")}. A scene {"name", "reference": {output: value}, "uncertainty":
-{output: relative}, "provenance" (only in a scene not run by the part's command: its own note), "rows":
+{output: relative}, "provenance" (only in a scene not run by the part's command: its own note),
+"before_mesh_differs" (true where the 'before' scene's mesh is not today's; absent in scenes taken over), "rows":
 [{"variant" ("before" or "shipped"), "steps", "newton", "calls" (UMAT calls), "wall_s" (median of the repeats),
 "cpu_s" (median, user + system of the driver processes), "errors": {output: relative error against the
 reference}}]}. The table (nanoindentation, axisymmetric: each error measure at three tolerances, then
 Newton's stopping rule): {"reference", "uncertainty", "rows": [{"measure", "tol", "newton_rule" (null for the
-measure rows), "steps", "newton", "wall_s", "cpu_s", "errors"}]}. Values at full digits.
+measure rows), "steps", "newton", "wall_s", "cpu_s", "errors"}], "provenance" (only when not run by the part's
+command)}. Values at full digits.
 """
 
 STORE = "step_control"
@@ -96,6 +98,10 @@ def note_lines(p):
     """What of the part was not run by its command (its provenance's 'note', each kept scene's), under its table."""
     notes = [p["provenance"]["note"]] if p["provenance"].get("note") else []
     notes += [f"{s['name']}: not rerun; {s['provenance']['note']}." for s in p["scenes"] if "provenance" in s]
+    notes += [f"{s['name']}: its 'before' run is on the mesh shipped before issue 10, not on today's (the reference's): "
+              "its errors include the difference of the meshes." for s in p["scenes"] if s.get("before_mesh_differs")]
+    if p["table"] and "provenance" in p["table"]:
+        notes.append(f"The table of measures below: not rerun; {p['table']['provenance']['note']}.")
     return [line for n in notes for line in ("", n)]
 
 
