@@ -4,9 +4,15 @@ time (separate driver processes): TAO iterations, forward and full-model runs, C
 processes: user + system) and wall time, the forward model's fit, the quoted value and the forward model's bias
 (first estimate, measured by the refinement), each against the value the synthetic data were made with
 (eta_soft 1.3e10, eta_hard 1.3e13 MPa s). Variants run an example with another forward model (own_curve_fast:
-own_curve.yaml with nano_fast instead of nano_mid). Writes the section "## Calibration" of docs/performance.md.
+own_curve.yaml with nano_fast instead of nano_mid). Keeps every number its table prints in the results store
+docs/results/calibrate_bench.json (camclay9.calibrate_study: fit.yaml's numbers at full digits, CPU and wall time,
+command, date and machine note) and writes the section "## Calibration" of docs/performance.md from it, which
+tools/doc_numbers.py checks.
 
-  bench/calibrate_bench.py [--examples a,b,...] [--make-data]
+  bench/calibrate_bench.py [--examples a,b,...] [--make-data] [--machine NOTE] [--no-doc]
+
+--examples runs only those; every other example keeps its row from the store as it stood, with that run's
+provenance (the section names it), or is listed as not run.
 
 --make-data makes an example's missing record first (micro_BP_3d_eta_hard_bias: one full 3D run, some 20 min);
 without it such an example is skipped and said so. Long: about 40 min on the shared machine (run it under nice).
@@ -16,16 +22,17 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import yaml
-from camclay9 import DriverError, driver_path, run_driver
-from camclay9.performance_doc import replace_section
+from camclay9 import DriverError, driver_path, results_store, run_driver
+from camclay9 import calibrate_study as study
+from camclay9.performance_doc import publish
 
 ROOT = Path(__file__).resolve().parents[1]
 CAL = ROOT / "input" / "calibrate"
 TRUE = {"eta_soft": 1.3e10, "eta_hard": 1.3e13}
-TITLE = "## Calibration"
 EXAMPLES = ("own_curve,own_curve_fast,nano_eta_soft,micro_BN_eta_hard,nano_micro_joint,triaxial_creep_lab,"
             "nano_eta_soft_noise1,nano_eta_soft_bias,nano_eta_soft_bias_mid,micro_BN_eta_hard_bias,"
             "micro_BN_eta_hard_bias_mid,micro_BP_3d_eta_hard")
@@ -59,46 +66,33 @@ def missing_record(scene, make):
     return None
 
 
-def pct(x, sign="+"):
-    """x as a percentage with two significant digits (0.00041 %, -11 %)."""
-    return f"{100 * x:{sign}.2g} %"
-
-
-def row(name, fit, cpu, wall):
+def record(name, fit, cpu, wall):
+    """The store's entry for one example (camclay9.calibrate_study): fit.yaml's numbers at full digits."""
     cost = fit["cost"]
-    models = "; ".join(f"{Path(m['scene']).stem} ({m.get('drive', 'scene')})"
-                       + (f", ref. {Path(m['reference']).stem}" if m.get("reference") else "")
-                       for m in fit.get("forward_models", []))
-    fwd, quote, bias = [], [], []
-    for k, p in fit["parameters"].items():
-        q = fit["quote"][k]
-        fwd.append(f"{k} {p['value']:.5g} ({pct(p['value'] / TRUE[k] - 1)}, s.e. {pct(p['relative_std_error'], '')})")
-        quote.append(f"{k} {q['value']:.7g} ({pct(q['value'] / TRUE[k] - 1)} ± {pct(q['relative_std_error'], '')})")
-        b = fit.get("bias", {}).get(k)
-        if b:
-            measured = f", measured {pct(b['value'] / p['value'])}" if "value" in b else ""
-            bias.append(f"first {pct(b['relative'])}{measured}")
-    refined = fit.get("refinement", {}).get("refined")
-    print(f"{name}: {cost['iterations']} TAO its, {cost['forward_runs']} forward + {cost['full_model_runs']} full-model "
-          f"runs, CPU {cpu:.1f} s, wall {wall:.1f} s; {'; '.join(fwd)}; quote {'; '.join(quote)}", flush=True)
-    return (f"| {name} | {models} | {cost['iterations']} | {cost['forward_runs']} | {cost['full_model_runs']} | {cpu:.0f} | "
-            f"{wall:.0f} | {'; '.join(fwd)} | {'; '.join(quote)}{' (refined)' if refined else ''} | "
-            f"{'; '.join(bias) or '—'} |")
+    ex = {"name": name,
+          "models": [{"scene": Path(m["scene"]).stem, "drive": m.get("drive", "scene"),
+                      "reference": Path(m["reference"]).stem if m.get("reference") else None}
+                     for m in fit.get("forward_models", [])],
+          "iterations": cost["iterations"], "forward_runs": cost["forward_runs"],
+          "full_model_runs": cost["full_model_runs"], "cpu_s": cpu, "wall_s": wall,
+          "parameters": {k: {"value": p["value"], "relative_std_error": p["relative_std_error"]}
+                         for k, p in fit["parameters"].items()},
+          "quote": {k: {"value": fit["quote"][k]["value"], "relative_std_error": fit["quote"][k]["relative_std_error"]}
+                    for k in fit["parameters"]},
+          "bias": {k: {"relative": b["relative"], "value": b.get("value")}
+                   for k, b in (fit.get("bias") or {}).items() if b},
+          "refined": bool(fit.get("refinement", {}).get("refined"))}
+    print(study.row(ex, TRUE), flush=True)
+    return ex
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--examples", default=EXAMPLES)
-    ap.add_argument("--make-data", action="store_true", help="make the records an example needs that are not shipped")
-    a = ap.parse_args(argv)
-    lines = ["| example | forward model (drive), full model | TAO its | forward runs | full-model runs | CPU [s] | wall [s] "
-             "| forward fit (error, s.e.) | quoted (error ± s.e.) | bias: first estimate, measured |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
-    skipped = []
+def run_examples(names, make_data):
+    """{name: store entry} for the examples run now; the texts of those skipped for a missing record."""
+    done, skipped = {}, []
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.examples.split(","):
+        for name in names:
             scene = scene_of(name, tmp)
-            need = missing_record(scene, a.make_data)
+            need = missing_record(scene, make_data)
             if need:
                 skipped.append(f"{name} (its record data/{need} is not made: --make-data)")
                 print(f"{name}: skipped, data/{need} missing (--make-data makes it)", flush=True)
@@ -108,17 +102,42 @@ def main(argv=None):
                 proc = run_driver(scene, out, root=ROOT, timeout=6 * 3600)
             except DriverError as err:
                 raise SystemExit(f"{scene}: failed: {err}")
-            lines.append(row(name, yaml.safe_load((out / "fit.yaml").read_text()), proc.cpu, proc.wall))
-    note = f"\nNot run: {', '.join(skipped)}.\n" if skipped else ""
-    section = (f"{TITLE}\n\nCommand: `bench/calibrate_bench.py` (docs/calibrate.md). The examples of `input/calibrate/`, "
-               "TAO POUNDERS from a start 3x off, one forward\nrun at a time; synthetic data made by the driver with "
-               "eta_soft 1.3e10 and eta_hard 1.3e13 (the noise example:\n1 % noise, so its error is to be read against "
-               "its standard error). CPU: the driver and its forward processes\n(user + system). One run each on a "
-               "shared machine (wall times vary by about 2x with its load). The forward fit is\nTAO's with the forward "
-               "model; the quoted value is fit.yaml's `quote` (refined on the full model when the forward\nmodel's bias "
-               "exceeds its standard error); the bias is relative to the forward fit.\n\n" + "\n".join(lines) + "\n" + note)
-    replace_section(TITLE, section)
-    print("written: docs/performance.md")
+            done[name] = record(name, yaml.safe_load((out / "fit.yaml").read_text()), proc.cpu, proc.wall)
+    return done, skipped
+
+
+def kept_from(old, name):
+    """An example not run now, from the store as it stood: with its own provenance (that run's, unless it has one)."""
+    for ex in old.get("examples", []):
+        if ex["name"] == name:
+            pv = old["provenance"]
+            return {**ex, "provenance": ex.get("provenance")
+                    or {"note": f"from the run of {pv['date']} (`{pv['command']}`), kept in the store"}}
+    return None
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--examples", default=EXAMPLES, help="run these; the others' rows kept from the store if it has them")
+    ap.add_argument("--make-data", action="store_true", help="make the records an example needs that are not shipped")
+    ap.add_argument("--machine", default="a shared 2-core machine",
+                    help="the machine note the store and the section carry (default: %(default)s)")
+    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
+    a = ap.parse_args(argv)
+    names = a.examples.split(",")
+    done, skipped = run_examples(names, a.make_data)
+    old = results_store.load(study.STORE)
+    examples, not_run = [], list(skipped)
+    for name in EXAMPLES.split(","):
+        ex = done.get(name) or (None if name in names else kept_from(old, name))
+        if ex:
+            examples.append(ex)
+        elif name not in names:
+            not_run.append(name)
+    provenance = {"command": "bench/calibrate_bench.py" + (f" --examples {a.examples}" if a.examples != EXAMPLES else ""),
+                  "date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": a.machine}
+    store = {"provenance": provenance, "true": TRUE, "examples": examples, "not_run": not_run}
+    publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
 
 
 if __name__ == "__main__":

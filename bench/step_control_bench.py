@@ -12,23 +12,29 @@ creep stage. One rank (the triaxial main job: 2 ranks, as tools/run.sh runs it);
 (fields_every 0 and no output times), so the times are the solver's. Wall times: medians of --repeats runs
 of the shipped scenes, single runs otherwise; the machine is shared, so each row also gives the CPU time.
 
-Writes the section "## Time-step error control" of docs/performance.md and docs/step_control.png.
-Usage: bench/step_control_bench.py [--repeats 3] [--scenes nano,micro,rate,bedding,triaxial] [--no-table]
+Keeps every number its tables print in the results store docs/results/step_control.json (camclay9.step_control_study;
+full digits, with command, date and machine note) and writes from it the section "## Time-step error control" of
+docs/performance.md (--part 3d: "## Time-step error control: 3D Berkovich half model") and docs/step_control.png,
+which tools/doc_numbers.py checks. The figures the sections' hand-written text quotes from earlier runs stay in the
+store's part as they stood (each with its note).
+Usage: bench/step_control_bench.py [--repeats 3] [--scenes nano,micro,rate,bedding,triaxial] [--no-table] [--no-before]
+       [--part axi|3d] [--machine NOTE] [--no-doc]
 """
 import argparse
 import re
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
-from camclay9 import DriverError, read_history, run_driver, summary_line
+from camclay9 import DriverError, read_history, results_store, run_driver, summary_line
+from camclay9 import step_control_study as study
+from camclay9.performance_doc import publish
 from matplotlib.figure import Figure
-from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
-TITLE = "## Time-step error control"
 BEFORE_COMMIT = "9e981b2"  # the scenes as shipped before issue 10
 SCENES = {"nano": "nanoindent_kerogen_axi", "micro": "microindent_BN_axi", "rate": "loading_rate_a1",
           "bedding": "bedding_theta45", "triaxial": "triaxial", "nano3d": "nanoindent_kerogen",
@@ -37,7 +43,8 @@ STEPS = re.compile(r"steps: \{adaptive: true, first: ([^,]+), min: ([^,]+), max:
 
 
 def absolute(text):
-    text = text.replace("geometry: ../meshes/", f"geometry: {ROOT}/meshes/").replace("geometry: meshes/", f"geometry: {ROOT}/meshes/")
+    for old in ("geometry: ../meshes/", "geometry: meshes/"):
+        text = text.replace(old, f"geometry: {ROOT}/meshes/")
     text = re.sub(r"fields_every: \d+", "fields_every: 0", text)
     return re.sub(r"\n\s+output: \{times: \[[^]]*\]\}[^\n]*", "", text)
 
@@ -79,7 +86,7 @@ def run(text, out, ranks=1, args=()):
 
 def outputs(h):
     """The numbers a scene reports (see the module's docstring)."""
-    if "stage_name" not in h.dtype.names:  # triaxial: axial creep strain 1 h and 10 h into the creep stage
+    if "depth" not in h.dtype.names:  # triaxial: axial creep strain 1 h and 10 h into the creep stage
         start = h[h["stage"] == 0][-1]
         creep = h[h["stage"] == 1]
         return {f"creep {T // 3600} h": np.interp(start["time"] + T, creep["time"], creep["eps_33"]) - start["eps_33"]
@@ -119,91 +126,113 @@ def median_run(text, tmp, tag, repeats, ranks=1):
     return r
 
 
-def fmt_err(e):
-    return ", ".join(f"{k} {v:+.2%}" for k, v in e.items())
+def same_mesh(a, b):
+    """Whether two scenes' texts give the same mesh (its geometry, parameters and element order)."""
+    mesh = re.compile(r"^\s*(?:geometry|parameters|order):.*$", re.M)
+    return mesh.findall(a) == mesh.findall(b)
 
 
-def part1(keys, tmp, repeats, lines, no_before=False):
-    lines += ["| scene | variant | steps | Newton its | UMAT calls | wall [s] | CPU [s] | errors against the reference |",
-              "|---|---|---|---|---|---|---|---|"]
-    for key in keys:
-        name, ranks = SCENES[key], 2 if key == "triaxial" else 1
-        text = shipped(name)
-        ref, unc, _ = reference(text if key != "triaxial" else text, tmp, key, ranks, triaxial=key == "triaxial")
-        print(f"{name}: reference {', '.join(f'{k} {v:.6g}' for k, v in ref.items())} (uncertainty {max(unc.values()):.2e})", flush=True)
-        rows = ([] if no_before else [("before", before(name), 1)]) + [("shipped", text, repeats)]
-        for label, t, reps in rows:
-            r = median_run(t, tmp, f"{key}_{label}", reps, ranks)
-            e = errors(outputs(r["hist"]), ref)
-            print(f"  {label}: {r['steps']} steps, {r['newton']} Newton, {r['calls']} UMAT calls, wall {r['wall']:.1f} s, "
-                  f"CPU {r['cpu']:.1f} s; {fmt_err(e)}", flush=True)
-            lines.append(f"| {name} | {label} | {r['steps']} | {r['newton']} | {r['calls']:,} | {r['wall']:.1f} | {r['cpu']:.1f} | {fmt_err(e)} |")
-        lines.append(f"| {name} | reference (uncertainty) | | | | | | {max(unc.values()):.2e} |")
+def scene_runs(key, tmp, repeats, no_before):
+    """Part 1, one scene: its reference, then its runs before and shipped (camclay9.step_control_study's scene)."""
+    name, ranks = SCENES[key], 2 if key == "triaxial" else 1
+    text = shipped(name)
+    ref, unc, _ = reference(text, tmp, key, ranks, triaxial=key == "triaxial")
+    print(f"{name}: reference {', '.join(f'{k} {v:.6g}' for k, v in ref.items())} (uncertainty {max(unc.values()):.2e})",
+          flush=True)
+    rows = []
+    for label, t, reps in ([] if no_before else [("before", before(name), 1)]) + [("shipped", text, repeats)]:
+        r = median_run(t, tmp, f"{key}_{label}", reps, ranks)
+        rows.append({"variant": label, "steps": r["steps"], "newton": r["newton"], "calls": r["calls"], "wall_s": r["wall"],
+                     "cpu_s": r["cpu"], "errors": errors(outputs(r["hist"]), ref)})
+        print(f"  {study.scene_lines({'name': name, 'rows': rows[-1:], 'uncertainty': unc})[0]}", flush=True)
+    return {"name": name, "reference": ref, "uncertainty": unc, "rows": rows,
+            "before_mesh_differs": not no_before and not same_mesh(before(name), text)}
 
 
-def part2(tmp, lines, plot):
+def table_row(r, ref, **what):
+    return {**what, "steps": r["steps"], "newton": r["newton"], "wall_s": r["wall"], "cpu_s": r["cpu"],
+            "errors": errors(outputs(r["hist"]), ref)}
+
+
+def part2(tmp):
+    """Nanoindentation (axisymmetric): each measure at three tolerances, then Newton's stopping rule: the shipped one
+    (stop at 1 % of the step tolerance, docs/driver.md) against the residual test alone (1e-10 of the load)."""
     text = shipped("nanoindent_kerogen_axi")
     ref, unc, _ = reference(text, tmp, "table")
-    lines += ["", "Nanoindentation (axisymmetric), each measure at three tolerances (unload stage: output 0.1 for the relative",
-              "measures), same reference:", "",
-              "| measure | tol | steps | Newton its | wall [s] | CPU [s] | load at end of loading | creep depth | residual depth |",
-              "|---|---|---|---|---|---|---|---|---|"]
+    rows = []
     for measure, tols in (("worst_point", (3e-5, 1e-5, 3e-6)), ("volume", (0.2, 0.1, 0.05)), ("output", (6e-2, 3e-2, 1.5e-2))):
         for tol in tols:
             t = with_measure(text, measure, tol, None if measure == "worst_point" else 0.1)
-            r = run(t, tmp / f"table_{measure}_{tol:g}")
-            e = errors(outputs(r["hist"]), ref)
-            print(f"  {measure} {tol:g}: {r['steps']} steps, wall {r['wall']:.1f} s; {fmt_err(e)}", flush=True)
-            lines.append(f"| {measure} | {tol:g} | {r['steps']} | {r['newton']} | {r['wall']:.1f} | {r['cpu']:.1f} | "
-                         f"{e['load at end of loading']:+.2%} | {e['creep depth']:+.2%} | {e['residual depth']:+.2%} |")
-            plot.append((measure, tol, r["cpu"], max(abs(v) for v in e.values())))
-    # Newton's stopping rule: the shipped one (stop at 1 % of the step tolerance, docs/driver.md) against the
-    # residual test alone (1e-10 of the load): the iterations saved, and the outputs to four digits
+            rows.append(table_row(run(t, tmp / f"table_{measure}_{tol:g}"), ref, measure=measure, tol=tol, newton_rule=None))
+            print(f"  {study.table_lines({'rows': rows[-1:]})[-1]}", flush=True)
     for label, args in (("Newton stopped at 1 % of tol (shipped)", ()),
                         ("Newton to a residual of 1e-10 of the load", ("-indent_newton_estimate", "0"))):
         r = run(text, tmp / f"table_newton{len(args)}", args=args)
-        e = errors(outputs(r["hist"]), ref)
-        print(f"  shipped, {label}: {r['steps']} steps, {r['newton']} Newton, wall {r['wall']:.1f} s; {fmt_err(e)}", flush=True)
-        lines.append(f"| output, {label} | 1.5e-2 | {r['steps']} | {r['newton']} | {r['wall']:.1f} | "
-                     f"{r['cpu']:.1f} | {e['load at end of loading']:+.4%} | {e['creep depth']:+.4%} | {e['residual depth']:+.4%} |")
+        rows.append(table_row(r, ref, measure="output", tol=1.5e-2, newton_rule=label))
+        print(f"  {study.table_lines({'rows': rows[-1:]})[-1]}", flush=True)
+    return {"reference": ref, "uncertainty": unc, "rows": rows}
+
+
+def plot(table):
+    """docs/step_control.png: the largest error of each measure's runs against their CPU time, from the store's table."""
+    fig = Figure(figsize=(6, 4))
+    ax = fig.subplots()
+    for measure, marker in (("worst_point", "s"), ("volume", "^"), ("output", "o")):
+        pts = [(r["cpu_s"], max(abs(v) for v in r["errors"].values())) for r in table["rows"]
+               if r["measure"] == measure and not r["newton_rule"]]
+        ax.loglog([p[0] for p in pts], [max(p[1], 1e-5) for p in pts], marker + "-", label=measure)
+    ax.set_xlabel("CPU time [s]")
+    ax.set_ylabel("largest relative error of the outputs")
+    ax.set_title("Nanoindentation (axisymmetric): accuracy against cost")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(ROOT / "docs" / "step_control.png", dpi=100)
+
+
+def kept_note(old):
+    pv = old.get("provenance", {})
+    return {"note": f"from the run of {pv.get('date')} (`{pv.get('command')}`), kept in the store"}
+
+
+def kept_scenes(old):
+    """{name: scene} of the store's part as it stood, each with its own provenance (that run's, unless it has one):
+    the scenes not run now keep their rows."""
+    return {s["name"]: {**s, "provenance": s.get("provenance") or kept_note(old)} for s in old.get("scenes", [])}
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--scenes", default="nano,micro,rate,bedding,triaxial")
-    ap.add_argument("--no-table", action="store_true", help="skip part 2")
+    ap.add_argument("--scenes", default="nano,micro,rate,bedding,triaxial",
+                    help="run these; the part's other scenes keep their rows from the store (default: %(default)s)")
+    ap.add_argument("--no-table", action="store_true", help="skip part 2 (the store's table, if any, is kept)")
     ap.add_argument("--no-before", action="store_true", help="skip the 'before' runs (the 3D ones take 10 min each)")
-    ap.add_argument("--title", default=TITLE, help="the section of docs/performance.md to write (e.g. for the 3D scenes)")
+    ap.add_argument("--part", choices=sorted(study.TITLES), default="axi",
+                    help="the store's part and section to write (3d: the 3D half models' section)")
+    ap.add_argument("--machine", default="a shared 2-core machine",
+                    help="the machine note the store and the section carry (default: %(default)s)")
+    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
     a = ap.parse_args(argv)
-    lines, plot = [], []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        part1([k for k in a.scenes.split(",") if k], tmp, a.repeats, lines, a.no_before)
-        if not a.no_table:
-            part2(tmp, lines, plot)
-    section = (f"{a.title}\n\nCommand: `bench/step_control_bench.py --repeats {a.repeats} --scenes {a.scenes}"
-               f"{' --no-table' if a.no_table else ''}{' --no-before' if a.no_before else ''}{' --title ...' if a.title != TITLE else ''}`. "
-               "Before: the scene as shipped until\nissue 10 (the UMAT's worst-point control, PROPS tol). Shipped: the "
-               "scene now (`steps.error`, docs/driver.md). The\nreference: the same mesh with the output measure at "
-               "tol 5e-3 and 2.5e-3, extrapolated (first order); its\nuncertainty is the relative difference of the "
-               "finer run from it. Fields off; one rank (triaxial: 2). Wall:\nmedian of the repeats for shipped rows; CPU: "
-               "user + system of the driver processes.\n\n" + "\n".join(lines) + "\n")
-    if plot:
-        section += "\n![error against CPU time](step_control.png)\n"
-        fig = Figure(figsize=(6, 4))
-        ax = fig.subplots()
-        for measure, marker in (("worst_point", "s"), ("volume", "^"), ("output", "o")):
-            pts = [(c, e) for m, t, c, e in plot if m == measure]
-            ax.loglog([p[0] for p in pts], [max(p[1], 1e-5) for p in pts], marker + "-", label=measure)
-        ax.set_xlabel("CPU time [s]")
-        ax.set_ylabel("largest relative error of the outputs")
-        ax.set_title("Nanoindentation (axisymmetric): accuracy against cost")
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(ROOT / "docs" / "step_control.png", dpi=100)
-    replace_section(a.title, section)
-    print("written: docs/performance.md" + (", docs/step_control.png" if plot else ""))
+        done = {SCENES[k]: scene_runs(k, tmp, a.repeats, a.no_before) for k in a.scenes.split(",") if k}
+        table = None if a.no_table else part2(tmp)
+    store = results_store.load(study.STORE) or {"parts": {}}
+    old = store["parts"].get(a.part, {})
+    kept = kept_scenes(old)
+    scenes = [done.get(n) or kept[n] for n in SCENES.values() if n in done or n in kept]
+    if table is None and old.get("table"):   # --no-table: the part's table kept, with its run's provenance
+        table = {**old["table"], "provenance": old["table"].get("provenance") or kept_note(old)}
+    command = (f"bench/step_control_bench.py --repeats {a.repeats} --scenes {a.scenes}{' --no-table' if a.no_table else ''}"
+               f"{' --no-before' if a.no_before else ''}{' --part ' + a.part if a.part != 'axi' else ''}")
+    part = {"provenance": {"command": command, "date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": a.machine},
+            "scenes": scenes, "table": table}
+    part.update({k: v for k, v in old.items() if k not in part})   # the earlier runs' figures the text quotes
+    store["parts"][a.part] = part
+    publish(study.TITLES[a.part], study.section(store, part=a.part), study.STORE, store, write=not a.no_doc)
+    if not a.no_table and not a.no_doc:   # the plot of this run's table (a kept one's stands)
+        plot(table)
+        print("written: docs/step_control.png")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """docs/performance.md is made of sections, one per benchmark, each starting with a '## ' title: a benchmark replaces
 its own section and leaves the others (the benches of bench/, tools/reproduce.py; the shell scripts through
 bench/performance_doc.py)."""
+from camclay9 import results_store
 from camclay9.launch import repo_root
 
 HEADER = "# Performance\n\nBenchmarks print numbers and write them here; none is a timed test.\n"
@@ -18,3 +19,14 @@ def replace_section(title, section, path=None):
     else:
         text = text.rstrip() + "\n\n" + section
     path.write_text(text)
+
+
+def publish(title, section, store_name, store, write=True):
+    """A bench's section written from its results store (the text its study module makes from `store`, as
+    tools/doc_numbers.py checks it): printed; with `write`, it replaces its section of docs/performance.md and the
+    store is saved as docs/results/<store_name>.json."""
+    print(section)
+    if write:
+        replace_section(title, section)
+        path = results_store.save(store_name, store)
+        print(f"written: docs/performance.md ({title}), {path.relative_to(repo_root())}")

@@ -9,7 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import doc_quotes, point_creep_study, results_store, time_error_study, umat_time_study
+from camclay9 import (calibrate_study, doc_quotes, indent_ranks_study, point_creep_study, results_store, step_control_study,
+                      time_error_study, umat_time_study)
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -75,6 +76,16 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/performance.md", "| elastic | 2054 | 2447 |", "| elastic | 2054 | 2403 |"),    # UMAT: instructions per call
     ("docs/performance.md", "the library +3 % and +33 %", "the library +3 % and +22 %"),  # UMAT: the reading's figures
     ("docs/performance.md", "| 1e-07 | 396 | 0 | 7.50 |", "| 1e-07 | 396 | 0 | 5.90 |"),  # material point: a median wall time
+    ("docs/performance.md", "eta_hard 1.306658e+13 (+0.51 % ± 0.5 %)", "eta_hard 1.306658e+13 (+0.51 % ± 0.34 %)"),  # calibr.
+    ("docs/performance.md", "| microindent_BP | 2 | 56.1 | 111.0 |", "| microindent_BP | 2 | 51.6 | 111.0 |"),  # 1 and 2 ranks
+    ("docs/performance.md", "1.4–1.5× in wall time", "1.4–1.6× in wall time"),                      # their reading's range
+    ("docs/performance.md", "| 631 | 764 | 1,850,260 | 2.5 | 2.2 |", "| 631 | 764 | 1,850,260 | 2.5 | 2.3 |"),  # step control
+    ("docs/performance.md", "| volume | 0.1 | 354 | 500 | 1.8 | 1.5 | -0.50% | -3.20% |",
+     "| volume | 0.1 | 354 | 500 | 1.8 | 1.5 | -0.50% | -3.02% |"),                                 # its table of measures
+    ("docs/performance.md", "| 8,032,472 | 58.7 | 17.2 |", "| 8,032,472 | 58.7 | 17.3 |"),          # a row taken over
+    ("docs/performance.md", "bedding_theta45 9.56 s", "bedding_theta45 9.65 s"),                    # its quiet machine's
+    ("docs/performance.md", "| 7,072,230 | 119.6 | 35.2 |", "| 7,072,230 | 119.6 | 32.5 |"),      # the 3D half models'
+    ("docs/performance.md", "3 553, 3 021 and 3 041 steps", "3 553, 3 012 and 3 041 steps"),     # issue 10's, quoted
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -105,9 +116,24 @@ def _drop(store, path):
     (time_error_study, ("cases", "sphere", "rows", 1, "stated")),
     (umat_time_study, ("rows", 2, "after_nocache")),
     (point_creep_study, ("rows", 3, "err_10h")),
+    (calibrate_study, ("examples", 2, "cpu_s")),
+    (calibrate_study, ("examples", 0, "quote", "eta_soft", "relative_std_error")),
+    (indent_ranks_study, ("rows", 5, "h_res_vs_1")),
+    (indent_ranks_study, ("rows", 2, "wall_s")),
+    (step_control_study, ("parts", "axi", "scenes", 1, "rows", 0, "calls")),
+    (step_control_study, ("parts", "axi", "quiet", "rate_wall_s")),    # a figure the hand-written text quotes
+    (step_control_study, ("parts", "axi", "table", "rows", 4, "errors", "creep depth")),
 ])
 def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
     store = results_store.load(study.STORE)
     key = _drop(store, path)
     with pytest.raises(ValueError, match=rf"docs/results/{study.STORE}\.json: .*{key}"):
         study.section(store)
+
+
+@pytest.mark.parametrize("path", [("parts", "3d", "scenes", 2, "rows", 0, "cpu_s"), ("parts", "3d", "issue10_before", "steps")])
+def test_the_3d_step_control_section_names_a_missing_number(path):
+    store = results_store.load(step_control_study.STORE)
+    key = _drop(store, path)
+    with pytest.raises(ValueError, match=rf"docs/results/step_control\.json: parts\.3d.* lacks {key}"):
+        step_control_study.sections(store)
