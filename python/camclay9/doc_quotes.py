@@ -87,6 +87,16 @@ def namespace(store_dir=None):
         """A number of bench/contact_solver_bench.py's row (case, solver)."""
         return cs_rows[(case, solver)][q]
 
+    cbs = results_store.load("calibrate_bench", store_dir)
+
+    def cb(name):
+        """An example of bench/calibrate_bench.py (docs/results/calibrate_bench.json) by its name."""
+        return A(next(r for r in cbs["examples"] if r.get("name") == name))
+
+    def cbe(name, p):
+        """The relative error of an example's quoted parameter p against the truth the examples were made with."""
+        return cb(name).quote[p]["value"] / cbs["true"][p] - 1
+
     holds = results_store.load("calibrate_coverage", store_dir).get("holds", {})
     cov, cov6 = holds.get("300", {}), holds.get("60", {})
 
@@ -122,7 +132,8 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, S3=S3, S2=S2,
-              tef=tef, tet=tet, cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
+              tef=tef, tet=tet, cb=cb, cbe=cbe,
+              cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -192,6 +203,13 @@ QUOTES = [
          "«pu(max(abs(r['error']) for r in cd['both']))») and «covered(cd['both'])» are covered "
          "(«pu(covered(cd['both']) / len(cd['both']), 0)»)"),
     (CA, "300 s record stopped at a local minimum («pc(cc(CN).error, 0)»; TAO reported no progress"),
+    # BP's 3D calibration (docs/calibrate.md, "The paper's workflow in two steps"; bench/calibrate_bench.py)
+    (CA, "η_s held): η_h «g(cb('micro_BP_3d_eta_hard').quote.eta_hard.value, '.6g')» from 3x low, "
+         "«pc(cbe('micro_BP_3d_eta_hard', 'eta_hard'), 2)» (s.e. «pu(cb('micro_BP_3d_eta_hard').quote.eta_hard.relative_std_error, 2)»: "
+         "the 1 Hz record misses the jump to 1 mN at t = 0"),
+    (CA, "which the forward run then follows as straight lines), «cb('micro_BP_3d_eta_hard').forward_runs» forward runs, "
+         "«f(cb('micro_BP_3d_eta_hard').cpu_s, 0)» s"),
+    (CA, "CPU («f(cb('micro_BP_3d_eta_hard').wall_s / 60, 0)» min wall on a shared machine; measured once)"),
     # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
     (CT, "the field split's peak memory is «f(csr(S3[0], 'mem'), 2)», «f(csr(S3[1], 'mem'), 2)» and "
          "«f(csr(S3[2], 'mem'), 2)» of the direct path's («f(cs(S3[2], 'fieldsplit', 'mem'), 0)» against "
