@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The 3D indentation scenes on 1 and 2 ranks (issue 25, item 6; replaces bench/indent_ranks.sh): each shipped scene
+"""The 3D indentation scenes on 1 and 2 ranks (issue 25, item 6; once a shell script): each shipped scene
 as it is (fields as shipped), on one rank and on two (mpiexec), one run each: wall and CPU time (user + system of
 mpiexec and the ranks) and the residual depth (the depth at the run's end), 2 ranks against 1 (relative). Keeps every
 number in the results store docs/results/indent_ranks.json (camclay9.indent_ranks_study; full digits, with command,

@@ -204,7 +204,7 @@ QUOTES = [
          "(«pu(covered(cd['both']) / len(cd['both']), 0)»)"),
     (CA, "300 s record stopped at a local minimum («pc(cc(CN).error, 0)»; TAO reported no progress"),
     # BP's 3D calibration (docs/calibrate.md, "The paper's workflow in two steps"; bench/calibrate_bench.py)
-    (CA, "η_s held): η_h «g(cb('micro_BP_3d_eta_hard').quote.eta_hard.value, '.6g')» from 3x low, "
+    (CA, "η_s held): η_h «f(cb('micro_BP_3d_eta_hard').quote.eta_hard.value / 1e13, 5)»e13 from 3x low, "
          "«pc(cbe('micro_BP_3d_eta_hard', 'eta_hard'), 2)» (s.e. «pu(cb('micro_BP_3d_eta_hard').quote.eta_hard.relative_std_error, 2)»: "
          "the 1 Hz record misses the jump to 1 mN at t = 0"),
     (CA, "which the forward run then follows as straight lines), «cb('micro_BP_3d_eta_hard').forward_runs» forward runs, "
