@@ -54,7 +54,7 @@ READINGS = {"## 3D indentation: mesh convergence and the cheapest model": "bench
 
 
 def section_of(text, title):
-    """The section of a '## ' Markdown file that starts with title, up to the next '## ' (as bench/performance_doc.py
+    """The section of a '## ' Markdown file that starts with title, up to the next '## ' (as camclay9.performance_doc
     replaces it); None if absent."""
     if title not in text:
         return None

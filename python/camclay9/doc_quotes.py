@@ -172,6 +172,9 @@ QUOTES = [
     (AD, "time-step error of «pu(tet('kerogen_sector'), 2)» splits into «pu(tet('kerogen_sector_load'), 2)» from the load "
          "stage's steps and about «pu(tet('kerogen_sector') - tet('kerogen_sector_load'), 2)» from the hold's own. The\n"
          "stated «pu(tet('kerogen_sector', q='stated'), 2)» overstates"),
+    (AD, "the triaxial cylinder's creep stage is stated «f(min(tef('triaxial')), 0)»–«f(max(tef('triaxial')), 0)»\n"
+         "times its true error, which is at most «pu(max(abs(tet('triaxial', 0)), abs(tet('triaxial', 1)), "
+         "abs(tet('triaxial', 2))), 3)»."),
     # the shipped protocol's 60 s drift hold (docs/calibrate.md, "Coverage"; bench/calibrate_coverage.py --cases)
     (CA, "the two noisy cases give «pc(cc6(DN).error, 2)» (± «pu(cc6(DN).se_rel, 2)») and «pc(cc6(BO).error, 2)» "
          "(± «pu(cc6(BO).se_rel, 2)»), at «f(cc6(DN).cpu / cc6(CF).cpu, 2)» and «f(cc6(BO).cpu / cc6(CF).cpu, 2)» times the CPU"),

@@ -1,6 +1,5 @@
 """docs/performance.md is made of sections, one per benchmark, each starting with a '## ' title: a benchmark replaces
-its own section and leaves the others (the benches of bench/, tools/reproduce.py; the shell scripts through
-bench/performance_doc.py)."""
+its own section and leaves the others (the benches of bench/, tools/reproduce.py)."""
 from camclay9 import results_store
 from camclay9.launch import repo_root
 
