@@ -36,6 +36,7 @@ typedef struct {
   PetscReal    rtol, fref;
   PetscInt     max_it, tangent_part;              /* tangent_part: -indent_check_tangent_part (contact_options.h) */
   PetscInt     stall_window;                      /* -indent_stall_window (stalled in semismooth.c); 0: off */
+  PetscInt     stall_retry;                       /* 1: the last attempt stalled; 2: this one, its retry, runs to max_it */
   /* the step being solved */
   PetscBool    depth_control;
   PetscReal    target;                           /* load or depth at the step's end */
