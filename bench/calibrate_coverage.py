@@ -37,7 +37,7 @@ import yaml
 from camclay9 import coverage_study as study
 from camclay9 import results_store, run_driver
 from camclay9.instrument_record import SHIPPED_DRIFT_HOLD, exact_record, scene_text, write_record
-from camclay9.performance_doc import replace_section
+from camclay9.performance_doc import publish
 
 ROOT = Path(__file__).resolve().parents[1]
 DEPTH_NOISE = 1.0     # nm
@@ -160,14 +160,9 @@ def main(argv=None):
                             "date": time.strftime("%Y-%m-%d")},
              "draws": {f: [study.keep(r, study.DRAW_KEYS) for r in rs] for f, rs in rows.items()},
              "cases": [study.keep(r, study.CASE_KEYS) for r in cases_run]}
-    section = study.section(entry, a.drift_hold)
-    print(section)
-    if not a.no_doc:
-        d = results_store.load(study.STORE) or {"holds": {}}
-        d["holds"][f"{a.drift_hold:g}"] = entry   # another hold's entry is kept
-        results_store.save(study.STORE, d)
-        replace_section(study.title(a.drift_hold), section)
-        print("written: docs/results/calibrate_coverage.json, docs/performance.md")
+    store = results_store.load(study.STORE) or {"holds": {}}
+    store["holds"][f"{a.drift_hold:g}"] = entry   # another hold's entry is kept
+    publish(study.title(a.drift_hold), study.section(entry, a.drift_hold), study.STORE, store, write=not a.no_doc)
 
 
 if __name__ == "__main__":

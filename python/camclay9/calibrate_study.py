@@ -12,6 +12,8 @@ on the full model)}, all as fit.yaml has them (full digits). An example taken ov
 carries its own "provenance" (which table, which commit, to what digits), which the section names.
 """
 
+from camclay9 import results_store
+
 STORE = "calibrate_bench"
 TITLE = "## Calibration"
 KEYS = ("name", "models", "iterations", "forward_runs", "full_model_runs", "cpu_s", "wall_s", "parameters", "quote",
@@ -21,26 +23,22 @@ HEADER = ("| example | forward model (drive), full model | TAO its | forward run
           "| forward fit (error, s.e.) | quoted (error ± s.e.) | bias: first estimate, measured |")
 
 
-def _lacks(where, d, keys):
-    missing = [k for k in keys if k not in d]
-    if missing:
-        raise ValueError(f"docs/results/{STORE}.json: {where} lacks {', '.join(missing)} (expected {', '.join(keys)})")
 
 
 def checked(store):
     """The store's examples, each with the keys its row needs; a clear message naming the missing ones otherwise."""
-    _lacks("the store", store, ("provenance", "true", "examples"))
-    _lacks("provenance", store["provenance"], ("command", "date", "machine"))
+    results_store.require(STORE, "the store", store, ("provenance", "true", "examples"))
+    results_store.require(STORE, "provenance", store["provenance"], ("command", "date", "machine"))
     for i, ex in enumerate(store["examples"]):
-        _lacks(f"examples[{i}]", ex, KEYS)
+        results_store.require(STORE, f"examples[{i}]", ex, KEYS)
         for part in ("parameters", "quote"):
             for k, p in ex[part].items():
-                _lacks(f"examples[{i}] ({ex['name']}).{part}.{k}", p, FIT_KEYS)
+                results_store.require(STORE, f"examples[{i}] ({ex['name']}).{part}.{k}", p, FIT_KEYS)
                 if k not in store["true"]:
                     raise ValueError(f"docs/results/{STORE}.json: examples[{i}] ({ex['name']}).{part} names {k}, "
                                      f"which 'true' lacks (it has {', '.join(store['true'])})")
         for k, b in ex["bias"].items():
-            _lacks(f"examples[{i}] ({ex['name']}).bias.{k}", b, ("relative",))
+            results_store.require(STORE, f"examples[{i}] ({ex['name']}).bias.{k}", b, ("relative",))
     return store["examples"]
 
 

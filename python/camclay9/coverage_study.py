@@ -32,7 +32,7 @@ def keep(row, keys):
     """A bench row as the store keeps it: a failed row keeps its message."""
     if "failed" in row:
         return {k: row[k] for k in ("name", "failed") if k in row}
-    return {k: row.get(k) for k in keys}
+    return {k: row[k] for k in keys}
 
 
 def command(p):

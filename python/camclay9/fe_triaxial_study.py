@@ -8,6 +8,8 @@ The store: {"provenance": {"command", ...}, "rows": [...], "shipped": {"size", "
 "err_1h", "err_10h" (the creep's relative error against the finest run at 1 h and 10 h)}.
 """
 
+from camclay9 import results_store
+
 STORE = "fe_triaxial"
 TITLE = "## FE: triaxial cylinder"
 KEYS = ("size", "tol", "ranks", "cells", "steps", "newton", "wall", "assembly_ms", "rest_ms", "err_1h", "err_10h")
@@ -23,9 +25,7 @@ def section(store, root=None):
     the store. `root` is unused (no hand-written reading); it is there for tools/doc_numbers.py's uniform call."""
     rows = store["rows"]
     for i, r in enumerate(rows):
-        missing = [k for k in KEYS if k not in r]
-        if missing:
-            raise ValueError(f"docs/results/{STORE}.json: rows[{i}] lacks {', '.join(missing)} (expected {', '.join(KEYS)})")
+        results_store.require(STORE, f"rows[{i}]", r, KEYS)
     ref = finest(rows)
     lines = [TITLE, "",
              f"Command: `{store['provenance']['command']}` (medians of the repeats). The scene",

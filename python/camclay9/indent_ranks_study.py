@@ -9,6 +9,8 @@ in rows taken over from a table)}, the scenes in the bench's order, each on 1 ra
 hand-written reading takes its ranges from these rows.
 """
 
+from camclay9 import results_store
+
 STORE = "indent_ranks"
 TITLE = "## 3D indentation on 1 and 2 ranks"
 KEYS = ("scene", "ranks", "wall_s", "cpu_s")
@@ -17,16 +19,11 @@ MINUS = "\u2212"
 
 def checked(store):
     """The store's rows, each scene on 1 then 2 ranks; a clear message naming what is missing otherwise."""
-    missing = [k for k in ("provenance", "rows") if k not in store]
-    missing += [f"provenance.{k}" for k in ("command", "date", "rev", "machine") if k not in store.get("provenance", {})]
-    if missing:
-        raise ValueError(f"docs/results/{STORE}.json: lacks {', '.join(missing)}")
+    results_store.require(STORE, "the store", store, ("provenance", "rows"))
+    results_store.require(STORE, "provenance", store["provenance"], ("command", "date", "rev", "machine"))
     rows = store["rows"]
     for i, r in enumerate(rows):
-        lacks = [k for k in KEYS + (("h_res_vs_1",) if r.get("ranks") == 2 else ()) if k not in r]
-        if lacks:
-            raise ValueError(f"docs/results/{STORE}.json: rows[{i}] lacks {', '.join(lacks)} (expected {', '.join(KEYS)}, "
-                             "and h_res_vs_1 on 2 ranks)")
+        results_store.require(STORE, f"rows[{i}]", r, KEYS + (("h_res_vs_1",) if r.get("ranks") == 2 else ()))
     if [r["ranks"] for r in rows] != [1, 2] * (len(rows) // 2) or not rows:
         raise ValueError(f"docs/results/{STORE}.json: rows' ranks are {[r['ranks'] for r in rows]} (expected each scene "
                          "on 1 then on 2)")

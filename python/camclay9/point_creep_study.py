@@ -8,6 +8,8 @@ of the run [s]), "walls_s" (each repeat's), "err_1h", "err_10h" (the creep strai
 integration at 1 h and 10 h)}.
 """
 
+from camclay9 import results_store
+
 STORE = "point_creep"
 TITLE = "## Material point: triaxial creep, accuracy against cost"
 KEYS = ("tol", "steps", "cutbacks", "wall_s", "err_1h", "err_10h")
@@ -23,10 +25,7 @@ def section(store, root=None):
     unused (no hand-written reading); it is there for tools/doc_numbers.py's uniform call."""
     pv, rows = store["provenance"], store["rows"]
     for i, r in enumerate(rows):
-        missing = [k for k in KEYS if k not in r]
-        if missing:
-            raise ValueError(f"docs/results/{STORE}.json: rows[{i}] lacks {', '.join(missing)} "
-                             f"(expected {', '.join(KEYS)})")
+        results_store.require(STORE, f"rows[{i}]", r, KEYS)
     lines = [TITLE, "",
              f"Command: `{pv['command']}` ({pv['date']}; {pv['machine']}). The shipped scene",
              "`input/point/triaxial_creep_theta0.yaml` (hold at -35 MPa to a viscoplastic rate of 1e-13 /s, then",

@@ -43,3 +43,11 @@ def save(name, data, store=None):
 def int_keys(d):
     """JSON keeps dict keys as strings: the triaxial theta keys back to ints (0, 90) where they were ints."""
     return {int(k) if isinstance(k, str) and k.lstrip("-").isdigit() else k: v for k, v in d.items()}
+
+
+def require(name, where, d, keys):
+    """Check that the part `where` of store file `name` (the dict d) has every key of `keys`; a ValueError naming the
+    file, the part, the missing keys and those expected otherwise (a store written before a key was added)."""
+    missing = [k for k in keys if not isinstance(d, dict) or k not in d]
+    if missing:
+        raise ValueError(f"docs/results/{name}.json: {where} lacks {', '.join(missing)} (expected {', '.join(keys)})")

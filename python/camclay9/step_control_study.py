@@ -16,6 +16,8 @@ measure rows), "steps", "newton", "wall_s", "cpu_s", "errors"}], "provenance" (o
 command)}. Values at full digits.
 """
 
+from camclay9 import results_store
+
 STORE = "step_control"
 TITLE = "## Time-step error control"
 TITLE_3D = "## Time-step error control: 3D Berkovich half model"
@@ -30,32 +32,28 @@ SECTOR_KEYS = ("note", "P", "creep", "h_res_below")
 BEFORE_KEYS = ("note", "steps", "wall_s")
 
 
-def _lacks(where, d, keys):
-    missing = [k for k in keys if not isinstance(d, dict) or k not in d]
-    if missing:
-        raise ValueError(f"docs/results/{STORE}.json: {where} lacks {', '.join(missing)} (expected {', '.join(keys)})")
 
 
 def checked(store, part):
     """The store's part with the keys its section needs; a clear message naming the missing ones otherwise."""
-    _lacks("the store", store, ("parts",))
-    _lacks("parts", store["parts"], (part,))
+    results_store.require(STORE, "the store", store, ("parts",))
+    results_store.require(STORE, "parts", store["parts"], (part,))
     p = store["parts"][part]
-    _lacks(f"parts.{part}", p, ("provenance", "scenes", "table"))
-    _lacks(f"parts.{part}.provenance", p["provenance"], ("command", "date", "machine"))
+    results_store.require(STORE, f"parts.{part}", p, ("provenance", "scenes", "table"))
+    results_store.require(STORE, f"parts.{part}.provenance", p["provenance"], ("command", "date", "machine"))
     for i, s in enumerate(p["scenes"]):
-        _lacks(f"parts.{part}.scenes[{i}]", s, SCENE_KEYS)
+        results_store.require(STORE, f"parts.{part}.scenes[{i}]", s, SCENE_KEYS)
         for j, r in enumerate(s["rows"]):
-            _lacks(f"parts.{part}.scenes[{i}] ({s['name']}).rows[{j}]", r, ROW_KEYS)
+            results_store.require(STORE, f"parts.{part}.scenes[{i}] ({s['name']}).rows[{j}]", r, ROW_KEYS)
     if p["table"] is not None:
-        _lacks(f"parts.{part}.table", p["table"], ("reference", "uncertainty", "rows"))
+        results_store.require(STORE, f"parts.{part}.table", p["table"], ("reference", "uncertainty", "rows"))
         for j, r in enumerate(p["table"]["rows"]):
-            _lacks(f"parts.{part}.table.rows[{j}]", r, TABLE_KEYS)
-            _lacks(f"parts.{part}.table.rows[{j}].errors", r["errors"], TABLE_OUTPUTS)
+            results_store.require(STORE, f"parts.{part}.table.rows[{j}]", r, TABLE_KEYS)
+            results_store.require(STORE, f"parts.{part}.table.rows[{j}].errors", r["errors"], TABLE_OUTPUTS)
     extra = {"axi": {"quiet": QUIET_KEYS}, "3d": {"sector_tol": SECTOR_KEYS, "issue10_before": BEFORE_KEYS}}[part]
     for key, keys in extra.items():
-        _lacks(f"parts.{part}", p, (key,))
-        _lacks(f"parts.{part}.{key}", p[key], keys)
+        results_store.require(STORE, f"parts.{part}", p, (key,))
+        results_store.require(STORE, f"parts.{part}.{key}", p[key], keys)
     return p
 
 

@@ -9,6 +9,8 @@ null where it is not measured)}. The reference is the finest two controls' value
 its uncertainty the finest run's distance from it.
 """
 
+from camclay9 import results_store
+
 STORE = "time_error"
 TITLE = "## Stated time-step error"
 CASE_KEYS = ("stage", "quantity", "reference", "uncertainty", "rows")
@@ -21,14 +23,9 @@ def checked(store):
     if not isinstance(cases, dict) or not cases:
         raise ValueError(f"docs/results/{STORE}.json: 'cases' is {cases!r} (expected {{case: {{{', '.join(CASE_KEYS)}}}}})")
     for case, r in cases.items():
-        missing = [k for k in CASE_KEYS if k not in r]
-        if missing:
-            raise ValueError(f"docs/results/{STORE}.json: cases.{case} lacks {', '.join(missing)} (expected {', '.join(CASE_KEYS)})")
+        results_store.require(STORE, f"cases.{case}", r, CASE_KEYS)
         for i, row in enumerate(r["rows"]):
-            missing = [k for k in ROW_KEYS if k not in row]
-            if missing:
-                raise ValueError(f"docs/results/{STORE}.json: cases.{case}.rows[{i}] lacks {', '.join(missing)} "
-                                 f"(expected {', '.join(ROW_KEYS)})")
+            results_store.require(STORE, f"cases.{case}.rows[{i}]", row, ROW_KEYS)
     return cases
 
 

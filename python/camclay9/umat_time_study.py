@@ -12,6 +12,8 @@ instructions per call}. "earlier": the host file's cost before the closed-form p
 """
 import textwrap
 
+from camclay9 import results_store
+
 STORE = "umat_time"
 TITLE = "## UMAT: time per call"
 BUILDS = ("before_lib", "after_lib", "before_host", "after_host", "after_nocache")
@@ -46,9 +48,7 @@ def checked(store):
     if unknown or any(b not in builds for b in needed):
         raise ValueError(f"docs/results/{STORE}.json: builds {builds!r} (expected {', '.join(needed)}, in any order)")
     for i, row in enumerate(store["rows"]):
-        missing = [k for k in ("case", "ntens", *builds) if k not in row]
-        if missing:
-            raise ValueError(f"docs/results/{STORE}.json: rows[{i}] lacks {', '.join(missing)}")
+        results_store.require(STORE, f"rows[{i}]", row, ("case", "ntens", *builds))
     return builds
 
 

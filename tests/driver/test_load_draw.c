@@ -2,7 +2,8 @@
  * least-squares covariance sigma^2 N^-1, N the hat functions' Gram matrix over the data's times.
  *
  * A noisy record (an exponential loading to 250, a hold, an unloading; 10 rows a second; normal noise of 1.25) is
- * fitted (cal_load_fit); N is built here on its own, densely, from the hat functions at the rows. Checked:
+ * fitted (cal_load_fit); N is built here on its own, densely, from the hat functions at the rows (its inverse by
+ * calibrate_stats.c's cal_invert, which the draws do not use). Checked:
  *  1. every draw's move dc satisfies dc^T N dc = sigma^2 n exactly (n the knots): dc = sigma L^-T z with N = L L^T
  *     and z of random signs gives z^T z = n. A move by L^-1 z, by N^-1 z or by z, or another sigma, fails it;
  *  2. the draws' mean square along each knot, over 4 000 draws, is sigma^2 (N^-1)_qq within 10 % (the estimate's own
@@ -14,6 +15,7 @@
 #include <string.h>
 
 #include "calibrate/calibrate_load.h"
+#include "calibrate/calibrate_stats.h"
 
 #define ROWS 1800
 #define DRAWS 4000
@@ -22,20 +24,6 @@ static double hat(const double *tau, int nk, int q, double t) {
   if (q > 0 && t >= tau[q - 1] && t <= tau[q]) return (t - tau[q - 1]) / (tau[q] - tau[q - 1]);
   if (q + 1 < nk && t >= tau[q] && t <= tau[q + 1]) return (tau[q + 1] - t) / (tau[q + 1] - tau[q]);
   return 0;
-}
-
-/* Gauss-Jordan inverse of the dense n x n matrix a (destroyed) into b. */
-static void invert(int n, double *a, double *b) {
-  for (int i = 0; i < n * n; i++) b[i] = i / n == i % n;
-  for (int c = 0; c < n; c++) {
-    double d = a[c * n + c];
-    for (int j = 0; j < n; j++) a[c * n + j] /= d, b[c * n + j] /= d;
-    for (int i = 0; i < n; i++)
-      if (i != c) {
-        double f = a[i * n + c];
-        for (int j = 0; j < n; j++) a[i * n + j] -= f * a[c * n + j], b[i * n + j] -= f * b[c * n + j];
-      }
-  }
 }
 
 int main(void) {
@@ -65,7 +53,7 @@ int main(void) {
     for (int a = 0; a < nk; a++)
       for (int b = 0; b < nk; b++) N[a * nk + b] += hat(run.knot_t, nk, a, run.data[2 * i]) * hat(run.knot_t, nk, b, run.data[2 * i]);
   memcpy(A, N, sizeof(double) * nk * nk);
-  invert(nk, A, Ninv);
+  if (cal_invert(nk, A, Ninv)) return printf("FAIL: N is singular\n"), 1;
   double worst = 0;
   for (int d = 0; d < DRAWS; d++) {
     cal_load_draw(&run, d, p);

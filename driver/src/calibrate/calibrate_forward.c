@@ -109,34 +109,36 @@ void cal_cache_add(Calib *c, const double *u, const double *r) {
   cal_models(c, e + c->np + c->m, 1);
 }
 
+int cal_evaluate_run(Calib *c, CalRun *run, const double *p, const char *dir, int ref, double *r, char *err, size_t errlen) {
+  int rc = cal_forward(c, run, cal_run_scene(run, ref), p, dir);
+  c->nfull += ref;
+  char as[PATH_MAX + 32] = ""; /* drive: data: the scene that followed the data */
+  if (run->drive) snprintf(as, sizeof as, " (following the data: %s)", cal_run_scene(run, ref));
+  if (rc)
+    FAIL("%s:%d: key 'runs[%d].%s': the %s run of %s%s failed (exit code %d; its log: %s/forward.log)", run->file,
+         run->line, run->index, ref ? "reference" : "scene", ref ? "full-model" : "forward", ref ? run->reference : run->scene,
+         as, rc, dir);
+  if (cal_run_residual(run, dir, r, err, errlen)) {
+    if (ref) { /* say whose run it was */
+      char msg[1024];
+      snprintf(msg, sizeof msg, "%s", err);
+      FAIL("%s:%d: key 'runs[%d].reference': the full-model run of %s%s does not cover the data: %s", run->file,
+           run->line, run->index, run->reference, as, msg);
+    }
+    return 1;
+  }
+  return 0;
+}
+
 /* Every run at u into r; full: a run with a reference on its full model. */
 static int evaluate(Calib *c, const double *u, double *r, const char *tag, int full, char *err, size_t errlen) {
   double p[CAL_MAX_PARAMS];
-  int    m = 0;
   for (int k = 0; k < c->np; k++) p[k] = cal_param(&c->p[k], u[k]);
-  for (int j = 0; j < c->nrun; j++) {
+  for (int j = 0, m = 0; j < c->nrun; m += cal_run_size(&c->run[j]), j++) {
     CalRun *run = &c->run[j];
     char    dir[PATH_MAX + 200];
-    int     ref = full && run->reference[0];
     snprintf(dir, sizeof dir, "%s/forward/%s_%s", c->outdir, tag, run->name);
-    int rc = cal_forward(c, run, cal_run_scene(run, ref), p, dir);
-    c->nfull += ref;
-    char as[PATH_MAX + 32] = ""; /* drive: data: the scene that followed the data */
-    if (run->drive) snprintf(as, sizeof as, " (following the data: %s)", cal_run_scene(run, ref));
-    if (rc)
-      FAIL("%s:%d: key 'runs[%d].%s': the %s run of %s%s failed (exit code %d; its log: %s/forward.log)", run->file,
-           run->line, run->index, ref ? "reference" : "scene", ref ? "full-model" : "forward", ref ? run->reference : run->scene,
-           as, rc, dir);
-    if (cal_run_residual(run, dir, r + m, err, errlen)) {
-      if (ref) { /* say whose run it was */
-        char msg[1024];
-        snprintf(msg, sizeof msg, "%s", err);
-        FAIL("%s:%d: key 'runs[%d].reference': the full-model run of %s%s does not cover the data: %s", run->file,
-             run->line, run->index, run->reference, as, msg);
-      }
-      return 1;
-    }
-    m += cal_run_size(run);
+    if (cal_evaluate_run(c, run, p, dir, full && run->reference[0], r + m, err, errlen)) return 1;
   }
   return 0;
 }

@@ -51,6 +51,9 @@ int cal_evaluate(Calib *c, const double *u, double *r, const char *tag, char *er
 void cal_models(Calib *c, double *models, int save);
 /* The same at u, each run with a reference on its full model (the two-fidelity fit's residual). */
 int cal_evaluate_full(Calib *c, const double *u, double *r, const char *tag, char *err, size_t errlen);
+/* One run at parameters p into dir (ref 1: its full model) and its residuals into r (cal_run_size of them, before a
+ * fitted drift is profiled out): 0, or 1 with err naming the run, its scene and its log. */
+int cal_evaluate_run(Calib *c, CalRun *run, const double *p, const char *dir, int ref, double *r, char *err, size_t errlen);
 /* One forward process of a run's scene (or its reference) at parameters p into dir: the exit code. */
 int cal_forward(Calib *c, const CalRun *run, const char *scene, const double *p, const char *dir);
 

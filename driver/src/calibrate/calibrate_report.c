@@ -114,26 +114,24 @@ static void uncertainty(Calib *c, const double *u, const double *J, const double
 
 /* One draw of the fitted load histories' uncertainty (cal_load_draw) into rd: every run that follows a fitted history
  * run at the parameters p with its knots moved (its scene and tables under D/forward/loadI), its residuals (the fitted
- * drift profiled out, as at the fit) into rd; the other runs' are the fit's, r. The runs' scenes are restored. */
+ * drift profiled out, as at the fit) into rd; the other runs' are the fit's, r. Each run's own scenes stay its own. */
 static int load_draw(Calib *c, const double *p, int draw, const double *r, double *rd, char *err, size_t errlen) {
   memcpy(rd, r, sizeof(double) * c->m);
   for (int j = 0, off = 0; j < c->nrun; off += cal_run_size(&c->run[j]), j++) {
     CalRun *run = &c->run[j];
-    char    dir[PATH_MAX + 64], runs[PATH_MAX + 128];
+    char    dir[PATH_MAX + 64], runs[PATH_MAX + 128], driven[PATH_MAX], driven_reference[PATH_MAX];
     if (!run->load_fitted) continue;
     double *keep = run->knot_p, *moved = malloc(sizeof(double) * (size_t)run->nknot);
+    memcpy(driven, run->driven, sizeof driven), memcpy(driven_reference, run->driven_reference, sizeof driven_reference);
     cal_load_draw(run, draw, moved);
     run->knot_p = moved;
     snprintf(dir, sizeof dir, "%s/forward/load%d", c->outdir, draw);
     snprintf(runs, sizeof runs, "%s/%s", dir, run->name);
-    int bad = cal_protocol_write(run, dir, err, errlen), rc = bad ? 0 : cal_forward(c, run, cal_run_scene(run, 0), p, runs);
+    int bad = cal_protocol_write(run, dir, err, errlen) || cal_evaluate_run(c, run, p, runs, 0, rd + off, err, errlen);
     run->knot_p = keep, free(moved);
-    if (!bad && rc) bad = 1, snprintf(err, errlen, "its forward run failed (exit code %d; its log: %.900s/forward.log)", rc, runs);
-    if (!bad) bad = cal_run_residual(run, runs, rd + off, err, errlen);
-    if (!bad && run->drift == CAL_DRIFT_FIT) cal_drift_project(run, rd + off);
-    char e2[512];
-    if (cal_protocol_write(run, c->outdir, e2, sizeof e2) && !bad) bad = 1, snprintf(err, errlen, "%s", e2);
+    memcpy(run->driven, driven, sizeof driven), memcpy(run->driven_reference, driven_reference, sizeof driven_reference);
     if (bad) return 1;
+    if (run->drift == CAL_DRIFT_FIT) cal_drift_project(run, rd + off);
   }
   return 0;
 }
@@ -152,14 +150,12 @@ static PetscErrorCode load_share(Calib *c, const double *u, const double *J, con
   PetscFunctionBeginUser;
   for (int k = 0; k < n; k++) un->load[k] = NAN, p[k] = cal_param(&c->p[k], u[k]);
   for (int j = 0; j < c->nrun; j++) any |= c->run[j].load_fitted;
-  un->load_draws = any ? c->load_draws : 0;
   if (!any || c->load_draws < 1) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(m, &rd));
   for (int i = 0; i < c->load_draws; i++) {
     if (load_draw(c, p, i, r, rd, msg, sizeof msg)) {
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "warning: the fitted load history's share of the standard errors is not measured: "
                             "draw %d: %s\n", i, msg));
-      un->load_draws = 0;
       PetscCall(PetscFree(rd));
       PetscFunctionReturn(0);
     }

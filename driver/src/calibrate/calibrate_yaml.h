@@ -16,7 +16,6 @@ typedef struct {
   double     step[CAL_MAX_PARAMS];  /* the Gauss-Newton step left at the fit (in the parameter): TAO's convergence */
   double     drift_se[CAL_MAX_RUNS];
   double     load[CAL_MAX_PARAMS]; /* the fitted load histories' share (NAN: no fitted history, or not measured) */
-  int        load_draws;           /* the forward runs it took */
   CalHacInfo hac;
   CalTrend   trend[CAL_MAX_RUNS * CAL_MAX_CURVES];
   int        ntrend;
