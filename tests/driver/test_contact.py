@@ -50,6 +50,22 @@ stages:
 """
 
 
+def cube_scene(h_tip, h_far, stages):
+    """The elastic Berkovich half model (mirror plane x = 0) on meshes/indent_cube.geo, rollers on the sides."""
+    return f"""scene: fe
+mesh:
+  geometry: meshes/indent_cube.geo
+  parameters: {{L: 2, half: 1, h_tip: {h_tip}, h_far: {h_far}, r_fine: 0.4, r_contact: 0.6}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: bottom, components: [x, y, z]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}},
+          {{group: y0, components: [y]}}, {{group: y1, components: [y]}}]
+indenter: {{shape: berkovich, half_angle: 65.27, contact: contact}}
+stages:
+{stages}
+"""
+
+
 PUSH = "  - {name: push, duration: 1, indenter: {depth: %g}, steps: {count: 2}}"
 PSI = math.radians(70.3)
 
@@ -171,6 +187,50 @@ def test_direct_and_fieldsplit_agree(tmp_path):
     assert len(a) == len(b) and diff < 1e-8
 
 
+
+def gamg_setups(proc):
+    """PETSc's count of GAMG set-ups (-log_view's event PCSetUp_GAMG+) and the driver's summary line."""
+    count = re.search(r"^PCSetUp_GAMG\+\s+(\d+)", proc.stdout, re.M)
+    summary = re.search(r"linear solves [0-9.]+ s \((\w+), (\d+) Krylov iterations, (\d+) factorisations\)", proc.stdout)
+    assert count and summary, proc.stdout[-3000:]
+    return int(count.group(1)), summary.group(1)
+
+
+def test_fieldsplit_keeps_its_hierarchy_and_auto_chooses_by_size(tmp_path):
+    """The field split keeps its GAMG hierarchy across Newton iterations and steps (indent_solver.c, solve_split): PETSc
+    itself counts fewer GAMG set-ups than the run that sets it up at every iteration (-indent_refactor_its 0), with the
+    same history to the solver tolerance, and a restart from a checkpoint repeats it. -indent_solver auto (the default) takes the field split in 3D above
+    -indent_fieldsplit_above unknowns and the direct path below it and in 2D at any size."""
+    scene = axi_scene("{shape: cone, half_angle: 70.3, contact: contact}", LHU, W=10, H=5, h_tip=0.04, h_far=1)
+    log = ["-log_view"]
+    kept = run(scene, tmp_path / "kept", args=["-indent_solver", "fieldsplit", *log], check=False)
+    fresh = run(scene, tmp_path / "fresh", args=["-indent_solver", "fieldsplit", "-indent_refactor_its", "0", *log], check=False)
+    axi0 = run(scene, tmp_path / "axi0", args=["-indent_fieldsplit_above", "0"], check=False)
+    cube = cube_scene(0.1, 0.5, PUSH % 0.1)
+    auto = run(cube, tmp_path / "auto", check=False)
+    above = run(cube, tmp_path / "above", args=["-indent_fieldsplit_above", "0"], check=False)
+    for p in (kept, fresh, axi0, auto, above):
+        assert p.returncode == 0, p.stdout + p.stderr
+    (nk, sk), (nf, sf) = gamg_setups(kept), gamg_setups(fresh)
+    newton = int(re.search(r"(\d+) Newton iterations", fresh.stdout).group(1))
+    hk, hf = read_history(tmp_path / "kept"), read_history(tmp_path / "fresh")
+    diff = np.max(np.abs(hk["depth"] - hf["depth"])) / hf["depth"].max()
+    print(f"GAMG set-ups: kept {nk}, fresh {nf} ({newton} Newton iterations); depth difference {diff:.1e}")
+    assert sk == sf == "fieldsplit" and nf == newton and nk < nf / 3 and diff < 1e-8
+    # stopped after a checkpoint and restarted: the kept hierarchy is rebuilt at the checkpoint, so the same history
+    split = ["-indent_solver", "fieldsplit"]
+    run(scene, tmp_path / "restart", args=[*split, "-checkpoint_every", "3", "-max_steps", "7"])
+    again = run(scene, tmp_path / "restart", args=[*split, "-restart"])
+    assert len(again) == len(hk) and np.max(np.abs(again["depth"] - hk["depth"])) < 1e-12
+    solver = {k: re.search(r"linear solves [0-9.]+ s \((\w+),", p.stdout).group(1) for k, p in
+              (("axi0", axi0), ("auto", auto), ("above", above))}
+    assert solver == {"axi0": "direct", "auto": "direct", "above": "fieldsplit"}, solver
+    pa, pb = read_history(tmp_path / "auto")["load"][-1], read_history(tmp_path / "above")["load"][-1]
+    assert abs(pb / pa - 1) < 1e-8
+    par = run(cube, tmp_path / "above2", args=["-indent_solver", "fieldsplit"], np_=2)   # the field split on 2 ranks
+    assert abs(par["load"][-1] / pa - 1) < 1e-8
+
+
 MEASURED_BERKOVICH = {0.04: 0.1401, 0.03: 0.1350}      # Pb / Pc - 1, measured 2026-11 (regression values)
 
 
@@ -183,18 +243,7 @@ def test_berkovich_vs_equivalent_cone(tmp_path):
                       r_fine=0.4, r_contact=0.8), tmp_path / "cone")
     diff = {}
     for h_tip in (0.04, 0.03):
-        cube = f"""scene: fe
-mesh:
-  geometry: meshes/indent_cube.geo
-  parameters: {{L: 2, half: 1, h_tip: {h_tip}, h_far: 0.4, r_fine: 0.4, r_contact: 0.6}}
-material: {ELASTIC}
-boundary:
-  fixed: [{{group: bottom, components: [x, y, z]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}},
-          {{group: y0, components: [y]}}, {{group: y1, components: [y]}}]
-indenter: {{shape: berkovich, half_angle: 65.27, contact: contact}}
-stages:
-{PUSH % 0.1}
-"""
+        cube = cube_scene(h_tip, 0.4, PUSH % 0.1)
         b = run(cube, tmp_path / f"berkovich{h_tip}")
         Pb, Pc = 2 * b["load"][-1], c["load"][-1]   # the half model carries half the load
         diff[h_tip] = Pb / Pc - 1

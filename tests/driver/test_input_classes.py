@@ -95,7 +95,7 @@ OPTIONS = [
     (["-checkpoint_evry", "3"], BOX, r"option -checkpoint_evry: not an option of the driver \(misspelt -checkpoint_every\?\); nothing was run"),
     (["-indent_rtl", "1e-8"], BOX, r"option -indent_rtl: not an option of the driver \(misspelt -indent_rtol\?\)"),
     (["-fe_predictor", "maybe"], BOX, r"option -fe_predictor maybe: expected true or false"),
-    (["-indent_solver", "lu"], BOX, r"option -indent_solver lu: expected one of direct, fieldsplit"),
+    (["-indent_solver", "lu"], BOX, r"option -indent_solver lu: expected one of direct, fieldsplit, auto"),
     (["-indent_rtol", "small"], BOX, r"option -indent_rtol small: expected a finite number"),
     ([], BOX + "solver: {options: '-snes_rtol 1e-9 -fe_refactor_itts 3'}\n",
      r"bad\.yaml: key 'solver\.options': option -fe_refactor_itts: not an option of the driver \(misspelt -fe_refactor_its\?\)"),

@@ -4,11 +4,11 @@
 #include "../io/options.h"
 
 PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
-  const char *solvers[] = {"direct", "fieldsplit"}, *parts[] = {"all", "u", "r", "lambda"};
+  const char *solvers[] = {"direct", "fieldsplit", "auto"}, *parts[] = {"all", "u", "r", "lambda"};
   PetscFunctionBeginUser;
   o->rtol = 1e-10, o->max_it = 30, o->stall_window = 8, o->predictor = PETSC_TRUE, o->monitor = PETSC_FALSE, o->line_search = PETSC_TRUE;
-  o->newton_estimate = PETSC_TRUE, o->check_tangent = PETSC_FALSE, o->solver = 0, o->tangent_part = 0;
-  o->refactor_its = 20, o->rtol_tight = 1e-10, o->check_solve = PETSC_FALSE;
+  o->newton_estimate = PETSC_TRUE, o->check_tangent = PETSC_FALSE, o->solver = 2, o->tangent_part = 0;
+  o->refactor_its = 20, o->rtol_tight = 1e-10, o->check_solve = PETSC_FALSE, o->fieldsplit_above = FIELDSPLIT_ABOVE;
   options_petsc_prefix("indent_"); /* the contact solver's KSP (indent_solver.c) */
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1; docs/contact.md)", NULL);
   PetscCall(options_real(PetscOptionsObject, "-indent_rtol", "residual tolerance relative to the load", o->rtol, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
@@ -29,11 +29,16 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
                          &o->check_tangent, NULL));
   PetscCall(options_elist(PetscOptionsObject, "-indent_check_tangent_part",
                           "with -indent_check_tangent: the whole direction, or only this part of it", parts, 4, 0, &o->tangent_part, NULL));
-  PetscCall(options_elist(PetscOptionsObject, "-indent_solver", "linear solver of the contact system (eq. 15)", solvers, 2, 0,
-                          &o->solver, NULL));
+  PetscCall(options_elist(PetscOptionsObject, "-indent_solver",
+                          "linear solver of the contact system (eq. 15); auto: in 3D fieldsplit above -indent_fieldsplit_above "
+                          "unknowns, else direct", solvers, 3, 2, &o->solver, NULL));
+  PetscCall(options_int(PetscOptionsObject, "-indent_fieldsplit_above",
+                        "-indent_solver auto: the field split above this many displacement unknowns in 3D (2D: direct; measured: "
+                        "docs/contact.md)",
+                        o->fieldsplit_above, 0, PETSC_MAX_INT, &o->fieldsplit_above, NULL));
   PetscCall(options_int(PetscOptionsObject, "-indent_refactor_its",
-                        "direct: keep the factorisation until the Krylov iterations beyond the first since it was made exceed this "
-                        "(0: a fresh factorisation at every Newton iteration, LU alone)",
+                        "keep the factorisation (direct) or the GAMG hierarchy (fieldsplit) until the Krylov iterations beyond those of "
+                        "a fresh one, summed since it was made, exceed this (0: a fresh one at every Newton iteration)",
                         o->refactor_its, 0, 1000000, &o->refactor_its, NULL));
   /* GMRES' tolerance of the contact solve is PETSc's (KSPSetFromOptions under the prefix indent_, indent_solver.c): declared
      here too, so that a value outside (0, 1) is refused, by its name, before the run (0: "the linear solver failed"; 1:

@@ -5,13 +5,17 @@
 
 #include <petscsys.h>
 
+/* -indent_fieldsplit_above's default (docs/contact.md, "The field split") */
+#define FIELDSPLIT_ABOVE 100000
+
 typedef struct {
   PetscReal rtol;            /* residual tolerance relative to the load */
   PetscInt  max_it;          /* Newton iterations per step */
   PetscInt  stall_window;    /* give a step up when its merit did not fall tenfold in this many iterations; 0: never */
   PetscBool predictor, monitor, line_search, newton_estimate, check_tangent;
-  PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit */
-  PetscInt  refactor_its;    /* direct: the cost of a factorisation in Krylov iterations; 0: factor at every iteration */
+  PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit, 2: auto (by size) */
+  PetscInt  fieldsplit_above; /* auto: the field split above this many displacement unknowns */
+  PetscInt  refactor_its;    /* the cost of a factorisation or GAMG set-up in Krylov iterations; 0: at every iteration */
   PetscReal rtol_tight;      /* direct: GMRES' tolerance while the active set changes (indent_solver.h) */
   PetscBool check_solve;     /* direct, kept: compare every solve with a fresh LU solve of the same system */
   PetscInt  tangent_part;    /* -indent_check_tangent_part: 0 all, 1 u, 2 r, 3 lambda */

@@ -17,15 +17,19 @@
  *               preconditioned, so its residual is the true one; every row of the system is a force
  *               (contact.h), so its norm weighs the equilibrium, indenter and gap rows alike.
  *               -indent_refactor_its 0: a fresh factorisation at every iteration, LU alone;
- *   fieldsplit  flexible GMRES on the nest, preconditioned by PCFIELDSPLIT: u | (u_r, lambda), the Schur
- *               factorisation with one GAMG cycle (rigid-body near null space) for the displacement block and
- *               the Schur complement's "selfp" approximation, assembled here and factored, for the small block
- *               (inner solves preonly: the outer GMRES alone iterates). Set up afresh at every Newton
- *               iteration; its memory grows with the unknowns, not with a factorisation's fill
- *               (docs/contact.md, "The field split"). The tolerances are the direct path's: -indent_ksp_rtol
- *               (here 1e-10: looser directions cost the P1 kerogen twin three times the Newton iterations) and
- *               -indent_ksp_rtol_tight.
- * -indent_solver direct|fieldsplit selects; the solver's options take the prefix indent_ (-indent_ksp_rtol,
+ *   fieldsplit  flexible GMRES on the nest, preconditioned by PCFIELDSPLIT: u | (u_r, lambda), the lower Schur
+ *               factorisation with one GAMG cycle (rigid-body near null space) for the displacement block and the
+ *               Schur complement's "selfp" approximation, assembled here and factored, for the small block (inner
+ *               solves preonly: the outer GMRES alone iterates). The operator is the matrix-free tangent, as on the
+ *               direct path; K is assembled, and GAMG set up on it, only when the hierarchy is rebuilt, by the
+ *               direct path's rule with the Krylov iterations counted beyond those of the first solve on the
+ *               set-up; the contact block and its Schur approximation follow the active set at every solve. Its
+ *               memory grows with the unknowns, not with a factorisation's fill (docs/contact.md, "The field
+ *               split"). The tolerances are the direct path's: -indent_ksp_rtol (here 1e-10: looser directions
+ *               cost the P1 kerogen twin three to six times the Newton iterations) and -indent_ksp_rtol_tight.
+ *   auto        (the default) the field split in 3D above -indent_fieldsplit_above displacement unknowns, else
+ *               direct (in 2D the factorisation's fill stays mild: direct wins at every size measured).
+ * -indent_solver direct|fieldsplit|auto selects; the solver's options take the prefix indent_ (-indent_ksp_rtol,
  * -indent_ksp_monitor, -indent_mat_mumps_icntl_*, -indent_fieldsplit_u_*, -indent_fieldsplit_contact_*). */
 #ifndef INDENT_SOLVER_H
 #define INDENT_SOLVER_H
@@ -47,7 +51,8 @@ typedef struct {
   Vec       X, F;        /* flat work vectors */
   KSP       ksp;
   PetscInt  refactor_its; /* direct: the cost of a factorisation in Krylov iterations (solve_kept) */
-  PetscInt  extra_its;    /* direct: Krylov iterations beyond the first since the last factorisation */
+  PetscInt  extra_its;    /* Krylov iterations beyond the first (direct) or the set-up's first solve's (fieldsplit) since it */
+  PetscInt  base_its[2];  /* fieldsplit: the Krylov iterations of the first solve on the set-up, loose and tight (-1: none) */
   PetscReal rtol, rtol_tight; /* GMRES' relative tolerances, loose and tight */
   PetscBool check;        /* -indent_check_solve: a fresh LU solve beside every kept one */
   PetscReal check_max;    /* the largest relative difference seen */
