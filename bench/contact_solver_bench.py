@@ -1,16 +1,19 @@
 #!/usr/bin/env python3
 """The contact solve's two paths against each other (issue 33): CPU and peak memory of the kept MUMPS factorisation
-(`-indent_solver direct`, the default) and of the field split (`-indent_solver fieldsplit`: one GAMG cycle on the
-displacement block, the factored selfp Schur approximation on the contact block, flexible GMRES outside;
-docs/contact.md, "The field split"), and of the field split as it was before (GMRES to 1e-12 inside each block,
-"nested"), on the first steps of the kerogen nanoindentation:
+(`-indent_solver direct`) and of the field split (`-indent_solver fieldsplit`: one GAMG cycle on the displacement block,
+its hierarchy kept across Newton iterations and steps, the factored selfp Schur approximation on the contact block, the
+lower Schur factorisation, flexible GMRES outside; docs/contact.md, "The field split"), and of the field split as it
+was before (GAMG set up at every Newton iteration, the full Schur factorisation: "fieldsplit, before"), on the first
+steps of the kerogen nanoindentation:
 
   axi P1    input/nanoindent_kerogen_axi.yaml as shipped (P1), the first 60 steps
   axi P2    the same block, P2, h_tip 0.02 um: the first 60 steps
-  sector    input/nanoindent_kerogen_sector.yaml (P2), h_tip 0.12, 0.0707, 0.05 um (h_far 4 h_tip): the first 8
-            steps of the loading (the 3D mesh study's rungs, docs/performance.md "3D indentation")
+  lr1       input/loading_rate_a1.yaml as shipped (plane strain, P2, 76 k unknowns): the first 60 steps
+  sector    input/nanoindent_kerogen_sector.yaml (P2), h_tip 0.12, 0.0707, 0.05, 0.0425, 0.034 um (h_far 4 h_tip): the
+            first 8 steps of the loading (the first three are the 3D mesh study's rungs, docs/performance.md
+            "3D indentation"); h_tip 0.018 (about a million unknowns) on the field split alone
 
-CPU: user + system of the driver and its gmsh (wait4), median of --repeats runs (one run for sector0.05); memory:
+CPU: user + system of the driver and its gmsh (wait4), median of --repeats runs (one run for the three finest sectors); memory:
 the driver's peak resident set (the largest of the repeats). The same steps are run by every path (-max_steps), so the two compare at equal
 work; the Newton iterations say whether a path's directions cost the Newton extra iterations.
 
@@ -34,18 +37,25 @@ from camclay9.performance_doc import replace_section
 
 ROOT = Path(__file__).resolve().parents[1]
 TIMEOUT = 3600  # s, one run
-NESTED = ["-indent_fieldsplit_u_ksp_type", "gmres", "-indent_fieldsplit_u_ksp_rtol", "1e-12",
-          "-indent_fieldsplit_contact_ksp_type", "gmres", "-indent_fieldsplit_contact_ksp_rtol", "1e-12"]
-SOLVERS = {"direct": [], "fieldsplit": ["-indent_solver", "fieldsplit"], "fieldsplit, nested": ["-indent_solver", "fieldsplit"] + NESTED}
+BEFORE = ["-indent_refactor_its", "0", "-indent_pc_fieldsplit_schur_fact_type", "full"]
+SOLVERS = {"direct": ["-indent_solver", "direct"], "fieldsplit": ["-indent_solver", "fieldsplit"],
+           "fieldsplit, before": ["-indent_solver", "fieldsplit"] + BEFORE}
+ALL = ("direct", "fieldsplit", "fieldsplit, before")
 # case: (scene in input/, mesh overrides, order, steps, solvers)
 CASES = {
-    "axi1": ("nanoindent_kerogen_axi", {}, None, 60, ("direct", "fieldsplit", "fieldsplit, nested")),
-    "axi2": ("nanoindent_kerogen_axi", {}, 2, 60, ("direct", "fieldsplit", "fieldsplit, nested")),
-    "sector0.12": ("nanoindent_kerogen_sector", {"h_tip": 0.12, "h_far": 0.48}, None, 8, ("direct", "fieldsplit", "fieldsplit, nested")),
-    "sector0.0707": ("nanoindent_kerogen_sector", {"h_tip": 0.07071, "h_far": 0.28284}, None, 8, ("direct", "fieldsplit")),
+    "axi1": ("nanoindent_kerogen_axi", {}, None, 60, ALL),
+    "axi2": ("nanoindent_kerogen_axi", {}, 2, 60, ALL),
+    "sector0.12": ("nanoindent_kerogen_sector", {"h_tip": 0.12, "h_far": 0.48}, None, 8, ALL),
+    "sector0.0707": ("nanoindent_kerogen_sector", {"h_tip": 0.07071, "h_far": 0.28284}, None, 8, ALL),
     "sector0.05": ("nanoindent_kerogen_sector", {"h_tip": 0.05, "h_far": 0.2}, None, 8, ("direct", "fieldsplit")),
+    "sector0.0425": ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 8, ("direct", "fieldsplit")),
+    "sector0.034": ("nanoindent_kerogen_sector", {"h_tip": 0.034, "h_far": 0.136}, None, 8, ("direct", "fieldsplit")),
+    # 2D at the shipped loading-rate scene's size (P2, 76 k unknowns): where auto keeps the direct path
+    "lr1": ("loading_rate_a1", {}, None, 60, ("direct", "fieldsplit")),
+    # about a million unknowns: the field split alone (the direct path's factors would not fit in 23 GB)
+    "sector0.018": ("nanoindent_kerogen_sector", {"h_tip": 0.018, "h_far": 0.072}, None, 8, ("fieldsplit",)),
 }
-ONCE = ("sector0.05",)  # one run each: about 40 and 90 s CPU
+ONCE = ("sector0.05", "sector0.0425", "sector0.034", "sector0.018")  # one run each: 30 s to several minutes of CPU
 
 
 def scene_file(case, work):
@@ -95,15 +105,22 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--no-doc", action="store_true", help="print only; leave docs/performance.md")
+    ap.add_argument("--merge", action="store_true", help="replace only the cases run in the store, keep its other rows")
     a = ap.parse_args(argv)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for case in a.cases.split(","):
             rows += measure(case, 1 if case in ONCE else a.repeats, Path(tmp))
     stamp = time.strftime("%Y-%m-%d")
-    store = {"provenance": {"command": f"bench/contact_solver_bench.py --repeats {a.repeats}", "date": stamp},
-             "rows": [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats")}
-                      for r in rows]}
+    rows = [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats")} for r in rows]
+    store = {"provenance": {"command": f"bench/contact_solver_bench.py --repeats {a.repeats}", "date": stamp}, "rows": rows}
+    if a.merge:   # the store's other cases kept, with their provenance beside this run's
+        old = results_store.load(study.STORE)
+        run = set(a.cases.split(","))
+        kept = [r for r in old["rows"] if r["case"] not in run]
+        store = {"provenance": dict(old["provenance"], merged={"command": f"bench/contact_solver_bench.py --cases {a.cases} --merge",
+                                                               "date": stamp, "cases": sorted(run)}),
+                 "rows": kept + rows}
     section = study.section(store)   # the section from the store's numbers, as tools/doc_numbers.py checks it
     print(section)
     if not a.no_doc:
