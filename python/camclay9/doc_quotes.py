@@ -126,6 +126,11 @@ def namespace(store_dir=None):
         """A contact-solver row's Krylov iterations per Newton iteration."""
         return cs(case, solver, "krylov") / cs(case, solver, "newton")
 
+    def ku(case):
+        """A contact-solver case's unknowns in thousands as the readings print them ("5.9", "24", "190")."""
+        n = next(r["unknowns"] for (c, _), r in cs_rows.items() if c == case) / 1000
+        return f(n, 1 if n < 10 else 0)
+
     def csr(case, q, solver="fieldsplit", base="direct"):
         """The ratio of a field-split row's q to the direct path's (or base's) on the same case."""
         return cs(case, solver, q) / cs(case, base, q)
@@ -140,7 +145,7 @@ def namespace(store_dir=None):
         return te[case]["rows"][i][q] / abs(te[case]["reference"])
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, S3=S3, S2=S2, BIG=BIG,
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
@@ -224,21 +229,21 @@ QUOTES = [
          "«f(cb('micro_BP_3d_eta_hard').cpu_s, 0)» s"),
     (CA, "CPU («f(cb('micro_BP_3d_eta_hard').wall_s / 60, 0)» min wall on a shared machine; measured once)"),
     # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
-    (CT, "The field split's peak memory is «f(kbu(S3[3]), 0)» kB per unknown at «f(cs(S3[3], 'direct', 'unknowns') / 1000, 0)» k "
+    (CT, "The field split's peak memory is «f(kbu(S3[3]), 0)» kB per unknown at «ku(S3[3])» k "
          "unknowns against the direct path's «f(kbu(S3[3], 'direct'), 0)», and «f(kbu(S3[4]), 0)» against «f(kbu(S3[4], 'direct'), 0)» "
-         "at «f(cs(S3[4], 'direct', 'unknowns') / 1000, 0)» k; at «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M unknowns"),
+         "at «ku(S3[4])» k; at «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M unknowns"),
     (CT, "in 23 GB, «f(kbu(BIG), 1)» kB («f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB)"),
-    (CT, "The field split takes «f(csr(S3[0], 'cpu'), 2)»× the direct path's CPU at 5.9 k unknowns, «f(csr(S3[1], 'cpu'), 2)»× at 24 k and "
-         "«f(csr(S3[2], 'cpu'), 2)»× at 63 k, then «f(csr(S3[3], 'cpu'), 2)»× at 101 k and «f(csr(S3[4], 'cpu'), 2)»× at 190 k"),
-    (CT, "the field split takes «f(csr('lr1', 'cpu'), 1)»× its CPU on loading_rate_a1 (P2, «f(cs('lr1', 'direct', 'unknowns') / 1000, 0)» k "
+    (CT, "The field split takes «f(csr(S3[0], 'cpu'), 2)»× the direct path's CPU at «ku(S3[0])» k unknowns, «f(csr(S3[1], 'cpu'), 2)»× at «ku(S3[1])» k and "
+         "«f(csr(S3[2], 'cpu'), 2)»× at «ku(S3[2])» k, then «f(csr(S3[3], 'cpu'), 2)»× at «ku(S3[3])» k and «f(csr(S3[4], 'cpu'), 2)»× at «ku(S3[4])» k"),
+    (CT, "the field split takes «f(csr('lr1', 'cpu'), 1)»× its CPU on loading_rate_a1 (P2, «ku('lr1')» k "
          "unknowns) and «f(min(csr(c, 'cpu') for c in S2), 1)»–«f(max(csr(c, 'cpu') for c in S2), 1)»× on the kerogen twin"),
-    (CT, "«f(kpn(S3[0]), 0)» at 5.9 k unknowns, «f(kpn(S3[3]), 0)» at 101 k and «f(kpn(BIG), 0)» at «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M"),
+    (CT, "«f(kpn(S3[0]), 0)» at «ku(S3[0])» k unknowns, «f(kpn(S3[3]), 0)» at «ku(S3[3])» k and «f(kpn(BIG), 0)» at «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M"),
     (CT, "the field split took «f(min(csr(c, 'cpu', 'fieldsplit, before', 'fieldsplit') for c in S3[:2]), 1)»–"
          "«f(max(csr(c, 'cpu', 'fieldsplit, before', 'fieldsplit') for c in S3[:2]), 1)»× today's CPU in 3D"),
-    (PL, "«f(kbu(S3[1]), 0)» kB at 24 k unknowns, «f(kbu(S3[3]), 0)» at 101 k, «f(kbu(BIG), 1)» at "
+    (PL, "«f(kbu(S3[1]), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3]), 0)» at «ku(S3[3])» k, «f(kbu(BIG), 1)» at "
          "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M (the largest run here: «f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB on one rank)"),
-    (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at 24 k unknowns, «f(kbu(S3[3], 'direct'), 0)» at 101 k and «f(kbu(S3[4], 'direct'), 0)» "
-         "at 190 k («f(cs(S3[4], 'direct', 'mem') / 1000, 1)» GB)"),
+    (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "
+         "at «ku(S3[4])» k («f(cs(S3[4], 'direct', 'mem') / 1000, 1)» GB)"),
     # the main job (defects 1, 5): both readings of eq. 28's log, the run times, Fig. 18's window
     (R, "It takes «f(fe[(6, 1e-06, 2)].wall)» s wall on 2 quiet cores at the default mesh («fe[(6, 1e-06, 2)].cells» tets; "
         "docs/performance.md, \"FE: triaxial cylinder\") and «f(walls.triaxial_theta0)» s in docs/paper.md's latest run"),

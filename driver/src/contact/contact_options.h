@@ -16,7 +16,7 @@ typedef struct {
   PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit, 2: auto (by size) */
   PetscInt  fieldsplit_above; /* auto: the field split above this many displacement unknowns */
   PetscInt  refactor_its;    /* the cost of a factorisation or GAMG set-up in Krylov iterations; 0: at every iteration */
-  PetscReal rtol_tight;      /* direct: GMRES' tolerance while the active set changes (indent_solver.h) */
+  PetscReal rtol_tight;      /* GMRES' tolerance while the active set changes (indent_solver.h) */
   PetscBool check_solve;     /* direct, kept: compare every solve with a fresh LU solve of the same system */
   PetscInt  tangent_part;    /* -indent_check_tangent_part: 0 all, 1 u, 2 r, 3 lambda */
 } IndentOptions;

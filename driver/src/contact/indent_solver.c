@@ -5,6 +5,9 @@
 #include <string.h>
 #include <time.h>
 
+/* The factorisation (direct) or GAMG hierarchy (fieldsplit) is kept across solves: refactor_its > 0. */
+static inline PetscBool kept(const IndentSolver *s) { return s->refactor_its > 0 ? PETSC_TRUE : PETSC_FALSE; }
+
 static double wall(void) {
   struct timespec t;
   clock_gettime(CLOCK_MONOTONIC, &t);
@@ -23,21 +26,20 @@ static PetscErrorCode nest_of(Contact *ct, Mat K, Mat *A) {
 PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
                                    IndentSolver *s) {
   MPI_Comm  comm = PetscObjectComm((PetscObject)K);
-  PetscInt  m, M, nr;
+  PetscInt  m, M, nr, nu;
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(s, sizeof *s));
   s->K = K, s->assemble = assemble, s->actx = actx;
-  PetscCall(MatGetSize(K, &M, NULL));
+  PetscCall(MatGetSize(K, &nu, NULL));
   /* auto: the field split in 3D above fieldsplit_above displacement unknowns, where it overtakes the direct path
      (docs/contact.md, "The field split"); in 2D the direct path wins at every size measured */
-  s->fieldsplit = o->solver == 1 || (o->solver == 2 && ct->dim == 3 && M > o->fieldsplit_above);
+  s->fieldsplit = o->solver == 1 || (o->solver == 2 && ct->dim == 3 && nu > o->fieldsplit_above);
   s->refactor_its = o->refactor_its, s->rtol_tight = o->rtol_tight, s->refactor = PETSC_TRUE;
   s->check = o->check_solve;
-  s->kept = s->refactor_its > 0;
   /* the operator: with a kept factorisation or preconditioner the matrix-free tangent (K is assembled only to be
      factored or to set GAMG up), otherwise K itself */
-  PetscCall(nest_of(ct, s->kept ? Kmf : K, &s->A));
-  if (s->kept) PetscCall(nest_of(ct, K, &s->Apc));
+  PetscCall(nest_of(ct, kept(s) ? Kmf : K, &s->A));
+  if (kept(s)) PetscCall(nest_of(ct, K, &s->Apc));
   else {
     PetscCall(PetscObjectReference((PetscObject)s->A));
     s->Apc = s->A;
@@ -60,7 +62,7 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
   PC pc;
   PetscCall(KSPGetPC(s->ksp, &pc));
   if (!s->fieldsplit) {
-    if (s->kept) { /* GMRES on the nest, right-preconditioned by the kept factorisation (flexible GMRES: it keeps the
+    if (kept(s)) { /* GMRES on the nest, right-preconditioned by the kept factorisation (flexible GMRES: it keeps the
                       preconditioned directions, so the solution costs no further triangular solve) */
       PetscCall(KSPSetType(s->ksp, KSPFGMRES));
       PetscCall(KSPSetTolerances(s->ksp, 1e-2, 1e-300, PETSC_DEFAULT, 30));
@@ -227,7 +229,7 @@ static PetscErrorCode run_ksp(IndentSolver *s, KSPConvergedReason *reason, Petsc
  * rebuilt at the next solve once they exceed refactor_its (its cost counted in Krylov iterations). */
 static void count_extra(IndentSolver *s, PetscInt extra) {
   s->extra_its += PetscMax(extra, 0);
-  if (s->kept && s->extra_its > s->refactor_its) s->refactor = PETSC_TRUE;
+  if (s->extra_its > s->refactor_its) s->refactor = PETSC_TRUE; /* never kept: fresh at every solve anyway */
 }
 
 /* The direct path: GMRES on the current nest with the kept factorisation (indent_solver.h), refactored first
@@ -239,7 +241,7 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, KSPConvergedReaso
   PetscFunctionBeginUser;
   PetscBool fresh = PETSC_FALSE;
   for (int attempt = 0; attempt < 2; attempt++) {
-    fresh = s->refactor || !s->Aaij || !s->kept;
+    fresh = s->refactor || !s->Aaij || !kept(s);
     if (fresh) { /* K at this iterate, and the nest's values into the same AIJ matrix: the pattern is fixed, so MUMPS
                     keeps its analysis */
       PetscCall(s->assemble(s->actx));
@@ -248,13 +250,13 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, KSPConvergedReaso
       PetscCall(MatConvert(s->Apc, MATAIJ, s->Aaij ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &s->Aaij));
       s->setups++, s->refactor = PETSC_FALSE, s->extra_its = 0;
     }
-    PetscCall(KSPSetOperators(s->ksp, s->kept ? s->A : s->Aaij, s->Aaij));
+    PetscCall(KSPSetOperators(s->ksp, kept(s) ? s->A : s->Aaij, s->Aaij));
     PetscCall(KSPSetReusePreconditioner(s->ksp, fresh ? PETSC_FALSE : PETSC_TRUE));
     PetscCall(run_ksp(s, reason, &its));
     if (*reason > 0 || fresh) break;
     s->refactor = PETSC_TRUE; /* the kept factorisation no longer serves: a fresh one, now */
   }
-  if (s->check && s->kept) PetscCall(check_against_fresh_lu(s, c, its, fresh));
+  if (s->check && kept(s)) PetscCall(check_against_fresh_lu(s, c, its, fresh));
   count_extra(s, its - 1);
   PetscFunctionReturn(0);
 }
@@ -269,7 +271,7 @@ static PetscErrorCode solve_split(IndentSolver *s, Contact *ct, PetscBool tight,
   PetscInt its = 0, t = tight ? 1 : 0;
   PetscFunctionBeginUser;
   for (int attempt = 0; attempt < 2; attempt++) {
-    PetscBool fresh = s->refactor || !s->setups || !s->kept;
+    PetscBool fresh = s->refactor || !kept(s); /* refactor: set at the start, after a refresh or a failed solve */
     if (fresh) {
       PetscCall(s->assemble(s->actx));
       s->setups++, s->refactor = PETSC_FALSE, s->extra_its = 0, s->base_its[0] = s->base_its[1] = -1;

@@ -44,19 +44,19 @@ typedef struct {
   Mat       K;           /* the displacement block (the FE Jacobian), assembled by assemble(actx) when needed */
   PetscErrorCode (*assemble)(void *);
   void     *actx;
-  PetscBool kept;        /* direct with a kept factorisation (refactor_its > 0) */
-  Mat       A, Apc;      /* the nest (kept: its K block the matrix-free tangent) and the nest with K (A if not kept) */
+  Mat       A, Apc;      /* the nest (kept: its K block the matrix-free tangent) and the nest with K (A if not kept);
+                            kept: refactor_its > 0 (indent_solver.c, kept()) */
   Mat       Aaij, Sp;    /* the AIJ copy of Apc that is factored (direct); the Schur preconditioning matrix */
   IS        is[3], isrl; /* u, u_r, lambda in the flat layout; u_r and lambda together */
   Vec       X, F;        /* flat work vectors */
   KSP       ksp;
-  PetscInt  refactor_its; /* direct: the cost of a factorisation in Krylov iterations (solve_kept) */
-  PetscInt  extra_its;    /* Krylov iterations beyond the first (direct) or the set-up's first solve's (fieldsplit) since it */
+  PetscInt  refactor_its; /* the cost of a factorisation or GAMG set-up in Krylov iterations; 0: one at every solve */
+  PetscInt  extra_its;    /* Krylov iterations since the last factorisation or set-up beyond a fresh one's (count_extra) */
   PetscInt  base_its[2];  /* fieldsplit: the Krylov iterations of the first solve on the set-up, loose and tight (-1: none) */
   PetscReal rtol, rtol_tight; /* GMRES' relative tolerances, loose and tight */
   PetscBool check;        /* -indent_check_solve: a fresh LU solve beside every kept one */
   PetscReal check_max;    /* the largest relative difference seen */
-  PetscBool refactor;     /* direct: rebuild it at the next solve */
+  PetscBool refactor;     /* rebuild the factorisation or the GAMG hierarchy at the next solve */
   PetscInt  linear_its;   /* Krylov iterations over the run */
   PetscInt  setups;       /* factorisations (direct) or preconditioner set-ups (fieldsplit) over the run */
   double    seconds;      /* wall time in set-up and solve */
