@@ -10,6 +10,7 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
 - bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
   of the material (BP)."""
 import math
+import re
 from pathlib import Path
 
 import h5py
@@ -17,7 +18,7 @@ import numpy as np
 import pytest
 from camclay9.fields import voigt  # fields.h5 holds full 3x3 tensors
 from camclay9.sector_mesh import mesh_sector, mirrored_half, msh41, read_msh
-from test_contact import run, tangent_checks  # the elastic driver on a scene; its history
+from test_contact import read_history, run, tangent_checks  # the elastic driver on a scene; its history
 
 ROOT = Path(__file__).resolve().parents[2]
 GEO = ROOT / "meshes" / "indent_sector.geo"
@@ -304,3 +305,53 @@ def test_bad_copies(tmp_path, copies, kin, word):
     proc = run(text, tmp_path / "bad", exe="driver", check=False)
     print(proc.stderr.strip())
     assert proc.returncode == 2 and "indenter.copies" in proc.stderr and word in proc.stderr and "bad.yaml" in proc.stderr
+
+
+
+def krylov_per_newton(proc):
+    """The run's Krylov iterations per Newton iteration, from its summary line."""
+    newton = int(re.search(r"(\d+) Newton iterations", proc.stdout).group(1))
+    return int(re.search(r"(\d+) Krylov iterations", proc.stdout).group(1)) / newton
+
+
+def petsc_binary_matrix(path):
+    """The first matrix of a PETSc binary file (-ksp_view_mat binary:FILE): dense, from its big-endian CSR."""
+    with open(path, "rb") as f:
+        cls, m, n, nz = np.frombuffer(f.read(16), ">i4")
+        assert cls == 1211216, f"{path}: not a PETSc matrix"
+        lens = np.frombuffer(f.read(4 * m), ">i4")
+        cols = np.frombuffer(f.read(4 * nz), ">i4")
+        vals = np.frombuffer(f.read(8 * nz), ">f8")
+    a = np.zeros((m, n))
+    a[np.repeat(np.arange(m), lens), cols] = vals
+    return a
+
+
+def test_p2_field_split_multigrid(tmp_path):
+    """The field split's p-multigrid on P2 (fe_pmg.c; docs/contact.md, "The field split"). Its coarse level is the P1
+    space of the same mesh, reached by a prolongation P that averages the vertices' values onto the edges' midpoints
+    and rotates them between the nodal frames of the sector's three mirror planes. P1 lies inside P2 and the P2
+    quadrature integrates P1's constant strains exactly, so the coarse matrix P^T K P must be the P1 stiffness of the
+    same mesh as the driver's P1 element loop assembles it (elastic, so at any state): to round-off, with the same
+    numbering, constraints and frames. The p-multigrid gives the direct path's loads (to the solver tolerance) on 1
+    and 2 ranks, in fewer Krylov iterations than GAMG on the P2 block."""
+    msh = mesh_sector(tmp_path / "s.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
+    text = sector_scene(msh, order=2)
+    ref = run(text, tmp_path / "direct", args=["-indent_solver", "direct"])
+    split = run(text, tmp_path / "pmg", check=False, args=[
+        "-indent_solver", "fieldsplit", "-indent_fieldsplit_u_mg_coarse_ksp_view_mat", f"binary:{tmp_path / 'kc.bin'}"])
+    plain = run(text, tmp_path / "gamg", args=["-indent_solver", "fieldsplit", "-indent_fieldsplit_pmg", "false"], check=False)
+    p1 = run(sector_scene(msh, order=1), tmp_path / "p1", check=False, args=[
+        "-indent_solver", "fieldsplit", "-max_steps", "1", "-indent_fieldsplit_u_ksp_view_pmat", f"binary:{tmp_path / 'k1.bin'}"])
+    for p in (split, plain, p1):
+        assert p.returncode == 0, p.stdout + p.stderr
+    kc, k1 = petsc_binary_matrix(tmp_path / "kc.bin"), petsc_binary_matrix(tmp_path / "k1.bin")
+    assert kc.shape == k1.shape, (kc.shape, k1.shape)
+    diff = np.abs(kc - k1).max() / np.abs(k1).max()
+    its, gamg = krylov_per_newton(split), krylov_per_newton(plain)
+    load = np.abs(read_history(tmp_path / "pmg")["load"][1:] / ref["load"][1:] - 1).max()
+    print(f"P^T K P against the P1 stiffness ({k1.shape[0]} unknowns): {diff:.1e}; Krylov iterations per Newton iteration, "
+          f"p-multigrid {its:.1f}, GAMG on P2 {gamg:.1f}; load against the direct path {load:.1e}")
+    assert diff < 1e-12 and load < 1e-8 and its < gamg
+    par = run(text, tmp_path / "pmg2", args=["-indent_solver", "fieldsplit"], np_=2)
+    assert np.abs(par["load"][1:] / ref["load"][1:] - 1).max() < 1e-8

@@ -9,6 +9,7 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   o->rtol = 1e-10, o->max_it = 30, o->stall_window = 8, o->predictor = PETSC_TRUE, o->monitor = PETSC_FALSE, o->line_search = PETSC_TRUE;
   o->newton_estimate = PETSC_TRUE, o->check_tangent = PETSC_FALSE, o->solver = 2, o->tangent_part = 0;
   o->refactor_its = 20, o->rtol_tight = 1e-10, o->check_solve = PETSC_FALSE, o->fieldsplit_above = FIELDSPLIT_ABOVE;
+  o->pmg = PETSC_TRUE;
   options_petsc_prefix("indent_"); /* the contact solver's KSP (indent_solver.c) */
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1; docs/contact.md)", NULL);
   PetscCall(options_real(PetscOptionsObject, "-indent_rtol", "residual tolerance relative to the load", o->rtol, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
@@ -36,8 +37,11 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
                         "-indent_solver auto: the field split above this many displacement unknowns in 3D (2D: direct; measured: "
                         "docs/contact.md)",
                         o->fieldsplit_above, 0, PETSC_MAX_INT, &o->fieldsplit_above, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-indent_fieldsplit_pmg",
+                         "fieldsplit on P2: precondition the displacement block by a two-level p-multigrid, Chebyshev on P2 and GAMG "
+                         "on the P1 space of the same mesh (false: GAMG on P2, -indent_fieldsplit_u_pc_*)", o->pmg, &o->pmg, NULL));
   PetscCall(options_int(PetscOptionsObject, "-indent_refactor_its",
-                        "keep the factorisation (direct) or the GAMG hierarchy (fieldsplit) until the Krylov iterations beyond those of "
+                        "keep the factorisation (direct) or the multigrid hierarchy (fieldsplit) until the Krylov iterations beyond those of "
                         "a fresh one, summed since it was made, exceed this (0: a fresh one at every Newton iteration)",
                         o->refactor_its, 0, 1000000, &o->refactor_its, NULL));
   /* GMRES' tolerance of the contact solve is PETSc's (KSPSetFromOptions under the prefix indent_, indent_solver.c): declared

@@ -6,7 +6,7 @@
 #include <petscsys.h>
 
 /* -indent_fieldsplit_above's default (docs/contact.md, "The field split") */
-#define FIELDSPLIT_ABOVE 100000
+#define FIELDSPLIT_ABOVE 50000
 
 typedef struct {
   PetscReal rtol;            /* residual tolerance relative to the load */
@@ -15,6 +15,7 @@ typedef struct {
   PetscBool predictor, monitor, line_search, newton_estimate, check_tangent;
   PetscInt  solver;          /* 0: direct (MUMPS), 1: fieldsplit, 2: auto (by size) */
   PetscInt  fieldsplit_above; /* auto: the field split above this many displacement unknowns */
+  PetscBool pmg;             /* fieldsplit, P2: the displacement block by p-multigrid to P1 (fe_pmg.h), not GAMG on P2 */
   PetscInt  refactor_its;    /* the cost of a factorisation or GAMG set-up in Krylov iterations; 0: at every iteration */
   PetscReal rtol_tight;      /* GMRES' tolerance while the active set changes (indent_solver.h) */
   PetscBool check_solve;     /* direct, kept: compare every solve with a fresh LU solve of the same system */

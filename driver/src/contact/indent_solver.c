@@ -5,7 +5,7 @@
 #include <string.h>
 #include <time.h>
 
-/* The factorisation (direct) or GAMG hierarchy (fieldsplit) is kept across solves: refactor_its > 0. */
+/* The factorisation (direct) or multigrid hierarchy (fieldsplit) is kept across solves: refactor_its > 0. */
 static inline PetscBool kept(const IndentSolver *s) { return s->refactor_its > 0 ? PETSC_TRUE : PETSC_FALSE; }
 
 static double wall(void) {
@@ -23,8 +23,8 @@ static PetscErrorCode nest_of(Contact *ct, Mat K, Mat *A) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
-                                   IndentSolver *s) {
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), PetscErrorCode (*coarse)(void *, Mat *, MatNullSpace *),
+                                   void *actx, const IndentOptions *o, IndentSolver *s) {
   MPI_Comm  comm = PetscObjectComm((PetscObject)K);
   PetscInt  m, M, nr, nu;
   PetscFunctionBeginUser;
@@ -95,7 +95,8 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
     /* inner solves preonly, the outer flexible GMRES the only iteration: nested Krylov solves to 1e-12 cost 2.4 to
        3.4 times as much CPU (docs/contact.md, "The field split") */
     PetscCall(options_default("-indent_fieldsplit_u_ksp_type", "preonly"));
-    PetscCall(options_default("-indent_fieldsplit_u_pc_type", "gamg"));
+    if (o->pmg && coarse) PetscCall(coarse(actx, &s->P, &s->rbmc)); /* the u block's PC: pmg_configure, at the first solve */
+    else PetscCall(options_default("-indent_fieldsplit_u_pc_type", "gamg"));
     PetscCall(options_default("-indent_fieldsplit_contact_ksp_type", "preonly"));
     PetscCall(options_default("-indent_fieldsplit_contact_pc_type", "lu"));
     PetscCall(options_default("-indent_fieldsplit_contact_pc_factor_mat_solver_type", "mumps"));
@@ -114,6 +115,9 @@ PetscErrorCode indent_solver_destroy(IndentSolver *s) {
   PetscCall(MatDestroy(&s->Apc));
   PetscCall(MatDestroy(&s->Aaij));
   PetscCall(MatDestroy(&s->Sp));
+  PetscCall(MatDestroy(&s->P));
+  PetscCall(MatDestroy(&s->Kc));
+  PetscCall(MatNullSpaceDestroy(&s->rbmc));
   for (int k = 0; k < 3; k++) PetscCall(ISDestroy(&s->is[k]));
   PetscCall(ISDestroy(&s->isrl));
   PetscCall(VecDestroy(&s->X));
@@ -261,8 +265,52 @@ static PetscErrorCode solve_kept(IndentSolver *s, PetscReal c, KSPConvergedReaso
   PetscFunctionReturn(0);
 }
 
-/* The field split with a kept GAMG hierarchy (indent_solver.h): K is assembled, and so GAMG set up afresh, only when
- * due; otherwise K keeps its state and PCSetUp leaves the displacement block's GAMG as it is, while the contact block's
+/* The displacement block's p-multigrid (fe_pmg.h), set on its KSP once the field split has made it: two levels,
+ * Chebyshev-Jacobi (2 iterations, eigenvalues estimated) on the P2 block and one GAMG cycle on the coarse P^T K P
+ * with the coarse rigid-body modes; its options take the prefix indent_fieldsplit_u_ (-indent_fieldsplit_u_mg_levels_*,
+ * -indent_fieldsplit_u_mg_coarse_*). */
+static PetscErrorCode pmg_configure(IndentSolver *s) {
+  PC       pc, pcu, spc;
+  KSP     *sub, smooth, coarse;
+  PetscInt nsub;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetUp(s->ksp)); /* the field split's sub-KSPs exist from here on */
+  PetscCall(KSPGetPC(s->ksp, &pc));
+  PetscCall(PCFieldSplitGetSubKSP(pc, &nsub, &sub));
+  PetscCall(KSPGetPC(sub[0], &pcu));
+  PetscCall(PetscFree(sub));
+  PetscCall(PCSetType(pcu, PCMG));
+  PetscCall(PCMGSetLevels(pcu, 2, NULL));
+  PetscCall(PCMGSetGalerkin(pcu, PC_MG_GALERKIN_NONE)); /* P^T K P made here, to carry the coarse near null space */
+  PetscCall(PCMGSetInterpolation(pcu, 1, s->P));
+  PetscCall(PCMGGetSmoother(pcu, 1, &smooth));
+  PetscCall(KSPSetType(smooth, KSPCHEBYSHEV));
+  PetscCall(KSPChebyshevEstEigSet(smooth, 0, 0.1, 0, 1.1));
+  PetscCall(KSPSetTolerances(smooth, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 2));
+  PetscCall(KSPGetPC(smooth, &spc));
+  PetscCall(PCSetType(spc, PCJACOBI));
+  PetscCall(PCMGGetCoarseSolve(pcu, &coarse));
+  PetscCall(KSPSetType(coarse, KSPPREONLY));
+  PetscCall(KSPGetPC(coarse, &spc));
+  PetscCall(PCSetType(spc, PCGAMG));
+  PetscCall(KSPSetOperators(coarse, s->Kc, s->Kc));
+  PetscCall(PCSetFromOptions(pcu));
+  PetscCall(KSPSetFromOptions(smooth));
+  PetscCall(KSPSetFromOptions(coarse));
+  PetscFunctionReturn(0);
+}
+
+/* The coarse matrix P^T K P of the p-multigrid for the K just assembled, with its near null space. */
+static PetscErrorCode pmg_coarse_matrix(IndentSolver *s) {
+  PetscFunctionBeginUser;
+  PetscCall(MatPtAP(s->K, s->P, s->Kc ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &s->Kc));
+  PetscCall(MatSetNearNullSpace(s->Kc, s->rbmc));
+  PetscFunctionReturn(0);
+}
+
+/* The field split with a kept multigrid hierarchy (indent_solver.h): K is assembled (and on P2 its coarse P^T K P
+ * formed), and the multigrid set up afresh, only when due; otherwise K keeps its state and PCSetUp leaves the
+ * displacement block's multigrid as it is, while the contact block's
  * matrices (the active set's rows) and its Schur approximation are current at every solve. Due: at the first solve,
  * after a refresh, when a solve fails on a kept one (then at once), and when the Krylov iterations beyond those of
  * the first solve on the set-up (of the same tolerance), summed over the solves since, exceed refactor_its.
@@ -274,12 +322,14 @@ static PetscErrorCode solve_split(IndentSolver *s, Contact *ct, PetscBool tight,
     PetscBool fresh = s->refactor || !kept(s); /* refactor: set at the start, after a refresh or a failed solve */
     if (fresh) {
       PetscCall(s->assemble(s->actx));
+      if (s->P) PetscCall(pmg_coarse_matrix(s));
       s->setups++, s->refactor = PETSC_FALSE, s->extra_its = 0, s->base_its[0] = s->base_its[1] = -1;
     }
     PetscCall(assemble_schur_pre(s, ct));
     PetscCall(MatAssemblyBegin(s->Apc, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(s->Apc, MAT_FINAL_ASSEMBLY));
     PetscCall(KSPSetOperators(s->ksp, s->A, s->Apc));
+    if (s->P && s->setups == 1 && fresh) PetscCall(pmg_configure(s));
     if (s->setups > 1 || !fresh) { /* the nest's assembly touches K's state: keep GAMG by the PC's reuse flag */
       PC       pc;
       KSP     *sub;

@@ -18,7 +18,9 @@
  *               (contact.h), so its norm weighs the equilibrium, indenter and gap rows alike.
  *               -indent_refactor_its 0: a fresh factorisation at every iteration, LU alone;
  *   fieldsplit  flexible GMRES on the nest, preconditioned by PCFIELDSPLIT: u | (u_r, lambda), the lower Schur
- *               factorisation with one GAMG cycle (rigid-body near null space) for the displacement block and the
+ *               factorisation with one multigrid cycle for the displacement block (on P1 GAMG with the rigid-body
+ *               near null space; on P2 a two-level p-multigrid, Chebyshev-Jacobi on P2 and one GAMG cycle on the
+ *               P1 space of the same mesh, fe_pmg.h; -indent_fieldsplit_pmg false: GAMG on P2) and the
  *               Schur complement's "selfp" approximation, assembled here and factored, for the small block (inner
  *               solves preonly: the outer GMRES alone iterates). The operator is the matrix-free tangent, as on the
  *               direct path; K is assembled, and GAMG set up on it, only when the hierarchy is rebuilt, by the
@@ -47,6 +49,8 @@ typedef struct {
   Mat       A, Apc;      /* the nest (kept: its K block the matrix-free tangent) and the nest with K (A if not kept);
                             kept: refactor_its > 0 (indent_solver.c, kept()) */
   Mat       Aaij, Sp;    /* the AIJ copy of Apc that is factored (direct); the Schur preconditioning matrix */
+  Mat       P, Kc;       /* fieldsplit with p-multigrid (P2): the prolongation P1 -> P2 and the coarse P^T K P; else NULL */
+  MatNullSpace rbmc;     /* ... and the coarse rigid-body modes, GAMG's near null space there */
   IS        is[3], isrl; /* u, u_r, lambda in the flat layout; u_r and lambda together */
   Vec       X, F;        /* flat work vectors */
   KSP       ksp;
@@ -56,16 +60,18 @@ typedef struct {
   PetscReal rtol, rtol_tight; /* GMRES' relative tolerances, loose and tight */
   PetscBool check;        /* -indent_check_solve: a fresh LU solve beside every kept one */
   PetscReal check_max;    /* the largest relative difference seen */
-  PetscBool refactor;     /* rebuild the factorisation or the GAMG hierarchy at the next solve */
+  PetscBool refactor;     /* rebuild the factorisation or the multigrid hierarchy at the next solve */
   PetscInt  linear_its;   /* Krylov iterations over the run */
   PetscInt  setups;       /* factorisations (direct) or preconditioner set-ups (fieldsplit) over the run */
   double    seconds;      /* wall time in set-up and solve */
 } IndentSolver;
 
 /* K: the assembled displacement block; Kmf: the same tangent as a matrix-free operator (fe_tangent_operator);
- * assemble(actx) assembles K at the current iterate, called only when K is factored or preconditioned. */
-PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), void *actx, const IndentOptions *o,
-                                   IndentSolver *s);
+ * assemble(actx) assembles K at the current iterate, called only when K is factored or preconditioned; coarse(actx,
+ * &P, &rbm), or NULL on P1, the p-multigrid's prolongation and coarse rigid-body modes (fe_pmg.h), called once if the
+ * field split takes it. */
+PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), PetscErrorCode (*coarse)(void *, Mat *, MatNullSpace *),
+                                   void *actx, const IndentOptions *o, IndentSolver *s);
 PetscErrorCode indent_solver_destroy(IndentSolver *s);
 /* The next solve factors afresh (a new stage, a checkpoint). */
 static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }

@@ -2,6 +2,7 @@
 
 #include "contact_options.h"
 
+#include "../fe/fe_pmg.h"
 #include "../fe/fe_state.h"
 #include "../io/log_events.h"
 
@@ -360,6 +361,14 @@ static PetscErrorCode assemble_tangent(void *ctx) {
   PetscFunctionReturn(0);
 }
 
+/* The p-multigrid's coarse level for the field split on P2 (fe_pmg.h). */
+static PetscErrorCode coarse_space(void *ctx, Mat *P, MatNullSpace *rbm) {
+  Semismooth *in = ctx;
+  PetscFunctionBeginUser;
+  PetscCall(fe_p1_prolongation(fe_problem_space(in->p), P, rbm));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
   const FeSpace *sp = fe_problem_space(p);
   MPI_Comm comm = PetscObjectComm((PetscObject)sp->dm);
@@ -406,7 +415,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   PetscCall(PetscMalloc2(in->max_it + 1, &in->history.sig, in->max_it + 1, &in->history.merit));
   PetscCall(fe_jacobian_coo_setup(p, in->K));
   PetscCall(fe_tangent_operator(p, in->K, &in->Kmf));
-  PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, in, &o, &in->sol));
+  PetscCall(indent_solver_create(&in->ct, in->K, in->Kmf, assemble_tangent, sp->order == 2 ? coarse_space : NULL, in, &o, &in->sol));
   /* The initial state: the UMAT initialises its state on a zero increment; its elastic tangent sets the
      indenter row's shift (one contact node's stiffness) and the complementarity constant. */
   fe_problem_set_step(p, 0, 0), fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0));
