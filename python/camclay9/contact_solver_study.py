@@ -3,9 +3,10 @@ from its results store docs/results/contact_solver.json by bench/contact_solver_
 tools/doc_numbers.py.
 
 The store: {"provenance": {"command", "date", ...}, "rows": [...]}, each row {"case", "solver", "unknowns", "steps",
-"newton", "krylov", "cpu" [s], "mem" [MB], "repeats"} as the bench measured it (CPU the median of the repeats, memory
-the largest); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged"
-{"command", "date", "cases"}: those cases rerun by the bench's --merge. A row may also hold "cpu_ratio" and
+"newton", "krylov", "cpu" [s], "mem" [MB], "repeats", "ranks" (1 if absent)} as the bench measured it (CPU the median of
+the repeats, summed over the ranks; memory the largest process's, the largest of the repeats); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
+{"command", "date", "rows" (or "cases")}: those rows (cases) rerun by the bench's --merge, in order (an older store
+holds one such dict). A row may also hold "cpu_ratio" and
 "mem_ratio", its CPU and memory over the direct path's on the same case as a table printed them from the run's full
 digits, where the store keeps only the table's digits of CPU and memory (rows taken over from an earlier table; the
 provenance says so); else the ratios are computed.
@@ -13,6 +14,12 @@ provenance says so); else the ratios are computed.
 
 STORE = "contact_solver"
 TITLE = "## Contact solve: direct against field split"
+
+
+def merges(provenance):
+    """The provenance's merges, oldest first (a list; an older store held one dict)."""
+    m = provenance.get("merged", [])
+    return [m] if isinstance(m, dict) else list(m)
 
 
 def ratios(row, direct):
@@ -27,19 +34,23 @@ def section(store, root=None):
     pv, rows = store["provenance"], store["rows"]
     once = list(dict.fromkeys(r["case"] for r in rows if r["repeats"] == 1))   # the bench's ONCE cases
     fewer = f" (one run for {', '.join(once)})" if once and max(r["repeats"] for r in rows) > 1 else ""
-    merged = pv.get("merged")
-    also = (f" Cases {', '.join(merged['cases'])}: `{merged['command']}` ({merged['date']})." if merged else "")
+    also = "".join(f" {'Rows ' + '; '.join(m['rows']) if 'rows' in m else 'Cases ' + ', '.join(m['cases'])}: `{m['command']}` "
+                   f"({m['date']})." for m in merges(pv))
     lines = [TITLE, "",
              f"Command: `{pv['command']}` ({pv['date']}; a shared 2-core machine, one rank).{also} The first steps of the "
              "kerogen nanoindentation on each path (the bench's docstring gives the cases): CPU is user + system of the driver, "
-             f"median of the repeats{fewer}; memory the driver's peak resident set. 'fieldsplit, before': the field split "
-             "as it was before its GAMG hierarchy was kept (set up at every Newton iteration, the full Schur factorisation). "
+             f"median of the repeats{fewer}; memory the driver's peak resident set. 'fieldsplit': on P2 the p-multigrid to P1 "
+             "on the displacement block; 'fieldsplit, GAMG on P2': GAMG on the P2 block itself (-indent_fieldsplit_pmg false); "
+             "'fieldsplit, before': that as it was before its GAMG hierarchy was kept (set up at every Newton iteration, the full "
+             "Schur factorisation); 'fieldsplit, LU on u': the displacement block solved exactly (a fresh LU at every Newton "
+             "iteration), so that its Krylov iterations are the Schur estimate's. "
              "A case without a direct row is beyond the direct path's memory.", "",
              "| case | unknowns | steps | solver | Newton its | Krylov its | CPU [s] | CPU / direct | peak memory [MB] | memory / direct |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     direct = {r["case"]: r for r in rows if r["solver"] == "direct"}
     for r in rows:
         cpu_ratio, mem_ratio = ((f"{x:.2f}" for x in ratios(r, direct[r["case"]])) if r["case"] in direct else ("—", "—"))
-        lines.append(f"| {r['case']} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
+        ranks = f" ({r['ranks']} ranks)" if r.get("ranks", 1) > 1 else ""
+        lines.append(f"| {r['case']}{ranks} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
                      f"{r['cpu']:.2f} | {cpu_ratio} | {r['mem']:.0f} | {mem_ratio} |")
     return "\n".join(lines) + "\n"

@@ -60,6 +60,7 @@ class A(dict):
 
 S3, S2 = ("sector0.12", "sector0.0707", "sector0.05", "sector0.0425", "sector0.034"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
 BIG = "sector0.018"  # its million-unknown case (field split alone)
+G, LU = "fieldsplit, GAMG on P2", "fieldsplit, LU on u"  # its field split with GAMG on the P2 block; with the block solved exactly
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
 
@@ -145,7 +146,7 @@ def namespace(store_dir=None):
         return te[case]["rows"][i][q] / abs(te[case]["reference"])
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG,
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, G=G, LU=LU,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
@@ -229,17 +230,31 @@ QUOTES = [
          "«f(cb('micro_BP_3d_eta_hard').cpu_s, 0)» s"),
     (CA, "CPU («f(cb('micro_BP_3d_eta_hard').wall_s / 60, 0)» min wall on a shared machine; measured once)"),
     # the field split against the direct path (docs/contact.md, "The field split"; bench/contact_solver_bench.py)
-    (CT, "The field split's peak memory is «f(kbu(S3[3]), 0)» kB per unknown at «ku(S3[3])» k "
-         "unknowns against the direct path's «f(kbu(S3[3], 'direct'), 0)», and «f(kbu(S3[4]), 0)» against «f(kbu(S3[4], 'direct'), 0)» "
-         "at «ku(S3[4])» k; at «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M unknowns"),
-    (CT, "in 23 GB, «f(kbu(BIG), 1)» kB («f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB)"),
-    (CT, "The field split takes «f(csr(S3[0], 'cpu'), 2)»× the direct path's CPU at «ku(S3[0])» k unknowns, «f(csr(S3[1], 'cpu'), 2)»× at «ku(S3[1])» k and "
-         "«f(csr(S3[2], 'cpu'), 2)»× at «ku(S3[2])» k, then «f(csr(S3[3], 'cpu'), 2)»× at «ku(S3[3])» k and «f(csr(S3[4], 'cpu'), 2)»× at «ku(S3[4])» k"),
-    (CT, "the field split takes «f(csr('lr1', 'cpu'), 1)»× its CPU on loading_rate_a1 (P2, «ku('lr1')» k "
-         "unknowns) and «f(min(csr(c, 'cpu') for c in S2), 1)»–«f(max(csr(c, 'cpu') for c in S2), 1)»× on the kerogen twin"),
-    (CT, "«f(kpn(S3[0]), 0)» at «ku(S3[0])» k unknowns, «f(kpn(S3[3]), 0)» at «ku(S3[3])» k and «f(kpn(BIG), 0)» at «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M"),
-    (CT, "the field split took «f(min(csr(c, 'cpu', 'fieldsplit, before', 'fieldsplit') for c in S3[:2]), 1)»–"
-         "«f(max(csr(c, 'cpu', 'fieldsplit, before', 'fieldsplit') for c in S3[:2]), 1)»× today's CPU in 3D"),
+    (CT, "at «ku(S3[1])» k unknowns the p-multigrid took «f(kpn(S3[1]), 0)» Krylov iterations per Newton iteration where GAMG on the P2 block took\n"
+         "  «f(kpn(S3[1], G), 0)», in «f(csr(S3[1], 'cpu', 'fieldsplit', G), 2)»× its CPU; at «ku(S3[3])» k, «f(kpn(S3[3]), 0)» against "
+         "«f(kpn(S3[3], G), 0)» in «f(csr(S3[3], 'cpu', 'fieldsplit', G), 2)»×; at «f(cs(BIG, G, 'unknowns') / 1e6, 2)» M, «f(kpn(BIG), 0)» against "
+         "«f(kpn(BIG, G), 0)» in «f(csr(BIG, 'cpu', 'fieldsplit', G), 2)»×"),
+    (CT, "The field split's peak memory is «f(kbu(S3[3]), 0)» kB per\n  unknown at «ku(S3[3])» k unknowns against the direct path's "
+         "«f(kbu(S3[3], 'direct'), 0)», and «f(kbu(S3[4]), 0)» against «f(kbu(S3[4], 'direct'), 0)» at «ku(S3[4])» k; at "
+         "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M unknowns, beyond the direct\n  path's reach in 23 GB, «f(kbu(BIG), 1)» kB "
+         "(«f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB)"),
+    (CT, "The field split takes «f(csr(S3[0], 'cpu'), 2)»× the\n  direct path's CPU at «ku(S3[0])» k unknowns and «f(csr(S3[1], 'cpu'), 2)»× "
+         "at «ku(S3[1])» k, then «f(csr(S3[2], 'cpu'), 2)»× at «ku(S3[2])» k, «f(csr(S3[3], 'cpu'), 2)»× at «ku(S3[3])» k and "
+         "«f(csr(S3[4], 'cpu'), 2)»× at «ku(S3[4])» k"),
+    (CT, "the field split takes «f(csr('lr1', 'cpu'), 1)»× its CPU on loading_rate_a1 (P2,\n  «ku('lr1')» k unknowns) and "
+         "«f(min(csr(c, 'cpu') for c in S2), 1)»–«f(max(csr(c, 'cpu') for c in S2), 1)»× on the kerogen twin"),
+    (CT, "«f(kpn(S3[0]), 0)» at «ku(S3[0])» k unknowns, «f(kpn(S3[3]), 0)» at «ku(S3[3])» k and «f(kpn(BIG), 0)» at "
+         "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M with\n  the p-multigrid, «f(100 * (kpn(BIG) / kpn(S3[3]) - 1), 0)» % more from "
+         "«ku(S3[3])» k to «f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M; with GAMG on the P2 block «f(kpn(S3[0], G), 0)», "
+         "«f(kpn(S3[3], G), 0)» and «f(kpn(BIG, G), 0)» («f(100 * (kpn(BIG, G) / kpn(S3[3], G) - 1), 0)» % more)"),
+    (CT, "«f(kpn(S3[1], LU), 1)» per Newton iteration at «ku(S3[1])» k unknowns and «f(kpn(S3[3], LU), 1)» at «ku(S3[3])» k"),
+    (CT, "active: with the p-multigrid «f(kpn('lhu0.12'), 0)» Krylov iterations per Newton iteration at «ku('lhu0.12')» k unknowns, "
+         "«f(kpn('lhu0.0707'), 0)» at «ku('lhu0.0707')» k and «f(kpn('lhu0.0425'), 0)» at «ku('lhu0.0425')» k; with\n  the displacement "
+         "block solved exactly, «f(kpn('lhu0.12', LU), 1)» and «f(kpn('lhu0.0707', LU), 1)» («f(kpn(S3[1], LU), 1)» in the first 8 steps at «ku(S3[1])» k). The field "
+         "split then takes «f(csr('lhu0.12', 'cpu'), 2)»×,\n  «f(csr('lhu0.0707', 'cpu'), 2)»× and «f(csr('lhu0.0425', 'cpu'), 2)»× the "
+         "direct path's CPU"),
+    (CT, "GAMG on the P2 block took «f(min(csr(c, 'cpu', 'fieldsplit, before', G) for c in S3[:2]), 1)»–"
+         "«f(max(csr(c, 'cpu', 'fieldsplit, before', G) for c in S3[:2]), 1)»× the CPU of its kept form in 3D"),
     (PL, "«f(kbu(S3[1]), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3]), 0)» at «ku(S3[3])» k, «f(kbu(BIG), 1)» at "
          "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M (the largest run here: «f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB on one rank)"),
     (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "

@@ -334,7 +334,8 @@ def test_p2_field_split_multigrid(tmp_path):
     quadrature integrates P1's constant strains exactly, so the coarse matrix P^T K P must be the P1 stiffness of the
     same mesh as the driver's P1 element loop assembles it (elastic, so at any state): to round-off, with the same
     numbering, constraints and frames. The p-multigrid gives the direct path's loads (to the solver tolerance) on 1
-    and 2 ranks, in fewer Krylov iterations than GAMG on the P2 block."""
+    and 2 ranks, and after a restart on 2 ranks from a checkpoint written on 1, in fewer Krylov iterations than GAMG
+    on the P2 block."""
     msh = mesh_sector(tmp_path / "s.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
     text = sector_scene(msh, order=2)
     ref = run(text, tmp_path / "direct", args=["-indent_solver", "direct"])
@@ -355,3 +356,7 @@ def test_p2_field_split_multigrid(tmp_path):
     assert diff < 1e-12 and load < 1e-8 and its < gamg
     par = run(text, tmp_path / "pmg2", args=["-indent_solver", "fieldsplit"], np_=2)
     assert np.abs(par["load"][1:] / ref["load"][1:] - 1).max() < 1e-8
+    # stopped after its first step's checkpoint on 1 rank, restarted on 2: the p-multigrid built afresh there
+    run(text, tmp_path / "again", args=["-indent_solver", "fieldsplit", "-checkpoint_every", "1", "-max_steps", "1"])
+    again = run(text, tmp_path / "again", args=["-indent_solver", "fieldsplit", "-restart"], np_=2)
+    assert len(again) == len(ref) and np.abs(again["load"][1:] / ref["load"][1:] - 1).max() < 1e-8
