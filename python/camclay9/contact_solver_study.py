@@ -5,8 +5,7 @@ tools/doc_numbers.py.
 The store: {"provenance": {"command", "date", ...}, "rows": [...]}, each row {"case", "solver", "unknowns", "steps",
 "newton", "krylov", "cpu" [s], "mem" [MB], "repeats", "ranks" (1 if absent)} as the bench measured it (CPU the median of
 the repeats, summed over the ranks; memory the largest process's, the largest of the repeats); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
-{"command", "date", "rows" (or "cases")}: those rows (cases) rerun by the bench's --merge, in order (an older store
-holds one such dict). A row may also hold "cpu_ratio" and
+{"command", "date", "rows" (or "cases")}: those rows (cases) rerun by the bench's --merge, in order. A row may also hold "cpu_ratio" and
 "mem_ratio", its CPU and memory over the direct path's on the same case as a table printed them from the run's full
 digits, where the store keeps only the table's digits of CPU and memory (rows taken over from an earlier table; the
 provenance says so); else the ratios are computed.
@@ -17,9 +16,8 @@ TITLE = "## Contact solve: direct against field split"
 
 
 def merges(provenance):
-    """The provenance's merges, oldest first (a list; an older store held one dict)."""
-    m = provenance.get("merged", [])
-    return [m] if isinstance(m, dict) else list(m)
+    """The provenance's merges, oldest first."""
+    return list(provenance.get("merged", []))
 
 
 def ratios(row, direct):

@@ -10,12 +10,12 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
 - bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
   of the material (BP)."""
 import math
-import re
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+from camclay9 import summary_line
 from camclay9.fields import voigt  # fields.h5 holds full 3x3 tensors
 from camclay9.sector_mesh import mesh_sector, mirrored_half, msh41, read_msh
 from test_contact import read_history, run, tangent_checks  # the elastic driver on a scene; its history
@@ -310,8 +310,8 @@ def test_bad_copies(tmp_path, copies, kin, word):
 
 def krylov_per_newton(proc):
     """The run's Krylov iterations per Newton iteration, from its summary line."""
-    newton = int(re.search(r"(\d+) Newton iterations", proc.stdout).group(1))
-    return int(re.search(r"(\d+) Krylov iterations", proc.stdout).group(1)) / newton
+    s = summary_line(proc.stdout)
+    return s["krylov_iterations"] / s["newton_iterations"]
 
 
 def petsc_binary_matrix(path):

@@ -37,7 +37,7 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
   s->refactor_its = o->refactor_its, s->rtol_tight = o->rtol_tight, s->refactor = PETSC_TRUE;
   s->check = o->check_solve;
   /* the operator: with a kept factorisation or preconditioner the matrix-free tangent (K is assembled only to be
-     factored or to set GAMG up), otherwise K itself */
+     factored or to set the multigrid up), otherwise K itself */
   PetscCall(nest_of(ct, kept(s) ? Kmf : K, &s->A));
   if (kept(s)) PetscCall(nest_of(ct, K, &s->Apc));
   else {
@@ -80,8 +80,9 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
     PetscCall(PCFieldSplitSetIS(pc, "u", s->is[0]));
     PetscCall(PCFieldSplitSetIS(pc, "contact", s->isrl));
     PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
-    /* the lower factorisation: one GAMG cycle per outer iteration where the full one takes two (on 8 steps of the P2
-       sector at 24 k unknowns 660 outer iterations against 647, 15.1 s CPU against 22.2, measured by hand) */
+    /* the lower factorisation: one multigrid cycle per outer iteration where the full one takes two (GAMG on the P2
+       block, 8 steps of the sector at 24 k unknowns: 660 outer iterations against 647, 15.1 s CPU against 22.2,
+       measured by hand) */
     PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_LOWER));
     /* the Schur complement's preconditioner: A11 - A10 diag(K)^-1 A01, an arrow matrix (the indenter
        row and column, a diagonal), assembled in indent_solver_solve */
@@ -330,7 +331,7 @@ static PetscErrorCode solve_split(IndentSolver *s, Contact *ct, PetscBool tight,
     PetscCall(MatAssemblyEnd(s->Apc, MAT_FINAL_ASSEMBLY));
     PetscCall(KSPSetOperators(s->ksp, s->A, s->Apc));
     if (s->P && s->setups == 1 && fresh) PetscCall(pmg_configure(s));
-    if (s->setups > 1 || !fresh) { /* the nest's assembly touches K's state: keep GAMG by the PC's reuse flag */
+    if (s->setups > 1 || !fresh) { /* the nest's assembly touches K's state: keep the multigrid by the PC's reuse flag */
       PC       pc;
       KSP     *sub;
       PetscInt nsub;

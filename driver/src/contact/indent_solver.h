@@ -23,7 +23,7 @@
  *               P1 space of the same mesh, fe_pmg.h; -indent_fieldsplit_pmg false: GAMG on P2) and the
  *               Schur complement's "selfp" approximation, assembled here and factored, for the small block (inner
  *               solves preonly: the outer GMRES alone iterates). The operator is the matrix-free tangent, as on the
- *               direct path; K is assembled, and GAMG set up on it, only when the hierarchy is rebuilt, by the
+ *               direct path; K is assembled, and the multigrid set up on it, only when the hierarchy is rebuilt, by the
  *               direct path's rule with the Krylov iterations counted beyond those of the first solve on the
  *               set-up; the contact block and its Schur approximation follow the active set at every solve. Its
  *               memory grows with the unknowns, not with a factorisation's fill (docs/contact.md, "The field
@@ -54,7 +54,7 @@ typedef struct {
   IS        is[3], isrl; /* u, u_r, lambda in the flat layout; u_r and lambda together */
   Vec       X, F;        /* flat work vectors */
   KSP       ksp;
-  PetscInt  refactor_its; /* the cost of a factorisation or GAMG set-up in Krylov iterations; 0: one at every solve */
+  PetscInt  refactor_its; /* the cost of a factorisation or multigrid set-up in Krylov iterations; 0: one at every solve */
   PetscInt  extra_its;    /* Krylov iterations since the last factorisation or set-up beyond a fresh one's (count_extra) */
   PetscInt  base_its[2];  /* fieldsplit: the Krylov iterations of the first solve on the set-up, loose and tight (-1: none) */
   PetscReal rtol, rtol_tight; /* GMRES' relative tolerances, loose and tight */

@@ -75,7 +75,7 @@ static PetscErrorCode prolongation_rows(const FeSpace *sp, const PetscScalar *ca
   for (PetscInt p = pStart; p < pEnd; p++) {
     PetscInt        loff, ncone = 1, coff[2];
     const PetscInt *cone = &p;
-    PetscReal       Re[9], Ra[9];
+    PetscReal       Re[9], Ra[18]; /* the point's frame; its one or two vertices' */
     PetscCall(point_rows(ls, gs, p, dim, rows, &owned));
     if (!owned) continue;
     PetscCheck((p >= vStart && p < vEnd) || (p >= eStart && p < eEnd), PETSC_COMM_SELF, PETSC_ERR_SUP,
@@ -87,15 +87,17 @@ static PetscErrorCode prolongation_rows(const FeSpace *sp, const PetscScalar *ca
       PetscCall(DMPlexGetCone(dm, p, &cone));
       PetscCheck(ncone == 2, PETSC_COMM_SELF, PETSC_ERR_PLIB, "edge %d with %d vertices", (int)p, (int)ncone);
     }
-    for (PetscInt a = 0; a < ncone; a++) PetscCall(PetscSectionGetOffset(ls, cone[a], &coff[a]));
+    for (PetscInt a = 0; a < ncone; a++) {
+      PetscCall(PetscSectionGetOffset(ls, cone[a], &coff[a]));
+      PetscCall(fe_constraint_node_frame(&sp->con, coff[a], &Ra[a * 9]));
+    }
     for (PetscInt d = 0; d < dim; d++) {
       if (rows[d] < 0) continue;
       for (PetscInt a = 0; a < ncone; a++) {
-        PetscCall(fe_constraint_node_frame(&sp->con, coff[a], Ra));
         for (PetscInt k = 0; k < dim; k++) {
           const PetscInt col = (PetscInt)PetscRealPart(ca[coff[a] + k]);
           PetscReal      v = 0;
-          for (PetscInt i = 0; i < dim; i++) v += Re[i * dim + d] * Ra[i * dim + k];
+          for (PetscInt i = 0; i < dim; i++) v += Re[i * dim + d] * Ra[a * 9 + i * dim + k];
           if (col >= 0 && PetscAbsReal(v) > 1e-14) PetscCall(MatSetValue(P, rows[d], col, v / ncone, INSERT_VALUES));
         }
       }
