@@ -10,6 +10,7 @@ indentation (issue 12), on the linear-elastic UMAT (E = 1000, nu = 0.3):
 - bad mirror input: a zero normal, a group that is not a plane with the normal given, a mirror that is not one
   of the material (BP)."""
 import math
+import re
 from pathlib import Path
 
 import h5py
@@ -360,3 +361,18 @@ def test_p2_field_split_multigrid(tmp_path):
     run(text, tmp_path / "again", args=["-indent_solver", "fieldsplit", "-checkpoint_every", "1", "-max_steps", "1"])
     again = run(text, tmp_path / "again", args=["-indent_solver", "fieldsplit", "-restart"], np_=2)
     assert len(again) == len(ref) and np.abs(again["load"][1:] / ref["load"][1:] - 1).max() < 1e-8
+
+
+def test_partition_cuts_the_mesh_at_an_interface(tmp_path):
+    """On 2 ranks the mesh is cut by a graph partitioner (fe_mesh.c; docs/parallel.md, "The partition"): the vertices
+    held by a rank that does not own them are those of the interface between the two parts, which for a bisection of a
+    3D mesh of N vertices grows as N^(2/3) (a surface against a volume). The bound 2 N^(2/3) holds with room; the simple
+    partitioner, which cuts the cells in gmsh's order, leaves about 80 % of the vertices on both ranks here and fails it."""
+    msh = mesh_sector(tmp_path / "s.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
+    p = run(sector_scene(msh), tmp_path / "o", args=["-max_steps", "1"], np_=2, check=False)
+    assert p.returncode == 0, p.stdout + p.stderr
+    m = re.search(r"partition: 2 ranks \((\w+)\), (\d+) vertices, (\d+) copies", p.stdout)
+    assert m, p.stdout
+    n, copies = int(m.group(2)), int(m.group(3))
+    print(f"{m.group(1)}: {copies} copies of {n} vertices (bound 2 N^(2/3) = {2 * n ** (2 / 3):.0f})")
+    assert copies <= 2 * n ** (2 / 3)

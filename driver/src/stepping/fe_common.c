@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include <petscviewerhdf5.h>
 
@@ -10,6 +11,17 @@
 #include "../point/point_solve.h"
 
 const char *const fe_common_xyz[3] = {"x", "y", "z"};
+
+/* The memory high-water mark of the run's ranks [MB]: mb[0] the largest rank's, mb[1] the sum over the ranks. */
+PetscErrorCode fe_common_max_rss(MPI_Comm comm, double mb[2]) {
+  struct rusage ru;
+  PetscFunctionBeginUser;
+  getrusage(RUSAGE_SELF, &ru);
+  mb[0] = mb[1] = ru.ru_maxrss / 1024.0; /* kB on Linux */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm));
+  PetscFunctionReturn(0);
+}
 
 HistValue fe_common_umat_calls(const void *ctx, const RunnerRow *row, int k) {
   return (HistValue){.i = (long)fe_problem_diag(((const FeCommon *)ctx)->p)->umat_calls};

@@ -6,7 +6,6 @@
 #include <petscsnes.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <time.h>
 
 #include "../fe/fe_state.h"
@@ -320,7 +319,6 @@ static PetscErrorCode solver_summary(FeSolver *f, MPI_Comm comm) {
   KSPType     kt;
   PCType      pt;
   MatSolverType st = NULL;
-  struct rusage ru;
   double      mb[2], cpu = (double)(clock() - f->cpu0) / CLOCKS_PER_SEC;
   PetscFunctionBeginUser;
   PetscCall(SNESGetKSP(f->snes, &ksp));
@@ -328,10 +326,7 @@ static PetscErrorCode solver_summary(FeSolver *f, MPI_Comm comm) {
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCGetType(pc, &pt));
   if (pt && !strcmp(pt, PCLU)) PetscCall(PCFactorGetMatSolverType(pc, &st));
-  getrusage(RUSAGE_SELF, &ru);
-  mb[0] = mb[1] = ru.ru_maxrss / 1024.0; /* kB on Linux */
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm));
+  PetscCall(fe_common_max_rss(comm, mb));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_MAX, comm));
   PetscCall(PetscPrintf(comm, "fe solver: %s/%s%s%s, %ld Krylov iterations, %ld preconditioner set-ups, max RSS %.1f MB per rank, %.1f MB in all, CPU %.2f s (the slowest rank)\n",
                         kt, pt, st ? "/" : "", st ? st : "", f->lin_its, f->setups, mb[0], mb[1], cpu));

@@ -48,6 +48,7 @@ extern const char *const fe_common_xyz[3];
     {"reaction", "%.12g", 3, fe_common_xyz, fe_common_reaction, NULL, NULL}
 PetscErrorCode fe_common_init(FeCommon *c, FeScene *sc, FeProblem *p, const RunnerOptions *opt);
 PetscErrorCode fe_common_finish(FeCommon *c);
+PetscErrorCode fe_common_max_rss(MPI_Comm comm, double mb[2]);
 void           fe_common_stage_begin(FeCommon *c, int s, int resumed, StageView *v);
 PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq);
 /* The UMAT's own step control (worst_point) for the converged state: the step's, or PROPS tol; 0: off. */

@@ -236,6 +236,7 @@ static void report(void *ctx, double *v) {
 /* After the run: the output closed, the summary line, the contact solver freed. */
 static PetscErrorCode finish(Indent *d, MPI_Comm comm, const RunnerSummary *sum, const RunnerOptions *opt) {
   FeProblem *p = d->c.p;
+  double     mb[2];
   PetscFunctionBeginUser;
   PetscCall(fe_common_finish(&d->c));
   PetscCall(PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
@@ -243,6 +244,8 @@ static PetscErrorCode finish(Indent *d, MPI_Comm comm, const RunnerSummary *sum,
                         d->c.sc->name, sum->steps, (int)d->in.its_total, d->in.predictor ? "on" : "off", sum->cutbacks, sum->rejected_error,
                         (int)d->in.cycles, sum->umat_calls, fe_problem_diag(p)->assembly_seconds, d->in.sol.seconds, d->in.sol.fieldsplit ? "fieldsplit" : "direct",
                         (int)d->in.sol.linear_its, (int)d->in.sol.setups, sum->wall, opt->outdir));
+  PetscCall(fe_common_max_rss(comm, mb));
+  PetscCall(PetscPrintf(comm, "memory: max RSS %.1f MB per rank, %.1f MB in all\n", mb[0], mb[1]));
   PetscCall(semismooth_destroy(&d->in));
   PetscFunctionReturn(0);
 }
