@@ -15,12 +15,18 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
   sector    input/nanoindent_kerogen_sector.yaml (P2), h_tip 0.12, 0.0707, 0.05, 0.0425, 0.034 um (h_far 4 h_tip): the
             first 8 steps of the loading (the first three are the 3D mesh study's rungs, docs/performance.md
             "3D indentation"); h_tip 0.018 (about a million unknowns) on the field splits alone
-  lhu0.018  that million-unknown sector through its whole load, hold and unload on 2 ranks, in about 23 steps (the
-            stages' error tolerance 0.3: LOOSE), the field split alone; lhu0.12, lhu0.0707, lhu0.0425 the coarser
-            sectors alike on one rank
+  lhu0.12, lhu0.0707, lhu0.0425  the sector through its whole load, hold and unload in about 23 steps (the stages'
+            error tolerance 0.3: LOOSE), one rank
+  fix0.12 ... fix0.019  the sector's uniform ladder from 5.9 k to 1.03 M unknowns, each through its whole load, hold and
+            unload on the same fixed steps (FIXED), the field split on 2 ranks: Krylov iterations per Newton iteration
+            from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose differences between rungs are the
+            mesh's alone (the steps' error is the same on every rung)
+  ranks0.0425  the first 4 steps at 101 k unknowns on 2 ranks, with the driver's graph partitioner and with the
+            simple one (the cells in the mesh file's order), with -log_view's events
 
 CPU: user + system of the driver and its gmsh (wait4), median of --repeats runs (one run for the cases of ONCE); memory:
-the driver's peak resident set (the largest of the repeats). The same steps are run by every path (-max_steps), so the two compare at equal
+the driver's peak resident set (the largest of the repeats; on 2 ranks the largest rank's, and the ranks' sum from the
+driver's 'memory:' line). The same steps are run by every path (-max_steps), so the two compare at equal
 work; the Newton iterations say whether a path's directions cost the Newton extra iterations.
 
   bench/contact_solver_bench.py [--repeats 3] [--cases axi1,axi2,sector0.12,...] [--solvers 'direct;fieldsplit;...'] [--merge] [--no-doc]
@@ -33,6 +39,8 @@ Writes its numbers into the results store (docs/results/contact_solver.json), wh
 that store (camclay9.contact_solver_study; tools/doc_numbers.py checks the section against the store).
 """
 import argparse
+import json
+import re
 import statistics
 import sys
 import tempfile
@@ -51,7 +59,9 @@ BEFORE = GAMG + ["-indent_refactor_its", "0", "-indent_pc_fieldsplit_schur_fact_
 # the displacement block solved exactly (a fresh MUMPS LU at every Newton iteration): what is left is the Schur estimate's
 EXACT_U = GAMG + ["-indent_refactor_its", "0", "-indent_fieldsplit_u_pc_type", "lu", "-indent_fieldsplit_u_pc_factor_mat_solver_type", "mumps"]
 SOLVERS = {"direct": ["-indent_solver", "direct"], "fieldsplit": ["-indent_solver", "fieldsplit"], "fieldsplit, GAMG on P2": GAMG,
-           "fieldsplit, before": BEFORE, "fieldsplit, LU on u": EXACT_U}
+           "fieldsplit, before": BEFORE, "fieldsplit, LU on u": EXACT_U,
+           # the cells cut in the mesh file's order, as the driver did before it took a graph partitioner
+           "fieldsplit, simple partition": ["-indent_solver", "fieldsplit", "-petscpartitioner_type", "simple"]}
 ALL = ("direct", "fieldsplit", "fieldsplit, GAMG on P2", "fieldsplit, before")
 SPLITS = ("direct", "fieldsplit", "fieldsplit, GAMG on P2")
 # case: (scene in input/, mesh overrides, order, steps, solvers)
@@ -67,17 +77,32 @@ CASES = {
     "lr1": ("loading_rate_a1", {}, None, 60, SPLITS),
     # about a million unknowns: the field split alone (the direct path's factors would not fit in 23 GB)
     "sector0.018": ("nanoindent_kerogen_sector", {"h_tip": 0.018, "h_far": 0.072}, None, 8, SPLITS[1:]),
-    # the same mesh through its whole load, hold and unload (steps None: the whole run), on 2 ranks, with the steps of
-    # LOOSE (about 23 where the shipped control takes about 550)
-    "lhu0.018": ("nanoindent_kerogen_sector", {"h_tip": 0.018, "h_far": 0.072}, None, None, ("fieldsplit",)),
-    # ... and coarser sectors alike, one rank: how the iterations grow once the whole contact is active
+    # the sector through its whole load, hold and unload (steps None: the whole run), one rank, with the steps of LOOSE
+    # (about 23 where the shipped control takes about 550): how the iterations grow once the whole contact is active
     "lhu0.12": ("nanoindent_kerogen_sector", {"h_tip": 0.12, "h_far": 0.48}, None, None, ("direct", "fieldsplit", "fieldsplit, LU on u")),
     "lhu0.0707": ("nanoindent_kerogen_sector", {"h_tip": 0.07071, "h_far": 0.28284}, None, None,
                   ("direct", "fieldsplit", "fieldsplit, LU on u")),
     "lhu0.0425": ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, None, ("direct", "fieldsplit")),
 }
-ONCE = ("sector0.05", "sector0.0425", "sector0.034", "sector0.018", "lhu0.0707", "lhu0.0425", "lhu0.018")  # one run each
-RANKS = {"lhu0.018": 2}
+# the sector's uniform ladder to a million unknowns on the steps of FIXED, the field split on 2 ranks: the Krylov
+# iterations from 1e5 to 1e6 unknowns under a whole load, hold and unload, and the mesh's share of the reported outputs at
+# equal time steps (the converged 3D answer's cross-check beyond the direct path's memory)
+FIX = {"fix0.12": (0.12, 0.48), "fix0.0707": (0.07071, 0.28284), "fix0.0425": (0.0425, 0.17), "fix0.034": (0.034, 0.136),
+       "fix0.019": (0.019, 0.076)}
+# ... and BN's sector alike: the same geometry at 25 times the size (input/microindent_BN_sector.yaml), so the same
+# unknowns at 25 times the element sizes
+FIX.update({f"bnfix{25 * t:.4g}": (round(25 * t, 6), round(25 * f, 6)) for t, f in list(FIX.values())})
+CASES.update({c: ("microindent_BN_sector" if c.startswith("bn") else "nanoindent_kerogen_sector", {"h_tip": t, "h_far": f},
+                  None, None, ("fieldsplit",)) for c, (t, f) in FIX.items()})
+# fixed steps, equal on every mesh: the load's 20 s (the depth of 200 nm near 205 s; BN's 13.3 s, 5 um near 140 s), the
+# hold's 10 s, the unload's 5 s
+FIXED = [{"count": 30}, {"count": 6}, {"count": 4}]
+# 2 ranks, the first 4 steps: the graph partitioner against the simple one (docs/parallel.md, "The partition")
+CASES["ranks0.0425"] = ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 4,
+                        ("fieldsplit", "fieldsplit, simple partition"))
+ONCE = ("sector0.05", "sector0.0425", "sector0.034", "sector0.018", "lhu0.0707", "lhu0.0425",
+        "ranks0.0425") + tuple(FIX)  # one run each
+RANKS = dict({"ranks0.0425": 2}, **{c: 2 for c in FIX})
 # a whole run in few steps: the stages' error tolerance 0.3 (shipped 1.5e-2 and 0.1), the load's first step 5 s
 LOOSE = {c: [{"first": 5, "max": 100}, {"first": 5, "max": 30}, {"first": 5, "max": 10}] for c in CASES if c.startswith("lhu")}
 
@@ -93,24 +118,57 @@ def scene_file(case, work):
         d["mesh"]["order"] = order
     for stage, steps in zip(d["stages"], LOOSE.get(case, [])):
         stage["steps"].update(steps, error={"measure": "output", "tol": 0.3})
+    for stage, steps in zip(d["stages"], FIXED if case in FIX else []):
+        stage["steps"] = dict(steps)
     out = work / f"{case}.yaml"
     out.write_text(yaml.safe_dump(d, sort_keys=False))
     return out
 
 
-def run(scene, steps, solver, out, ranks=1):
+# PETSc's -log_view events kept from the runs of LOG_VIEW's cases: where a Newton iteration's time goes
+EVENTS = ("CC9 residual+UMAT", "CC9 Jacobian", "CC9 contact", "CC9 tangent apply", "CC9 contact solve", "PCSetUp",
+          "KSPSolve_FS_0", "KSPSolve_FS_Schu", "MatMult", "VecScatterEnd")
+LOG_VIEW = ("ranks0.0425",)
+
+
+def events(text):
+    """{event: its time [s], the largest over the ranks} of EVENTS from a -log_view table."""
+    out = {}
+    for e in EVENTS:
+        m = re.search(rf"^{re.escape(e)}\s+\d+ [0-9.]+ ([0-9.]+e[+-]\d+)", text, re.M)
+        if m:
+            out[e] = float(m[1])
+    return out
+
+
+def run(scene, steps, solver, out, ranks=1, log_view=False):
     """One run (steps None: the whole run): its CPU [s] (user + system, its children's included: every rank's) and peak
     memory [MB] (camclay9.run_measured: the largest process's), and the driver's counts from its summary line."""
     out.mkdir(parents=True, exist_ok=True)
-    opts = (["-max_steps", steps] if steps else []) + SOLVERS[solver]
+    opts = (["-max_steps", steps] if steps else []) + SOLVERS[solver] + (["-log_view"] if log_view else [])
     log, cmd = out / "driver.out", driver_command(scene, out, opts, root=ROOT, ranks=ranks)
     rc, cpu, mem, _ = run_measured(cmd, log, timeout=TIMEOUT * (4 if steps is None else 1))
     if rc:
         raise SystemExit(f"{' '.join(cmd)} failed ({rc}):\n{log.read_text()[-2000:]}")
     text = log.read_text()
     s, m = summary_line(text), mesh_line(text)
+    mem_all = re.search(r"memory: max RSS [0-9.]+ MB per rank, ([0-9.]+) MB in all", text)
+    part = re.search(r"partition: \d+ ranks \((\w+)\), (\d+) vertices, (\d+) copies", text)
     return {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
-            "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks}
+            "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks, **outputs(out / "summary.json"),
+            **({"partition": {"type": part[1], "vertices": int(part[2]), "copies": int(part[3])}} if part else {}),
+            **({"mem_all": float(mem_all[1])} if mem_all and ranks > 1 else {}),
+            **({"events": events(text)} if log_view else {})}
+
+
+def outputs(summary):
+    """A whole run's reported outputs from its summary.json ({} for a run that stops early): the load at the end of
+    loading, the creep depth (the hold's change of depth) and the residual depth, as docs/contact.md's ladder reads them."""
+    st = {x["name"]: x for x in json.loads(summary.read_text())["stages"]}
+    if not {"load", "hold", "unload"} <= set(st):
+        return {}
+    return {"outputs": {"P": st["load"]["end"]["load"], "creep": st["hold"]["change"]["depth"] * 1e3,
+                        "h_res": st["unload"]["end"]["depth"] * 1e3}}
 
 
 def measure(case, repeats, work, solvers=None):
@@ -118,11 +176,13 @@ def measure(case, repeats, work, solvers=None):
     scene = scene_file(case, work)
     rows = []
     for solver in (x for x in CASES[case][4] if solvers is None or x in solvers):
-        runs = [run(scene, CASES[case][3], solver, work / f"{case}_{k}", RANKS.get(case, 1)) for k in range(repeats)]
+        runs = [run(scene, CASES[case][3], solver, work / f"{case}_{k}", RANKS.get(case, 1), case in LOG_VIEW)
+                for k in range(repeats)]
         r = dict(runs[-1], case=case, solver=solver, repeats=repeats, cpu=statistics.median(x["cpu"] for x in runs),
                  mem=max(x["mem"] for x in runs))
         print(f"{case:13s} {solver:19s} {r['unknowns']:7d} unknowns  {r['newton']:4d} Newton  {r['krylov']:6d} Krylov  "
-              f"CPU {r['cpu']:7.2f} s  peak {r['mem']:7.0f} MB", flush=True)
+              f"CPU {r['cpu']:7.2f} s  peak {r['mem']:7.0f} MB"
+              + "".join(f"  {k} {v:.5g}" for k, v in r.get("outputs", {}).items()), flush=True)
         rows.append(r)
     return rows
 
@@ -143,7 +203,9 @@ def main(argv=None):
         for case in a.cases.split(","):
             rows += measure(case, 1 if case in ONCE else a.repeats, Path(tmp), solvers)
     stamp = time.strftime("%Y-%m-%d")
-    rows = [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats", "ranks")} for r in rows]
+    rows = [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats", "ranks", "outputs",
+                               "partition", "mem_all", "events")
+             if k in r} for r in rows]
     command = f"bench/contact_solver_bench.py --repeats {a.repeats} --cases {a.cases}" + (f" --solvers '{a.solvers}'" if a.solvers else "")
     store = {"provenance": {"command": command, "date": stamp}, "rows": rows}
     if a.merge:   # the store's other rows kept (read now, as late as possible), this run's command listed beside its own
@@ -153,11 +215,12 @@ def main(argv=None):
         merged = study.merges(old["provenance"]) + [{"command": command + " --merge", "date": stamp,
                                                      "rows": sorted(f"{c}: {s}" for c, s in run)}]
         store = {"provenance": dict(old["provenance"], merged=merged), "rows": kept + rows}
+    if not a.no_doc:   # the store first: a section that cannot be written loses no run
+        results_store.save(study.STORE, store)
     section = study.section(store)   # the section from the store's numbers, as tools/doc_numbers.py checks it
     print(section)
     if not a.no_doc:
         replace_section(study.TITLE, section)
-        results_store.save(study.STORE, store)
 
 
 if __name__ == "__main__":

@@ -5,19 +5,25 @@ history (one 100 s step at the confinement, then creep under the 40 MPa deviator
 preconditioner set-ups (factorisations), Krylov iterations, memory, and the largest difference of the axial
 strain history from plain LU (PETSc's own, a new factorisation at every Newton iteration) in the same run.
 Medians of repeats, interleaved. Writes the section "FE solver: defaults by measurement" of
-docs/performance.md.
+docs/performance.md. --main-job instead runs input/triaxial.yaml as tools/run.sh does (2 ranks), the set-up before
+issue 13 against the default, and writes its numbers into the results store docs/results/fe_main_job.json and the
+section "FE solver: the triaxial main job" from it (camclay9.fe_main_job_study; tools/doc_numbers.py checks it).
 
 Usage: bench/fe_solver_bench.py [--sizes 5.3,2.5,1.45] [--repeats 2] [--max-steps 0,0,20] [--ranks 1]
+       bench/fe_solver_bench.py --main-job [--repeats 3]
 """
 import argparse
 import os
 import re
+import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
-from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9 import mesh_line, read_history, results_store, run_driver, summary_line
+from camclay9 import fe_main_job_study as main_study
 from camclay9.launch import MPIEXEC
 from camclay9.performance_doc import replace_section
 
@@ -75,30 +81,31 @@ def run(scene, out, ranks, opts, max_steps=0):
 
 
 OLD = "-fe_refactor_its 0 -ksp_type preonly -fe_coo false -mat_mumps_icntl_7 7"  # main before issue 13 on 2 ranks
-MAIN_TITLE = "## FE solver: the triaxial main job"
+SETUPS = {"old (MUMPS each Newton iteration, MatSetValues)": OLD, "default": ""}
 
 
 def main_job(repeats, tmp):
-    """input/triaxial.yaml as tools/run.sh runs it (2 ranks), the old set-up against the new, interleaved."""
+    """input/triaxial.yaml as tools/run.sh runs it (2 ranks), the old set-up against the default, interleaved: the
+    store's rows (camclay9.fe_main_job_study)."""
     scene = Path(tmp) / "main.yaml"
     scene.write_text((ROOT / "input" / "triaxial.yaml").read_text().replace("../meshes/", f"{ROOT}/meshes/"))
-    res = {"old (MUMPS each Newton iteration, MatSetValues)": [], "new default": []}
+    res = {name: [] for name in SETUPS}
     for k in range(repeats):
-        for name, opts in zip(res, (OLD, "")):
-            res[name].append(run(scene, Path(tmp) / f"main_{k}_{len(res[name])}_{name[:3]}", 2, opts))
-    lines = ["| set-up | steps | Newton its | Krylov its | set-ups | wall [s] | CPU [s] (slowest rank) | creep 1 h | creep 10 h | "
-             "rel. difference 10 h |", "|---|---|---|---|---|---|---|---|---|---|"]
-    ref = None
+        for name, opts in SETUPS.items():
+            r = run(scene, Path(tmp) / f"main_{k}_{len(res[name])}_{name[:3]}", 2, opts)
+            if "failed" in r:
+                raise SystemExit(f"main job, {name}: failed\n{r['failed']}")
+            res[name].append(r)
+    rows = []
     for name, runs in res.items():
         r = median_run(runs)
-        rows = np.where(r["stage"] == 1)[0]
-        t = r["time"][rows] - r["time"][rows[0]]
-        eps = -(r["eps33"][rows] - r["eps33"][rows[0]])
-        creep = [float(np.interp(x, t, eps)) for x in (3600.0, 36000.0)]
-        ref = ref or creep
-        lines.append(f"| {name} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['setups']} | {r['solve_wall']:.2f} | "
-                     f"{r['solve_cpu']:.2f} | {creep[0]:.10e} | {creep[1]:.10e} | {abs(creep[1] - ref[1]) / ref[1]:.1e} |")
-    return lines
+        at = np.where(r["stage"] == 1)[0]
+        t = r["time"][at] - r["time"][at[0]]
+        eps = -(r["eps33"][at] - r["eps33"][at[0]])
+        rows.append({"setup": name, "options": SETUPS[name], "steps": r["steps"], "newton": r["newton"],
+                     "krylov": r["krylov"], "setups": r["setups"], "wall": r["solve_wall"], "cpu": r["solve_cpu"],
+                     "creep_1h": float(np.interp(3600.0, t, eps)), "creep_10h": float(np.interp(36000.0, t, eps))})
+    return rows
 
 
 def median_run(runs):
@@ -119,15 +126,17 @@ def main(argv=None):
     ap.add_argument("--main-job", action="store_true", help="only the main job, old set-up against new (2 ranks)")
     a = ap.parse_args(argv)
     if a.main_job:
+        load = os.getloadavg()[0]
         with tempfile.TemporaryDirectory() as tmp:
-            lines = main_job(a.repeats, tmp)
-        print("\n".join(lines))
+            rows = main_job(a.repeats, tmp)
+        rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+        store = {"provenance": {"command": f"bench/fe_solver_bench.py --main-job --repeats {a.repeats}",
+                                "date": time.strftime("%Y-%m-%d"), "rev": rev, "load": [load, os.getloadavg()[0]]}, "rows": rows}
+        section = main_study.section(store)
+        print(section)
         if not a.no_doc:
-            replace_section(MAIN_TITLE, f"{MAIN_TITLE}\n\nCommand: `bench/fe_solver_bench.py --main-job --repeats {a.repeats}`. "
-                            "`input/triaxial.yaml` on 2 ranks as `tools/run.sh` runs it (713 tets, tol 1e-6, hold to steady "
-                            "state then 10 h of creep), the set-up before issue 13 (`" + OLD + "`) against the new "
-                            "default, interleaved, medians. Wall and CPU of the stepping. Shared, loaded 2-core machine.\n\n"
-                            + "\n".join(lines) + "\n")
+            results_store.save(main_study.STORE, store)
+            replace_section(main_study.TITLE, section)
         return 0
     sizes = [float(x) for x in a.sizes.split(",")]
     caps = [int(x) for x in a.max_steps.split(",")]

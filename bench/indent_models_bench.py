@@ -9,27 +9,32 @@ held on the axis (the sector's exact counterpart: the same elements).
 
 Reported: the load at the end of loading (h = 200 nm, the indenter's whole load: the scenes say indenter.copies),
 the creep depth over the 60 s hold, the residual depth after unloading, steps, wall and CPU
-time; differences against the 3D half model (the converged 3D reference is issue 12's item 2, not yet there).
+time; differences against the 3D half model (each model against the converged 3D answer: bench/indent_convergence_bench.py).
 The scenes run as shipped (the output error measure, tol 1.5e-2), fields off. Wall and CPU times are medians of
 --repeats runs on a shared, loaded machine (2 cores, several users): read the CPU time.
 
-Writes the section "## Indentation: 3D half model, sector and axisymmetric twin" of docs/performance.md.
-Usage: bench/indent_models_bench.py [--repeats 2] [--models half,sector,hexhalf,mirrored,axi] [--no-table]
+Writes its numbers into the results store docs/results/indent_models.json and the section "## Indentation: 3D half
+model, sector and axisymmetric twin" of docs/performance.md from it (camclay9.indent_models_study; tools/doc_numbers.py
+checks the section against the store).
+Usage: bench/indent_models_bench.py [--repeats 2] [--models half,sector,hexhalf,mirrored,axi] [--no-doc]
 """
 import argparse
 import re
+import subprocess
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
 
+from camclay9 import results_store
+from camclay9 import indent_models_study as study
 from camclay9.performance_doc import replace_section
 from camclay9.sector_mesh import mesh_sector, mirrored_half, msh41
 from step_control_bench import absolute, outputs, run
 
 
 ROOT = Path(__file__).resolve().parents[1]
-TITLE = "## Indentation: 3D half model, sector and axisymmetric twin"
 S3 = "0.8660254037844386"
 
 
@@ -75,9 +80,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--models", default="half,sector,hexhalf,mirrored,axi")
-    ap.add_argument("--no-table", action="store_true")
+    ap.add_argument("--no-doc", action="store_true", help="print only; leave the store and docs/performance.md")
     a = ap.parse_args()
-    res = {}
+    rows = []
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d)
         for m in a.models.split(","):
@@ -85,57 +90,20 @@ def main():
             t = text(tmp)
             runs = [run(t, tmp / f"{m}{k}") for k in range(a.repeats)]
             o = outputs(runs[0]["hist"])
-            res[m] = dict(label=label, o=o, steps=runs[0]["steps"], wall=np.median([r["wall"] for r in runs]),
-                          cpu=np.median([r["cpu"] for r in runs]), n=len(runs))
-            print(f"{m}: P = {o['load at end of loading']:.4f} uN, creep {o['creep depth'] * 1e3:.3f} nm, residual "
-                  f"{o['residual depth'] * 1e3:.2f} nm, {runs[0]['steps']} steps, wall {res[m]['wall']:.1f} s, "
-                  f"CPU {res[m]['cpu']:.1f} s", flush=True)
-    ref = res.get("half")
-    rows = []
-    for m, r in res.items():
-        o = r["o"]
-        diff = (lambda k: f"{o[k] / ref['o'][k] - 1:+.1%}") if ref and m != "half" else (lambda k: "ref.")
-        rows.append(f"| {r['label']} | {o['load at end of loading']:.2f} ({diff('load at end of loading')}) | "
-                    f"{o['creep depth'] * 1e3:.2f} ({diff('creep depth')}) | {o['residual depth'] * 1e3:.1f} "
-                    f"({diff('residual depth')}) | {r['steps']} | {r['wall']:.0f} / {r['cpu']:.0f} |")
-    table = ("| model | P at h = 200 nm [µN] | creep depth [nm] | residual depth [nm] | steps | wall / CPU [s] |\n"
-             "|---|---|---|---|---|---|\n" + "\n".join(rows) + "\n")
-    print(table)
-    if a.no_table:
-        return
-    n = min(r["n"] for r in res.values())
-    exact = ""
-    if "sector" in res and "mirrored" in res:
-        d = {k: abs(res["sector"]["o"][k] / res["mirrored"]["o"][k] - 1) for k in res["sector"]["o"]}
-        exact = (f"- **The sector is exact for this scene.** Against the half model made of three mirror images of its mesh "
-                 f"(tip held on the axis), it differs by {d['load at end of loading']:.0e} in P, "
-                 f"{d['creep depth']:.0e} in the creep depth and {d['residual depth']:.0e} in the residual depth "
-                 f"(the time-step control takes the same steps), at "
-                 f"{res['sector']['cpu'] / res['mirrored']['cpu']:.2f} of its CPU time.\n")
-    three = [m for m in ("sector", "hexhalf") if m in res]
-    keys = next(iter(res.values()))["o"]
-    spread = {k: max([abs(res[m]["o"][k] / ref["o"][k] - 1) for m in three] or [np.nan]) if ref else np.nan for k in keys}
-    section = f"""{TITLE}
-
-`bench/indent_models_bench.py` (issue 12, item 3): the nanoindentation on kerogen (Cam-Clay IX, φ = 0; load
-to 200 nm, hold 60 s, unload in 20 s) as shipped (the output error measure, tol 1.5e-2), on each model,
-against the 3D half model (the converged 3D answer and each model's error against it: "3D indentation: mesh
-convergence and the cheapest model"). P is the indenter's whole load (the scenes' indenter.copies). Times: medians of {n} runs each on a shared,
-loaded machine (2 cores, several users at once); the CPU time is the one to compare.
-
-{table}
-{exact}- **The 3D models' differences are their meshes'.** The cube, the hexagon's half and the sector are meshed
-  independently with the same grading (the shipped sector's mesh parameters). P agrees within {spread['load at end of loading']:.1%} and the
-  residual depth within {spread['residual depth']:.1%}, but the creep depth (a 10–14 nm difference of two depths near 200 nm) differs by
-  up to {spread['creep depth']:.0%} from one mesh to the next: at h_tip 0.05 the 3D creep depth is not converged in the mesh,
-  whatever the model. Its time-step error is smaller: the sector at tol 5e-3 instead of 1.5e-2 gives a creep
-  depth 2.7 % larger (10.45 nm; P +0.5 %, measured once by hand). The sector makes the refinement that
-  this needs about three times cheaper.
-- **The axisymmetric twin** differs by the tip's shape (Berkovich against the cone of its projected area) and by
-  the 3D meshes' stiffness (P1 tetrahedra this coarse are 10–15 % stiff, docs/contact.md); which is which is
-  issue 12's item 2.
-"""
-    replace_section(TITLE, section)
+            rows.append(dict(model=m, label=label, P=float(o["load at end of loading"]), creep=float(o["creep depth"]) * 1e3,
+                             h_res=float(o["residual depth"]) * 1e3, steps=runs[0]["steps"],
+                             wall=float(np.median([r["wall"] for r in runs])), cpu=float(np.median([r["cpu"] for r in runs]))))
+            print(f"{m}: P = {rows[-1]['P']:.4f} uN, creep {rows[-1]['creep']:.3f} nm, residual {rows[-1]['h_res']:.2f} nm, "
+                  f"{rows[-1]['steps']} steps, wall {rows[-1]['wall']:.1f} s, CPU {rows[-1]['cpu']:.1f} s", flush=True)
+    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    command = "bench/indent_models_bench.py" + (f" --repeats {a.repeats}" if a.repeats != 2 else "") + (
+        f" --models {a.models}" if a.models != ap.get_default("models") else "")
+    store = {"provenance": {"command": command, "date": time.strftime("%Y-%m-%d"), "rev": rev, "repeats": a.repeats}, "rows": rows}
+    section = study.section(store)
+    print(section)
+    if not a.no_doc:
+        results_store.save(study.STORE, store)
+        replace_section(study.TITLE, section)
 
 
 if __name__ == "__main__":

@@ -4,12 +4,16 @@ tools/doc_numbers.py.
 
 The store: {"provenance": {"command", "date", ...}, "rows": [...]}, each row {"case", "solver", "unknowns", "steps",
 "newton", "krylov", "cpu" [s], "mem" [MB], "repeats", "ranks" (1 if absent)} as the bench measured it (CPU the median of
-the repeats, summed over the ranks; memory the largest process's, the largest of the repeats); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
+the repeats, summed over the ranks; memory the largest process's, the largest of the repeats); on more than one rank
+also "mem_all" (the ranks' peaks summed [MB], the driver's 'memory:' line) and "partition" ({"type", "vertices",
+"copies"}: the driver's 'partition:' line); a whole run's row also "outputs" ({"P" [µN], "creep", "h_res" [nm]}); a
+row run with -log_view "events" ({event: seconds}); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
 {"command", "date", "rows" (or "cases")}: those rows (cases) rerun by the bench's --merge, in order. A row may also hold "cpu_ratio" and
 "mem_ratio", its CPU and memory over the direct path's on the same case as a table printed them from the run's full
 digits, where the store keeps only the table's digits of CPU and memory (rows taken over from an earlier table; the
 provenance says so); else the ratios are computed.
 """
+import re
 
 STORE = "contact_solver"
 TITLE = "## Contact solve: direct against field split"
@@ -49,6 +53,50 @@ def section(store, root=None):
     for r in rows:
         cpu_ratio, mem_ratio = ((f"{x:.2f}" for x in ratios(r, direct[r["case"]])) if r["case"] in direct else ("—", "—"))
         ranks = f" ({r['ranks']} ranks)" if r.get("ranks", 1) > 1 else ""
+        mem = f"{r['mem']:.0f}" + (f" ({r['mem_all']:.0f} in all)" if "mem_all" in r else "")
         lines.append(f"| {r['case']}{ranks} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
-                     f"{r['cpu']:.2f} | {cpu_ratio} | {r['mem']:.0f} | {mem_ratio} |")
-    return "\n".join(lines) + "\n"
+                     f"{r['cpu']:.2f} | {cpu_ratio} | {mem} | {mem_ratio} |")
+    return "\n".join(lines + partitions(rows) + breakdown(rows) + outputs_table(rows)) + "\n"
+
+
+def breakdown(rows):
+    """The -log_view events of the rows run with it [s, the largest over the ranks]: the project's (CC9 ...: the
+    residual with its UMAT calls, the Jacobian's assembly, the contact terms, the matrix-free tangent, the whole contact
+    solve) and PETSc's inside the contact solve (the multigrid's set-up, the displacement block's and the Schur
+    complement's solves, the matrix products, the wait for ghost values)."""
+    rows = [r for r in rows if r.get("events")]
+    if not rows:
+        return []
+    names = list(dict.fromkeys(e for r in rows for e in r["events"]))
+    return ["", "Where the time goes (-log_view, seconds, the largest over the ranks):", "",
+            "| case | solver | " + " | ".join(names) + " |", "|---|---|" + "---|" * len(names)] + [
+            f"| {r['case']} | {r['solver']} | " + " | ".join(f"{r['events'][e]:.1f}" if e in r["events"] else "—" for e in names)
+            + " |" for r in rows]
+
+
+def partitions(rows):
+    """How each 2-rank row's partition cut its mesh (the driver's 'partition:' line): the vertices held by a rank that
+    does not own them."""
+    parts = [r for r in rows if "partition" in r]
+    return ["", "Partitions (2 ranks): " + "; ".join(
+        f"{r['case']}, {r['solver']}: {r['partition']['type']}, {r['partition']['copies']} of {r['partition']['vertices']} "
+        f"vertices also on the other rank ({100 * r['partition']['copies'] / r['partition']['vertices']:.0f} %)" for r in parts) + "."] if parts else []
+
+
+def outputs_table(rows):
+    """The rows that ran a whole load, hold and unload with their outputs (the bench's fix... and bnfix... cases: equal
+    fixed steps on every mesh), each output also relative to the finest mesh's of its family (the case's name without
+    its size): the mesh's share alone, the time steps' being equal."""
+    rows = sorted((r for r in rows if "outputs" in r), key=lambda r: r["unknowns"])
+    if not rows:
+        return []
+    family = lambda r: re.match(r"[a-z]+", r["case"])[0]
+    fine = {family(r): r["outputs"] for r in rows}   # the largest of each family, the rows sorted by size
+    rel = lambda r, k: f"{r['outputs'][k]:.5g} ({100 * (r['outputs'][k] / fine[family(r)][k] - 1):+.2f}%)"
+    return ["", "Reported outputs of the whole runs on equal fixed steps (in brackets: against the finest rung of the same "
+            "scene): the load at the end of loading, the creep depth and the residual depth. The steps' own error is the same "
+            "on every mesh and is in every row (these fixed steps give a creep depth well below the shipped scenes' adaptive "
+            "steps'), so the differences between rows are the mesh's share alone.", "",
+            "| case | unknowns | steps | P [µN] | creep [nm] | h_res [nm] |", "|---|---|---|---|---|---|"] + [
+            f"| {r['case']} | {r['unknowns']} | {r['steps']} | {rel(r, 'P')} | {rel(r, 'creep')} | {rel(r, 'h_res')} |"
+            for r in sorted(rows, key=lambda r: (family(r), r["unknowns"]))]
