@@ -14,13 +14,15 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
   lr1       input/loading_rate_a1.yaml as shipped (plane strain, P2, 76 k unknowns): the first 60 steps
   sector    input/nanoindent_kerogen_sector.yaml (P2), h_tip 0.12, 0.0707, 0.05, 0.0425, 0.034 um (h_far 4 h_tip): the
             first 8 steps of the loading (the first three are the 3D mesh study's rungs, docs/performance.md
-            "3D indentation"); h_tip 0.018 (about a million unknowns) on the field splits alone
+            "3D indentation"); h_tip 0.018 (1.21 M unknowns) on the field splits alone, 0.019 (1.03 M) on the field split
   lhu0.12, lhu0.0707, lhu0.0425  the sector through its whole load, hold and unload in about 23 steps (the stages'
             error tolerance 0.3: LOOSE), one rank
   fix0.12 ... fix0.019  the sector's uniform ladder from 5.9 k to 1.03 M unknowns, each through its whole load, hold and
             unload on the same fixed steps (FIXED), the field split on 2 ranks: Krylov iterations per Newton iteration
             from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose differences between rungs are the
-            mesh's alone (the steps' error is the same on every rung)
+            mesh's alone (the steps' error is the same on every rung); bnfix3 ... bnfix0.475 BN's sector alike. On this
+            2-core machine fix0.019 finished its load but not its hold (Newton stalled on the hold's steps, which were
+            cut back again and again; docs/contact.md, "The field split"): a job for a larger machine
   ranks0.0425  the first 4 steps at 101 k unknowns on 2 ranks, with the driver's graph partitioner and with the
             simple one (the cells in the mesh file's order), with -log_view's events
 
@@ -77,6 +79,8 @@ CASES = {
     "lr1": ("loading_rate_a1", {}, None, 60, SPLITS),
     # about a million unknowns: the field split alone (the direct path's factors would not fit in 23 GB)
     "sector0.018": ("nanoindent_kerogen_sector", {"h_tip": 0.018, "h_far": 0.072}, None, 8, SPLITS[1:]),
+    # ... and at 1.03 M (the fixed-step ladder's finest mesh): 1e5 to 1e6 unknowns
+    "sector0.019": ("nanoindent_kerogen_sector", {"h_tip": 0.019, "h_far": 0.076}, None, 8, ("fieldsplit",)),
     # the sector through its whole load, hold and unload (steps None: the whole run), one rank, with the steps of LOOSE
     # (about 23 where the shipped control takes about 550): how the iterations grow once the whole contact is active
     "lhu0.12": ("nanoindent_kerogen_sector", {"h_tip": 0.12, "h_far": 0.48}, None, None, ("direct", "fieldsplit", "fieldsplit, LU on u")),
@@ -100,7 +104,7 @@ FIXED = [{"count": 30}, {"count": 6}, {"count": 4}]
 # 2 ranks, the first 4 steps: the graph partitioner against the simple one (docs/parallel.md, "The partition")
 CASES["ranks0.0425"] = ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 4,
                         ("fieldsplit", "fieldsplit, simple partition"))
-ONCE = ("sector0.05", "sector0.0425", "sector0.034", "sector0.018", "lhu0.0707", "lhu0.0425",
+ONCE = ("sector0.05", "sector0.0425", "sector0.034", "sector0.018", "sector0.019", "lhu0.0707", "lhu0.0425",
         "ranks0.0425") + tuple(FIX)  # one run each
 RANKS = dict({"ranks0.0425": 2}, **{c: 2 for c in FIX})
 # a whole run in few steps: the stages' error tolerance 0.3 (shipped 1.5e-2 and 0.1), the load's first step 5 s

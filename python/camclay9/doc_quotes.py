@@ -61,6 +61,7 @@ class A(dict):
 S3, S2 = ("sector0.12", "sector0.0707", "sector0.05", "sector0.0425", "sector0.034"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
 BIG = "sector0.018"  # its million-unknown case (field split alone)
 G, LU = "fieldsplit, GAMG on P2", "fieldsplit, LU on u"  # its field split with GAMG on the P2 block; with the block solved exactly
+SP, R2 = "fieldsplit, simple partition", "ranks0.0425"  # its field split on the simple partition; its 2-rank partition case
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
 
@@ -127,6 +128,10 @@ def namespace(store_dir=None):
         """A contact-solver row's Krylov iterations per Newton iteration."""
         return cs(case, solver, "krylov") / cs(case, solver, "newton")
 
+    def pcopies(case, solver="fieldsplit"):
+        """A 2-rank row's vertices also held by the rank that does not own them [%] (the driver's 'partition:' line)."""
+        return 100 * cs(case, solver, "partition")["copies"] / cs(case, solver, "partition")["vertices"]
+
     def ku(case):
         """A contact-solver case's unknowns in thousands as the readings print them ("5.9", "24", "190")."""
         n = next(r["unknowns"] for (c, _), r in cs_rows.items() if c == case) / 1000
@@ -147,6 +152,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, G=G, LU=LU,
+              pcopies=pcopies, SP=SP, R2=R2,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
@@ -253,8 +259,19 @@ QUOTES = [
          "block solved exactly, «f(kpn('lhu0.12', LU), 1)» and «f(kpn('lhu0.0707', LU), 1)» («f(kpn(S3[1], LU), 1)» in the first 8 steps at «ku(S3[1])» k). The field "
          "split then takes «f(csr('lhu0.12', 'cpu'), 2)»×,\n  «f(csr('lhu0.0707', 'cpu'), 2)»× and «f(csr('lhu0.0425', 'cpu'), 2)»× the "
          "direct path's CPU"),
+    # where the field split's time goes on 2 ranks (bench case ranks0.0425, -log_view)
+    (CT,
+         "- **Where the field split's time goes** (-log_view, bench case ranks0.0425: «ku(R2)» k unknowns, 2 ranks, the first 4\n"
+         "  steps; docs/performance.md): of «f(cs(R2, 'fieldsplit', 'events')['CC9 contact solve'], 1)» s in the contact solve, «f(cs(R2, 'fieldsplit', 'events')['KSPSolve_FS_0'], 1)» s are the displacement block's multigrid\n"
+         "  cycles and «f(cs(R2, 'fieldsplit', 'events')['KSPSolve_FS_Schu'], 1)» s the Schur complement's solves; the set-ups of the hierarchy take «f(cs(R2, 'fieldsplit', 'events')['PCSetUp'], 1)» s, the residual with\n"
+         "  its UMAT calls «f(cs(R2, 'fieldsplit', 'events')['CC9 residual+UMAT'], 1)» s. At this size the run is its contact solve, and that is its displacement block"),
     (CT, "GAMG on the P2 block took «f(min(csr(c, 'cpu', 'fieldsplit, before', G) for c in S3[:2]), 1)»–"
          "«f(max(csr(c, 'cpu', 'fieldsplit, before', G) for c in S3[:2]), 1)»× the CPU of its kept form in 3D"),
+    # the partition on 2 ranks (docs/parallel.md, "The partition"; bench/contact_solver_bench.py's case ranks0.0425)
+    (PL, "On the kerogen sector at «ku(R2)» k unknowns (bench case ranks0.0425, the first 4 steps on 2 ranks; docs/performance.md,\n"
+         "\"Contact solve: direct against field split\") «f(pcopies(R2, SP), 0)» % of the vertices were held by both ranks with the\n"
+         "simple partitioner and «f(pcopies(R2), 0)» % with PT-Scotch, and the simple cut took «f(csr(R2, 'cpu', SP, 'fieldsplit'), 2)»× the CPU and\n"
+         "«f(csr(R2, 'mem', SP, 'fieldsplit'), 2)»× the largest rank's peak memory"),
     (PL, "«f(kbu(S3[1]), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3]), 0)» at «ku(S3[3])» k, «f(kbu(BIG), 1)» at "
          "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M (the largest run here: «f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB on one rank)"),
     (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "
