@@ -132,6 +132,16 @@ def namespace(store_dir=None):
         """A 2-rank row's vertices also held by the rank that does not own them [%] (the driver's 'partition:' line)."""
         return 100 * cs(case, solver, "partition")["copies"] / cs(case, solver, "partition")["vertices"]
 
+    ims = {r["model"]: r for r in results_store.load("indent_models", store_dir).get("rows", [])}
+
+    def im(model):
+        """A row of bench/indent_models_bench.py (docs/results/indent_models.json) by its model's key."""
+        return ims[model]
+
+    def imd(model, q):
+        """|a model's output q relative to the sector's, minus 1| (bench/indent_models_bench.py)."""
+        return abs(ims[model][q] / ims["sector"][q] - 1)
+
     def ku(case):
         """A contact-solver case's unknowns in thousands as the readings print them ("5.9", "24", "190")."""
         n = next(r["unknowns"] for (c, _), r in cs_rows.items() if c == case) / 1000
@@ -152,7 +162,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, G=G, LU=LU,
-              pcopies=pcopies, SP=SP, R2=R2,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
@@ -267,6 +277,14 @@ QUOTES = [
          "  its UMAT calls «f(cs(R2, 'fieldsplit', 'events')['CC9 residual+UMAT'], 1)» s. At this size the run is its contact solve, and that is its displacement block"),
     (CT, "GAMG on the P2 block took «f(min(csr(c, 'cpu', 'fieldsplit, before', G) for c in S3[:2]), 1)»–"
          "«f(max(csr(c, 'cpu', 'fieldsplit, before', G) for c in S3[:2]), 1)»× the CPU of its kept form in 3D"),
+    # the sector against its mirrored half and an independent mesh (docs/contact.md; bench/indent_models_bench.py)
+    (CT,
+         "On the shipped Cam-Clay IX kerogen scene (load, hold, unload; `bench/indent_models_bench.py`, docs/performance.md) the\n"
+         "sector and the half model of three mirrored copies of its mesh agree to «g(imd('mirrored', 'P'), '.0e')» in P, «g(imd('mirrored', 'creep'), '.0e')» in the creep depth and\n"
+         "«g(imd('mirrored', 'h_res'), '.0e')» in the residual depth, with the same «im('sector')['steps']» steps.\n"
+         "\n"
+         "Independently meshed with the sector's element sizes, the half of its hexagon differs from the sector by «pu(imd('hexhalf', 'P'))» in P,\n"
+         "«pu(imd('hexhalf', 'creep'))» in the creep depth and «pu(imd('hexhalf', 'h_res'))» in the residual depth: the scatter from one mesh of this density to another"),
     # the partition on 2 ranks (docs/parallel.md, "The partition"; bench/contact_solver_bench.py's case ranks0.0425)
     (PL, "On the kerogen sector at «ku(R2)» k unknowns (bench case ranks0.0425, the first 4 steps on 2 ranks; docs/performance.md,\n"
          "\"Contact solve: direct against field split\") «f(pcopies(R2, SP), 0)» % of the vertices were held by both ranks with the\n"

@@ -49,9 +49,9 @@ def section(store, root=None):
     own = [rows[k] for k in ("sector", "hexhalf") if k in rows]
     if ref and own:
         sp = {k: max(abs(r[k] / ref[k] - 1) for r in own) for k in OUT}
-        lines.append(f"- **The 3D models' differences are their meshes'.** The cube, the hexagon's half and the sector are "
-                     f"meshed independently with the same grading: P agrees within {sp['P']:.1%}, the creep depth within "
-                     f"{sp['creep']:.1%} and the residual depth within {sp['h_res']:.1%}.")
+        lines.append(f"- **The 3D models' differences are their meshes'.** The cube (with its scene's element sizes), the "
+                     f"hexagon's half and the sector (with the sector's) are meshed independently: against the cube P differs "
+                     f"by up to {sp['P']:.1%}, the creep depth by {sp['creep']:.1%} and the residual depth by {sp['h_res']:.1%}.")
     if ref and "axi" in rows:
         lines.append("- **The axisymmetric twin** differs from the 3D models by the tip's shape (a cone of the Berkovich's "
                      "projected area) besides its mesh: README, \"Which model each scene uses\".")
