@@ -21,7 +21,7 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
             unload on the same fixed steps (FIXED), the field split on 2 ranks: Krylov iterations per Newton iteration
             from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose differences between rungs are the
             mesh's alone (the steps' error is the same on every rung); bnfix3 ... bnfix0.475 BN's sector alike. On this
-            2-core machine fix0.019 finished its load but not its hold (Newton stalled on the hold's steps, which were
+            2-core machine fix0.019 finished its load but not its hold (Newton failed on the hold's steps, which were
             cut back again and again; docs/contact.md, "The field split"): a job for a larger machine
   ranks0.0425  the first 4 steps at 101 k unknowns on 2 ranks, with the driver's graph partitioner and with the
             simple one (the cells in the mesh file's order), with -log_view's events
