@@ -41,7 +41,6 @@ Writes its numbers into the results store (docs/results/contact_solver.json), wh
 that store (camclay9.contact_solver_study; tools/doc_numbers.py checks the section against the store).
 """
 import argparse
-import json
 import re
 import statistics
 import sys
@@ -50,7 +49,8 @@ import time
 from pathlib import Path
 
 import yaml
-from camclay9 import driver_command, mesh_line, results_store, run_measured, summary_line
+from camclay9 import (driver_command, memory_line, mesh_line, partition_line, read_summary, reported, results_store,
+                      run_measured, summary_line)
 from camclay9 import contact_solver_study as study
 from camclay9.performance_doc import replace_section
 
@@ -155,24 +155,20 @@ def run(scene, steps, solver, out, ranks=1, log_view=False):
     if rc:
         raise SystemExit(f"{' '.join(cmd)} failed ({rc}):\n{log.read_text()[-2000:]}")
     text = log.read_text()
-    s, m = summary_line(text), mesh_line(text)
-    mem_all = re.search(r"memory: max RSS [0-9.]+ MB per rank, ([0-9.]+) MB in all", text)
-    part = re.search(r"partition: \d+ ranks \((\w+)\), (\d+) vertices, (\d+) copies", text)
+    s, m, part, memory = summary_line(text), mesh_line(text), partition_line(text), memory_line(text)
     return {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
-            "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks, **outputs(out / "summary.json"),
-            **({"partition": {"type": part[1], "vertices": int(part[2]), "copies": int(part[3])}} if part else {}),
-            **({"mem_all": float(mem_all[1])} if mem_all and ranks > 1 else {}),
+            "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks,
+            **({"partition": {k: part[k] for k in ("type", "vertices", "copies")}} if part else {}),
+            **({"mem_all": memory["all_mb"]} if memory and ranks > 1 else {}),
             **({"events": events(text)} if log_view else {})}
 
 
-def outputs(summary):
-    """A whole run's reported outputs from its summary.json ({} for a run that stops early): the load at the end of
-    loading, the creep depth (the hold's change of depth) and the residual depth, as docs/contact.md's ladder reads them."""
-    st = {x["name"]: x for x in json.loads(summary.read_text())["stages"]}
-    if not {"load", "hold", "unload"} <= set(st):
-        return {}
-    return {"outputs": {"P": st["load"]["end"]["load"], "creep": st["hold"]["change"]["depth"] * 1e3,
-                        "h_res": st["unload"]["end"]["depth"] * 1e3}}
+def outputs(run_dir):
+    """A whole run's reported outputs (camclay9.summary): the load at the end of loading, the creep depth (the hold's
+    change of depth) and the residual depth [nm], as the study's table of the fixed-step ladders reads them."""
+    s = read_summary(run_dir)
+    return {"P": reported(s, "load", "load"), "creep": 1e3 * reported(s, "hold", "depth", "change"),
+            "h_res": 1e3 * reported(s, "unload", "depth")}
 
 
 def measure(case, repeats, work, solvers=None):
@@ -182,6 +178,8 @@ def measure(case, repeats, work, solvers=None):
     for solver in (x for x in CASES[case][4] if solvers is None or x in solvers):
         runs = [run(scene, CASES[case][3], solver, work / f"{case}_{k}", RANKS.get(case, 1), case in LOG_VIEW)
                 for k in range(repeats)]
+        if case in FIX:   # the outputs of equal fixed steps, the study's ladder table (the LOOSE runs' steps differ)
+            runs[-1]["outputs"] = outputs(work / f"{case}_{repeats - 1}")
         r = dict(runs[-1], case=case, solver=solver, repeats=repeats, cpu=statistics.median(x["cpu"] for x in runs),
                  mem=max(x["mem"] for x in runs))
         print(f"{case:13s} {solver:19s} {r['unknowns']:7d} unknowns  {r['newton']:4d} Newton  {r['krylov']:6d} Krylov  "

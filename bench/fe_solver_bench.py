@@ -15,7 +15,6 @@ Usage: bench/fe_solver_bench.py [--sizes 5.3,2.5,1.45] [--repeats 2] [--max-step
 import argparse
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import time
@@ -129,7 +128,7 @@ def main(argv=None):
         load = os.getloadavg()[0]
         with tempfile.TemporaryDirectory() as tmp:
             rows = main_job(a.repeats, tmp)
-        rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+        rev = results_store.revision(ROOT)
         store = {"provenance": {"command": f"bench/fe_solver_bench.py --main-job --repeats {a.repeats}",
                                 "date": time.strftime("%Y-%m-%d"), "rev": rev, "load": [load, os.getloadavg()[0]]}, "rows": rows}
         section = main_study.section(store)

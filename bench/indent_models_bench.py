@@ -20,7 +20,6 @@ Usage: bench/indent_models_bench.py [--repeats 2] [--models half,sector,hexhalf,
 """
 import argparse
 import re
-import subprocess
 import tempfile
 import time
 from pathlib import Path
@@ -95,7 +94,7 @@ def main():
                              wall=float(np.median([r["wall"] for r in runs])), cpu=float(np.median([r["cpu"] for r in runs]))))
             print(f"{m}: P = {rows[-1]['P']:.4f} uN, creep {rows[-1]['creep']:.3f} nm, residual {rows[-1]['h_res']:.2f} nm, "
                   f"{rows[-1]['steps']} steps, wall {rows[-1]['wall']:.1f} s, CPU {rows[-1]['cpu']:.1f} s", flush=True)
-    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    rev = results_store.revision(ROOT)
     command = "bench/indent_models_bench.py" + (f" --repeats {a.repeats}" if a.repeats != 2 else "") + (
         f" --models {a.models}" if a.models != ap.get_default("models") else "")
     store = {"provenance": {"command": command, "date": time.strftime("%Y-%m-%d"), "rev": rev, "repeats": a.repeats}, "rows": rows}

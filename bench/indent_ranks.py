@@ -10,11 +10,10 @@ compares wall times.
     bench/indent_ranks.py [--scenes a,b] [--out DIR] [--machine NOTE] [--no-doc]
 """
 import argparse
-import subprocess
 import time
 from pathlib import Path
 
-from camclay9 import DriverError, read_history, run_driver
+from camclay9 import DriverError, read_history, results_store, run_driver
 from camclay9 import indent_ranks_study as study
 from camclay9.performance_doc import publish
 
@@ -45,7 +44,7 @@ def main(argv=None):
     rows = [one_run(s, n, Path(a.out) / f"{s}_{n}") for s in a.scenes.split(",") for n in (1, 2)]
     for one, two in zip(rows[0::2], rows[1::2]):
         two["h_res_vs_1"] = two["h_res"] / one["h_res"] - 1
-    rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    rev = results_store.revision(ROOT)
     provenance = {"command": "bench/indent_ranks.py" + (f" --scenes {a.scenes}" if a.scenes != SCENES else ""),
                   "date": time.strftime("%Y-%m-%d", time.gmtime()), "rev": rev or "unknown", "machine": a.machine}
     store = {"provenance": provenance, "rows": rows}

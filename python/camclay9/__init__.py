@@ -16,9 +16,9 @@ sector_mesh, calculix_inputs, calculix_mesh, ti_constants; these need the packag
 """
 from .history import history_layout, read_history
 from .launch import DriverError, driver_command, driver_path, repo_root, run_command, run_driver, run_measured
-from .log import mesh_line, summary_line
+from .log import memory_line, mesh_line, partition_line, summary_line
 from .summary import read_summary, reported, stage
 
-__all__ = ["read_history", "history_layout", "read_summary", "stage", "reported", "summary_line", "mesh_line",
+__all__ = ["read_history", "history_layout", "read_summary", "stage", "reported", "summary_line", "mesh_line", "partition_line", "memory_line",
            "run_driver", "run_command", "run_measured", "driver_command", "driver_path", "repo_root", "DriverError"]
 __version__ = "0.1.0"

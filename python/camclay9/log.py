@@ -1,4 +1,4 @@
-"""The driver's log: the summary line each run ends with, and the FE mesh line.
+"""The driver's log: the summary line each run ends with, the FE mesh line, and the partition and memory lines.
 
 The summary line (one per run, on stdout; fe/fe_stepper.c, stepping/indent_stepper.c, app/main.c):
 
@@ -11,7 +11,10 @@ The summary line (one per run, on stdout; fe/fe_stepper.c, stepping/indent_stepp
 
 `summary_line` reads it with one regular expression into a dict (the fields a kind does not print are absent).
 The mesh line of an FE or indentation run ("fe scene NAME: 1234 cells, P1, 4 quadrature points per cell, 567
-unknowns, ...") is read by `mesh_line`.
+unknowns, ...") is read by `mesh_line`. On more than one rank an FE or indentation run prints how its mesh was cut
+("partition: R ranks (TYPE), N vertices, C copies on ranks that do not own them (P %)", fe/fe_mesh.c), read by
+`partition_line`; an indentation ends with "memory: max RSS X MB per rank, Y MB in all" (stepping/indent_stepper.c),
+read by `memory_line`.
 """
 import re
 
@@ -28,8 +31,11 @@ SUMMARY = re.compile(
     r", (?:wall )?(?P<wall_s>\S+) s(?P<failed>, FAILED)? -> (?P<output_dir>.*)/history\.csv$", re.M)
 MESH = re.compile(r"^fe scene (?P<scene>\S+): (?P<cells>\d+) cells, P(?P<order>\d), (?P<quadrature_points>\d+) "
                   r"quadrature points per cell, (?P<unknowns>\d+) unknowns", re.M)
-TEXT = frozenset({"kind", "scene", "predictor", "linear_solver", "output_dir"})
-FLOAT = frozenset({"worst_control_residual", "assembly_s", "linear_solves_s", "wall_s"})
+PARTITION = re.compile(r"^partition: (?P<ranks>\d+) ranks \((?P<type>\w+)\), (?P<vertices>\d+) vertices, (?P<copies>\d+) copies",
+                       re.M)
+MEMORY = re.compile(r"^memory: max RSS (?P<rank_mb>[0-9.]+) MB per rank, (?P<all_mb>[0-9.]+) MB in all", re.M)
+TEXT = frozenset({"kind", "scene", "predictor", "linear_solver", "output_dir", "type"})
+FLOAT = frozenset({"worst_control_residual", "assembly_s", "linear_solves_s", "wall_s", "rank_mb", "all_mb"})
 
 
 def _typed(m):
@@ -62,3 +68,17 @@ def mesh_line(log):
     if not m:
         raise ValueError("no mesh line ('fe scene NAME: N cells, P1, ..., N unknowns') in the driver's output")
     return _typed(m)
+
+
+def partition_line(log):
+    """The partition line of a run on more than one rank as a dict: ranks, type, vertices, copies; None when the run
+    printed none (one rank)."""
+    m = PARTITION.search(log)
+    return _typed(m) if m else None
+
+
+def memory_line(log):
+    """An indentation's memory line as a dict: rank_mb (the largest rank's peak), all_mb (the ranks' peaks summed);
+    None when the run printed none."""
+    m = MEMORY.search(log)
+    return _typed(m) if m else None

@@ -10,6 +10,7 @@ A file holds {"provenance": {...}, ...}: where its numbers come from (command, d
 from an earlier document rather than from a run, which and to what digits).
 """
 import json
+import subprocess
 from pathlib import Path
 
 from camclay9.launch import repo_root
@@ -19,6 +20,12 @@ def store_dir(store=None):
     """The store's folder: `store`, or (None) docs/results of the repository (camclay9.repo_root: the one of the
     script being run, else of the current directory, as camclay9 finds the driver)."""
     return Path(store) if store is not None else repo_root() / "docs" / "results"
+
+
+def revision(root=None):
+    """The repository's commit (short hash) for a store's provenance: what the bench's tree was; "" outside git."""
+    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root or repo_root(), capture_output=True, text=True)
+    return out.stdout.strip()
 
 
 def path(name, store=None):

@@ -16,7 +16,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
-from camclay9 import summary_line
+from camclay9 import partition_line, summary_line
 from camclay9.fields import voigt  # fields.h5 holds full 3x3 tensors
 from camclay9.sector_mesh import mesh_sector, mirrored_half, msh41, read_msh
 from test_contact import read_history, run, tangent_checks  # the elastic driver on a scene; its history
@@ -371,8 +371,8 @@ def test_partition_cuts_the_mesh_at_an_interface(tmp_path):
     msh = mesh_sector(tmp_path / "s.msh", L=2, span=60, h_tip=0.04, h_far=0.4, r_fine=0.4, r_contact=0.6)
     p = run(sector_scene(msh), tmp_path / "o", args=["-max_steps", "1"], np_=2, check=False)
     assert p.returncode == 0, p.stdout + p.stderr
-    m = re.search(r"partition: 2 ranks \((\w+)\), (\d+) vertices, (\d+) copies", p.stdout)
-    assert m, p.stdout
-    n, copies = int(m.group(2)), int(m.group(3))
-    print(f"{m.group(1)}: {copies} copies of {n} vertices (bound 2 N^(2/3) = {2 * n ** (2 / 3):.0f})")
+    part = partition_line(p.stdout)
+    assert part and part["ranks"] == 2, p.stdout
+    n, copies = part["vertices"], part["copies"]
+    print(f"{part['type']}: {copies} copies of {n} vertices (bound 2 N^(2/3) = {2 * n ** (2 / 3):.0f})")
     assert copies <= 2 * n ** (2 / 3)
