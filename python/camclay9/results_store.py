@@ -24,7 +24,8 @@ def store_dir(store=None):
 
 def revision(root=None):
     """The repository's commit (short hash) for a store's provenance: what the bench's tree was; "" outside git."""
-    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root or repo_root(), capture_output=True, text=True)
+    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root or repo_root(), capture_output=True, text=True,
+                         timeout=60)
     return out.stdout.strip()
 
 
