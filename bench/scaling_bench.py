@@ -21,14 +21,16 @@ import time
 from pathlib import Path
 
 import numpy as np
-from camclay9 import mesh_line, read_history, run_driver, summary_line
+from camclay9 import fe_scaling_study as study
+from camclay9 import mesh_line, partition_line, read_history, results_store, run_driver, summary_line
 from camclay9.launch import MPIEXEC
 from fe_solver_bench import HISTORY
-from camclay9.performance_doc import replace_section
+from camclay9.performance_doc import publish
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## FE scaling: 1 and 2 ranks, direct and GAMG"
-SOLVERS = {"direct (default)": "", "GAMG": "-pc_type gamg"}
+# the driver picks GAMG above -fe_gamg_above unknowns by itself: each solver is asked for by name here
+SOLVERS = {"direct": "-fe_gamg_above 2000000000", "GAMG": "-pc_type gamg"}
 EVENTS = {"residual": "CC9 residual+UMAT", "jacobian": "CC9 Jacobian", "pcsetup": "PCSetUp", "ksp": "KSPSolve"}
 
 
@@ -36,7 +38,7 @@ def make_mesh(size, out):
     cmd = ["gmsh", "-3", "-format", "msh41", "-v", "2", "-setnumber", "R", "12.7", "-setnumber", "H", "50.8",
            "-setnumber", "size", str(size), str(ROOT / "meshes" / "cylinder.geo"), "-o", str(out)]
     t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, capture_output=True)
+    subprocess.run(cmd, check=True, capture_output=True, timeout=3 * 3600)
     return time.perf_counter() - t0
 
 
@@ -62,8 +64,8 @@ def run(scene, out, ranks, opts, max_steps):
     for key, name in EVENTS.items():  # -log_view: name, count, ratio, max time
         e = re.search(rf"^{re.escape(name)}\s+(\d+) \S+ (\S+)", proc.stdout, re.M)
         ev[key] = float(e.group(2)) if e else 0.0
-    h = read_history(out, need=("eps_33",))
-    return dict(cells=m["cells"], unknowns=m["unknowns"], steps=s["steps"], newton=s["newton_iterations"],
+    h, part = read_history(out, need=("eps_33",)), partition_line(proc.stdout)
+    return dict(partition={k: part[k] for k in ("type", "vertices", "copies")} if part else None, cells=m["cells"], unknowns=m["unknowns"], steps=s["steps"], newton=s["newton_iterations"],
                 cutbacks=s["cutbacks"], solve_wall=s["wall_s"], wall=wall, solver=k.group(1), krylov=int(k.group(2)),
                 setups=int(k.group(3)), rss=float(k.group(4)), rss_all=float(k.group(5)), cpu=float(k.group(6)), ev=ev,
                 eps33=h["eps_33"])
@@ -76,9 +78,15 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--gamg-only", default="", help="further (larger) sizes run with GAMG only")
-    ap.add_argument("--no-doc", action="store_true")
+    ap.add_argument("--no-doc", action="store_true", help="print the table; write neither the store nor the section")
+    ap.add_argument("--from-store", action="store_true", help="write the section from the store, without running")
+    ap.add_argument("--merge", action="store_true", help="keep the store's rows of other (mesh, ranks, solver) runs")
     a = ap.parse_args(argv)
-    rows = []
+    if a.from_store:
+        store = results_store.load(study.STORE)
+        publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
+        return 0
+    rows, load0 = [], os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:
         gamg_only = [float(x) for x in a.gamg_only.split(",") if x]
         for size in [float(x) for x in a.sizes.split(",") if x] + gamg_only:
@@ -112,28 +120,16 @@ def main(argv=None):
                           f"CPU {r['cpu']:.2f} s, per Newton {r['solve_wall'] * per:.0f} ms; residual {r['ev']['residual'] * per:.0f} ms, "
                           f"Jacobian {r['ev']['jacobian'] * per:.0f} ms, PC set-up {r['ev']['pcsetup'] * per:.0f} ms, KSP {r['ev']['ksp'] * per:.0f} ms; "
                           f"RSS {r['rss']:.0f} MB/rank, {r['rss_all']:.0f} MB in all, diff {r['diff']:.1e}", flush=True)
-    lines = ["| cells | unknowns | ranks | solver | Newton its | Krylov its | set-ups | wall [s] | CPU [s] (slowest rank) | ms per Newton it. | "
-             "residual+UMAT | Jacobian | PC set-up | Krylov solve | max RSS per rank [MB] | RSS all ranks [MB] | kB per unknown | "
-             "axial strain vs 1-rank run |", "|" + "---|" * 18]
-    for ranks, name, r in rows:
-        per = 1e3 / max(r["newton"], 1)
-        lines.append(f"| {r['cells']} | {r['unknowns']} | {ranks} | {name} | {r['newton']} | {r['krylov']} | {r['setups']} | "
-                     f"{r['solve_wall']:.1f} | {r['cpu']:.1f} | {r['solve_wall'] * per:.0f} | {r['ev']['residual'] * per:.0f} | "
-                     f"{r['ev']['jacobian'] * per:.0f} | {r['ev']['pcsetup'] * per:.0f} | {r['ev']['ksp'] * per:.0f} | {r['rss']:.0f} | "
-                     f"{r['rss_all']:.0f} | {1024 * r['rss_all'] / r['unknowns']:.1f} | {r['diff']:.1e} |")
-    print("\n".join(lines))
-    if not a.no_doc:
-        section = (f"{TITLE}\n\nCommand: `bench/scaling_bench.py --sizes {a.sizes} --max-steps {a.max_steps} --repeats {a.repeats}`. "
-                   "The triaxial cylinder, one 100 s step at the confinement and then the first "
-                   f"{a.max_steps - 1} steps of the creep (dt from 0.01 s), one BLAS thread per rank. The parts of a Newton "
-                   "iteration are -log_view's times (largest over the ranks) divided by the Newton iterations; the residual "
-                   "is evaluated about three times per step (start, after each Newton update, and once more with the UMAT's "
-                   "step control on), so it can exceed the iteration. Set-ups: factorisations (or GAMG hierarchies) in the "
-                   "run. Memory: the largest resident set of a rank (getrusage), and the sum over the ranks per unknown. "
-                   "Measured on a shared 2-core machine with other jobs running (wall times are disturbed; the 2-rank runs "
-                   "use both cores and so compete most).\n\n" + "\n".join(lines) + "\n")
-        replace_section(TITLE, section)
-        print("written: docs/performance.md")
+    keep = ("cells", "unknowns", "steps", "newton", "cutbacks", "krylov", "setups", "solve_wall", "cpu", "rss", "rss_all",
+            "ev", "diff", "tmesh", "partition")
+    new = [dict(ranks=ranks, solver=name, driver_solver=r["solver"], **{k: r[k] for k in keep}) for ranks, name, r in rows]
+    command = "bench/scaling_bench.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    record = {"command": command, "date": time.strftime("%Y-%m-%d"), "rev": results_store.revision(ROOT),
+           "load": [load0, os.getloadavg()[0]], "max_steps": a.max_steps}
+    old = results_store.load(study.STORE) if a.merge else {}
+    store = study.merged(old, new, record)
+    publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
+    return 0
 
 
 if __name__ == "__main__":

@@ -19,7 +19,8 @@ Usage: tools/doc_numbers.py [--write] [--root DIR]
                indent_ranks.json), the two "## Time-step error control" sections (camclay9.step_control_study,
                step_control.json), "## FE solver: the triaxial main job" (camclay9.fe_main_job_study,
                fe_main_job.json) and "## Indentation: 3D half model, sector and axisymmetric twin"
-               (camclay9.indent_models_study, indent_models.json);
+               (camclay9.indent_models_study, indent_models.json), "## FE scaling: 1 and 2 ranks, direct and GAMG"
+               (camclay9.fe_scaling_study, fe_scaling.json);
              * a section whose tables no store holds yet ("## 3D indentation: mesh convergence ...") must end with
                the reading its generator carries over (READINGS: bench/indent_convergence_conclusions.md);
              * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
@@ -38,7 +39,7 @@ import sys
 from pathlib import Path
 
 from camclay9 import (adapt_study, calibrate_study, contact_solver_study, coverage_study, doc_quotes, fe_main_job_study,
-                      fe_triaxial_study, indent_models_study, indent_ranks_study, paper_doc, point_creep_study, results_store,
+                      fe_scaling_study, fe_triaxial_study, indent_models_study, indent_ranks_study, paper_doc, point_creep_study, results_store,
                       step_control_study, time_error_study, umat_time_study)
 from camclay9 import indent2d_study as i2d
 
@@ -47,7 +48,8 @@ ROOT = Path(__file__).resolve().parents[1]
 # the sections written by a generator module from its own store alone: its STORE, and TITLE with section(store, root),
 # or sections(store) for a store behind several sections ({title: text})
 STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study, coverage_study, time_error_study, umat_time_study,
-           point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study)
+           point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study,
+           fe_scaling_study)
 
 # Sections whose tables no store holds yet (their runs' results were not kept) but whose reading, written by hand, the
 # section's generator carries over from a file (bench/indent_convergence_doc.py): the section must end with that text,

@@ -150,6 +150,23 @@ def namespace(store_dir=None):
     def csr(case, q, solver="fieldsplit", base="direct"):
         """The ratio of a field-split row's q to the direct path's (or base's) on the same case."""
         return cs(case, solver, q) / cs(case, base, q)
+    fsr = results_store.load("fe_scaling", store_dir).get("rows", [])
+
+    def fs(solver, ranks, n=None):
+        """A row of bench/scaling_bench.py (docs/results/fe_scaling.json): the solver's on `ranks` ranks nearest n
+        unknowns, or (n None) its largest."""
+        sel = [A(r) for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
+        return max(sel, key=lambda r: r.unknowns) if n is None else min(sel, key=lambda r: abs(r.unknowns - n))
+
+    def fkb(r):
+        """An FE scaling row's resident set summed over its ranks per unknown [kB]."""
+        return 1024 * r.rss_all / r.unknowns
+
+    def fkpn(solver, ranks=1):
+        """The FE scaling rows' Krylov iterations per Newton iteration of a solver: [smallest, largest]."""
+        its = [r["krylov"] / r["newton"] for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
+        return [min(its), max(its)]
+
     te = results_store.load("time_error", store_dir).get("cases", {})
 
     def tef(case):
@@ -162,7 +179,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, fs=fs, fkb=fkb, fkpn=fkpn,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
@@ -300,6 +317,21 @@ QUOTES = [
          "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M (the largest run here: «f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB on one rank)"),
     (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "
          "at «ku(S3[4])» k («f(cs(S3[4], 'direct', 'mem') / 1000, 1)» GB)"),
+    # the FE solvers' speed and memory (docs/parallel.md; bench/scaling_bench.py, fe_scaling.json)
+    (PL, "GAMG is already faster at «fs('GAMG', 1, 46e3).unknowns» unknowns («f(fs('GAMG', 1, 46e3).solve_wall)» s against "
+         "«f(fs('direct', 1, 46e3).solve_wall)» s of stepping)"),
+    (PL, "At «fs('direct', 1).unknowns» unknowns GAMG's stepping took «f(fs('GAMG', 1, fs('direct', 1).unknowns).solve_wall)» s "
+         "against the direct solve's «f(fs('direct', 1).solve_wall)» s (one rank, 4 steps), and "
+         "«f(fs('GAMG', 1, fs('direct', 1).unknowns).rss / 1024)» GB instead of «f(fs('direct', 1).rss / 1024)» GB"),
+    (PL, "GAMG needs «f(fkpn('GAMG')[0], 0)» to «f(fkpn('GAMG')[1], 0)» GMRES iterations per Newton iteration"),
+    (PL, "GAMG: about «f(min(fkb(fs('GAMG', 1, n)) for n in (4e4, 1e5, 2.5e5)), 0)» kB per unknown on one rank "
+         "(«f(fkb(fs('GAMG', 1)), 1)» kB at «fs('GAMG', 1).unknowns» unknowns, the largest run here: "
+         "«f(fs('GAMG', 1).rss / 1024, 1)» GB, «f(fs('GAMG', 1).krylov / fs('GAMG', 1).newton, 0)» GMRES\n    iterations per "
+         "Newton iteration), «f(fkb(fs('GAMG', 2)), 0)» kB on two at «fs('GAMG', 2).unknowns» unknowns."),
+    (PL, "Direct solve: «f(fkb(fs('direct', 1, 4.6e4)), 0)» kB per unknown at «fs('direct', 1, 4.6e4).unknowns» unknowns, "
+         "«f(fkb(fs('direct', 1)), 0)» kB at «fs('direct', 1).unknowns» on one rank"),
+    (PL, "stepping of a GAMG run at «fs('GAMG', 2).unknowns» unknowns took «f(fs('GAMG', 2).solve_wall)» s on 2 ranks against "
+         "«f(fs('GAMG', 1, fs('GAMG', 2).unknowns).solve_wall)» s on one"),
     # the main job (defects 1, 5): both readings of eq. 28's log, the run times, Fig. 18's window
     (R, "It takes «f(fe[(6, 1e-06, 2)].wall)» s wall on 2 quiet cores at the default mesh («fe[(6, 1e-06, 2)].cells» tets; "
         "docs/performance.md, \"FE: triaxial cylinder\") and «f(walls.triaxial_theta0)» s in docs/paper.md's latest run"),
