@@ -6,8 +6,9 @@ numbers computed from the store, stands in its document, and --write puts the st
 
 Coverage: every number of README's main-job paragraph and of its table rows for the 3D kerogen, BN and BP scenes,
 the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
-below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times, the adapted
-scenes' CPU, the kerogen adapted scene's errors: docs/performance.md, "Adapted meshes", whose bench keeps no store);
+below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times); the adapted
+scenes' errors and CPU (bench/adapt_bench.py, adapt_bench.json); docs/parallel.md's solver choice and memory budget
+(bench/scaling_bench.py, fe_scaling.json);
 the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json);
 those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json); the
 effectivities and the kerogen sector's shares of docs/adapt.md's "The time-step error" (bench/time_error_bench.py,
@@ -167,6 +168,25 @@ def namespace(store_dir=None):
         its = [r["krylov"] / r["newton"] for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
         return [min(its), max(its)]
 
+    ab = results_store.load("adapt_bench", store_dir).get("cases", {})
+
+    def ad(case, level):
+        """A level of bench/adapt_bench.py's case (docs/results/adapt_bench.json): cells, unknowns, cpu, q, e."""
+        return A(ab[case]["levels"][level])
+
+    def ade(case, level, q):
+        """A level's error in output q relative to its case's reference."""
+        return ab[case]["levels"][level]["q"][q] / ab[case]["reference"][q] - 1
+
+    def adf(case, level, q):
+        """A level's stated mesh error over its true error in output q (its effectivity)."""
+        lv = ab[case]["levels"][level]
+        return lv["e"][q] / abs(lv["q"][q] - ab[case]["reference"][q])
+
+    def adc(case, levels):
+        """The CPU seconds of a case's first `levels` levels: an adapted scene that runs them."""
+        return sum(lv["cpu"] for lv in ab[case]["levels"][:levels])
+
     te = results_store.load("time_error", store_dir).get("cases", {})
 
     def tef(case):
@@ -179,7 +199,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, fs=fs, fkb=fkb, fkpn=fkpn,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, fs=fs, fkb=fkb, fkpn=fkpn, ad=ad, ade=ade, adf=adf, adc=adc,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     if 0 in tri and 90 in tri:
@@ -317,6 +337,14 @@ QUOTES = [
          "«f(cs(BIG, 'fieldsplit', 'unknowns') / 1e6, 2)» M (the largest run here: «f(cs(BIG, 'fieldsplit', 'mem') / 1000, 1)» GB on one rank)"),
     (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "
          "at «ku(S3[4])» k («f(cs(S3[4], 'direct', 'mem') / 1000, 1)» GB)"),
+    # the adapted scenes (README's table; bench/adapt_bench.py, adapt_bench.json: the kerogen sector's, BN's and BP's cases)
+    (R, "last level («f(ad('sector', 2).unknowns / 1000, 1)» k unknowns): load «pc(ade('sector', 2, 'P'), 2)», creep depth "
+        "«pc(ade('sector', 2, 'creep'), 2)», residual depth «pc(ade('sector', 2, 'h_res'), 2)» against the converged 3D answer"),
+    (R, "its stated mesh error «f(adf('sector', 2, 'P'))», «f(adf('sector', 2, 'creep'), 0)» and «f(adf('sector', 2, 'h_res'))» "
+        "times the true one in the three"),
+    (R, "«f(adc('sector', 3), 0)» s CPU for the three levels, «f(ad('sector', 2).cpu, 0)» s for the last alone"),
+    (R, "«f(adc('bn', 4), 0)» s CPU for its four levels on a loaded machine"),
+    (R, "«f(adc('bp', 3), 0)» s CPU for its three levels on a loaded machine"),
     # the FE solvers' speed and memory (docs/parallel.md; bench/scaling_bench.py, fe_scaling.json)
     (PL, "GAMG is already faster at «fs('GAMG', 1, 46e3).unknowns» unknowns («f(fs('GAMG', 1, 46e3).solve_wall)» s against "
          "«f(fs('direct', 1, 46e3).solve_wall)» s of stepping)"),
