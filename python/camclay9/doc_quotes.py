@@ -67,6 +67,52 @@ DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit" 
 CN, IG = "clean, drift: none", "ignored, drift: none"
 
 
+def _fe_scaling(store_dir=None):
+    """The quotes' helpers on bench/scaling_bench.py's store (docs/results/fe_scaling.json)."""
+    fsr = results_store.load("fe_scaling", store_dir).get("rows", [])
+
+    def fs(solver, ranks, n=None):
+        """A row of bench/scaling_bench.py (docs/results/fe_scaling.json): the solver's on `ranks` ranks nearest n
+        unknowns, or (n None) its largest."""
+        sel = [A(r) for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
+        return max(sel, key=lambda r: r.unknowns) if n is None else min(sel, key=lambda r: abs(r.unknowns - n))
+
+    def fkb(r):
+        """An FE scaling row's resident set summed over its ranks per unknown [kB]."""
+        return 1024 * r.rss_all / r.unknowns
+
+    def fkpn(solver, ranks=1):
+        """The FE scaling rows' Krylov iterations per Newton iteration of a solver: [smallest, largest]."""
+        its = [r["krylov"] / r["newton"] for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
+        return [min(its), max(its)]
+
+    return dict(fs=fs, fkb=fkb, fkpn=fkpn)
+
+
+def _adapted(store_dir=None):
+    """The quotes' helpers on bench/adapt_bench.py's store (docs/results/adapt_bench.json)."""
+    ab = results_store.load("adapt_bench", store_dir).get("cases", {})
+
+    def ad(case, level):
+        """A level of bench/adapt_bench.py's case (docs/results/adapt_bench.json): cells, unknowns, cpu, q, e."""
+        return A(ab[case]["levels"][level])
+
+    def ade(case, level, q):
+        """A level's error in output q relative to its case's reference."""
+        return ab[case]["levels"][level]["q"][q] / ab[case]["reference"][q] - 1
+
+    def adf(case, level, q):
+        """A level's stated mesh error over its true error in output q (its effectivity)."""
+        lv = ab[case]["levels"][level]
+        return lv["e"][q] / abs(lv["q"][q] - ab[case]["reference"][q])
+
+    def adc(case, levels):
+        """The CPU seconds of a case's first `levels` levels: an adapted scene that runs them."""
+        return sum(lv["cpu"] for lv in ab[case]["levels"][:levels])
+
+    return dict(ad=ad, ade=ade, adf=adf, adc=adc)
+
+
 def namespace(store_dir=None):
     paper = results_store.load("paper", store_dir)
     n = paper.get("numbers", {})
@@ -151,42 +197,6 @@ def namespace(store_dir=None):
     def csr(case, q, solver="fieldsplit", base="direct"):
         """The ratio of a field-split row's q to the direct path's (or base's) on the same case."""
         return cs(case, solver, q) / cs(case, base, q)
-    fsr = results_store.load("fe_scaling", store_dir).get("rows", [])
-
-    def fs(solver, ranks, n=None):
-        """A row of bench/scaling_bench.py (docs/results/fe_scaling.json): the solver's on `ranks` ranks nearest n
-        unknowns, or (n None) its largest."""
-        sel = [A(r) for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
-        return max(sel, key=lambda r: r.unknowns) if n is None else min(sel, key=lambda r: abs(r.unknowns - n))
-
-    def fkb(r):
-        """An FE scaling row's resident set summed over its ranks per unknown [kB]."""
-        return 1024 * r.rss_all / r.unknowns
-
-    def fkpn(solver, ranks=1):
-        """The FE scaling rows' Krylov iterations per Newton iteration of a solver: [smallest, largest]."""
-        its = [r["krylov"] / r["newton"] for r in fsr if r["solver"] == solver and r["ranks"] == ranks]
-        return [min(its), max(its)]
-
-    ab = results_store.load("adapt_bench", store_dir).get("cases", {})
-
-    def ad(case, level):
-        """A level of bench/adapt_bench.py's case (docs/results/adapt_bench.json): cells, unknowns, cpu, q, e."""
-        return A(ab[case]["levels"][level])
-
-    def ade(case, level, q):
-        """A level's error in output q relative to its case's reference."""
-        return ab[case]["levels"][level]["q"][q] / ab[case]["reference"][q] - 1
-
-    def adf(case, level, q):
-        """A level's stated mesh error over its true error in output q (its effectivity)."""
-        lv = ab[case]["levels"][level]
-        return lv["e"][q] / abs(lv["q"][q] - ab[case]["reference"][q])
-
-    def adc(case, levels):
-        """The CPU seconds of a case's first `levels` levels: an adapted scene that runs them."""
-        return sum(lv["cpu"] for lv in ab[case]["levels"][:levels])
-
     te = results_store.load("time_error", store_dir).get("cases", {})
 
     def tef(case):
@@ -199,9 +209,10 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, fs=fs, fkb=fkb, fkpn=fkpn, ad=ad, ade=ade, adf=adf, adc=adc,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
+    ns.update(_fe_scaling(store_dir), **_adapted(store_dir))
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
