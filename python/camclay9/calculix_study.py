@@ -190,6 +190,13 @@ def span(values, fmt):
     return fmt.format(lo) if fmt.format(lo) == fmt.format(hi) else f"{fmt.format(lo)}–{fmt.format(hi)}"
 
 
+def loaded(pv):
+    """A caution when the machine had more work than cores during the run, else ""."""
+    top = max(pv["load"]["start"][0], pv["load"]["end"][0])
+    return (f"; measured at a load average of {pv['load']['start'][0]:.1f} to {pv['load']['end'][0]:.1f} on {pv['cores']} "
+            "cores, so the ratios are rough" if top > pv["cores"] else "")
+
+
 def reading(store):
     """The reading's bullets, every number computed from the store."""
     meshes, t = store["meshes"], store["method"]["target"]
@@ -210,7 +217,7 @@ def reading(store):
         met = all(w <= t["ratio"] and c <= t["ratio"] for _, (w, c) in big)
         out.append(f"- **Issue 13's target {'is met' if met else 'is not met'}.** Per increment the default takes "
                    + ", ".join(f"{w:.2f} of CalculiX's wall and {c:.2f} of its CPU on {r['ntet']} tets" for r, (w, c) in big)
-                   + f" (at most {num(t['ratio'])} asked).")
+                   + f" (at most {num(t['ratio'])} asked){loaded(store['provenance'])}.")
     olds = [(x["cpu"] / x["steps"]) / (default_run(r)["cpu"] / default_run(r)["steps"])
             for r in meshes if default_run(r) for x in r["runs"] if x["code"] == "driver" and x["options"] == OLD]
     if olds:
