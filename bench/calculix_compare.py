@@ -16,13 +16,18 @@ CalculiX (C3D4, 1 point) with the same fixed increments; python/camclay9/calculi
 3. Adaptive (--adaptive-size): each code's own incrementation with PROPS(20) = 1e-6 as input/triaxial.yaml,
    with the end strain against the fixed-increment run.
 
+Every number the tables print goes, at full digits and with the run's provenance, into the results store
+docs/results/calculix.json; the section "CalculiX on the same mesh (issue 13)" of docs/performance.md is written
+from it (camclay9.calculix_study, whose docstring gives the store's layout; tools/doc_numbers.py checks it).
+
 Usage: bench/calculix_compare.py [--sizes 6 2.3 1.4] [--repeats 3 3 1] [--plans full short short]
-         [--driver-opts "" "-pc_factor_mat_solver_type mumps"] [--threads 1 2] [--adaptive-size 6] [--no-doc]
-Writes the section "CalculiX on the same mesh (issue 13)" of docs/performance.md.
+         [--driver-opts "" "-pc_factor_mat_solver_type mumps"] [--threads 1 2] [--adaptive-size 6] [--note TEXT] [--no-doc]
+       bench/calculix_compare.py --from-store      (the section again from the store, nothing run)
 """
 import argparse
 import datetime
 import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -31,20 +36,39 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from camclay9 import calculix_mesh
-from camclay9.performance_doc import replace_section
+from camclay9 import calculix_mesh, results_store
+from camclay9 import calculix_study as study
+from camclay9.performance_doc import publish
 
 ROOT = Path(__file__).resolve().parents[1]
-
-TITLE = "## CalculiX on the same mesh (issue 13)"
+TARGET = {"ratio": 0.5, "from_tets": 10000}    # issue 13: the default >= 2x faster per increment from 10k tets on
 
 
 def ccx_bindir(build):
+    """The folder of the CalculiX executables linked with this build's UMAT (tools/calculix/build_ccx.sh: built once,
+    cached by the object's hash; the first build fetches and compiles CalculiX)."""
     r = subprocess.run(["bash", str(ROOT / "tools" / "calculix" / "build_ccx.sh"), str(Path(build) / "umat" / "camclay9_umat.o")],
-                       capture_output=True, text=True)
+                       capture_output=True, text=True, timeout=4 * 3600)
     if r.returncode != 0:
         sys.exit(f"calculix_compare: CalculiX not available: {r.stderr.strip()}")
     return r.stdout.strip().splitlines()[-1]
+
+
+def ccx_version(bindir):
+    """The version CalculiX prints (`ccx -v`)."""
+    r = subprocess.run([os.path.join(bindir, "ccx_camclay9"), "-v"], capture_output=True, text=True, timeout=60)
+    m = re.search(r"Version\s+([0-9][0-9.]*)", r.stdout)
+    if not m:
+        sys.exit(f"calculix_compare: no version in the output of ccx -v: {r.stdout[-300:]}")
+    return m.group(1)
+
+
+def printed_digits(dat):
+    """The significant digits of the displacements CalculiX prints into the .dat (its first printed u_z)."""
+    lines = open(dat).read().splitlines()
+    at = next(i for i, line in enumerate(lines) if line.strip().startswith("displacements") and "NTOP" in line)
+    mantissa = lines[at + 2].split()[3].upper().split("E")[0]
+    return len(mantissa.lstrip("+-").replace(".", "").lstrip("0"))
 
 
 def top_uz_ccx(dat, sta):
@@ -135,15 +159,27 @@ def bench_mesh(a, bindir, size, repeats, plan_name, tmp):
         shutil.rmtree(printed_d, ignore_errors=True)
     shutil.rmtree(first, ignore_errors=True)
     return dict(size=size, ntet=ntet, nnode=nnode, plan=plan_name, incs=incs, repeats=repeats, agree=agree,
-                printed=printed, runs=runs)
+                printed=printed, printed_digits=printed_digits(str(wd / "cyl.dat")),
+                runs=[store_run(kind, opt, rs) for (kind, opt), rs in runs.items()])
+
+
+def store_run(kind, opt, runs):
+    """One configuration's repeats as the store keeps them (camclay9.calculix_study): increments and iterations of
+    the first repeat, medians and each repeat's wall and CPU time."""
+    which = {"code": "driver", "options": opt} if kind == "driver" else {"code": "calculix", "threads": opt}
+    return dict(which, steps=runs[0]["steps"], its=runs[0]["its"], wall=median(runs, "wall"), cpu=median(runs, "cpu"),
+                walls=[r["wall"] for r in runs], cpus=[r["cpu"] for r in runs])
+
+
+AD_TOL = 1e-6   # PROPS(20) of the adaptive runs, as input/triaxial.yaml
 
 
 def bench_adaptive(a, bindir, size, tmp):
-    """Each code's own step control (PROPS(20) = 1e-6) against its fixed-increment run, one run each."""
+    """Each code's own step control (PROPS(20) = AD_TOL) against its fixed-increment run, one run each."""
     msh = calculix_mesh.make_mesh(size, str(tmp / f"ad{size}.msh"))
     mesh = calculix_mesh.read_msh22(msh + "22")
     res = {}
-    for label, plan, tol in (("fixed", calculix_mesh.PLANS["full"], 0.0), ("adaptive", None, 1e-6)):
+    for label, plan, tol in (("fixed", calculix_mesh.PLANS["full"], 0.0), ("adaptive", None, AD_TOL)):
         out = str(tmp / f"ad_{label}")
         scene = calculix_mesh.write_scene(msh, str(tmp / f"ad_{label}.yaml"), out, tol, plan)
         d = calculix_mesh.run_driver(a.driver, scene, out, a.driver_opts[0].split())
@@ -159,43 +195,51 @@ def bench_adaptive(a, bindir, size, tmp):
         loaded = 1e6 + 1                                                    # end of the ramp
         ramp_step = 1 + max(k for k, st in enumerate(plan or calculix_mesh.ADAPTIVE) if st[0] == "ramp")
         u_load_d = [u for t, u in drv_uz if abs(t - loaded) < 1e-9 * loaded]
-        res[label] = dict(driver=d, ccx=c, u_driver=drv_uz[-1][1], u_ccx=ccx_uz[-1][1],
-                          u_load_driver=u_load_d[0], u_load_ccx=[u for _, u, st in ccx_uz if st == ramp_step][-1])
+        keep = ("steps", "cutbacks", "its", "wall", "cpu")
+        res[label] = {"driver": dict({k: d[k] for k in keep}, u_end=drv_uz[-1][1], u_load=u_load_d[0]),
+                      "calculix": dict({k: c[k] for k in keep}, u_end=ccx_uz[-1][1],
+                                       u_load=[u for _, u, st in ccx_uz if st == ramp_step][-1])}
         shutil.rmtree(out, ignore_errors=True)
         print(f"adaptive study {label}: driver {d['steps']} steps {d['its']} its {d['wall']:.1f} s; ccx {c['steps']} incs "
               f"{c['its']} its {c['wall']:.1f} s; top u_z end driver {drv_uz[-1][1]:.6e} ccx {ccx_uz[-1][1]:.6e}", flush=True)
-    return dict(size=size, ntet=len(mesh["tets"]), res=res)
+    return dict(size=size, ntet=len(mesh["tets"]), tol=AD_TOL, runs=res)
 
 
-def table(results):
-    lines = ["| tets (nodes) | increments | code, options | Newton its | wall s | CPU s | wall ms / increment | "
-             "wall ms / Newton it. | CPU ms / increment | per increment vs CalculiX 1 thread: wall, CPU |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
-    for r in results:
-        ref = None
-        for (kind, opt), runs in r["runs"].items():
-            if kind == "ccx" and opt == 1:
-                ref = (median(runs, "wall") / runs[0]["steps"], median(runs, "cpu") / runs[0]["steps"])
-        for (kind, opt), runs in r["runs"].items():
-            wall, cpu, steps, its = median(runs, "wall"), median(runs, "cpu"), runs[0]["steps"], runs[0]["its"]
-            name = f"driver {opt}" if kind == "driver" and opt else ("driver (default solver)" if kind == "driver"
-                                                                     else f"CalculiX SPOOLES, {opt} thread{'s' if opt > 1 else ''}")
-            ratio = f"{wall / steps / ref[0]:.2f}, {cpu / steps / ref[1]:.2f}" if ref else ""
-            lines.append(f"| {r['ntet']} ({r['nnode']}) | {steps} ({r['plan']}) | {name} | {its} | {wall:.2f} | {cpu:.2f} | "
-                         f"{1e3 * wall / steps:.1f} | {1e3 * wall / max(its, 1):.1f} | {1e3 * cpu / steps:.1f} | {ratio} |")
-    return "\n".join(lines)
+def method(a):
+    """The store's "method": the plans the runs used (increments and each phase's period), PROPS(20) of the fixed
+    increments, the trace's limit and issue 13's target (camclay9.calculix_study)."""
+    plans = {}
+    for name in sorted(set(a.plans) | ({"full"} if a.adaptive_size > 0 else set())):
+        plan = calculix_mesh.PLANS[name]
+        plans[name] = dict(increments=sum(round(T / dt) for _, dt, T in plan),
+                           **{ph: sum(T for p, _, T in plan if p == ph) for ph in ("hold", "ramp", "creep")})
+    return dict(plans=plans, tol_fixed=0.0, trace_max=a.trace_max, target=TARGET)
 
 
-def agreement_table(results):
-    lines = ["| tets | increments | mean strain | mean stress | mean evp33 hard / soft | cell stress | cell pc hard / soft "
-             "| cell evp | top u_z (7 printed digits) |", "|---|---|---|---|---|---|---|---|---|"]
-    for r in results:
-        g = r["agree"]
-        full = (f"{g['mean strain']:.1e} | {g['mean stress']:.1e} | {g['mean evp33 hard']:.1e} / {g['mean evp33 soft']:.1e} | "
-                f"{g['cell stress']:.1e} | {g['cell pc_hard']:.1e} / {g['cell pc_soft']:.1e} | {g['cell evp']:.1e}") if g \
-            else "(no trace: too large) | | | | | "
-        lines.append(f"| {r['ntet']} | {r['incs']} | {full} | {r['printed']:.1e} |")
-    return "\n".join(lines)
+def command(a):
+    return "bench/calculix_compare.py " + " ".join(
+        [f"--sizes {' '.join(f'{s:g}' for s in a.sizes)}", f"--repeats {' '.join(map(str, a.repeats))}",
+         f"--plans {' '.join(a.plans)}", "--driver-opts " + " ".join(f'"{o}"' for o in a.driver_opts),
+         f"--threads {' '.join(map(str, a.threads))}", f"--adaptive-size {a.adaptive_size:g}"])
+
+
+def now():
+    return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+
+
+def run_all(a):
+    """Every run of the command line; the store (camclay9.calculix_study)."""
+    bindir = ccx_bindir(a.build)
+    load, start, rev = os.getloadavg(), now(), results_store.revision(ROOT)
+    with tempfile.TemporaryDirectory() as t:
+        tmp = Path(t)
+        meshes = [bench_mesh(a, bindir, s, r, p, tmp) for s, r, p in zip(a.sizes, a.repeats, a.plans)]
+        adaptive = bench_adaptive(a, bindir, a.adaptive_size, tmp) if a.adaptive_size > 0 else None
+    pv = {"command": command(a), "date": start, "finished": now(), "rev": rev, "calculix": ccx_version(bindir),
+          "cores": os.cpu_count(), "load": {"start": list(load), "end": list(os.getloadavg())}}
+    if a.note:
+        pv["note"] = a.note
+    return {"provenance": pv, "method": method(a), "meshes": meshes, "adaptive": adaptive}
 
 
 def main(argv=None):
@@ -211,76 +255,23 @@ def main(argv=None):
     ap.add_argument("--adaptive-size", type=float, default=6.0, help="element size of the adaptive study (0: none)")
     ap.add_argument("--trace-max", type=int, default=120000, help="largest tets x increments traced at full precision")
     ap.add_argument("--build", default=str(ROOT / "build"))
-    ap.add_argument("--no-doc", action="store_true", help="print only, do not write docs/performance.md")
+    ap.add_argument("--note", default="", help="a sentence for the provenance (what the run left out, and why)")
+    ap.add_argument("--from-store", action="store_true",
+                    help="run nothing: the section again from docs/results/calculix.json")
+    ap.add_argument("--no-doc", action="store_true", help="print only, write neither the store nor docs/performance.md")
     a = ap.parse_args(argv)
-    a.driver = str(Path(a.build) / "bin" / "driver")
-    n = len(a.sizes)
-    if len(a.repeats) != n or len(a.plans) != n:
-        sys.exit("calculix_compare: give one --repeats and one --plans value per --sizes value")
-    bindir = ccx_bindir(a.build)
-    load = os.getloadavg()
-    start = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    with tempfile.TemporaryDirectory() as t:
-        tmp = Path(t)
-        results = [bench_mesh(a, bindir, s, r, p, tmp) for s, r, p in zip(a.sizes, a.repeats, a.plans)]
-        adaptive = bench_adaptive(a, bindir, a.adaptive_size, tmp) if a.adaptive_size > 0 else None
-    load_end = os.getloadavg()
-    cmd = "bench/calculix_compare.py " + " ".join(
-        [f"--sizes {' '.join(f'{s:g}' for s in a.sizes)}", f"--repeats {' '.join(map(str, a.repeats))}",
-         f"--plans {' '.join(a.plans)}", "--driver-opts " + " ".join(f'"{o}"' for o in a.driver_opts),
-         f"--threads {' '.join(map(str, a.threads))}", f"--adaptive-size {a.adaptive_size:g}"])
-    text = (f"{TITLE}\n\nCommand: `{cmd}`. Run {start}; load average {load[0]:.1f} at the start and {load_end[0]:.1f} "
-            "at the end (2 cores shared with other jobs: take the times as rough, compare CPU beside wall).\n\n"
-            + AGREE_TEXT + agreement_table(results) + "\n\n" + TIME_TEXT + table(results) + "\n")
-    if adaptive:
-        text += "\n" + adaptive_text(adaptive)
-    print(text)
-    if not a.no_doc:
-        replace_section(TITLE, text)
-        print("written: docs/performance.md")
-
-
-AGREE_TEXT = """One gmsh mesh per row (meshes/cylinder.geo), run by the driver (P1 tetrahedra, 1 point) and by CalculiX 2.20
-(C3D4, 1 point), with the same UMAT, PROPS (tol = 0), per-element phi (the driver's draw of input/triaxial.yaml,
-written into CalculiX as one material per element), supports, pressures and fixed increments: "full" is the
-76 increments of input/abaqus (hold 1e6 s, ramp the top from 35 to 75 MPa in 1 s, creep 36000 s), "short" the
-first increments of each phase (10). How: python/camclay9/calculix_mesh.py, docs/calculix.md. **Agreement**, worst
-relative difference over all increments (per element: over the field outputs at the end of each phase); the
-full-precision columns need the traced CalculiX and are left out on large meshes:
-
-"""
-
-TIME_TEXT = """**Time.** Process wall and CPU time (user + system), medians of the repeats, runs interleaved (each
-configuration once per round). The driver on one rank, its Newton to 1e-12 relative; CalculiX with SPOOLES,
-`*CONTROLS` residual and correction ratios 1e-12 (it symmetrises DDSDDE, so its Newton converges linearly and
-takes more iterations). Both times include start-up and input (CalculiX reads one material per element).
-The driver's default solver (docs/driver.md, "Solvers"): MUMPS inside GMRES, its factorisation kept across
-Newton iterations and steps while the Krylov iterations stay few, the Jacobian assembled by COO; the option
-`-ksp_type preonly -fe_coo false -pc_factor_mat_solver_type mumps` is the set-up before issue 13's solver
-work (a fresh MUMPS factorisation at every Newton iteration, MatSetValues). Issue 13 asks for the default to be
-at least 2x faster per increment than CalculiX at 10k tets and above: the last column at most 0.5.
-
-"""
-
-
-def adaptive_text(ad):
-    lines = [f"**Adaptive** ({ad['ntet']} tets, one run each). Each code's own incrementation with PROPS(20) = tol = 1e-6 "
-             "as input/triaxial.yaml: the driver's worst-point control (PNEWDT), CalculiX's automatic incrementation "
-             "(first, minimum and maximum increments of input/abaqus' cylinder; it grows by its iteration counts and "
-             "cuts where the UMAT's PNEWDT asks). Creep = top u_z at 36000 s minus at the end of the ramp, against "
-             "the same code's fixed 76 increments.", "",
-             "| run | code | increments | cutbacks | Newton its | wall s | CPU s | creep [mm] | creep vs fixed |",
-             "|---|---|---|---|---|---|---|---|---|"]
-    fixed = ad["res"]["fixed"]
-    for label in ("fixed", "adaptive"):
-        r = ad["res"][label]
-        for code in ("driver", "ccx"):
-            x = r[code]
-            creep = r[f"u_{code}"] - r[f"u_load_{code}"]
-            ref = fixed[f"u_{code}"] - fixed[f"u_load_{code}"]
-            lines.append(f"| {label} | {'driver' if code == 'driver' else 'CalculiX, 1 thread'} | {x['steps']} | {x['cutbacks']} | {x['its']} | "
-                         f"{x['wall']:.2f} | {x['cpu']:.2f} | {creep:.5e} | {creep / ref - 1:+.1e} |")
-    return "\n".join(lines) + "\n"
+    if a.from_store:
+        store = results_store.load(study.STORE)
+        if not store:
+            sys.exit(f"calculix_compare: no store {results_store.path(study.STORE)}")
+    else:
+        a.driver = str(Path(a.build) / "bin" / "driver")
+        n = len(a.sizes)
+        if len(a.repeats) != n or len(a.plans) != n:
+            sys.exit("calculix_compare: give one --repeats and one --plans value per --sizes value")
+        store = run_all(a)
+    publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
+    return 0
 
 
 if __name__ == "__main__":

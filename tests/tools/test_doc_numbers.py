@@ -9,8 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import (calibrate_study, doc_quotes, fe_scaling_study, indent_ranks_study, point_creep_study, results_store,
-                      step_control_study, time_error_study, umat_time_study)
+from camclay9 import (calculix_study, calibrate_study, doc_quotes, fe_scaling_study, indent_ranks_study, point_creep_study,
+                      results_store, step_control_study, time_error_study, umat_time_study)
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -90,6 +90,8 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/performance.md", "3 553, 3 021 and 3 041 steps", "3 553, 3 012 and 3 041 steps"),     # issue 10's, quoted
     ("docs/performance.md", "| 2 | GAMG | 1208 of 85114 (ptscotch) | 4 | 93 |", "| 2 | GAMG | 1208 of 85114 (ptscotch) | 4 | 39 |"),
     ("docs/parallel.md", "took 43.5 s on 2 ranks", "took 34.5 s on 2 ranks"),                    # FE scaling, quoted
+    ("docs/performance.md", "| 10547 (2331) | 10 (short) | driver (default solver) | 13 | 8.34 | 4.07 |",
+     "| 10547 (2331) | 10 (short) | driver (default solver) | 13 | 8.34 | 4.70 |"),                # CalculiX on the same mesh
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -128,6 +130,7 @@ def _drop(store, path):
     (step_control_study, ("parts", "axi", "quiet", "rate_wall_s")),    # a figure the hand-written text quotes
     (step_control_study, ("parts", "axi", "table", "rows", 4, "errors", "creep depth")),
     (fe_scaling_study, ("rows", 3, "rss_all")),
+    (calculix_study, ("meshes", 2, "runs", 2, "cpu")),                 # CalculiX's CPU on the largest mesh
 ])
 def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
     store = results_store.load(study.STORE)
