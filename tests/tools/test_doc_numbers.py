@@ -9,8 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import (calculix_study, calibrate_study, doc_quotes, fe_scaling_study, indent_ranks_study, point_creep_study,
-                      results_store, step_control_study, time_error_study, umat_time_study)
+from camclay9 import (calculix_study, calibrate_study, doc_quotes, fe_scaling_study, fe_solver_study, indent_ranks_study,
+                      point_creep_study, results_store, step_control_study, time_error_study, umat_time_study)
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -92,6 +92,7 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/parallel.md", "took 43.5 s on 2 ranks", "took 34.5 s on 2 ranks"),                    # FE scaling, quoted
     ("docs/performance.md", "| 10547 (2331) | 10 (short) | driver (default solver) | 13 | 8.34 | 4.07 |",
      "| 10547 (2331) | 10 (short) | driver (default solver) | 13 | 8.34 | 4.70 |"),                # CalculiX on the same mesh
+    ("docs/performance.md", "| 284 | 2 | 12.75 | 7.00 | 94.7 |", "| 284 | 2 | 12.75 | 7.00 | 97.4 |"),  # FE solver: a cell
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -131,6 +132,8 @@ def _drop(store, path):
     (step_control_study, ("parts", "axi", "table", "rows", 4, "errors", "creep depth")),
     (fe_scaling_study, ("rows", 3, "rss_all")),
     (calculix_study, ("meshes", 2, "runs", 2, "cpu")),                 # CalculiX's CPU on the largest mesh
+    (fe_solver_study, ("rows", 3, "cpu")),                             # a table's number
+    (fe_solver_study, ("probe", "asymmetry")),                         # a number only the reading quotes
 ])
 def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
     store = results_store.load(study.STORE)

@@ -223,8 +223,8 @@ static long umat_calls(void *ctx) { return (long)fe_problem_diag(((FeSolver *)ct
  * (-fe_refactor_its), on any number of ranks; above -fe_gamg_above unknowns GAMG on the rigid-body near
  * null space instead. Every choice is a default: -ksp_type, -pc_type, -pc_factor_mat_solver_type,
  * -mat_mumps_icntl_* given by the user win; -fe_refactor_its 0 -ksp_type preonly is a plain direct solve
- * at every Newton iteration. The Jacobian is unsymmetric (the viscoplastic consistent tangent: about
- * 5e-5 relative on the triaxial cylinder), so LU, not Cholesky, and GMRES, not CG. */
+ * at every Newton iteration. The Jacobian is unsymmetric (the viscoplastic consistent tangent; its measured
+ * asymmetry: docs/performance.md, "FE solver: defaults by measurement"), so LU, not Cholesky, and GMRES, not CG. */
 static PetscErrorCode linear_solver_setup(FeSolver *f, KSP ksp, const FeSolverOptions *o) {
   PC        pc;
   PetscInt  n, gamg_above = o->gamg_above;
