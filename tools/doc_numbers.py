@@ -18,8 +18,9 @@ Usage: tools/doc_numbers.py [--write] [--root DIR]
                calibrate_bench.json), "## 3D indentation on 1 and 2 ranks" (camclay9.indent_ranks_study,
                indent_ranks.json), the two "## Time-step error control" sections (camclay9.step_control_study,
                step_control.json), "## FE solver: the triaxial main job" (camclay9.fe_main_job_study,
-               fe_main_job.json) and "## Indentation: 3D half model, sector and axisymmetric twin"
-               (camclay9.indent_models_study, indent_models.json);
+               fe_main_job.json), "## Indentation: 3D half model, sector and axisymmetric twin"
+               (camclay9.indent_models_study, indent_models.json) and "## Indentation speed: the contact solve
+               and the physics" (camclay9.indent_speed_study, indent_speed.json);
              * a section whose tables no store holds yet ("## 3D indentation: mesh convergence ...") must end with
                the reading its generator carries over (READINGS: bench/indent_convergence_conclusions.md);
              * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
@@ -38,8 +39,8 @@ import sys
 from pathlib import Path
 
 from camclay9 import (adapt_study, calibrate_study, contact_solver_study, coverage_study, doc_quotes, fe_main_job_study,
-                      fe_triaxial_study, indent_models_study, indent_ranks_study, paper_doc, point_creep_study, results_store,
-                      step_control_study, time_error_study, umat_time_study)
+                      fe_triaxial_study, indent_models_study, indent_ranks_study, indent_speed_study, paper_doc,
+                      point_creep_study, results_store, step_control_study, time_error_study, umat_time_study)
 from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -47,7 +48,8 @@ ROOT = Path(__file__).resolve().parents[1]
 # the sections written by a generator module from its own store alone: its STORE, and TITLE with section(store, root),
 # or sections(store) for a store behind several sections ({title: text})
 STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study, coverage_study, time_error_study, umat_time_study,
-           point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study)
+           point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study,
+           indent_speed_study)
 
 # Sections whose tables no store holds yet (their runs' results were not kept) but whose reading, written by hand, the
 # section's generator carries over from a file (bench/indent_convergence_doc.py): the section must end with that text,
