@@ -179,8 +179,9 @@ def main(argv=None):
             if a.against:
                 subprocess.run(["git", "worktree", "remove", "--force", str(tmp / "before" / "src")], cwd=ROOT,
                                capture_output=True, timeout=600)
-    flags = [f"--repeats {a.repeats}", f"--long {a.long:g}", *([f"--scenes {a.scenes}"] if a.scenes != ",".join(SCENES) else []),
-             *([f"--against {a.against}"] if a.against else []), *(["--elementary"] if a.elementary else [])]
+    flags = ["--quick"] if a.quick else [f"--repeats {a.repeats}", f"--long {a.long:g}",
+                                         *([f"--scenes {a.scenes}"] if a.scenes != ",".join(SCENES) else [])]
+    flags += [*([f"--against {a.against}"] if a.against else []), *(["--elementary"] if a.elementary else [])]
     store = {"provenance": {"command": " ".join(["bench/indent_speed_bench.py", *flags]), "date": time.strftime("%Y-%m-%d"),
                             "rev": results_store.revision(ROOT), "machine": a.machine,
                             "load": {"start": list(load), "end": list(os.getloadavg())}, "repeats": repeats, "long": a.long,

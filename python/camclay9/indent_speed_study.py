@@ -165,9 +165,10 @@ def section(store, root=None):
              f"Command: `{pv['command']}` ({pv['date']}, the driver at {pv['rev']}; {pv['machine']}; the load averages over "
              f"1, 5 and 15 min were {ld(pv['load']['start'])} at the start and {ld(pv['load']['end'])} at the end).", "",
              "Each shipped indentation scene (`input/`, as shipped) on one rank. CPU is user + system time of the driver "
-             f"and of the gmsh it starts to mesh the scene. A scene whose first run took at most {pv['long']:g} s of CPU ran "
-             f"{pv['repeats']} times and its CPU is their median; a longer one ran once"
-             + (f" ({', '.join(once)})" if once else "") + ". The machine was shared, so wall time says little: compare "
+             "and of the gmsh it starts to mesh the scene. "
+             + (f"A scene whose first run took at most {pv['long']:g} s of CPU ran {pv['repeats']} times and its CPU is their "
+                "median; a longer one ran once" + (f" ({', '.join(once)})" if once else "") if pv["repeats"] > 1 else
+                "Each scene ran once") + ". The machine was shared, so wall time says little: compare "
              "CPU seconds. The ratio to the physics is CPU / (UMAT calls × t_call), t_call the UMAT benchmark's median time "
              f"per call ({pv['umat_case']}; `build/bench/umat_bench`), measured just before the scene's runs. The counts "
              "and outputs are the first run's; the time split is that run's -log_view (wall seconds; an event's time "
