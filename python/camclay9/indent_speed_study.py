@@ -22,7 +22,7 @@ end of the last stage [µm], "final_stage": that stage's name}), "log_view" ({gr
 run's -log_view time}: the first run's -log_view, wall seconds, the largest over ranks; an event's time includes the
 events inside it)}. Values at full digits; the section's reading is computed from the rows.
 """
-import statistics
+import math
 
 from camclay9 import results_store
 
@@ -85,13 +85,18 @@ def cost_table(rows):
     return lines
 
 
+def sig(x, n=5):
+    """At least n significant digits, without an exponent, thousands apart by a comma (1,059,684; 547.18; 0.13531)."""
+    return f"{x:,.{max(0, n - 1 - math.floor(math.log10(abs(x))))}f}" if x else "0"
+
+
 def outputs_table(rows):
     both = several(rows)
     lines = ["| scene | load at the end of loading [µN] | creep depth [nm] | final depth [µm] | at the end of |",
              "|---|---|---|---|---|"]
     for r in rows:
         o = r["outputs"]
-        lines.append(f"| {name(r, both)} | {o['load']:.5g} | {1e3 * o['creep_depth']:.5g} | {o['final_depth']:.5g} | "
+        lines.append(f"| {name(r, both)} | {sig(o['load'])} | {sig(1e3 * o['creep_depth'])} | {sig(o['final_depth'])} | "
                      f"{o['final_stage']} |")
     return lines
 
@@ -121,7 +126,8 @@ def reading(rows):
     walls = [w / c for r in t for w, c in zip(r["wall_runs"], r["cpu_runs"])]
     out = [f"- **The ratio to the physics** goes from {span(t, lambda r: r['ratio'], x2)}"
            + (f"; the 3D scenes {min(r['ratio'] for r in d3):.2f}–{max(r['ratio'] for r in d3):.2f}, the 2D ones "
-              f"{min(r['ratio'] for r in d2):.2f}–{max(r['ratio'] for r in d2):.2f}" if d3 and d2 else "") + ".",
+              f"{min(r['ratio'] for r in d2):.2f}–{max(r['ratio'] for r in d2):.2f}" if d3 and d2 else "")
+           + f"; t_call, measured under the same load, went from {span(t, lambda r: r['umat_ns'], lambda v: f'{v:.0f} ns')}.",
            f"- **Where the time goes** (share of the -log_view total): the residual with the UMAT calls "
            f"{span(t, share('residual + UMAT'), pct)}; the contact solve {span(t, share('contact solve'), pct)}, of which the "
            f"factorisation {span(t, share('factorisation'), pct)} and the triangular solves "
@@ -164,7 +170,7 @@ def section(store, root=None):
     lines = [TITLE, "",
              f"Command: `{pv['command']}` ({pv['date']}, the driver at {pv['rev']}; {pv['machine']}; the load averages over "
              f"1, 5 and 15 min were {ld(pv['load']['start'])} at the start and {ld(pv['load']['end'])} at the end).", "",
-             "Each shipped indentation scene (`input/`, as shipped) on one rank. CPU is user + system time of the driver "
+             "Each shipped indentation scene (`input/*.yaml`, unchanged) on one rank. CPU is user + system time of the driver "
              "and of the gmsh it starts to mesh the scene. "
              + (f"A scene whose first run took at most {pv['long']:g} s of CPU ran {pv['repeats']} times and its CPU is their "
                 "median; a longer one ran once" + (f" ({', '.join(once)})" if once else "") if pv["repeats"] > 1 else

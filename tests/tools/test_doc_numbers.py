@@ -9,8 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from camclay9 import (calibrate_study, doc_quotes, indent_ranks_study, point_creep_study, results_store, step_control_study,
-                      time_error_study, umat_time_study)
+from camclay9 import (calibrate_study, doc_quotes, indent_ranks_study, indent_speed_study, point_creep_study, results_store,
+                      step_control_study, time_error_study, umat_time_study)
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -88,6 +88,7 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/performance.md", "bedding_theta45 9.56 s", "bedding_theta45 9.65 s"),                    # its quiet machine's
     ("docs/performance.md", "| 7,072,230 | 119.6 | 35.2 |", "| 7,072,230 | 119.6 | 32.5 |"),      # the 3D half models'
     ("docs/performance.md", "3 553, 3 021 and 3 041 steps", "3 553, 3 012 and 3 041 steps"),     # issue 10's, quoted
+    ("docs/performance.md", "| 631 | 1248 | 28 |", "| 631 | 1284 | 28 |"),     # indentation speed: Krylov iterations
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -125,6 +126,7 @@ def _drop(store, path):
     (step_control_study, ("parts", "axi", "scenes", 1, "rows", 0, "calls")),
     (step_control_study, ("parts", "axi", "quiet", "rate_wall_s")),    # a figure the hand-written text quotes
     (step_control_study, ("parts", "axi", "table", "rows", 4, "errors", "creep depth")),
+    (indent_speed_study, ("rows", 2, "umat_ns")),                      # the UMAT benchmark's time of a scene
 ])
 def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
     store = results_store.load(study.STORE)
