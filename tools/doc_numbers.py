@@ -21,8 +21,9 @@ Usage: tools/doc_numbers.py [--write] [--root DIR]
                fe_main_job.json), "## FE solver: defaults by measurement" (camclay9.fe_solver_study,
                fe_solver.json), "## Indentation: 3D half model, sector and axisymmetric twin"
                (camclay9.indent_models_study, indent_models.json), "## FE scaling: 1 and 2 ranks, direct and GAMG"
-               (camclay9.fe_scaling_study, fe_scaling.json) and "## CalculiX on the same mesh (issue 13)"
-               (camclay9.calculix_study, calculix.json);
+               (camclay9.fe_scaling_study, fe_scaling.json), "## CalculiX on the same mesh (issue 13)"
+               (camclay9.calculix_study, calculix.json) and "## Indentation speed: the contact solve and the physics"
+               (camclay9.indent_speed_study, indent_speed.json);
              * a section whose tables no store holds yet ("## 3D indentation: mesh convergence ...") must end with
                the reading its generator carries over (READINGS: bench/indent_convergence_conclusions.md);
              * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
@@ -42,8 +43,8 @@ from pathlib import Path
 
 from camclay9 import (adapt_study, calculix_study, calibrate_study, contact_solver_study, coverage_study, doc_quotes,
                       fe_main_job_study, fe_scaling_study, fe_solver_study, fe_triaxial_study, indent_models_study,
-                      indent_ranks_study, paper_doc, point_creep_study, results_store, step_control_study, time_error_study,
-                      umat_time_study)
+                      indent_ranks_study, indent_speed_study, paper_doc, point_creep_study, results_store, step_control_study,
+                      time_error_study, umat_time_study)
 from camclay9 import indent2d_study as i2d
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -52,7 +53,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # or sections(store) for a store behind several sections ({title: text})
 STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study, coverage_study, time_error_study, umat_time_study,
            point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study,
-           fe_scaling_study, calculix_study, fe_solver_study)
+           fe_scaling_study, calculix_study, fe_solver_study, indent_speed_study)
 
 # Sections whose tables no store holds yet (their runs' results were not kept) but whose reading, written by hand, the
 # section's generator carries over from a file (bench/indent_convergence_doc.py): the section must end with that text,

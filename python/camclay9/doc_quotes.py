@@ -6,8 +6,9 @@ numbers computed from the store, stands in its document, and --write puts the st
 
 Coverage: every number of README's main-job paragraph and of its table rows for the 3D kerogen, BN and BP scenes,
 the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
-below the table, except costs quoted from other benches' prose (the loading-rate and bedding CPU times); the adapted
-scenes' errors and CPU (bench/adapt_bench.py, adapt_bench.json); docs/parallel.md's solver choice and memory budget
+below the table (the shipped scenes' CPU times from bench/indent_speed_bench.py, indent_speed.json; the adapted
+scenes' errors and CPU from bench/adapt_bench.py, adapt_bench.json), except costs quoted from other benches' prose (the
+2D scenes' CPU before the 2D study, the stall test's saving); docs/parallel.md's solver choice and memory budget
 (bench/scaling_bench.py, fe_scaling.json);
 the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json);
 those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json); the
@@ -65,6 +66,8 @@ G, LU = "fieldsplit, GAMG on P2", "fieldsplit, LU on u"  # its field split with 
 SP, R2 = "fieldsplit, simple partition", "ranks0.0425"  # its field split on the simple partition; its 2-rank partition case
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
+LR = ("loading_rate_a0.1", "loading_rate_a1", "loading_rate_a10")  # the 2D scenes of bench/indent_speed_bench.py
+BED = ("bedding_theta0", "bedding_theta45", "bedding_theta90")
 
 
 def _fe_scaling(store_dir=None):
@@ -180,6 +183,11 @@ def namespace(store_dir=None):
         return 100 * cs(case, solver, "partition")["copies"] / cs(case, solver, "partition")["vertices"]
 
     ims = {r["model"]: r for r in results_store.load("indent_models", store_dir).get("rows", [])}
+    isr = {(r["scene"], r["driver"]): r for r in results_store.load("indent_speed", store_dir).get("rows", [])}
+
+    def isp(scene, driver="this tree"):
+        """A scene's row of bench/indent_speed_bench.py (docs/results/indent_speed.json): cpu, steps, log_view, ..."""
+        return A(isr[(scene, driver)])
 
     def im(model):
         """A row of bench/indent_models_bench.py (docs/results/indent_models.json) by its model's key."""
@@ -209,7 +217,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, isp=isp, LR=LR, BED=BED,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     ns.update(_fe_scaling(store_dir), **_adapted(store_dir))
@@ -386,9 +394,10 @@ QUOTES = [
         "«pu(k.reference.hw.creep)», residual depth «k.reference.h_res» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
         "«pc(err3('sector2_0.12').P)», creep depth «pc(err3('sector2_0.12').creep)», residual depth «pc(err3('sector2_0.12').h_res)»"),
     (R, "another mesh of this density is «pc(err3('sector2f8_0.12').h_res)» in residual depth"),
-    (R, "«f(k.shipped_cost.cpu_median, 0)» s CPU (median of «k.shipped_cost.runs», idle machine; «k.shipped_cost.umat_calls_M» M "
+    (R, "«f(isp('nanoindent_kerogen_sector').cpu, 0)» s CPU on a shared machine (docs/performance.md, \"Indentation speed\"); "
+        "on an idle machine «f(k.shipped_cost.cpu_median, 0)» s (median of «k.shipped_cost.runs»; «k.shipped_cost.umat_calls_M» M "
         "UMAT calls, «k.shipped_cost.ratio_to_umat»× their benchmark time; the mesh before: «f(k.shipped_cost.cpu_before_repick, 0)» s, "
-        "creep «pc(err3('sector2f8_0.1').creep)»; «f(k.shipped_cost.cpu_before_issue25, 0)» s before"),
+        "creep «pc(err3('sector2f8_0.1').creep)»)"),
     (R, "an independent mesh of this density (the cube, h_tip 0.12) is «pc(err3('half2_0.12').P)» in load, "
         "«pc(err3('half2_0.12').creep)» in creep depth and «pc(err3('half2_0.12').h_res)» in residual depth"),
     # the axisymmetric twin (defect 3)
@@ -404,13 +413,18 @@ QUOTES = [
     (R, "(P2: «', '.join(f(x, 2) for x in bn.p2.h_res[1:])» µm), so the shipped mesh's «bn.p2.h_res[2]» µm is "
         "«pc(bn.p2.h_res[2] / bn.adapted.h_res[-1] - 1, 0)» against the converged «f(bn.adapted.h_res[-1], 3)» µm "
         "(adapted meshes, `microindent_BN_sector_adapt.yaml`; the axisymmetric twin: «f(bn.twin_h_res, 3)» µm)"),
-    (R, "«f(bn.cost.cpu, 0)» s CPU («f(bn.cost.cpu_before_issue25, 0)» s before issue 25); «bn.cost.steps» steps, "
-        "«bn.cost.rejected» rejected («bn.cost.rejected_before» before the PI step controller)"),
+    (R, "| «f(isp('microindent_BN_sector').cpu, 0)» s CPU on a shared machine; «isp('microindent_BN_sector').steps» steps, "
+        "«isp('microindent_BN_sector').rejected» rejected |"),
     (R, "the load «pc(bp.p2.P[1] / bp.p2.P_limit - 1, 2)» from its limit, the creep depth within its ± 1 % scatter, the residual "
         "depth «bp.p2.h_res[1]» µm, «pc(bp.p2.h_res[1] / bp.adapted.h_res[-1] - 1, 0)» against the converged "
         "«f(bp.adapted.h_res[-1], 2)» µm"),
-    (R, "«f(bp.cost.cpu, 0)» s CPU («f(bp.cost.cpu_before_issue25, 0)» s before issue 25, whose MUMPS factorisations were "
-        "«pu(bp.cost.factorisation_share_before, 0)» of it; now «pu(bp.cost.factorisation_share, 0)»)"),
+    (R, "| «f(isp('microindent_BP').cpu, 0)» s CPU on a shared machine, «pu(isp('microindent_BP').log_view.factorisation / "
+        "isp('microindent_BP').log_view.total, 0)» of its time in the contact solve's factorisations |"),
+    # the axisymmetric twin's and the 2D scenes' CPU (bench/indent_speed_bench.py)
+    (R, "of its own converged answer | «f(isp('nanoindent_kerogen_axi').cpu, 1)» s |"),
+    (R, "| «f(min(isp(s).cpu for s in LR), 0)»–«f(max(isp(s).cpu for s in LR), 0)» s CPU each on a shared machine "
+        "(docs/performance.md, \"Indentation speed\"; 10 s before the study"),
+    (R, "| «f(min(isp(s).cpu for s in BED), 0)»–«f(max(isp(s).cpu for s in BED), 0)» s CPU each on a shared machine (7 s before:"),
     (R, "on the first levels, «f(bn.adapted.h_res[0], 3)» and «f(bn.adapted.h_res[1], 3)» µm on its last two levels "
         "(«f(bn.adapted.unknowns[0] / 1000, 1)» k and «f(bn.adapted.unknowns[1] / 1000, 1)» k unknowns)"),
     (R, "on the first level, «f(bp.adapted.h_res[0], 3)» and «f(bp.adapted.h_res[1], 3)» µm on its last two levels "

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 from camclay9 import (calculix_study, calibrate_study, doc_quotes, fe_scaling_study, fe_solver_study, indent_ranks_study,
-                      point_creep_study, results_store, step_control_study, time_error_study, umat_time_study)
+                      indent_speed_study, point_creep_study, results_store, step_control_study, time_error_study,
+                      umat_time_study)
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "doc_numbers.py"
@@ -93,6 +94,7 @@ def test_every_quote_is_found_once_with_its_numbers():
     ("docs/performance.md", "| 10547 (2331) | 10 (short) | driver (default solver) | 13 | 8.34 | 4.07 |",
      "| 10547 (2331) | 10 (short) | driver (default solver) | 13 | 8.34 | 4.70 |"),                # CalculiX on the same mesh
     ("docs/performance.md", "| 284 | 2 | 12.75 | 7.00 | 94.7 |", "| 284 | 2 | 12.75 | 7.00 | 97.4 |"),  # FE solver: a cell
+    ("docs/performance.md", "| 631 | 1248 | 28 |", "| 631 | 1284 | 28 |"),     # indentation speed: Krylov iterations
 ])
 def test_a_number_edited_by_hand_fails_the_check(tree, doc, old, new):
     assert run("--root", str(tree)).returncode == 0
@@ -134,6 +136,7 @@ def _drop(store, path):
     (calculix_study, ("meshes", 2, "runs", 2, "cpu")),                 # CalculiX's CPU on the largest mesh
     (fe_solver_study, ("rows", 3, "cpu")),                             # a table's number
     (fe_solver_study, ("probe", "asymmetry")),                         # a number only the reading quotes
+    (indent_speed_study, ("rows", 2, "umat_ns")),                      # the UMAT benchmark's time of a scene
 ])
 def test_a_store_lacking_a_number_names_its_file_and_key(study, path):
     store = results_store.load(study.STORE)
