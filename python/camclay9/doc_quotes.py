@@ -116,6 +116,17 @@ def _adapted(store_dir=None):
     return dict(ad=ad, ade=ade, adf=adf, adc=adc)
 
 
+def _indent_speed(store_dir=None):
+    """The quotes' helper on bench/indent_speed_bench.py's store (docs/results/indent_speed.json)."""
+    isr = {(r["scene"], r["driver"]): r for r in results_store.load("indent_speed", store_dir).get("rows", [])}
+
+    def isp(scene, driver="this tree"):
+        """A scene's row of bench/indent_speed_bench.py (docs/results/indent_speed.json): cpu, steps, log_view, ..."""
+        return A(isr[(scene, driver)])
+
+    return dict(isp=isp)
+
+
 def namespace(store_dir=None):
     paper = results_store.load("paper", store_dir)
     n = paper.get("numbers", {})
@@ -183,11 +194,6 @@ def namespace(store_dir=None):
         return 100 * cs(case, solver, "partition")["copies"] / cs(case, solver, "partition")["vertices"]
 
     ims = {r["model"]: r for r in results_store.load("indent_models", store_dir).get("rows", [])}
-    isr = {(r["scene"], r["driver"]): r for r in results_store.load("indent_speed", store_dir).get("rows", [])}
-
-    def isp(scene, driver="this tree"):
-        """A scene's row of bench/indent_speed_bench.py (docs/results/indent_speed.json): cpu, steps, log_view, ..."""
-        return A(isr[(scene, driver)])
 
     def im(model):
         """A row of bench/indent_models_bench.py (docs/results/indent_models.json) by its model's key."""
@@ -217,10 +223,10 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, isp=isp, LR=LR, BED=BED,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
-    ns.update(_fe_scaling(store_dir), **_adapted(store_dir))
+    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir))
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
