@@ -8,7 +8,7 @@ Coverage: every number of README's main-job paragraph and of its table rows for 
 the axisymmetric twin, the 2D loading-rate and bedding scenes and the triaxial scenes, and the quick-look paragraph
 below the table (the shipped scenes' CPU times from bench/indent_speed_bench.py, indent_speed.json; the adapted
 scenes' errors and CPU from bench/adapt_bench.py, adapt_bench.json), except costs quoted from other benches' prose (the
-2D scenes' CPU before the 2D study, the stall test's saving); docs/parallel.md's solver choice and memory budget
+kerogen sector's idle-machine figures, kept in indent3d.json); docs/parallel.md's solver choice and memory budget
 (bench/scaling_bench.py, fe_scaling.json);
 the numbers of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py, contact_solver.json);
 those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json); the
@@ -429,12 +429,18 @@ QUOTES = [
     # the axisymmetric twin's and the 2D scenes' CPU (bench/indent_speed_bench.py)
     (R, "of its own converged answer | «f(isp('nanoindent_kerogen_axi').cpu, 1)» s |"),
     (R, "| «f(min(isp(s).cpu for s in LR), 0)»–«f(max(isp(s).cpu for s in LR), 0)» s CPU each on a shared machine "
-        "(docs/performance.md, \"Indentation speed\"; 10 s before the study"),
-    (R, "| «f(min(isp(s).cpu for s in BED), 0)»–«f(max(isp(s).cpu for s in BED), 0)» s CPU each on a shared machine (7 s before:"),
-    (R, "on the first levels, «f(bn.adapted.h_res[0], 3)» and «f(bn.adapted.h_res[1], 3)» µm on its last two levels "
-        "(«f(bn.adapted.unknowns[0] / 1000, 1)» k and «f(bn.adapted.unknowns[1] / 1000, 1)» k unknowns)"),
-    (R, "on the first level, «f(bp.adapted.h_res[0], 3)» and «f(bp.adapted.h_res[1], 3)» µm on its last two levels "
-        "(«f(bp.adapted.unknowns[0] / 1000, 1)» k and «f(bp.adapted.unknowns[1] / 1000, 1)» k unknowns)"),
+        "(docs/performance.md, \"Indentation speed\"); the Newton stall test saves some of it"),
+    (R, "| «f(min(isp(s).cpu for s in BED), 0)»–«f(max(isp(s).cpu for s in BED), 0)» s CPU each on a shared machine (the P1 mesh before"),
+    (R, "residual depth «f(ad('bn', 1).q['h_res'] / 1e3, 2)» and «f(ad('bn', 2).q['h_res'] / 1e3, 2)» µm on its first two "
+        "reruns, «f(ad('bn', 3).q['h_res'] / 1e3, 3)» µm on its last level («f(ad('bn', 3).unknowns / 1e3, 1)» k unknowns) and "
+        "«f(ad('bn', 4).q['h_res'] / 1e3, 3)» µm one level further («f(ad('bn', 4).unknowns / 1e3, 1)» k): converged, "
+        "«pu(ad('bn', 3).q['h_res'] / 1e3 / bn.twin_h_res - 1)» above the axisymmetric twin's «f(bn.twin_h_res, 3)» µm and "
+        "«pu(ad('bn', 3).q['h_res'] / 1e3 / bn.p2.h_res[2] - 1, 0)» above the shipped mesh's «f(bn.p2.h_res[2], 3)» µm |"),
+    (R, "residual depth «f(ad('bp', 0).q['h_res'] / 1e3, 2)» and «f(ad('bp', 1).q['h_res'] / 1e3, 2)» µm on its first two "
+        "levels, «f(ad('bp', 2).q['h_res'] / 1e3, 3)» µm on its last («f(ad('bp', 2).unknowns / 1e3, 1)» k unknowns) and "
+        "«f(ad('bp', 3).q['h_res'] / 1e3, 3)» µm one level further («f(ad('bp', 3).unknowns / 1e3, 1)» k): converged, "
+        "«pu(ad('bp', 2).q['h_res'] / 1e3 / bp.p2.h_res[1] - 1, 0)» above the shipped mesh's «f(bp.p2.h_res[1], 3)» µm |"),
+    (R, "| 2D twin of BN | as the kerogen twin | «f(isp('microindent_BN_axi').cpu, 1)» s |"),
     # the 2D scenes (defects 2, 10)
     (R, "depth at the end of loading «pc(rung2('lr', 0.01414, 0.9).h_max)», creep depth «pc(rung2('lr', 0.01414, 0.9).creep)», "
         "residual depth «pc(rung2('lr', 0.01414, 0.9).h_res)» (with an unload added), stress under the tip "
@@ -449,7 +455,7 @@ QUOTES = [
     (R, "at 45°: depth at the end of loading «pc(rung2('bed', 0.25, 10.0).h_max)», creep depth «pc(rung2('bed', 0.25, 10.0).creep)», "
         "stress under the tip «pc(rung2('bed', 0.25, 10.0).sig_hold)» (within 1 % and 5 %; the residual depth, not reported by "
         "these scenes, «pc(rung2('bed', 0.25, 10.0).h_res)»)"),
-    (R, "(7 s before: «pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth)"),
+    (R, "(the P1 mesh before the 2D study: «pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth)"),
     # below the table (defect 3)
     (R, "were «f(k.rungs['old1_0.05']['cpu'], 0)» s for the sector but «pc(err3('old1_0.05').P, 0)» in load and "
         "«pc(err3('old1_0.05').creep, 0)» in creep depth"),
