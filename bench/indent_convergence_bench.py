@@ -44,6 +44,7 @@ import time
 from pathlib import Path
 
 from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
+from camclay9.results_store import revision
 from indent_convergence_doc import TITLE, limits, section
 from indent_ladders import MODELS, SHORT, key, ladder, ladders, load
 from camclay9.performance_doc import replace_section
@@ -152,7 +153,7 @@ def run_rungs(todo, res, others, path, tol, max_cpu):
                 print(e, flush=True)
                 why = [line for line in str(e).splitlines() if line.startswith("driver:")]
                 r = dict(failed=why[-1] if why else str(e)[-300:])
-            r.update(model=m, h_tip=h, tol=tol)
+            r.update(model=m, h_tip=h, tol=tol, date=time.strftime("%Y-%m-%d"), rev=revision(ROOT))  # the run's provenance
             res[k] = r
             path.write_text(json.dumps(res, indent=1))
             if "failed" not in r:
