@@ -79,10 +79,10 @@ def nested_mesh(text, n, work):
     if not msh.exists():
         cmd = ["gmsh", "-3", "-format", "msh41", "-v", "2", geo] + [x for k, v in params.items() for x in
                                                                       ("-setnumber", k, v)] + ["-o", str(msh)]
-        subprocess.run(cmd, check=True, capture_output=True)
+        subprocess.run(cmd, check=True, capture_output=True, timeout=3600)
         for _ in range(n):
             subprocess.run(["gmsh", str(msh), "-refine", "-format", "msh41", "-v", "2", "-o", str(msh)], check=True,
-                           capture_output=True)
+                           capture_output=True, timeout=3600)
     return re.sub(r"\n  geometry: \S+\n  parameters: \{[^}]*\}", f"\n  file: {msh}", text, count=1)
 
 
