@@ -62,7 +62,7 @@ def missing_record(scene, make):
             if not make:
                 return data
             subprocess.run([sys.executable, str(CAL / "make_synthetic.py"), "--driver", str(driver_path(root=ROOT)), *args,
-                            "--out", str(CAL / "data" / data)], check=True)
+                            "--out", str(CAL / "data" / data)], check=True, timeout=3600)
     return None
 
 

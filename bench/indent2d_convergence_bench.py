@@ -73,7 +73,7 @@ def umat_time_per_call():
     if not UMAT_BENCH.is_file():
         return None, None
     t0, c0 = time.perf_counter(), os.times()
-    out = subprocess.run([str(UMAT_BENCH), "200000", "5"], capture_output=True, text=True).stdout
+    out = subprocess.run([str(UMAT_BENCH), "200000", "5"], capture_output=True, text=True, timeout=600).stdout
     wall, c1 = time.perf_counter() - t0, os.times()
     share = min(1.0, ((c1.children_user - c0.children_user) + (c1.children_system - c0.children_system)) / wall)
     m = re.search(r"viscoplastic, both frames yield \| 4 \|\s*([0-9.]+) \|\s*([0-9.]+)", out)

@@ -55,7 +55,7 @@ def shipped(name):
 
 def before(name):
     return absolute(subprocess.run(["git", "show", f"{BEFORE_COMMIT}:input/{name}.yaml"], cwd=ROOT, capture_output=True,
-                                   text=True, check=True).stdout)
+                                   text=True, check=True, timeout=60).stdout)
 
 
 def with_measure(text, measure, tol, unload_tol=None):

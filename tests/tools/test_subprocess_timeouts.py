@@ -1,6 +1,6 @@
 """Every subprocess a test starts has a timeout (issue 38: a broken gap once hung a test's driver run for 20 min of
 CPU). Scanned: the Python of tests/ and the scripts the tests run (tools/reproduce.py, input/calibrate/
-make_synthetic.py, the package camclay9's launcher): each subprocess.run/call/check_call/check_output names a
+make_synthetic.py, the package camclay9's launcher), and the benchmarks' and tools' own (bench/, tools/, post/): each subprocess.run/call/check_call/check_output names a
 timeout, and each Popen's wait()/communicate() in that file does (or the Popen's owner kills it after a
 deadline: reproduce.py's --job-timeout);
 every execute_process of the CMake scripts under tests/ names a TIMEOUT. The scanner is checked on snippets without
@@ -11,7 +11,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = [ROOT / "tools" / "reproduce.py", ROOT / "input" / "calibrate" / "make_synthetic.py",
-           *sorted((ROOT / "python" / "camclay9").glob("*.py"))]  # the launcher the tests and benchmarks use
+           *sorted((ROOT / "python" / "camclay9").glob("*.py")),  # the launcher the tests and benchmarks use
+           *sorted((ROOT / "bench").glob("*.py")), *sorted((ROOT / "tools").rglob("*.py")),
+           *sorted((ROOT / "post").rglob("*.py"))]
 BOUNDED_POPEN = {"tools/reproduce.py": "Job.poll kills a run after --job-timeout (paper.reproduce_quick: 300 s)"}
 
 

@@ -22,7 +22,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 def run(exe, workdir, threads):
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    out = subprocess.run([exe, "-i", "cyl"], cwd=workdir, env=env, capture_output=True, text=True, check=True).stdout
+    out = subprocess.run([exe, "-i", "cyl"], cwd=workdir, env=env, capture_output=True, text=True, check=True,
+                         timeout=6 * 3600).stdout
     seconds = float(out.split("Total CalculiX Time:")[1].split()[0])
     with open(os.path.join(workdir, "cyl.sta")) as f:
         rows = [line.split() for line in f.readlines()[2:]]
@@ -36,7 +37,7 @@ def main():
     ap.add_argument("--layers", type=int, default=16, help="element layers along the axis")
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     a = ap.parse_args()
-    r = subprocess.run(["bash", os.path.join(HERE, "build_ccx.sh")], capture_output=True, text=True)
+    r = subprocess.run(["bash", os.path.join(HERE, "build_ccx.sh")], capture_output=True, text=True, timeout=4 * 3600)
     if r.returncode != 0:
         sys.exit(r.stderr)
     exe = os.path.join(r.stdout.strip().splitlines()[-1], "ccx_camclay9")
