@@ -23,8 +23,9 @@ indenter's whole load at the end of loading (the scenes say indenter.copies), th
 the hold, the residual depth after unloading; steps, Newton iterations, UMAT calls, factorisations; CPU time (user +
 system of the driver and its gmsh, from wait4: the machine is shared) and peak memory.
 
-Results go to a JSON file as they come (--results, default out/indent_convergence.json; rerunning skips the rungs
-already there), so a long ladder can be cut and resumed. Before each rung its CPU time and memory are extrapolated
+Results go to a JSON file as they come (--results, default docs/results/indent_convergence.json, the store kept in
+git, each rung with its date and commit; rerunning skips the rungs already there), so a long ladder can be cut and
+resumed. Before each rung its CPU time and memory are extrapolated
 from the ladder's two rungs above it, and a rung above --max-cpu is skipped. --doc writes the section "## 3D
 indentation: mesh convergence and the cheapest model" of docs/performance.md from that file
 (bench/indent_convergence_doc.py), followed by the reading of the tables written by hand in
@@ -103,7 +104,8 @@ def run(text, out):
         raise RuntimeError(f"{path}: the driver failed:\n{stdout[-2000:]}")
     s = summary_line(stdout, index=0)
     h = read_history(out)
-    return dict(wall=wall, cpu=cpu, rss_mb=rss_mb, steps=s["steps"],
+    solver = re.search(r"^indenter: .*?, solver (\w+),", stdout, re.M)  # the contact solve -indent_solver auto chose
+    return dict(wall=wall, cpu=cpu, rss_mb=rss_mb, steps=s["steps"], solver=solver[1] if solver else None,
                 newton=s["newton_iterations"], umat_calls=s["umat_calls"], solve_s=s["linear_solves_s"],
                 krylov=s["krylov_iterations"], factorisations=s["factorisations"],
                 unknowns=mesh_line(stdout)["unknowns"], o={k: float(v) for k, v in outputs(h).items()})
@@ -168,7 +170,7 @@ def main(argv=None):
     ap.add_argument("--hmin", type=float, default=0, help="only the rungs with h_tip >= this")
     ap.add_argument("--hmax", type=float, default=1e9, help="only the rungs with h_tip <= this")
     ap.add_argument("--quick", action="store_true", help="a 2-rung smoke run of each model (coarsest rungs), no document")
-    ap.add_argument("--results", default=str(ROOT / "out" / "indent_convergence.json"),
+    ap.add_argument("--results", default=str(ROOT / "docs" / "results" / "indent_convergence.json"),
                     help="JSON file of the results (written); more files after commas are read too (e.g. parallel runs)")
     ap.add_argument("--doc", action="store_true", help="write the section of docs/performance.md from --results")
     ap.add_argument("--command", default=None, help="the command(s) to name in the section (default: this one)")

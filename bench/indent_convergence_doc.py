@@ -156,7 +156,7 @@ def intro(command, note):
             "residual depth. In brackets: the error against the Richardson limit of the ladder's own last three rungs.",
             "CPU: user + system of the driver (gmsh's meshing included) [s]; memory: its peak resident set [MB]; a shared,",
             "loaded machine (2 cores, other users' jobs running): the wall time is not comparable, the CPU time roughly.",
-            "The results are kept in `out/indent_convergence.json` (not in git; the bench's --results).", ""]
+            "The results are kept in `docs/results/indent_convergence.json` (the bench's --results).", ""]
 
 
 def section(res, command, note):
