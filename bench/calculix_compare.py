@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 from camclay9 import calculix_mesh, results_store
 from camclay9 import calculix_study as study
-from camclay9.performance_doc import publish
+from camclay9.performance_doc import publish, republish
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = {"ratio": 0.5, "from_tets": 10000}    # issue 13: the default >= 2x faster per increment from 10k tets on
@@ -261,15 +261,12 @@ def main(argv=None):
     ap.add_argument("--no-doc", action="store_true", help="print only, write neither the store nor docs/performance.md")
     a = ap.parse_args(argv)
     if a.from_store:
-        store = results_store.load(study.STORE)
-        if not store:
-            sys.exit(f"calculix_compare: no store {results_store.path(study.STORE)}")
-    else:
-        a.driver = str(Path(a.build) / "bin" / "driver")
-        n = len(a.sizes)
-        if len(a.repeats) != n or len(a.plans) != n:
-            sys.exit("calculix_compare: give one --repeats and one --plans value per --sizes value")
-        store = run_all(a)
+        return republish(study, write=not a.no_doc) or 0
+    a.driver = str(Path(a.build) / "bin" / "driver")
+    n = len(a.sizes)
+    if len(a.repeats) != n or len(a.plans) != n:
+        sys.exit("calculix_compare: give one --repeats and one --plans value per --sizes value")
+    store = run_all(a)
     publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
     return 0
 

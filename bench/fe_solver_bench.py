@@ -37,7 +37,7 @@ from camclay9 import mesh_line, read_history, results_store, run_driver, summary
 from camclay9 import fe_main_job_study as main_study
 from camclay9 import fe_solver_study as study
 from camclay9.launch import MPIEXEC
-from camclay9.performance_doc import publish, replace_section
+from camclay9.performance_doc import publish, replace_section, republish
 
 ROOT = Path(__file__).resolve().parents[1]
 HISTORY = """stages:
@@ -287,9 +287,7 @@ def main(argv=None):
     if a.main_job:
         return main_job_cli(a)
     if a.from_store:
-        store = results_store.load(study.STORE)
-        publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
-        return 0
+        return republish(study, write=not a.no_doc) or 0
     sizes = [float(x) for x in a.sizes.split(",")]
     caps = [int(x) for x in a.max_steps.split(",")]
     load, stamp = os.getloadavg()[0], time.strftime("%Y-%m-%d")

@@ -34,7 +34,7 @@ from pathlib import Path
 from camclay9 import (DriverError, memory_line, mesh_line, read_summary, reported, results_store, run_driver,
                       summary_line)
 from camclay9 import indent_speed_study as study
-from camclay9.performance_doc import publish
+from camclay9.performance_doc import publish, republish
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ["nanoindent_kerogen_sector", "microindent_BN_sector", "microindent_BP", "nanoindent_kerogen_axi",
@@ -156,11 +156,7 @@ def main(argv=None):
     ap.add_argument("--from-store", action="store_true", help="write the section from the store, without running")
     a = ap.parse_args(argv)
     if a.from_store:
-        store = results_store.load(study.STORE)
-        if not store:
-            raise SystemExit(f"{results_store.path(study.STORE)}: no such store; run the bench first")
-        publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
-        return 0
+        return republish(study, write=not a.no_doc) or 0
     scenes = ["nanoindent_kerogen_axi"] if a.quick else a.scenes.split(",")
     repeats = 1 if a.quick else a.repeats
     load = os.getloadavg()

@@ -28,7 +28,7 @@ from camclay9 import fe_scaling_study as study
 from camclay9 import mesh_line, partition_line, read_history, results_store, run_driver, summary_line
 from camclay9.launch import MPIEXEC
 from fe_solver_bench import HISTORY
-from camclay9.performance_doc import publish
+from camclay9.performance_doc import publish, republish
 
 ROOT = Path(__file__).resolve().parents[1]
 TITLE = "## FE scaling: 1 and 2 ranks, direct and GAMG"
@@ -126,9 +126,7 @@ def main(argv=None):
     ap.add_argument("--merge", action="store_true", help="keep the store's rows of other (mesh, ranks, solver) runs")
     a = ap.parse_args(argv)
     if a.from_store:
-        store = results_store.load(study.STORE)
-        publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
-        return 0
+        return republish(study, write=not a.no_doc) or 0
     load0 = os.getloadavg()[0]
     rows = measure(a)
     keep = ("cells", "unknowns", "steps", "newton", "cutbacks", "krylov", "setups", "solve_wall", "cpu", "rss", "rss_all",

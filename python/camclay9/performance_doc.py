@@ -29,3 +29,12 @@ def publish(title, section, store_name, store, write=True):
         replace_section(title, section)
         path = results_store.save(store_name, store)
         print(f"written: docs/performance.md ({title}), {path.relative_to(repo_root())}")
+
+
+def republish(study, write=True):
+    """A bench's --from-store: its section written again from the store it keeps (study: the module with STORE, TITLE
+    and section(store)), nothing run; a clear error when the store does not exist yet."""
+    store = results_store.load(study.STORE)
+    if not store:
+        raise SystemExit(f"{results_store.path(study.STORE)}: no such store; run the bench first")
+    publish(study.TITLE, study.section(store), study.STORE, store, write=write)
