@@ -4,8 +4,8 @@ The summary line (one per run, on stdout; fe/fe_stepper.c, stepping/indent_stepp
 
   fe scene NAME: S steps, N Newton iterations, C cutbacks (E by the error measure), U UMAT calls, assembly A s,
       wall W s -> OUT/history.csv
-  indentation NAME: S steps, N Newton iterations (predictor on), C cutbacks (E by the error measure), K active-set
-      cycles, U UMAT calls, assembly A s, linear solves L s (direct, I Krylov iterations, F factorisations),
+  indentation NAME: S steps, N Newton iterations (predictor on), C cutbacks (E by the error measure, U asked by the
+      UMAT, T stalled, D not converged), K active-set cycles, U UMAT calls, assembly A s, linear solves L s (direct, I Krylov iterations, F factorisations),
       wall W s -> OUT/history.csv
   point scene NAME: S steps, C cutbacks, worst control residual R (relative), W s[, FAILED] -> OUT/history.csv
 
@@ -21,7 +21,8 @@ import re
 SUMMARY = re.compile(
     r"^(?P<kind>fe scene|indentation|point scene) (?P<scene>\S+): (?P<steps>\d+) steps"
     r"(?:, (?P<newton_iterations>\d+) Newton iterations(?: \(predictor (?P<predictor>on|off)\))?)?"
-    r", (?P<cutbacks>\d+) cutbacks(?: \((?P<cutbacks_by_error>\d+) by the error measure\))?"
+    r", (?P<cutbacks>\d+) cutbacks(?: \((?P<cutbacks_by_error>\d+) by the error measure(?:, (?P<cutbacks_by_umat>\d+) "
+    r"asked by the UMAT, (?P<cutbacks_stalled>\d+) stalled, (?P<cutbacks_not_converged>\d+) not converged)?\))?"
     r"(?:, (?P<active_set_cycles>\d+) active-set cycles)?"
     r"(?:, worst control residual (?P<worst_control_residual>\S+) \(relative\))?"
     r"(?:, (?P<umat_calls>\d+) UMAT calls)?"

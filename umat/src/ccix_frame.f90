@@ -54,8 +54,10 @@ module ccix_frame
   !> Outcome of one frame integration.
   integer, parameter, public :: frame_elastic = 0, frame_newton = 1, frame_fallback = 2, &
                                 frame_failed = -1
-  !> Bits of the flags word.
-  integer, parameter, public :: flag_floor = 1, flag_tension = 2, flag_fallback = 4
+  !> Bits of the flags word. flag_outrun: the step is longer than the frame's softening time
+  !> (theory.md sec. 3.4, "Steps that outrun the softening"): its solution does not continue the
+  !> elastic trial.
+  integer, parameter, public :: flag_floor = 1, flag_tension = 2, flag_fallback = 4, flag_outrun = 8
 
   integer, parameter :: max_newton = 40
   real(real64), parameter :: newton_tol = 1.0e-12_real64
@@ -177,6 +179,8 @@ contains
   !> frame_add_stiffness).
   !> If want_error, err_est is the local error estimate
   !> |deps_vp - dt * rate_vp(start of step)| of theory.md sec. 3.6 (zero for eta = 0).
+  !> flags: flag_outrun when the step is at least the frame's softening time at the trial state
+  !> (outruns_softening, local_solve).
   pure recursive subroutine frame_integrate(fr, q, sig_n, pc_n, deps, dt, want_error, sig, pc, devp, d, &
                                             iterations, status, flags, err_est, f_end)
     type(frame_t), intent(in) :: fr
@@ -248,11 +252,25 @@ contains
     st%floor_active = .false.
   end subroutine step_new
 
+  !> The step is at least the frame's softening time t_s = eta/S (theory.md sec. 3.4, "Steps that
+  !> outrun the softening"); ev is the evaluation at the trial, (dgamma, y) = 0. Along the hardening
+  !> equation R_y = 0, dy/ddgamma = -j_yg/j_yy, and the scaled consistency residual
+  !> R_f = sf f - sg dgamma has the slope sf S - sg, S = df/ddgamma = -N:C:N + p' pc tr N / lambda_p
+  !> the frame's softening modulus and sg/sf = eta/dt. Where the slope is >= 0 (dt S >= eta), R_f
+  !> rises from its trial value: no root continues the trial, and as the increment crosses f_tr = 0
+  !> the solution jumps to a far root. With eta = 0: whenever the trial softens (S >= 0).
+  pure recursive logical function outruns_softening(ev) result(outruns)
+    type(local_eval_t), intent(in) :: ev
+    ! j_yy = lambda_p > 0 at dgamma = 0 (sec. 3.4)
+    outruns = ev%j_fg - ev%j_fy * ev%j_yg / ev%j_yy >= 0
+  end function outruns_softening
+
   !> The local problem of the step (theory.md sec. 3.4) solved for (dgamma, y) = (g, y), ev the
   !> evaluation there: Newton from the elastic predictor, pc bounded below by the floor while
   !> iterating; if it fails with pc at the floor, again with pc held there; if it still fails, the
   !> bracketed fallback, then Newton from its solution for the exact root and the tangent. status:
-  !> frame_newton, frame_fallback (flag_fallback in flags) or frame_failed.
+  !> frame_newton, frame_fallback (flag_fallback in flags) or frame_failed; flag_outrun from the
+  !> evaluation at the trial (outruns_softening).
   pure recursive subroutine local_solve(fr, st, g, y, ev, iterations, status, flags)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(inout) :: st
@@ -262,10 +280,12 @@ contains
     integer, intent(inout) :: flags
     integer :: it2
     logical :: ok
+    type(local_eval_t) :: ev_trial
     status = frame_newton
     g = 0
     y = 0
-    call newton_solve(fr, st, g, y, ev, iterations, ok)
+    call newton_solve(fr, st, g, y, ev, iterations, ok, ev_trial)
+    if (outruns_softening(ev_trial)) flags = ior(flags, flag_outrun)
     if (.not. ok .and. y <= st%y_floor) then
       ! The hardening wants pc below the floor: hold pc at the floor and solve again.
       st%floor_active = .true.
@@ -367,13 +387,14 @@ contains
 
   !> Clipped, projected Newton on (dgamma, y) (theory.md sec. 3.4). One more Newton step is taken after
   !> the test passes, so that the state is exact to round-off; ev is the evaluation at the result.
-  pure recursive subroutine newton_solve(fr, st, g, y, ev, iterations, ok)
+  pure recursive subroutine newton_solve(fr, st, g, y, ev, iterations, ok, ev_start)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(in) :: st
     real(real64), intent(inout) :: g, y
     type(local_eval_t), intent(out) :: ev
     integer, intent(out) :: iterations
     logical, intent(out) :: ok
+    type(local_eval_t), intent(out), optional :: ev_start   !< the evaluation at the start point
     real(real64) :: det, dg, dy, y_low, lam_ref, z, w
     integer :: it
     logical :: converged
@@ -388,6 +409,7 @@ contains
     iterations = 0
     do it = 1, max_newton + 1
       ev = local_eval(fr, st, g, y)
+      if (it == 1 .and. present(ev_start)) ev_start = ev
       ! is_finite of the sum, written inline in this loop (its bits: no comparison of a NaN): a call
       ! to the public function is not inlined under -fPIC and cost about 2 % of a viscoplastic call.
       z = ev%err + ev%j_yg + ev%j_yy + ev%j_fg + ev%j_fy

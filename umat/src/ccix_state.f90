@@ -12,7 +12,7 @@ module ccix_state
                         is_evp_total, nstatv_min, message_len
   use ccix_tensor, only: is_finite, is_nan, first_not_finite
   use ccix_host, only: host_warning
-  use ccix_frame, only: flag_floor, flag_tension, flag_fallback
+  use ccix_frame, only: flag_floor, flag_tension, flag_fallback, flag_outrun
   use ccix_mixture, only: step_info_t, hard, soft
   implicit none
   private
@@ -82,6 +82,7 @@ contains
       if (iand(info%flags(k), flag_floor) /= 0) flags = ior(flags, 2**(k - 1))
       if (iand(info%flags(k), flag_tension) /= 0) flags = ior(flags, 4 * 2**(k - 1))
       if (iand(info%flags(k), flag_fallback) /= 0) flags = ior(flags, 16)
+      if (iand(info%flags(k), flag_outrun) /= 0) flags = ior(flags, 32 * 2**(k - 1))
     end do
   end function state_flags
 

@@ -79,8 +79,9 @@ static void failure_entry(FILE *fp, const char *const *name, int nname, const Ru
 static void stages_and_counters(FILE *fp, const char *const *name, int nname, const RunnerSummary *s, const MeshError *me, const RunEnd *end) {
   fputs(",\n  \"stages\": [\n", fp);
   for (int k = 0; k <= s->nstages_done; k++) stage_entry(fp, k ? name[k - 1] : "start", s, me, k);
-  fprintf(fp, "  ],\n  \"counters\": {\"steps\": %d, \"cutbacks\": %d, \"rejected_by_error\": %d, \"newton_its\": %d, \"umat_calls\": %ld}",
-          s->steps, s->cutbacks, s->rejected_error, s->its, s->umat_calls);
+  fprintf(fp, "  ],\n  \"counters\": {\"steps\": %d, \"cutbacks\": %d, \"rejected_by_error\": %d, \"rejected_by_umat\": %d, "
+              "\"rejected_stalled\": %d, \"rejected_not_converged\": %d, \"newton_its\": %d, \"umat_calls\": %ld}",
+          s->steps, s->cutbacks, s->rejected_error, s->rejected_umat, s->rejected_stalled, s->rejected_unconverged, s->its, s->umat_calls);
   failure_entry(fp, name, nname, s, end);
 }
 

@@ -38,7 +38,7 @@ double material_quantity(const UmatMaterial *mat, const double *statev, Material
 }
 
 /* The diagnostic slots (docs/umat.md: STATEV 33 iterations, 34 flags: 1, 2 pc at the floor, 4, 8 tension, 16 the
- * fallback solver). */
+ * fallback solver, 32, 64 the step outruns the frame's softening). */
 static MaterialLocalSolve local_solve(const UmatMaterial *mat, const double *statev) {
   MaterialLocalSolve l;
   l.iterations      = (int)statev_at(mat, statev, mat->sv.iterations, 0);
@@ -46,6 +46,7 @@ static MaterialLocalSolve local_solve(const UmatMaterial *mat, const double *sta
   l.pc_floor_hard   = l.flags & 1, l.pc_floor_soft = l.flags & 2;
   l.tension_hard    = l.flags & 4, l.tension_soft = l.flags & 8;
   l.fallback_solver = l.flags & 16;
+  l.outrun_hard     = l.flags & 32, l.outrun_soft = l.flags & 64;
   return l;
 }
 

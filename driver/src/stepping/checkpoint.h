@@ -13,6 +13,7 @@
 /* Where a run is (plain values only: written as one block). */
 typedef struct {
   int    stage, in_stage, first_in_stage, step, its, cutbacks, cut_in_step, rejected_error;
+  int    rejected_umat, rejected_stalled, rejected_unconverged; /* the cutbacks by their cause (RunnerSummary) */
   int    pending_instant, k_planned, cut_in_plan, next_stage_time, have_prev, nout, kink;
   double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio, ratio_prev;
   double out_prev[STEP_MAX_OUT], dout_prev[STEP_MAX_OUT], out_scale[STEP_MAX_OUT];

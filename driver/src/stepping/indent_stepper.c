@@ -67,7 +67,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   PetscInt its = 0;
   fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
   PetscCall(semismooth_step(in, rq->h, &status, &its));
-  o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status];
+  o->converged = status == STEP_OK, o->its = (int)its, o->why = semismooth_failure[status], o->stalled = status == STEP_STALLED;
   if (!o->converged) PetscFunctionReturn(0);
   PetscReal tol = umat_control_tol(fe_problem_material(p), rq->umat), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
@@ -239,9 +239,10 @@ static PetscErrorCode finish(Indent *d, MPI_Comm comm, const RunnerSummary *sum,
   double     mb[2];
   PetscFunctionBeginUser;
   PetscCall(fe_common_finish(&d->c));
-  PetscCall(PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure), %d active-set cycles, "
+  PetscCall(PetscPrintf(comm, "indentation %s: %d steps, %d Newton iterations (predictor %s), %d cutbacks (%d by the error measure, %d asked by the UMAT, %d stalled, %d not converged), %d active-set cycles, "
                               "%ld UMAT calls, assembly %.2f s, linear solves %.2f s (%s, %d Krylov iterations, %d factorisations), wall %.2f s -> %s/history.csv\n",
-                        d->c.sc->name, sum->steps, (int)d->in.its_total, d->in.predictor ? "on" : "off", sum->cutbacks, sum->rejected_error,
+                        d->c.sc->name, sum->steps, (int)d->in.its_total, d->in.predictor ? "on" : "off", sum->cutbacks, sum->rejected_error, sum->rejected_umat,
+                        sum->rejected_stalled, sum->rejected_unconverged,
                         (int)d->in.cycles, sum->umat_calls, fe_problem_diag(p)->assembly_seconds, d->in.sol.seconds, d->in.sol.fieldsplit ? "fieldsplit" : "direct",
                         (int)d->in.sol.linear_its, (int)d->in.sol.setups, sum->wall, opt->outdir));
   PetscCall(fe_common_max_rss(comm, mb));

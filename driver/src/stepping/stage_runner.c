@@ -218,6 +218,8 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
     double factor = step_control_cut_factor(!o->converged, o->pnewdt, *ratio);
     st->cutbacks++, st->cut_in_step++;
     if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio;
+    if (!o->converged) o->stalled ? st->rejected_stalled++ : st->rejected_unconverged++;
+    else if (o->pnewdt < 1) st->rejected_umat++;
     st->ratio_prev = -1;
     if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min)) {
       snprintf(err, errlen, "%s: %s[%d] (stage '%s'): step failed for good at t = %.6g s (dt = %.3g s): %s", scene_file(r),
@@ -428,6 +430,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   long calls = sv->umat_calls ? sv->umat_calls(sv->ctx) : 0;
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
+  sum->rejected_umat = r.st.rejected_umat, sum->rejected_stalled = r.st.rejected_stalled, sum->rejected_unconverged = r.st.rejected_unconverged;
   sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
   sum->ran = 1, sum->replaced = r.promoted || opt->restart;
   sum->nreport = sv->report ? sv->nreport : 0, sum->nstages_done = PetscMin(r.st.stage, RUNNER_MAX_STAGES);

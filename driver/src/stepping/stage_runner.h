@@ -63,6 +63,7 @@ typedef struct {
 typedef struct {
   int         converged;
   const char *why;     /* when not converged */
+  int         stalled; /* not converged because Newton stalled (counted apart: RunnerSummary) */
   double      pnewdt;  /* smallest PNEWDT of the UMAT calls at the converged state (large: no request) */
   int         its;     /* Newton iterations */
   double      event[EVENT_KINDS];  /* the event quantities at the step's end */
@@ -150,6 +151,10 @@ typedef struct {
 
 typedef struct RunnerSummary_ {
   int    steps, cutbacks, its, rejected_error, failed, stopped;
+  /* the cutbacks by their cause besides the error measure: the UMAT asked (PNEWDT < 1 at the converged state), Newton
+     stalled (contact: -indent_stall_window), Newton did not converge otherwise (its limit, a cycling active set, the
+     linear solver) */
+  int    rejected_umat, rejected_stalled, rejected_unconverged;
   int    ran;      /* the run got past its set-up (the history's first row written, or a checkpoint read): only then is
                       there a summary to write */
   int    replaced; /* the run's files replaced an earlier run's (its first step done, or a restart continuing them) */
