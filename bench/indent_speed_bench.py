@@ -41,7 +41,7 @@ SCENES = ["nanoindent_kerogen_sector", "microindent_BN_sector", "microindent_BP"
           "microindent_BN_axi", "loading_rate_a0.1", "loading_rate_a1", "loading_rate_a10", "bedding_theta0",
           "bedding_theta45", "bedding_theta90"]
 UMAT_CASE = "viscoplastic, both frames yield, NTENS 6"
-COUNTS = ("steps", "rejected", "newton", "krylov", "factorisations", "umat_calls")
+COUNTS = ("steps", "rejected", "stalled", "not_converged", "newton", "krylov", "factorisations", "umat_calls")
 
 
 def build_revision(rev, where):
@@ -100,7 +100,8 @@ def run(driver, scene, out, args=()):
         raise SystemExit(f"{scene} ({driver}): failed: {err}")
     s, m, mem = summary_line(proc.stdout, index=0), mesh_line(proc.stdout), memory_line(proc.stdout)
     num = lambda key: s.get(key, 0)  # noqa: E731
-    return dict(cpu=proc.cpu, wall=proc.wall, steps=num("steps"), rejected=num("cutbacks"), newton=num("newton_iterations"),
+    return dict(cpu=proc.cpu, wall=proc.wall, steps=num("steps"), rejected=num("cutbacks"), stalled=num("cutbacks_stalled"),
+                not_converged=num("cutbacks_not_converged"), newton=num("newton_iterations"),
                 krylov=num("krylov_iterations"), factorisations=num("factorisations") or num("newton_iterations"),
                 umat_calls=num("umat_calls"), order=m["order"], cells=m["cells"], unknowns=m["unknowns"],
                 rss_mb=mem["rank_mb"] if mem else None, outputs=outputs(out), log_view=log_split(log.read_text()))

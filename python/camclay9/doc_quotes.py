@@ -220,11 +220,17 @@ def namespace(store_dir=None):
     def tet(case, i=0, q="true"):
         """A time-step bench row's true (or stated) error relative to its case's reference; row 0: the shipped control."""
         return te[case]["rows"][i][q] / abs(te[case]["reference"])
+    sc_rows = {(s["name"], r["variant"]): r["errors"] for part in results_store.load("step_control", store_dir).get("parts", {}).values()
+               for s in part["scenes"] for r in s["rows"]}
+
+    def stc(scene, q, variant="shipped"):
+        """A scene's error in q against its fine-step reference (bench/step_control_bench.py, step_control.json)."""
+        return sc_rows[(scene, variant)][q]
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
-              tef=tef, tet=tet, cb=cb, cbe=cbe,
+              tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
     ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir))
     if 0 in tri and 90 in tri:
@@ -363,6 +369,12 @@ QUOTES = [
     (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "
          "at «ku(S3[4])» k («f(cs(S3[4], 'direct', 'mem') / 1000, 1)» GB)"),
     # the adapted scenes (README's table; bench/adapt_bench.py, adapt_bench.json: the kerogen sector's, BN's and BP's cases)
+    (R, "| «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times the sector's CPU (docs/performance.md"),
+    (R, "(the kerogen half model: «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times) |"),
+    (R, "its time steps «pc(tet('kerogen_sector'), 2)» in creep depth (docs/adapt.md, \"The time-step error\")"),
+    (R, "P1 locks under the soft frame's nearly isochoric flow (creep depth «pc(rung2('lr', 0.02, 0.9, order=1).creep, 0)» on P1 at "
+        "h_tip 0.02 µm, «pc(rung2('lr', 0.005, 0.4, order=1).creep, 0)» at 0.005 µm, where P1 costs more than the shipped P2)"),
+    (R, "at α = 10 −0.3 %; its time steps «pc(stc('loading_rate_a1', 'creep depth'), 2)» in creep depth"),
     (R, "last level («f(ad('sector', 2).unknowns / 1000, 1)» k unknowns): load «pc(ade('sector', 2, 'P'), 2)», creep depth "
         "«pc(ade('sector', 2, 'creep'), 2)», residual depth «pc(ade('sector', 2, 'h_res'), 2)» against the converged 3D answer"),
     (R, "its stated mesh error «f(adf('sector', 2, 'P'))», «f(adf('sector', 2, 'creep'), 0)» and «f(adf('sector', 2, 'h_res'))» "

@@ -13,7 +13,8 @@ benchmark's case whose time per call the ratio uses).
 "before (REV)", with --elementary "this tree, elementary controller"), "options" (the driver's extra options),
 "kinematics" (the scene's: 3d, axisymmetric, plane_strain), "order", "cells", "unknowns" (the run's mesh line), "cpu" (the
 median of the runs' CPU [s]: user + system of the driver and of the gmsh it starts), "cpu_runs", "wall_runs" (each
-run's CPU and wall time [s], in order), "steps", "rejected", "newton", "krylov", "factorisations", "umat_calls" (the
+run's CPU and wall time [s], in order), "steps", "rejected" (all cutbacks), "stalled" (of them, Newton stalled:
+-indent_stall_window), "not_converged" (Newton's limit, a cycling active set, the linear solver), "newton", "krylov", "factorisations", "umat_calls" (the
 first run's counts), "same_runs" (whether every run gave the first run's counts and outputs), "umat_ns" (the UMAT
 benchmark's median time per call [ns], measured just before the scene's runs), "ratio" (cpu / (umat_calls x umat_ns):
 the run's cost in UMAT calls at the benchmark's rate), "rss_mb" (the first run's peak resident memory [MB]), "outputs"
@@ -38,7 +39,7 @@ EVENTS = {"contact solve": ["CC9 contact solve"], "factorisation": ["MatLUFactor
           "assembly of K": ["CC9 Jacobian"], "residual + UMAT": ["CC9 residual+UMAT"], "contact terms": ["CC9 contact"]}
 PROVENANCE = ("command", "date", "rev", "machine", "load", "repeats", "long", "umat_case")
 KEYS = ("scene", "driver", "options", "kinematics", "order", "cells", "unknowns", "cpu", "cpu_runs", "wall_runs", "steps",
-        "rejected", "newton", "krylov", "factorisations", "umat_calls", "same_runs", "umat_ns", "ratio", "rss_mb",
+        "rejected", "stalled", "not_converged", "newton", "krylov", "factorisations", "umat_calls", "same_runs", "umat_ns", "ratio", "rss_mb",
         "outputs", "log_view")
 OUTPUTS = ("load", "creep_depth", "final_depth", "final_stage")
 
@@ -75,12 +76,12 @@ def model(r):
 
 def cost_table(rows):
     both = several(rows)
-    lines = ["| scene | model, unknowns | CPU [s] | runs' CPU [s] | ratio | steps | rejected | Newton | Krylov | "
-             "factorisations | UMAT calls | t_call [ns] |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| scene | model, unknowns | CPU [s] | runs' CPU [s] | ratio | steps | rejected (stalled, not converged) | "
+             "Newton | Krylov | factorisations | UMAT calls | t_call [ns] |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         runs = ", ".join(f"{c:.2f}" for c in r["cpu_runs"])
         lines.append(f"| {name(r, both)} | {model(r)} | {r['cpu']:.2f} | {runs} | {r['ratio']:.2f} | {r['steps']} | "
-                     f"{r['rejected']} | {r['newton']} | {r['krylov']} | {r['factorisations']} | {r['umat_calls']:,} | "
+                     f"{r['rejected']} ({r['stalled']}, {r['not_converged']}) | {r['newton']} | {r['krylov']} | {r['factorisations']} | {r['umat_calls']:,} | "
                      f"{r['umat_ns']:.1f} |")
     return lines
 
@@ -124,6 +125,7 @@ def reading(rows):
     share = lambda k: lambda r: r["log_view"][k] / r["log_view"]["total"]  # noqa: E731
     pct, x2 = (lambda v: f"{100 * v:.0f} %"), (lambda v: f"{v:.2f}")
     walls = [w / c for r in t for w, c in zip(r["wall_runs"], r["cpu_runs"])]
+    stalls = ", ".join(f"{r['scene']} {r['stalled']}" for r in t if r["stalled"]) or "none"
     out = [f"- **The ratio to the physics** goes from {span(t, lambda r: r['ratio'], x2)}"
            + (f"; the 3D scenes {min(r['ratio'] for r in d3):.2f}–{max(r['ratio'] for r in d3):.2f}, the 2D ones "
               f"{min(r['ratio'] for r in d2):.2f}–{max(r['ratio'] for r in d2):.2f}" if d3 and d2 else "")
@@ -134,7 +136,11 @@ def reading(rows):
            f"{span(t, share('triangular solves'), pct)}.",
            f"- **The kept factorisation**: {span(t, lambda r: r['factorisations'] / r['newton'], x2)} factorisations per "
            f"Newton iteration, {span(t, lambda r: r['krylov'] / r['newton'], x2)} Krylov iterations per Newton iteration.",
-           f"- **Rejected steps**: {span(t, lambda r: r['rejected'] / r['steps'], pct)} of the steps."]
+           f"- **Rejected steps**: {span(t, lambda r: r['rejected'] / r['steps'], pct)} of the steps. Of the "
+           f"{sum(r['rejected'] for r in t)} rejections, {sum(r['stalled'] for r in t)} are steps whose Newton stalled "
+           f"(-indent_stall_window; {stalls}) and {sum(r['not_converged'] for r in t)} whose Newton ran to its limit; "
+           "the others asked for by the error measure or the UMAT (PNEWDT < 1). loading_rate_a1's stalls are backward Euler's jumps where the soft "
+           "frame's step outruns its softening (theory.md §3.4)."]
     rep = [r for r in t if len(r["cpu_runs"]) > 1]
     if rep:
         spread = lambda r: (max(r["cpu_runs"]) - min(r["cpu_runs"])) / r["cpu"]  # noqa: E731
