@@ -371,6 +371,10 @@ QUOTES = [
     # the adapted scenes (README's table; bench/adapt_bench.py, adapt_bench.json: the kerogen sector's, BN's and BP's cases)
     (R, "| «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times the sector's CPU (docs/performance.md"),
     (R, "(the kerogen half model: «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times) |"),
+    ("docs/performance.md", "loading_rate_a1 and bedding_theta45 took «isp('loading_rate_a1').steps» and "
+        "«isp('bedding_theta45').steps» steps,\n  «isp('loading_rate_a1').newton» and «isp('bedding_theta45').newton» Newton "
+        "iterations after it, as before it (the store's run at 5ec347a, in git history); «isp('loading_rate_a1').stalled» and «isp('bedding_theta45').stalled» of their "
+        "steps stalled"),
     (R, "its time steps «pc(tet('kerogen_sector'), 2)» in creep depth (docs/adapt.md, \"The time-step error\")"),
     (R, "P1 locks under the soft frame's nearly isochoric flow (creep depth «pc(rung2('lr', 0.02, 0.9, order=1).creep, 0)» on P1 at "
         "h_tip 0.02 µm, «pc(rung2('lr', 0.005, 0.4, order=1).creep, 0)» at 0.005 µm and «f(rung2('lr', 0.005, 0.4, order=1).cpu, 0)» s of "
