@@ -104,8 +104,7 @@ def run(text, out):
         raise RuntimeError(f"{path}: the driver failed:\n{stdout[-2000:]}")
     s = summary_line(stdout, index=0)
     h = read_history(out)
-    solver = re.search(r"^indenter: .*?, solver (\w+),", stdout, re.M)  # the contact solve -indent_solver auto chose
-    return dict(wall=wall, cpu=cpu, rss_mb=rss_mb, steps=s["steps"], solver=solver[1] if solver else None,
+    return dict(wall=wall, cpu=cpu, rss_mb=rss_mb, steps=s["steps"], solver=s["linear_solver"],  # the one auto chose
                 newton=s["newton_iterations"], umat_calls=s["umat_calls"], solve_s=s["linear_solves_s"],
                 krylov=s["krylov_iterations"], factorisations=s["factorisations"],
                 unknowns=mesh_line(stdout)["unknowns"], o={k: float(v) for k, v in outputs(h).items()})

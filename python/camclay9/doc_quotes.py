@@ -264,6 +264,7 @@ CT = "docs/contact.md"
 CA = "docs/calibrate.md"
 AD = "docs/adapt.md"
 PL = "docs/parallel.md"
+PF = "docs/performance.md"
 QUOTES = [
     # the stated time-step error against the true one (docs/adapt.md, "The time-step error"; bench/time_error_bench.py)
     (AD, "effectivity «f(min(tef('kerogen_axi')), 2)»–«f(max(tef('kerogen_axi')), 2)» on the\nkerogen twin (tol 0.03 to "
@@ -371,7 +372,7 @@ QUOTES = [
     # the adapted scenes (README's table; bench/adapt_bench.py, adapt_bench.json: the kerogen sector's, BN's and BP's cases)
     (R, "| «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times the sector's CPU (docs/performance.md"),
     (R, "(the kerogen half model: «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times) |"),
-    ("docs/performance.md", "loading_rate_a1 and bedding_theta45 took «isp('loading_rate_a1').steps» and "
+    (PF, "loading_rate_a1 and bedding_theta45 took «isp('loading_rate_a1').steps» and "
         "«isp('bedding_theta45').steps» steps,\n  «isp('loading_rate_a1').newton» and «isp('bedding_theta45').newton» Newton "
         "iterations after it, as before it (the store's run at 5ec347a, in git history); «isp('loading_rate_a1').stalled» and «isp('bedding_theta45').stalled» of their "
         "steps stalled"),

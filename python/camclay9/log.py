@@ -5,8 +5,8 @@ The summary line (one per run, on stdout; fe/fe_stepper.c, stepping/indent_stepp
   fe scene NAME: S steps, N Newton iterations, C cutbacks (E by the error measure), U UMAT calls, assembly A s,
       wall W s -> OUT/history.csv
   indentation NAME: S steps, N Newton iterations (predictor on), C cutbacks (E by the error measure, U asked by the
-      UMAT, T stalled, D not converged), K active-set cycles, U UMAT calls, assembly A s, linear solves L s (direct, I Krylov iterations, F factorisations),
-      wall W s -> OUT/history.csv
+      UMAT, T stalled, D not converged), K active-set cycles, U UMAT calls, assembly A s, linear solves L s (direct,
+      I Krylov iterations, F factorisations), wall W s -> OUT/history.csv
   point scene NAME: S steps, C cutbacks, worst control residual R (relative), W s[, FAILED] -> OUT/history.csv
 
 `summary_line` reads it with one regular expression into a dict (the fields a kind does not print are absent).

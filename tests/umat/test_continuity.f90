@@ -144,33 +144,47 @@ contains
     end do
   end subroutine sweep
 
-  !> A call of loading_rate_a1's hold where the fallback fired (element 4204, point 3, t = 262.9 s; a
-  !> replay written by the driver): the soft frame's step outruns its softening (flags 64 + 16), as all
-  !> of the first 20 such calls of that hold did.
+  !> The call of loading_rate_a1's hold where the fallback fired (test_support's hold_stress): the soft
+  !> frame's step outruns its softening (flags 64 + 16), as all of the first 20 such calls of that hold
+  !> did; and the flag agrees with dt S >= eta computed here from theory.md sec. 3.4 at the trial
+  !> stress, on either side of it (dt S / eta = 1.025 there, 0.974 over 0.95 dt) (the soft frame is isotropic: P = I, C = lambda 1(x)1 + 2 mu I; plane strain, tensor
+  !> components 11, 22, 33, 12).
   subroutine hold_point()
-    real(real64) :: props(23), stress(4), statev(nstatv_test), d(4, 4), pn
-    props = [0.0_real64, 2900.0_real64, 18000.0_real64, 13000.0_real64, 4100.0_real64, 6900.0_real64, &
-             1.46_real64, 1.3e-4_real64, 0.73_real64, -0.2_real64, 0.4_real64, 2.0_real64, 1.3e13_real64, &
-             4600.0_real64, 3100.0_real64, 1.46_real64, 2.6e-3_real64, 35.0_real64, 1.3e10_real64, &
-             0.0_real64, 0.0_real64, 1.0_real64, 0.0_real64]
-    stress = [-69.305637224803831_real64, -878.79489119693403_real64, -389.64811118685145_real64, &
-              87.692606338054048_real64]
+    real(real64) :: props(23), stress(4), statev(nstatv_test), d(4, 4), pn, sig(4), pp, s(4), nd(4), trn
+    real(real64) :: ncn, soft_mod, ratio
+    real(real64), parameter :: lam = 4600, mu = 3100, m_slope = 1.46_real64, lambda_p = 2.6e-3_real64, &
+                               eta = 1.3e10_real64, w(4) = [1, 1, 1, 2]   ! the tensor inner product's weights
+    props = props_with(0.0_real64, [0.0_real64, 1.0_real64, 0.0_real64])
+    stress = hold_stress
     statev = 0
     statev(13) = 2
-    statev(14:17) = stress
-    statev(20:23) = [0.045572478812590154_real64, -0.067495885947890896_real64, &
-                     0.013220310334981103_real64, 0.12241494792109181_real64]
-    statev(26) = 994.95049752445016_real64
-    statev(27:30) = statev(20:23)
+    statev(14:17) = hold_stress
+    statev(26) = hold_pc_soft
     pn = huge(1.0_real64)
-    call call_umat(props, 4, stress, statev, [0.084020309439229141_real64, -0.15961083821997546_real64, &
-                   0.0_real64, 0.15070288544949739_real64], [1.4972230605833636e-4_real64, &
-                   -5.3482132682525219e-6_real64, 0.0_real64, -4.7599391857788831e-4_real64], &
-                   0.9838199913588368_real64, d, pn)
-    write (output_unit, '(a,i0,a,f12.6)') 'loading_rate_a1 hold point: flags ', nint(statev(34)), ', pc_soft ', &
-      statev(26)
+    call call_umat(props, 4, stress, statev, 0 * hold_dstran, hold_dstran, hold_dtime, d, pn)
+    ! The trial stress, N = (3/M^2) s - (2p' - pc)/3 1, and S = -N:C:N + p' pc tr N / lambda_p.
+    sig = hold_stress + 2 * mu * [hold_dstran(1:3), hold_dstran(4) / 2]
+    sig(1:3) = sig(1:3) + lam * sum(hold_dstran(1:3))
+    pp = -sum(sig(1:3)) / 3
+    s = sig + pp * [1, 1, 1, 0]
+    nd = (3 / m_slope**2) * s - ((2 * pp - hold_pc_soft) / 3) * [1, 1, 1, 0]
+    trn = sum(nd(1:3))
+    ncn = lam * trn**2 + 2 * mu * sum(w * nd**2)
+    soft_mod = -ncn + pp * hold_pc_soft * trn / lambda_p
+    ratio = hold_dtime * soft_mod / eta
+    write (output_unit, '(a,i0,a,f7.3)') 'loading_rate_a1 hold point: flags ', nint(statev(34)), &
+      ', dt S / eta at the trial ', ratio
     call check_true('loading_rate_a1 hold point: soft frame outruns its softening, fallback', &
                     nint(statev(34)) == 80 .and. pn >= 1)
+    call check_true('loading_rate_a1 hold point: the flag is dt S >= eta, S by hand', ratio >= 1 .and. &
+                    iand(nint(statev(34)), 64) /= 0)
+    ! The same increment over 0.95 dt (the trial unchanged, dt S / eta just below 1): no flag.
+    stress = hold_stress
+    statev(14:17) = hold_stress
+    statev(26) = hold_pc_soft
+    call call_umat(props, 4, stress, statev, 0 * hold_dstran, hold_dstran, 0.95_real64 * hold_dtime, d, pn)
+    call check_true('loading_rate_a1 hold point over 0.95 dt: dt S / eta below 1, not flagged', &
+                    0.95_real64 * ratio < 1 .and. iand(nint(statev(34)), 64) == 0)
   end subroutine hold_point
 
   !> 0 in one case out of five, else 1 ... 1e30 (test_extremes).

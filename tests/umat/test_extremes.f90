@@ -120,7 +120,7 @@ contains
   !> 1: uninitialised at -35 MPa; 2: tension +5 MPa with pc = 30; 3: pc near zero (1e-5 MPa);
   !> 4: deviatoric, far outside the hard surface; 5: a soft-frame state under the indenter in
   !> loading_rate_a1's hold where the fallback solver fires and the step outruns the softening
-  !> (test_continuity's hold point: pc_soft 995 MPa, p' 446 MPa).
+  !> (test_support's hold_stress: pc_soft 995 MPa, p' 446 MPa).
   subroutine initial_state(which, stress0, statev0)
     integer, intent(in) :: which
     real(real64), intent(out) :: stress0(6), statev0(nstatv_test)
@@ -135,9 +135,8 @@ contains
       stress0 = [-1.0_real64, -2.0_real64, -1.5_real64, 0.3_real64, 0.0_real64, 0.0_real64]
       statev0(13) = 1e-5_real64; statev0(26) = 1e-5_real64
     case (5)
-      stress0 = [-69.305637224803831_real64, -878.79489119693403_real64, -389.64811118685145_real64, &
-                 87.692606338054048_real64, 0.0_real64, 0.0_real64]
-      statev0(13) = 2; statev0(26) = 994.95049752445016_real64
+      stress0 = [hold_stress, 0.0_real64, 0.0_real64]
+      statev0(13) = 2; statev0(26) = hold_pc_soft
     case default
       stress0 = [-10, -10, -90, 5, 0, 0]
       statev0(13) = 2; statev0(26) = 35

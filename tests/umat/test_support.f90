@@ -13,6 +13,15 @@ module test_support
     4600.0_real64, 3100.0_real64, 1.46_real64, 0.0026_real64, 35.0_real64, 1.3e10_real64]
   real(real64), parameter, public :: pi = 3.141592653589793_real64
   integer, parameter, public :: nstatv_test = 36
+  !> A call of loading_rate_a1's hold where the UMAT's fallback solver fired (element 4204, point 3,
+  !> t = 262.9 s, phi = 0, NTENS 4; a replay the driver wrote): the soft frame's stress at the start (the
+  !> point's stress), its pc, the strain increment and the time increment.
+  real(real64), parameter, public :: hold_stress(4) = [-69.305637224803831_real64, -878.79489119693403_real64, &
+                                                        -389.64811118685145_real64, 87.692606338054048_real64]
+  real(real64), parameter, public :: hold_pc_soft = 994.95049752445016_real64
+  real(real64), parameter, public :: hold_dstran(4) = [1.4972230605833636e-4_real64, -5.3482132682525219e-6_real64, &
+                                                        0.0_real64, -4.7599391857788831e-4_real64]
+  real(real64), parameter, public :: hold_dtime = 0.9838199913588368_real64
 
   integer, public, save :: failures = 0, checks = 0
 

@@ -279,13 +279,12 @@ contains
     integer, intent(out) :: iterations, status
     integer, intent(inout) :: flags
     integer :: it2
-    logical :: ok
-    type(local_eval_t) :: ev_trial
+    logical :: ok, outruns
     status = frame_newton
     g = 0
     y = 0
-    call newton_solve(fr, st, g, y, ev, iterations, ok, ev_trial)
-    if (outruns_softening(ev_trial)) flags = ior(flags, flag_outrun)
+    call newton_solve(fr, st, g, y, ev, iterations, ok, outruns)
+    if (outruns) flags = ior(flags, flag_outrun)
     if (.not. ok .and. y <= st%y_floor) then
       ! The hardening wants pc below the floor: hold pc at the floor and solve again.
       st%floor_active = .true.
@@ -387,14 +386,15 @@ contains
 
   !> Clipped, projected Newton on (dgamma, y) (theory.md sec. 3.4). One more Newton step is taken after
   !> the test passes, so that the state is exact to round-off; ev is the evaluation at the result.
-  pure recursive subroutine newton_solve(fr, st, g, y, ev, iterations, ok, ev_start)
+  pure recursive subroutine newton_solve(fr, st, g, y, ev, iterations, ok, start_outruns)
     type(frame_t), intent(in) :: fr
     type(step_t), intent(in) :: st
     real(real64), intent(inout) :: g, y
     type(local_eval_t), intent(out) :: ev
     integer, intent(out) :: iterations
     logical, intent(out) :: ok
-    type(local_eval_t), intent(out), optional :: ev_start   !< the evaluation at the start point
+    !> outruns_softening at the start point (false where its evaluation is not finite)
+    logical, intent(out), optional :: start_outruns
     real(real64) :: det, dg, dy, y_low, lam_ref, z, w
     integer :: it
     logical :: converged
@@ -407,13 +407,15 @@ contains
     converged = .false.
     ok = .false.
     iterations = 0
+    if (present(start_outruns)) start_outruns = .false.
     do it = 1, max_newton + 1
       ev = local_eval(fr, st, g, y)
-      if (it == 1 .and. present(ev_start)) ev_start = ev
       ! is_finite of the sum, written inline in this loop (its bits: no comparison of a NaN): a call
       ! to the public function is not inlined under -fPIC and cost about 2 % of a viscoplastic call.
       z = ev%err + ev%j_yg + ev%j_yy + ev%j_fg + ev%j_fy
       if (iand(transfer(z, 0_int64), exponent_bits) == exponent_bits) return
+      ! after the finiteness test: no ordered comparison of a NaN (traps on in a host)
+      if (it == 1 .and. present(start_outruns)) start_outruns = outruns_softening(ev)
       if (converged) then
         ok = ev%err <= 1.0e3_real64 * newton_tol
         return

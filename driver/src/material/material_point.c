@@ -46,7 +46,6 @@ static MaterialLocalSolve local_solve(const UmatMaterial *mat, const double *sta
   l.pc_floor_hard   = l.flags & 1, l.pc_floor_soft = l.flags & 2;
   l.tension_hard    = l.flags & 4, l.tension_soft = l.flags & 8;
   l.fallback_solver = l.flags & 16;
-  l.outrun_hard     = l.flags & 32, l.outrun_soft = l.flags & 64;
   return l;
 }
 

@@ -18,7 +18,6 @@ typedef struct {
   bool pc_floor_hard, pc_floor_soft; /* a frame's pc at its floor (strong dilation) */
   bool tension_hard, tension_soft;   /* a frame in tension (p' < 0) */
   bool fallback_solver;              /* the local solve needed the fallback solver */
-  bool outrun_hard, outrun_soft;     /* a frame's step outruns its softening (theory.md §3.4) */
 } MaterialLocalSolve;
 
 /* What one update says. */
