@@ -15,6 +15,7 @@ h_tip at ratio about sqrt 2:
     axi1/2     the axisymmetric twin (cone of equal area, meshes/indent_block2d.geo), P1 and P2;
   BN (microindent_BN_sector.yaml, phi = 0.5, bedding normal e_z, 5 um; the kerogen mesh scaled by 25):
     bn2, bn1   the 60-degree sector, P2 and P1, h_far = 8 h_tip;
+    bnaxi2/1   BN's axisymmetric twin (microindent_BN_axi.yaml, the cone of equal area), P2 and P1;
   BP (microindent_BP.yaml, bedding normal e_x: no sector):
     bp2        the half model, P2, h_far = 8 h_tip.
 The 3D family: h_tip within r_fine of the tip (0.9 um, x 25 for BN and BP: the whole contact), growing to h_far;

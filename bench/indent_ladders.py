@@ -34,6 +34,10 @@ MODELS = {
                   [0.04, 0.04 / R2, 0.02, 0.02 / R2, 0.01], "kerogen"),
     "bn2": model("BN, 60° sector, P2", B, 2, 8, None, [5, 3.536, 2.5, 1.768, 1.25, 0.8839], "BN"),
     "bn1": model("BN, 60° sector, P1", B, 1, 8, None, [2.5, 1.768, 1.25, 0.8839, 0.625], "BN"),
+    "bnaxi2": model("BN, axisymmetric cone, P2", "microindent_BN_axi", 2, 7.5, None,
+                    [0.5, 0.5 / R2, 0.25, 0.25 / R2, 0.125], "BN"),
+    "bnaxi1": model("BN, axisymmetric cone, P1", "microindent_BN_axi", 1, 7.5, None,
+                    [0.5, 0.5 / R2, 0.25, 0.25 / R2, 0.125, 0.125 / R2], "BN"),
     "bp2": model("BP, half model (cube), P2", "microindent_BP", 2, 8, None, [5, 3.536, 2.5, 1.768, 1.25], "BP"),
 }
 
