@@ -31,8 +31,8 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
   PetscCall(PetscMemzero(s, sizeof *s));
   s->K = K, s->assemble = assemble, s->actx = actx;
   PetscCall(MatGetSize(K, &nu, NULL));
-  /* auto: the field split in 3D above fieldsplit_above displacement unknowns, where it overtakes the direct path
-     (docs/contact.md, "The field split"); in 2D the direct path wins at every size measured */
+  /* auto: the field split in 3D above fieldsplit_above displacement unknowns, where the direct path's memory outgrows
+     its speed (docs/contact.md, "The field split"); in 2D the direct path wins at every size measured */
   s->fieldsplit = o->solver == 1 || (o->solver == 2 && ct->dim == 3 && nu > o->fieldsplit_above);
   s->refactor_its = o->refactor_its, s->rtol_tight = o->rtol_tight, s->refactor = PETSC_TRUE;
   s->check = o->check_solve;
