@@ -29,8 +29,9 @@ git, each rung with its date and commit; rerunning skips the rungs already there
 resumed. Before each rung its CPU time and memory are extrapolated
 from the ladder's two rungs above it, and a rung above --max-cpu is skipped. --doc writes the section "## 3D
 indentation: mesh convergence and the cheapest model" of docs/performance.md from that file
-(bench/indent_convergence_doc.py), followed by the reading of the tables written by hand in
-bench/indent_convergence_conclusions.md (its numbers are those of the run in the section).
+(camclay9.indent3d_study, which tools/doc_numbers.py also checks it against), followed by the reading of the tables
+written by hand in bench/indent_convergence_conclusions.md (its numbers are quoted from the store:
+camclay9.doc_quotes). The ladders are in camclay9.indent3d_study.MODELS.
 
 Usage: bench/indent_convergence_bench.py [--models sector2,sector1,bn2,...] [--hmin H] [--rungs N] [--quick] [--doc]
 """
@@ -47,12 +48,20 @@ from pathlib import Path
 
 from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
 from camclay9.results_store import revision
-from indent_convergence_doc import TITLE, limits, section
-from indent_ladders import MODELS, SHORT, key, ladder, ladders, load
+from camclay9.indent3d_study import MODELS, SHORT, TITLE, key, ladder, ladders, limits, section
 from camclay9.performance_doc import replace_section
 from step_control_bench import absolute, outputs
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def load(path):
+    """A store of this bench ({"provenance", "rungs"}); {} where there is none."""
+    return json.loads(path.read_text()) if path.exists() else {}
+
+
+def save(path, store):
+    path.write_text(json.dumps(store, indent=1, ensure_ascii=False) + "\n")
 
 
 def scene(model, h_tip, tol=None, work=None):
@@ -131,9 +140,10 @@ def report(r):
             f"{r['rss_mb']:.0f} MB, wall {r['wall']:.1f} s ({g})")
 
 
-def run_rungs(todo, res, others, path, tol, max_cpu):
-    """Run the rungs (model, h_tip) in order, skipping those in res or others and those estimated above max_cpu;
-    each result (or failure) is written to path at once."""
+def run_rungs(todo, store, others, path, tol, max_cpu):
+    """Run the rungs (model, h_tip) in order, skipping those in the store's rungs or others and those estimated above
+    max_cpu; each result (or failure) is written to path at once."""
+    res = store["rungs"]
     with tempfile.TemporaryDirectory() as d:
         for m, h in todo:
             k = key(m, h, tol)
@@ -157,7 +167,7 @@ def run_rungs(todo, res, others, path, tol, max_cpu):
                 r = dict(failed=why[-1] if why else str(e)[-300:])
             r.update(model=m, h_tip=h, tol=tol, date=time.strftime("%Y-%m-%d"), rev=revision(ROOT))  # the run's provenance
             res[k] = r
-            path.write_text(json.dumps(res, indent=1))
+            save(path, store)
             if "failed" not in r:
                 print(report(r), flush=True)
 
@@ -172,7 +182,8 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="a 2-rung smoke run of each model (coarsest rungs), no document")
     ap.add_argument("--results", default=str(ROOT / "docs" / "results" / "indent_convergence.json"),
                     help="JSON file of the results (written); more files after commas are read too (e.g. parallel runs)")
-    ap.add_argument("--doc", action="store_true", help="write the section of docs/performance.md from --results")
+    ap.add_argument("--doc", action="store_true", help="write the section of docs/performance.md from --results "
+                    "(camclay9.indent3d_study), the command and date into its provenance")
     ap.add_argument("--command", default=None, help="the command(s) to name in the section (default: this one)")
     ap.add_argument("--max-cpu", type=float, default=7200,
                     help="skip a rung whose CPU time, extrapolated from its ladder's two rungs above it, exceeds this [s]")
@@ -184,21 +195,24 @@ def main(argv=None):
     quick_dir = tempfile.TemporaryDirectory() if a.quick else None
     path = Path(quick_dir.name) / "quick.json" if a.quick else files[0]
     path.parent.mkdir(parents=True, exist_ok=True)
-    res = load(path)
-    others = {} if a.quick else {k: v for f in files[1:] for k, v in load(f).items()}
+    store = load(path)
+    res = store.setdefault("rungs", {})
+    others = {} if a.quick else {k: v for f in files[1:] for k, v in load(f).get("rungs", {}).items()}
     # rung by rung across the models, coarsest first: a cut run has every model's coarse rungs
     todo = [(i, list(MODELS).index(m), m, h) for m in models for i, h in enumerate(MODELS[m]["hs"][:rungs or None])
             if a.hmin * (1 - 1e-9) <= h <= a.hmax * (1 + 1e-9)]
-    run_rungs([(m, h) for _, _, m, h in sorted(todo)], res, others, path, a.tol, a.max_cpu)
-    res = {**others, **res}
+    run_rungs([(m, h) for _, _, m, h in sorted(todo)], store, others, path, a.tol, a.max_cpu)
+    res = store["rungs"] = {**others, **res}
     for m, tol in ladders(res):
         lim = limits(res, m, tol)
         print(m + (f" tol {tol:g}" if tol else "") + ": " + ", ".join(
             f"{SHORT[k]} -> {lim[k][1]:.6g} (p {lim[k][0]:.2f})" if lim[k][1] else f"{SHORT[k]}: not monotone" for k in lim))
     if a.doc:
         command = a.command or "bench/indent_convergence_bench.py " + " ".join(argv or sys.argv[1:])
-        replace_section(TITLE, section(res, command, a.note))
-        print("written: docs/performance.md")
+        store["provenance"] = dict(command=command, note=a.note, date=time.strftime("%Y-%m-%d", time.gmtime()))
+        save(path, store)
+        replace_section(TITLE, section(store))
+        print(f"written: {path} (its provenance), docs/performance.md")
 
 
 if __name__ == "__main__":

@@ -22,15 +22,14 @@ Usage: tools/doc_numbers.py [--write] [--root DIR]
                fe_solver.json), "## Indentation: 3D half model, sector and axisymmetric twin"
                (camclay9.indent_models_study, indent_models.json), "## FE scaling: 1 and 2 ranks, direct and GAMG"
                (camclay9.fe_scaling_study, fe_scaling.json), "## CalculiX on the same mesh (issue 13)"
-               (camclay9.calculix_study, calculix.json) and "## Indentation speed: the contact solve and the physics"
-               (camclay9.indent_speed_study, indent_speed.json);
-             * a section whose tables no store holds yet ("## 3D indentation: mesh convergence ...") must end with
-               the reading its generator carries over (READINGS: bench/indent_convergence_conclusions.md);
+               (camclay9.calculix_study, calculix.json), "## Indentation speed: the contact solve and the physics"
+               (camclay9.indent_speed_study, indent_speed.json) and "## 3D indentation: mesh convergence and the
+               cheapest model" (camclay9.indent3d_study, indent_convergence.json); a section's reading written by
+               hand (bench/*_conclusions.md of this repository) is part of what its generator writes;
              * every quote of camclay9.doc_quotes (README.md, the hand-written readings): its text, with its
                numbers computed from the stores, must stand in its document.
-  --write    write those sections and docs/paper.md from the stores, put the stores' numbers into the quotes'
-             places in the documents (where a quote's text is found with other numbers in it), then the readings'
-             files into their sections.
+  --write    put the stores' numbers into the quotes' places in the documents (where a quote's text is found with
+             other numbers in it), then write those sections and docs/paper.md from the stores.
   --root     the tree whose README.md, docs/ and docs/results/ are read (default: this repository); the
              generators' own text (bench/*_conclusions.md) is always this repository's.
 
@@ -42,7 +41,7 @@ import sys
 from pathlib import Path
 
 from camclay9 import (adapt_study, calculix_study, calibrate_study, contact_solver_study, coverage_study, doc_quotes,
-                      fe_main_job_study, fe_scaling_study, fe_solver_study, fe_triaxial_study, indent_models_study,
+                      fe_main_job_study, fe_scaling_study, fe_solver_study, fe_triaxial_study, indent3d_study, indent_models_study,
                       indent_ranks_study, indent_speed_study, paper_doc, point_creep_study, results_store, step_control_study,
                       time_error_study, umat_time_study)
 from camclay9 import indent2d_study as i2d
@@ -53,13 +52,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # or sections(store) for a store behind several sections ({title: text})
 STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study, coverage_study, time_error_study, umat_time_study,
            point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study,
-           fe_scaling_study, calculix_study, fe_solver_study, indent_speed_study)
-
-# Sections whose tables no store holds yet (their runs' results were not kept) but whose reading, written by hand, the
-# section's generator carries over from a file (bench/indent_convergence_doc.py): the section must end with that text,
-# whose numbers from the store camclay9.doc_quotes checks.
-READINGS = {"## 3D indentation: mesh convergence and the cheapest model": "bench/indent_convergence_conclusions.md"}
-
+           fe_scaling_study, calculix_study, fe_solver_study, indent_speed_study, indent3d_study)
 
 def section_of(text, title):
     """The section of a '## ' Markdown file that starts with title, up to the next '## ' (as camclay9.performance_doc
@@ -89,22 +82,6 @@ def generated(store_dir):
     return out
 
 
-def reading_of(section, reading):
-    """The part of the section from the reading's first line on (the generator appends the reading), or None."""
-    at = section.find(reading.splitlines()[0]) if section else -1
-    return section[at:] if at >= 0 else None
-
-
-def readings(root):
-    """[(document, section title, the section's reading, the reading's file and text)] for READINGS."""
-    out = []
-    for title, src in READINGS.items():
-        text = (Path(root) / "docs" / "performance.md").read_text(encoding="utf-8")
-        want = (Path(root) / src).read_text(encoding="utf-8")
-        out.append(("docs/performance.md", title, reading_of(section_of(text, title), want), src, want))
-    return out
-
-
 def diff_lines(want, have, name):
     d = list(difflib.unified_diff(have.splitlines(), want.splitlines(), f"{name} (the document)",
                                   f"{name} (from the store)", n=0, lineterm=""))
@@ -122,15 +99,14 @@ def check(root):
         elif have.rstrip("\n") != want.rstrip("\n"):
             problems.append(f"{doc}{', ' + title if title else ''}: differs from its store\n"
                             + "\n".join(diff_lines(want, have, doc)))
-    for doc, title, have, src, want in readings(root):
-        if have is None:
-            problems.append(f"{doc}, {title}: its reading ({src}, from '{want.splitlines()[0]}' on) is not in the section")
-        elif have.rstrip("\n") != want.rstrip("\n"):
-            problems.append(f"{doc}, {title}: its reading differs from {src}, which the section's generator carries over\n"
-                            + "\n".join(diff_lines(want, have, doc)))
     ns = doc_quotes.namespace(store_dir)
     for q in doc_quotes.QUOTES:
-        doc, want = q[0], doc_quotes.render(q[1], ns)
+        try:
+            doc, want = q[0], doc_quotes.render(q[1], ns)
+        except (ArithmeticError, LookupError, TypeError, ValueError, AttributeError) as e:
+            problems.append(f"{q[0]}: the quote '{q[1][:100]}' cannot be computed from the store ({type(e).__name__}: {e}): "
+                            "the text that quotes it must be rewritten for the store's numbers")
+            continue
         if want not in (Path(root) / doc).read_text(encoding="utf-8"):
             near = doc_quotes.find(q[1], (Path(root) / doc).read_text(encoding="utf-8"))
             problems.append(f"{doc}: the quote '{want}' (numbers from the store) is not in the document"
@@ -139,7 +115,23 @@ def check(root):
 
 
 def write(root):
+    """The quotes' numbers first (some stand in a reading, bench/*_conclusions.md, that a section carries), then the
+    generated sections and docs/paper.md."""
     store_dir = Path(root) / "docs" / "results"
+    ns = doc_quotes.namespace(store_dir)
+    for q in doc_quotes.QUOTES:
+        p = Path(root) / q[0]
+        text = p.read_text(encoding="utf-8")
+        try:
+            near, want = doc_quotes.find(q[1], text), doc_quotes.render(q[1], ns)
+        except (ArithmeticError, LookupError, TypeError, ValueError, AttributeError) as e:
+            print(f"{q[0]}: the quote '{q[1][:100]}' cannot be computed from the store ({type(e).__name__}: {e})")
+            continue
+        if near and near != want:
+            p.write_text(text.replace(near, want, 1), encoding="utf-8")
+            print(f"{q[0]}: '{near}' -> '{want}'")
+        elif not near:
+            print(f"{q[0]}: the quote's text is not in the document: {want}")
     for (doc, title), want in generated(store_dir).items():
         p = Path(root) / doc
         text = p.read_text(encoding="utf-8")
@@ -149,22 +141,6 @@ def write(root):
             have = section_of(text, title)
             text = text.replace(have, want.rstrip("\n") + have[len(have.rstrip("\n")):]) if have else text
         p.write_text(text, encoding="utf-8")
-    ns = doc_quotes.namespace(store_dir)
-    for q in doc_quotes.QUOTES:
-        p = Path(root) / q[0]
-        text = p.read_text(encoding="utf-8")
-        near, want = doc_quotes.find(q[1], text), doc_quotes.render(q[1], ns)
-        if near and near != want:
-            p.write_text(text.replace(near, want, 1), encoding="utf-8")
-            print(f"{q[0]}: '{near}' -> '{want}'")
-        elif not near:
-            print(f"{q[0]}: the quote's text is not in the document: {want}")
-    for doc, title, have, src, want in readings(root):
-        p = Path(root) / doc
-        if have is not None and have.rstrip("\n") != want.rstrip("\n"):   # the reading's file is the source
-            p.write_text(p.read_text(encoding="utf-8").replace(have, want.rstrip("\n") + have[len(have.rstrip("\n")):], 1),
-                         encoding="utf-8")
-            print(f"{doc}, {title}: its reading written from {src}")
 
 
 def main(argv=None):
@@ -178,7 +154,7 @@ def main(argv=None):
     problems = check(a.root)
     for p in problems:
         print(p)
-    n = len(doc_quotes.QUOTES) + len(generated(Path(a.root) / "docs" / "results")) + len(READINGS)
+    n = len(doc_quotes.QUOTES) + len(generated(Path(a.root) / "docs" / "results"))
     print(f"doc_numbers: {n - len(problems)} of {n} checks agree with the store" + ("" if problems else " (all)"))
     return 1 if problems else 0
 

@@ -1,4 +1,4 @@
-"""Richardson extrapolation of a ladder of meshes (bench/indent_convergence_doc.py, camclay9.indent2d_study)."""
+"""Richardson extrapolation of a ladder of meshes (camclay9.indent3d_study, camclay9.indent2d_study)."""
 import math
 
 

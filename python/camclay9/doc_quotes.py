@@ -14,14 +14,14 @@ the numbers of docs/contact.md's reading "The field split" (bench/contact_solver
 those of docs/calibrate.md's 300 s drift hold (bench/calibrate_coverage.py, calibrate_coverage.json); the
 effectivities and the kerogen sector's shares of docs/adapt.md's "The time-step error" (bench/time_error_bench.py,
 time_error.json; not its rounded bounds for the triaxial stage, "17–200 times", "below 0.03 %"); and those of
-the 3D section's reading (bench/indent_convergence_conclusions.md, which docs/performance.md carries) that
-indent3d.json holds: the kerogen reference, the rungs and the shipped mesh's cost it keeps, BN's and BP's ladders
-(not their steps and CPU, nor the rungs and the finer run that the store does not keep).
+the 3D section's reading (bench/indent_convergence_conclusions.md, which docs/performance.md carries): the numbers of
+camclay9.indent3d_study.numbers(), from the 3D ladders' store (indent_convergence.json), the adapted levels
+(adapt_bench.json) and the few figures carried over in indent3d.json.
 """
 import re
 import statistics
 
-from camclay9 import coverage_study, paper_doc_tri, results_store
+from camclay9 import coverage_study, indent3d_study, paper_doc_tri, results_store
 from camclay9.indent2d_study import key
 
 
@@ -131,13 +131,17 @@ def namespace(store_dir=None):
     paper = results_store.load("paper", store_dir)
     n = paper.get("numbers", {})
     tri = results_store.int_keys(n.get("triaxial", {}))
-    i3, i2 = results_store.load("indent3d", store_dir), results_store.load("indent2d_convergence", store_dir)
+    i3, i2 = indent3d_study.numbers(store_dir), results_store.load("indent2d_convergence", store_dir)
     fe = results_store.load("fe_triaxial", store_dir)
 
     def rung2(sk, h_tip, r_fine, order=2):
         """A 2D study rung's errors against its scene's converged answer."""
         r = i2["rungs"][key(sk, order, h_tip, r_fine)]
         return A({k: r["o"][k] / i2["reference"][sk][k]["value"] - 1 for k in r["o"]} | {"cpu": r["cpu"], "unknowns": r["unknowns"]})
+
+    def kr(key):
+        """A kerogen rung of the 3D mesh study by its key ('sector2_0.12'): P, creep, h_res, unknowns, cpu, ..."""
+        return A(i3["kerogen"]["rungs"][key])
 
     def err3(key):
         """A kerogen rung's errors against the converged 3D answer."""
@@ -226,9 +230,9 @@ def namespace(store_dir=None):
     def stc(scene, q, variant="shipped"):
         """A scene's error in q against its fine-step reference (bench/step_control_bench.py, step_control.json)."""
         return sc_rows[(scene, variant)][q]
-    ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, tri=tri, ind=A(n.get("indent", {})),
+    ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, zip=zip, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
@@ -265,6 +269,52 @@ CA = "docs/calibrate.md"
 AD = "docs/adapt.md"
 PL = "docs/parallel.md"
 PF = "docs/performance.md"
+BNP3 = [  # the reading's lines that hold numbers (bench/indent_convergence_conclusions.md)
+    "  25: h_tip 2.5 µm within 22.5 µm, h_far 20 µm). Its load converges: on P2 «', '.join(th(x, 1) for x in bn.p2.P)» mN,",
+    "  the shipped rung «pc(bn.p2.ship.P / bn.p2.P[-1] - 1, 2)» from the finest, and P1 approaches from above («', '.join(th(x, 1) for x in bn.p1.P)» mN).",
+    "  Its creep depth settles within a few per cent on both (P2 «', '.join(f(x, 1) for x in bn.p2.creep)» nm; P1",
+    "  «', '.join(f(x, 1) for x in bn.p1.creep)» nm).",
+    "- **BN's residual depth does not converge on uniform 3D meshes**: P2 «', '.join(f(x, 3) for x in bn.p2.h_res)» µm, P1",
+    "  «', '.join(f(x, 3) for x in bn.p1.h_res)» µm, rising by «pu(min(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])))» to «pu(max(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])))» per P2 refinement, the steps",
+    "  «', '.join(f(x, 4) for x in bn.twin.h_res)» µm, within 0.1 % of its finest from h_tip «f(bn.twin_from_h_tip, 2)» µm on.",
+    "  For kerogen the 3D and axisymmetric residual depths agree within «pu(err3('axi2_0.01').h_res)»",
+    "  of unknowns. Meshes adapted to BN's answer converge it in 3D: «f(bn.adapted.h_res[0], 3)» and «f(bn.adapted.h_res[1], 3)» µm on levels of",
+    '  «f(bn.adapted.unknowns[0] / 1e3, 1)» k and «f(bn.adapted.unknowns[1] / 1e3, 1)» k unknowns, «pu(bn.adapted.h_res[1] / bn.twin_h_res - 1)» above the twin\'s «f(bn.twin_h_res, 3)» µm (section "Adapted meshes"). Against them the',
+    '  shipped mesh is «pc(bn.p2.ship.h_res / bn.adapted.h_res[-1] - 1)» and the finest uniform P2 rung «pc(bn.p2.h_res[-1] / bn.adapted.h_res[-1] - 1)»; the runs of Figs. 4–5 use the',
+    "  «', '.join(g(x, '.4g') for x in bp.p2.h_tip)» µm (the rung at 3.54 µm stops under load control at a limit point of that coarse model,",
+    "  listed above): load «', '.join(th(x, 1) for x in bp.p2.P)» mN, creep depth «', '.join(f(x, 1) for x in bp.p2.creep)» nm, residual depth",
+    "  «', '.join(f(x, 3) for x in bp.p2.h_res)» µm. As BN's, its residual depth rises with refinement; the adapted meshes converge it at",
+    '  «f(bp.adapted.h_res[0], 3)» and «f(bp.adapted.h_res[1], 3)» µm («f(bp.adapted.unknowns[0] / 1e3, 1)» k and «f(bp.adapted.unknowns[1] / 1e3, 1)» k unknowns), against which the shipped mesh is «pc(bp.p2.ship.h_res / bp.adapted.h_res[-1] - 1)».',
+]
+
+
+K3 = [  # the reading's lines that hold numbers (bench/indent_convergence_conclusions.md)
+    "- **The converged 3D answer (kerogen)** is the sector's P2 ladder, down to h_tip 0.0354 µm («th(kr('sector2_0.03536').unknowns)» unknowns,",
+    "  «f(kr('sector2_0.03536').cpu, 0)» s CPU, «f(kr('sector2_0.03536').rss_mb / 1e3, 1)» GB). Over its last three rungs the load falls monotonically («', '.join(f(x, 2) for x in k.p2.P[-3:])» µN) at order «f(k.p2.P_order, 2)»,",
+    '  slowly, so the reference takes the middle of the finest rung and the Richardson limit («f(k.p2.P_limit, 2)» µN):',
+    '  **P = «f(k.reference.P, 1)» µN ± «pu(k.reference.hw.P)»**. The creep and residual depths have no trend left over the same rungs',
+    "  («', '.join(f(x, 2) for x in k.p2.creep[-3:])» nm; «', '.join(f(x, 2) for x in k.p2.h_res[-3:])» nm), so the reference is the finest rung, ± its change",
+    '  from the rung before: **creep depth «f(k.reference.creep, 2)» nm ± «pu(k.reference.hw.creep)», residual depth «f(k.reference.h_res, 1)» nm ± «pu(k.reference.hw.h_res)»**.',
+    '  («pc(tet(\'kerogen_sector\'), 2)» on the shipped mesh) is measured in "Stated time-step error" below.',
+    "- **P1 converges too slowly to check it.** The sector on P1 down to h_tip 0.025 µm («th(kr('sector1_0.025').unknowns)» unknowns,",
+    "  «f(kr('sector1_0.025').cpu, 0)» s) is still «pc(err3('sector1_0.025').P)» in load, «pc(err3('sector1_0.025').creep)» in creep depth and «pc(err3('sector1_0.025').h_res)» in residual depth, and",
+    '  its load converges at order «f(k.p1.P_order, 2)» over its last three rungs.',
+    "  lay in coarse elements, and the creep depth jumped from rung to rung («f(kr('old1_0.1').creep, 2)», «f(kr('old1_0.07071').creep, 2)», «f(kr('old1_0.05').creep, 2)» nm on P1). At the scenes'",
+    "  h_tip 0.05 µm it was «pc(err3('old1_0.05').creep, 0)» against the converged answer. With r_fine 0.9 µm the P1 creep depth rises monotonically",
+    "  («', '.join(f(x, 2) for x in k.p1.creep)» nm).",
+    "  h_far 4 and 8 h_tip, and the half model, an independent mesh) are «pc(err3('sector2_0.12').creep)», «pc(err3('sector2f8_0.12').creep)» and «pc(err3('half2_0.12').creep)» in creep",
+    "  depth and «pc(err3('sector2_0.12').h_res)», «pc(err3('sector2f8_0.12').h_res)» and «pc(err3('half2_0.12').h_res)» in residual depth. At h_tip 0.1 µm the sector with h_far 4 and 8 h_tip",
+    "  and the nested mesh (the 0.2 µm mesh split) are «pc(err3('sector2_0.1').creep)», «pc(err3('sector2f8_0.1').creep)» and «pc(err3('sector2n_0.1').creep)» in creep depth. So down to",
+    "- **The shipped mesh** (the sector, P2, h_tip 0.12 µm, h_far 0.48 µm) is the cheapest within 2 %: «pc(err3('sector2_0.12').P)» in load, «pc(err3('sector2_0.12').creep)»",
+    "  in creep depth and «pc(err3('sector2_0.12').h_res)» in residual depth, in «f(kr('sector2_0.12').cpu, 0)» s here. On an idle machine it took «k.shipped_cost.cpu_median» s (median of «k.shipped_cost.runs» runs;",
+    "  «k.shipped_cost.umat_calls_M» M UMAT calls). Within 1 % in all three, the first uniform mesh is h_tip 0.05 µm («th(kr('sector2_0.05').unknowns)» unknowns, «f(kr('sector2_0.05').cpu, 0)» s). Adapted",
+    "- **The axisymmetric twin** (the cone of equal area) converges fast: on P2 at h_tip 0.01 µm it gives «f(kr('axi2_0.01').P, 1)» µN, «f(kr('axi2_0.01').creep, 2)» nm",
+    "  and «f(kr('axi2_0.01').h_res, 1)» nm. Against the 3D answer it is «pc(err3('axi2_0.01').P)» in load, «pc(err3('axi2_0.01').creep)» in creep depth and «pc(err3('axi2_0.01').h_res)» in residual depth: the tip's",
+    "  shape. The 3D to axisymmetric load ratio is «f(k.reference.P / kr('axi2_0.01').P, 3)», below the elastic Berkovich/cone ratio «k.berkovich_cone_elastic» (docs/contact.md).",
+    "  The shipped twin (P1, h_tip 0.02 µm) is «pc(err3('axi1_0.02').P)» in load, «pc(err3('axi1_0.02').creep)» in creep depth and «pc(err3('axi1_0.02').h_res)» in residual depth",
+]
+
+
 QUOTES = [
     # the stated time-step error against the true one (docs/adapt.md, "The time-step error"; bench/time_error_bench.py)
     (AD, "effectivity «f(min(tef('kerogen_axi')), 2)»–«f(max(tef('kerogen_axi')), 2)» on the\nkerogen twin (tol 0.03 to "
@@ -326,6 +376,11 @@ QUOTES = [
     (CT, "The field split takes «f(csr(S3[0], 'cpu'), 2)»× the\n  direct path's CPU at «ku(S3[0])» k unknowns and «f(csr(S3[1], 'cpu'), 2)»× "
          "at «ku(S3[1])» k, then «f(csr(S3[2], 'cpu'), 2)»× at «ku(S3[2])» k, «f(csr(S3[3], 'cpu'), 2)»× at «ku(S3[3])» k and "
          "«f(csr(S3[4], 'cpu'), 2)»× at «ku(S3[4])» k"),
+    (CT, "the field split takes «f(csr('whole0.0707', 'cpu'), 2)»× the\n  direct path's CPU at «ku('whole0.0707')» k unknowns and "
+         "«f(csr('whole0.05', 'cpu'), 2)»× at «ku('whole0.05')» k"),
+    (CT, "the direct path ran the same sector at «f(kr('sector2_0.03536').unknowns / 1e3, 0)» k\n  unknowns through its whole "
+         "history in «f(kr('sector2_0.03536').rss_mb / 1e3, 1)» GB"),
+    (CT, "its factors, about «f(kbu(S3[4], 'direct'), 0)» kB per unknown at «ku(S3[4])» k and growing"),
     (CT, "the field split takes «f(csr('lr1', 'cpu'), 1)»× its CPU on loading_rate_a1 (P2,\n  «ku('lr1')» k unknowns) and "
          "«f(min(csr(c, 'cpu') for c in S2), 1)»–«f(max(csr(c, 'cpu') for c in S2), 1)»× on the kerogen twin"),
     (CT, "«f(kpn(S3[0]), 0)» at «ku(S3[0])» k unknowns, «f(kpn(S3[3]), 0)» at «ku(S3[3])» k and «f(kpn(BIG), 0)» at "
@@ -414,8 +469,8 @@ QUOTES = [
         "«f(fe[(6, 1e-06, 2)].wall, 0)» s wall on 2 quiet cores (the main job above) |"),
     (R, "docs/paper.md (about «f(meta.wall_runs / 60, 0)» min on a loaded"),
     # the kerogen sector (defect 3)
-    (R, "(P2 to h_tip 0.035: P «k.reference.P» µN ± «pu(k.reference.hw.P)», creep depth «k.reference.creep» nm ± "
-        "«pu(k.reference.hw.creep)», residual depth «k.reference.h_res» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
+    (R, "(P2 to h_tip 0.035: P «f(k.reference.P, 1)» µN ± «pu(k.reference.hw.P)», creep depth «f(k.reference.creep, 2)» nm ± "
+        "«pu(k.reference.hw.creep)», residual depth «f(k.reference.h_res, 1)» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
         "«pc(err3('sector2_0.12').P)», creep depth «pc(err3('sector2_0.12').creep)», residual depth «pc(err3('sector2_0.12').h_res)»"),
     (R, "another mesh of this density is «pc(err3('sector2f8_0.12').h_res)» in residual depth"),
     (R, "«f(isp('nanoindent_kerogen_sector').cpu, 0)» s CPU on a shared machine (docs/performance.md, \"Indentation speed\"); "
@@ -424,6 +479,13 @@ QUOTES = [
         "creep «pc(err3('sector2f8_0.1').creep)»)"),
     (R, "an independent mesh of this density (the cube, h_tip 0.12) is «pc(err3('half2_0.12').P)» in load, "
         "«pc(err3('half2_0.12').creep)» in creep depth and «pc(err3('half2_0.12').h_res)» in residual depth"),
+    (R, "«f(im('half')['cpu'] / im('sector')['cpu'], 1)» times less CPU than the half model; P2 reaches the 3D answer where P1 at "
+        "h_tip 0.05 µm is still «g(100 * min(abs(v) for v in err3('sector1_0.05').values()), '.0f')»–«pu(max(abs(v) for v in "
+        "err3('sector1_0.05').values()), 0)» away at «f(kr('sector1_0.05').cpu / kr('sector2_0.12').cpu, 0)» times the CPU"),
+    (R, "(a uniform zone within 1 % needs «f(kr('sector2_0.05').unknowns / 1e3, 0)» k unknowns)"),
+    (R, "ladders of the sector on P2 (h_tip «g(bn.p2.h_tip[0], 'g')» to «g(bn.p2.h_tip[-1], '.3g')» µm, «f(bn.p2.unknowns[-1] / 1e3, 0)» k "
+        "unknowns) and P1 («g(bn.p1.h_tip[0], 'g')» to «g(bn.p1.h_tip[-1], '.3g')» µm)"),
+    (R, "a ladder of h_tip «', '.join(g(x, '.3g') for x in bp.p2.h_tip)» µm (P2, the last «f(bp.p2.cpu[-1], 0)» s CPU)"),
     # the axisymmetric twin (defect 3)
     (R, "«pc(err3('axi1_0.02').P)» in load against the 3D answer (the tip's shape; × «k.berkovich_cone_elastic», the elastic "
         "Berkovich/cone ratio, overshoots by «pu(k.rungs['axi1_0.02']['P'] * k.berkovich_cone_elastic / k.reference.P - 1)»: "
@@ -432,15 +494,17 @@ QUOTES = [
         "«pu(k.rungs['axi1_0.02']['P'] / k.rungs['axi2_0.01']['P'] - 1)» (load) and "
         "«pu(k.rungs['axi1_0.02']['creep'] / k.rungs['axi2_0.01']['creep'] - 1)» (creep) of its own converged answer"),
     # BN and BP (defects 3, 6)
-    (R, "the creep depth within «pu(max(abs(bn.p2.creep[2] / c - 1) for c in (bn.p2.creep[-1], bn.p1.creep[-1], bn.adapted.creep[-1])))» "
-        "of the finest uniform P2 («bn.p2.creep[-1]» nm), P1 («bn.p1.creep[-1]» nm) and adapted («f(bn.adapted.creep[-1], 1)» nm) meshes"),
-    (R, "(P2: «', '.join(f(x, 2) for x in bn.p2.h_res[1:])» µm), so the shipped mesh's «bn.p2.h_res[2]» µm is "
-        "«pc(bn.p2.h_res[2] / bn.adapted.h_res[-1] - 1, 0)» against the converged «f(bn.adapted.h_res[-1], 3)» µm "
+    (R, "the creep depth within «pu(max(abs(bn.p2.ship.creep / c - 1) for c in (bn.p2.creep[-1], bn.p1.creep[-1], bn.adapted.creep[-1])))» "
+        "of the finest uniform P2 («f(bn.p2.creep[-1], 1)» nm), P1 («f(bn.p1.creep[-1], 1)» nm) and adapted («f(bn.adapted.creep[-1], 1)» nm) meshes"),
+    (R, "+«g(100 * min(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])), '.0f')»–«g(100 * max(b / a - 1 for a, b in "
+        "zip(bn.p2.h_res[1:], bn.p2.h_res[2:])), '.0f')» % per refinement on P1 and P2 alike (P2: «', '.join(f(x, 2) for x in bn.p2.h_res[1:])» µm), so the shipped mesh's «f(bn.p2.ship.h_res, 3)» µm is "
+        "«pc(bn.p2.ship.h_res / bn.adapted.h_res[-1] - 1, 0)» against the converged «f(bn.adapted.h_res[-1], 3)» µm "
         "(adapted meshes, `microindent_BN_sector_adapt.yaml`; the axisymmetric twin: «f(bn.twin_h_res, 3)» µm)"),
     (R, "| «f(isp('microindent_BN_sector').cpu, 0)» s CPU on a shared machine; «isp('microindent_BN_sector').steps» steps, "
         "«isp('microindent_BN_sector').rejected» rejected |"),
-    (R, "the load «pc(bp.p2.P[1] / bp.p2.P_limit - 1, 2)» from its limit, the creep depth within its ± 1 % scatter, the residual "
-        "depth «bp.p2.h_res[1]» µm, «pc(bp.p2.h_res[1] / bp.adapted.h_res[-1] - 1, 0)» against the converged "
+    (R, "the load «pc(bp.p2.ship.P / bp.p2.P[-1] - 1, 2)» from the finest rung, the creep depth within «pu(max(abs(c / bp.p2.ship.creep - 1) "
+        "for c in bp.p2.creep[bp.p2.h_tip.index(bp.p2.shipped):]))» of the finer rungs', the residual "
+        "depth «f(bp.p2.ship.h_res, 3)» µm, «pc(bp.p2.ship.h_res / bp.adapted.h_res[-1] - 1, 0)» against the converged "
         "«f(bp.adapted.h_res[-1], 2)» µm"),
     (R, "| «f(isp('microindent_BP').cpu, 0)» s CPU on a shared machine, «pu(isp('microindent_BP').log_view.factorisation / "
         "isp('microindent_BP').log_view.total, 0)» of its time in the contact solve's factorisations |"),
@@ -453,11 +517,11 @@ QUOTES = [
         "reruns, «f(ad('bn', 3).q['h_res'] / 1e3, 3)» µm on its last level («f(ad('bn', 3).unknowns / 1e3, 1)» k unknowns) and "
         "«f(ad('bn', 4).q['h_res'] / 1e3, 3)» µm one level further («f(ad('bn', 4).unknowns / 1e3, 1)» k): converged, "
         "«pu(ad('bn', 3).q['h_res'] / 1e3 / bn.twin_h_res - 1)» above the axisymmetric twin's «f(bn.twin_h_res, 3)» µm and "
-        "«pu(ad('bn', 3).q['h_res'] / 1e3 / bn.p2.h_res[2] - 1, 0)» above the shipped mesh's «f(bn.p2.h_res[2], 3)» µm |"),
+        "«pu(ad('bn', 3).q['h_res'] / 1e3 / bn.p2.ship.h_res - 1, 0)» above the shipped mesh's «f(bn.p2.ship.h_res, 3)» µm |"),
     (R, "residual depth «f(ad('bp', 0).q['h_res'] / 1e3, 2)» and «f(ad('bp', 1).q['h_res'] / 1e3, 2)» µm on its first two "
         "levels, «f(ad('bp', 2).q['h_res'] / 1e3, 3)» µm on its last («f(ad('bp', 2).unknowns / 1e3, 1)» k unknowns) and "
         "«f(ad('bp', 3).q['h_res'] / 1e3, 3)» µm one level further («f(ad('bp', 3).unknowns / 1e3, 1)» k): converged, "
-        "«pu(ad('bp', 2).q['h_res'] / 1e3 / bp.p2.h_res[1] - 1, 0)» above the shipped mesh's «f(bp.p2.h_res[1], 3)» µm |"),
+        "«pu(ad('bp', 2).q['h_res'] / 1e3 / bp.p2.ship.h_res - 1, 0)» above the shipped mesh's «f(bp.p2.ship.h_res, 3)» µm |"),
     (R, "| 2D twin of BN | as the kerogen twin | «f(isp('microindent_BN_axi').cpu, 1)» s |"),
     # the 2D scenes (defects 2, 10)
     (R, "depth at the end of loading «pc(rung2('lr', 0.01414, 0.9).h_max)», creep depth «pc(rung2('lr', 0.01414, 0.9).creep)», "
@@ -495,50 +559,8 @@ QUOTES = [
          "«pc(rung2('bed', 0.25, 10.0).h_res)», «pc(rung2('bed', 0.25, 10.0).sig_hold)»: within all four limits (✓);\n  Δσ̄ "
          "«pc(rung2('bed', 0.25, 10.0).dsig)». Before (P1, h_tip 0.5; 7 s): «pc(rung2('bed', 0.5, 10.0, 1).h_max)», "
          "«pc(rung2('bed', 0.5, 10.0, 1).creep)», «pc(rung2('bed', 0.5, 10.0, 1).h_res)», «pc(rung2('bed', 0.5, 10.0, 1).sig_hold)»"),
-    (C3, "the ratio is «k.reference.P» / «f(k.rungs['axi2_0.01']['P'], 1)» = «f(k.reference.P / k.rungs['axi2_0.01']['P'], 3)», "
-         "«pu(1 - k.reference.P / k.rungs['axi2_0.01']['P'] / k.berkovich_cone_elastic, 0)» below the elastic one, and the shipped\n"
-         "  twin, P1 at h_tip 0.02, is «pc(err3('axi1_0.02').P)» in load, «pc(err3('axi1_0.02').creep, 0)» in creep depth and "
-         "«pc(err3('axi1_0.02').h_res)» in residual depth"),
-    # the 3D section's reading (bench/indent_convergence_conclusions.md, carried into docs/performance.md: READINGS of
-    # tools/doc_numbers.py): the kerogen reference, the rungs it quotes, the shipped cost; BN's and BP's ladders
-    (C3, "P2 ladder's last three rungs: P = «k.reference.P» µN ± «pu(k.reference.hw.P)» (the rungs"),
-    (C3, "µN at p 0.8), creep depth «k.reference.creep» nm ± «pu(k.reference.hw.creep)»,\n  residual depth "
-         "«k.reference.h_res» nm ± «pu(k.reference.hw.h_res)». The P1"),
-    *[(C3, f"| {label} | {h} | {n} | «k.rungs['{key}']['cpu']» | {calls} M | «e3('{key}', 'P')»% | «e3('{key}', 'creep')»% | "
-           f"«e3('{key}', 'h_res')»% |") for label, h, n, key, calls in (
-        ("60° sector, P2", "0.2", 1648, "sector2_0.2", 1.4), ("60° sector, P2, h_far 8 h_tip", "0.12", 4704, "sector2f8_0.12", 4.9),
-        ("60° sector, P2, h_far 8 h_tip (shipped before)", "0.1", 7982, "sector2f8_0.1", 9.0))],
-    (C3, "| **60° sector, P2 (h_far 4 h_tip): shipped now** | 0.12 | «k.rungs['sector2_0.12']['unknowns']» | "
-         "«k.rungs['sector2_0.12']['cpu']» | «k.shipped_cost.umat_calls_M» M | «e3('sector2_0.12', 'P')»% | "
-         "«e3('sector2_0.12', 'creep')»% | «e3('sector2_0.12', 'h_res')»% | ✓ |"),
-    (C3, "(0.48 µm): «pc(err3('sector2_0.12').P)», «pc(err3('sector2_0.12').creep)», «pc(err3('sector2_0.12').h_res)»,"),
-    (C3, "(«k.shipped_cost.umat_calls_M» M UMAT calls against 9.0 M), which was «pc(err3('sector2f8_0.1').creep)» in creep"),
-    (C3, "the margin in P («pc(err3('sector2_0.12').P)» against the reference's ± «pu(k.reference.hw.P)»)"),
-    (C3, "(h_far 8 h_tip) is «pc(err3('sector2f8_0.12').creep)» in creep\n  and «pc(err3('sector2f8_0.12').h_res)» in "
-         "residual depth"),
-    (C3, "median «k.shipped_cost.cpu_median» s (the mesh before: «k.shipped_cost.cpu_before_repick» s), "
-         "«f(k.shipped_cost.umat_calls_M, 2)» M UMAT"),
-    (C3, "so the ratio to the physics is «k.shipped_cost.ratio_to_umat»"),
-    (C3, "(h_tip 0.1, «f(k.rungs['sector2f8_0.1']['P'], 1)» µN, «k.rungs['sector2f8_0.1']['creep']» nm, "
-         "«f(k.rungs['sector2f8_0.1']['h_res'], 1)» nm)"),
-    (C3, "**«pc(err3('sector2f8_0.1').creep)» in creep\n  depth** and «pc(err3('sector2f8_0.1').h_res)» in residual depth"),
-    (C3, "\n  ".join(f"| «bn.p2.h_tip[{i}]»{note} | «th(bn.p2.unknowns[{i}])» | «th(bn.p2.P[{i}], 1)» | «f(bn.p2.creep[{i}], 1)» | "
-                     f"«f(bn.p2.h_res[{i}], 3)» | {rest} |" for i, (note, rest) in enumerate((   # steps and CPU: not in the store
-                         ("", "788 | 19"), ("", "804 | 72"), (" (shipped)", "794 | (321 s wall, loaded)"), ("", "789 | 955"),
-                         (" (issue 25)", "702 | 355"))))),
-    (C3, "on P1, h_tip «', '.join(g(x, 'g') for x in bn.p1.h_tip)» µm"),
-    (C3, "P «', '.join(th(x, 1) for x in bn.p1.P)» mN; creep depth «', '.join(f(x) for x in bn.p1.creep)» nm; residual depth "
-         "«', '.join(f(x, 3) for x in bn.p1.h_res[:2])»,\n  «', '.join(f(x, 3) for x in bn.p1.h_res[2:])» µm"),
-    (C3, "(P2: «g(bn.p2.h_res[2] - bn.p2.h_res[1], '+.3f')», «g(bn.p2.h_res[3] - bn.p2.h_res[2], '+.3f')», "
-         "«g(bn.p2.h_res[4] - bn.p2.h_res[3], '+.3f')» µm per rung"),
-    (C3, "near the twin's «f(bn.twin_h_res, 2)» µm (the shipped 3D mesh about «pu(bn.p2.h_res[2] / bn.twin_h_res - 1, 0)» low, "
-         "the finest 3D rung about «pu(bn.p2.h_res[-1] / bn.twin_h_res - 1, 0)»)"),
-    (C3, "converge it in 3D: «f(bn.adapted.h_res[0], 3)» and\n  «f(bn.adapted.h_res[1], 3)» µm on levels of "
-         "«f(bn.adapted.unknowns[0] / 1000, 1)» k and «f(bn.adapted.unknowns[1] / 1000, 1)» k unknowns, "
-         "«pu(bn.adapted.h_res[1] / bn.twin_h_res - 1)» above the twin; BP «f(bp.adapted.h_res[0], 3)» and "
-         "«f(bp.adapted.h_res[1], 3)» µm"),
-    (C3, "µm: P «', '.join(f(x) for x in bp.p2.P)» mN (limit «bp.p2.P_limit», p 2.2: the shipped mesh "
-         "«pc(bp.p2.P[1] / bp.p2.P_limit - 1, 2)»);\n  creep depth «', '.join(f(x) for x in bp.p2.creep)» nm"),
-    (C3, "residual depth «', '.join(f(x, 3) for x in bp.p2.h_res)» µm (limit\n  «bp.p2.h_res_limit», p 1.2: the shipped mesh "
-         "about «pu(bp.p2.h_res[1] / bp.p2.h_res_limit - 1, 0)» low, as BN's); «', '.join(f(x, 0) for x in bp.p2.cpu)» s CPU"),
+    # the 3D section's reading (bench/indent_convergence_conclusions.md, which its generated section carries), line by
+    # line: the kerogen reference and ladders, the shipped mesh, the twin; BN's and BP's ladders, twins and adapted levels
+    *[(C3, line) for line in K3],
+    *[(C3, line) for line in BNP3],
 ]

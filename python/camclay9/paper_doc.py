@@ -5,13 +5,13 @@ with its section and figure; our side is measured on the runs; the two are never
 tools/reproduce.py keeps the numbers, the run's meta data and the figures' list in the results store
 (docs/results/paper.json, store_data()); render_store() writes docs/paper.md from the store alone, which is how
 tools/doc_numbers.py (CTest docs.numbers) checks that the document and the store agree. The setup table and the
-indentation text also quote the stores of the mesh studies (docs/results/{indent3d,indent2d_convergence,
-fe_triaxial}.json).
+indentation text also quote the stores of the mesh studies (docs/results/{indent_convergence,indent3d,adapt_bench,
+indent2d_convergence,fe_triaxial}.json).
 """
 import shutil
 from pathlib import Path
 
-from camclay9 import paper_doc_2d, paper_doc_tri, results_store
+from camclay9 import indent3d_study, paper_doc_2d, paper_doc_tri, results_store
 from camclay9.indent2d_study import shipped_rung
 from camclay9.paper_numbers import THETAS_BEDDING, check_trends
 
@@ -198,16 +198,16 @@ def _stated(s, mesh_key, time_key=None):
 
 
 def lower_bounds():
-    """BN's and BP's converged residual depths (their adapted meshes' last level, docs/results/indent3d.json): the
+    """BN's and BP's converged residual depths (their adapted meshes' last level, camclay9.indent3d_study): the
     shipped uniform meshes' residual depths are lower bounds against them."""
-    d = results_store.load("indent3d")
+    d = indent3d_study.numbers()
     return {k: d[k]["adapted"]["h_res"][-1] for k in ("BN", "BP")} if d else {}
 
 
 def bn_text(adapted=False):
-    """The paragraph on the 3D meshes of Figs. 3-5, its numbers from docs/results/indent3d.json; adapted: BN's and BP's
+    """The paragraph on the 3D meshes of Figs. 3-5, its numbers from camclay9.indent3d_study; adapted: BN's and BP's
     runs here were made on adapted meshes (their summary.json states a mesh error)."""
-    d = results_store.load("indent3d")
+    d = indent3d_study.numbers()
     if not d:
         return "The meshes' errors: docs/performance.md, \"3D indentation: mesh convergence and the cheapest model\"."
     k, bn, bp = d["kerogen"], d["BN"], d["BP"]
@@ -221,16 +221,18 @@ def bn_text(adapted=False):
             f"at full depth ({_pct(_err(sh, ref, 'P'))}), the creep depth ({_pct(_err(sh, ref, 'creep'))}) and "
             f"the residual depth ({_pct(_err(sh, ref, 'h_res'))}) (docs/performance.md, \"3D indentation: mesh "
             "convergence and the cheapest model\"). BN and BP use the kerogen mesh shipped before that pick (h_tip 0.1 µm, "
-            "h_far 0.8 µm) scaled by 25. On BN, ladders to h_tip 1.25 µm (P2) and 0.88 µm (P1) and meshes adapted to the "
+            f"h_far 0.8 µm) scaled by 25. On BN, ladders to h_tip {bn['p2']['h_tip'][-1]:.3g} µm (P2) and "
+            f"{bn['p1']['h_tip'][-1]:.3g} µm (P1) and meshes adapted to the "
             f"answer put the load within 1 % and the creep depth within {creep_dev * 100:.1f} % of the finest of each "
             f"({bn['p2']['creep'][-1]:.1f}, {bn['p1']['creep'][-1]:.1f}, {bn['adapted']['creep'][-1]:.1f} nm), but **the "
-            "residual depth does not converge on the uniform meshes**: it rises by 3–4 % per refinement on P1 and P2 alike "
+            "residual depth does not converge on the uniform meshes**: it rises with every refinement on P1 and P2 alike "
             f"(P2: {', '.join(f'{x:.2f}' for x in bn['p2']['h_res'][1:])} µm); on meshes adapted to the answer it "
             f"converges to {h_conv:.3f} µm (levels of {bn['adapted']['unknowns'][-2] / 1e3:.1f} k and "
             f"{bn['adapted']['unknowns'][-1] / 1e3:.1f} k unknowns within {abs(bn['adapted']['h_res'][-2] / h_conv - 1) * 100:.1f} %; "
             f"the axisymmetric twin: {bn['twin_h_res']:.3f} µm), so the shipped mesh's {h_ship:.3f} µm is "
-            f"{_pct(h_ship / h_conv - 1)}; BP's ladder (h_tip 5, 2.5, 1.77 µm) puts the shipped mesh "
-            f"{_pct(bp['p2']['P'][bs] / bp['p2']['P_limit'] - 1, 2)} in load and within the ± 1 % scatter of its creep depth, and "
+            f"{_pct(h_ship / h_conv - 1)}; BP's ladder (h_tip {', '.join(f'{h:.3g}' for h in bp['p2']['h_tip'])} µm) puts the shipped mesh "
+            f"{_pct(bp['p2']['P'][bs] / bp['p2']['P'][-1] - 1, 2)} in load against the finest rung and within "
+            f"{max(abs(c / bp['p2']['creep'][bs] - 1) for c in bp['p2']['creep'][bs:]) * 100:.1f} % of the finer rungs' creep depths, and "
             f"its residual depth {bp['p2']['h_res'][bs]:.3f} µm is {_pct(bp['p2']['h_res'][bs] / bp['adapted']['h_res'][-1] - 1)} "
             f"against the adapted meshes' {bp['adapted']['h_res'][-1]:.3f} µm. "
             + ("The runs of Figs. 3–5 here are the adapted scenes (input/nanoindent_kerogen_sector_adapt.yaml, "
@@ -244,14 +246,14 @@ def bn_text(adapted=False):
 
 
 def kerogen_against_reference(s):
-    """A line: the adapted kerogen run against the converged 3D answer (docs/results/indent3d.json), or none."""
-    d = results_store.load("indent3d")
+    """A line: the adapted kerogen run against the converged 3D answer (camclay9.indent3d_study), or none."""
+    d = indent3d_study.numbers()
     if not s or "residual_mesh_error" not in s or not d:
         return []
     ref = d["kerogen"]["reference"]
     got = {"P": s["max_load"], "creep": 1e3 * s["creep_depth"], "h_res": 1e3 * s["residual_depth"]}
     return ["", "The kerogen run against the converged 3D answer (" + ", ".join(
-        f"{ref[q]} {u}" for q, u in (("P", "µN"), ("creep", "nm"), ("h_res", "nm"))) + "; docs/performance.md, \"3D "
+        f"{ref[q]:.4g} {u}" for q, u in (("P", "µN"), ("creep", "nm"), ("h_res", "nm"))) + "; docs/performance.md, \"3D "
         "indentation: mesh convergence and the cheapest model\"): load " + ", ".join(
         f"{name} {_pct(got[q] / ref[q] - 1, 2)}" for q, name in (("P", ""), ("creep", "creep depth"), ("h_res", "residual depth"))
         ).lstrip() + "."]
@@ -279,8 +281,11 @@ def indentation(n, images, rel):
             creep = _f(s['creep_depth'], '.3g') + _stated(s, "creep_mesh_error", "creep_time_error")
             L.append(f"| {k} | {_f(s['max_load'], '.4g')} | {_f(s['depth_end_of_load'], '.4g')} | {creep} | {res} |")
     L += kerogen_against_reference(ind.get("nanoindent_kerogen"))
+    cpu = {r["model"]: r["cpu"] for r in results_store.load("indent_models").get("rows", [])}
+    ratio = (f"{cpu['half'] / cpu['sector']:.1f} times less CPU than the half model (docs/performance.md, \"Indentation: "
+             "3D half model, sector and axisymmetric twin\")" if {"half", "sector"} <= cpu.keys() else "a sixth of its cells")
     L += ["", "Loads are the whole indenter's. The kerogen and BN scenes run on the 60° sector (input/*_sector.yaml, exact "
-          "for them: a third of the half model's cost), BP on the half model (its bedding normal e_x breaks the sector's "
+          f"for them: {ratio}), BP on the half model (its bedding normal e_x breaks the sector's "
           "symmetry), all on quadratic tetrahedra with the whole contact inside the fine zone. "
           + bn_text(all("residual_mesh_error" in ind.get(k, {}) for k in ("microindent_BN", "microindent_BP"))), "",
           "**Viscosities.** η_s = 1.3e10 MPa³·s (soft frame) and η_h = 1.3e13 MPa³·s (hard frame) are the paper's own values "
