@@ -270,12 +270,13 @@ AD = "docs/adapt.md"
 PL = "docs/parallel.md"
 PF = "docs/performance.md"
 BNP3 = [  # the reading's lines that hold numbers (bench/indent_convergence_conclusions.md)
-    "  25: h_tip 2.5 µm within 22.5 µm, h_far 20 µm). Its load converges: on P2 «', '.join(th(x, 1) for x in bn.p2.P)» mN,",
+    "  Its load converges: on P2 «', '.join(th(x, 1) for x in bn.p2.P)» mN,",
     "  the shipped rung «pc(bn.p2.ship.P / bn.p2.P[-1] - 1, 2)» from the finest, and P1 approaches from above («', '.join(th(x, 1) for x in bn.p1.P)» mN).",
     "  Its creep depth settles within a few per cent on both (P2 «', '.join(f(x, 1) for x in bn.p2.creep)» nm; P1",
     "  «', '.join(f(x, 1) for x in bn.p1.creep)» nm).",
-    "- **BN's residual depth does not converge on uniform 3D meshes**: P2 «', '.join(f(x, 3) for x in bn.p2.h_res)» µm, P1",
-    "  «', '.join(f(x, 3) for x in bn.p1.h_res)» µm, rising by «pu(min(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])))» to «pu(max(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])))» per P2 refinement, the steps",
+    "- **BN's residual depth is not converged on any uniform 3D mesh run**: P2 «', '.join(f(x, 3) for x in bn.p2.h_res)» µm, P1",
+    "  «', '.join(f(x, 3) for x in bn.p1.h_res)» µm, rising by «pu(min(b / a - 1 for a, b in zip(bn.p2.h_res[:-2], bn.p2.h_res[1:-1])))» to «pu(max(b / a - 1 for a, b in zip(bn.p2.h_res[:-2], bn.p2.h_res[1:-1])))» per P2 refinement down to 1.25 µm,",
+    '  then by «pu(bn.p2.h_res[-1] / bn.p2.h_res[-2] - 1)» to the finest rung («f(bn.p2.unknowns[-1] / 1e3, 0)» k unknowns).',
     "  «', '.join(f(x, 4) for x in bn.twin.h_res)» µm, within 0.1 % of its finest from h_tip «f(bn.twin_from_h_tip, 2)» µm on.",
     "  For kerogen the 3D and axisymmetric residual depths agree within «pu(err3('axi2_0.01').h_res)»",
     "  of unknowns. Meshes adapted to BN's answer converge it in 3D: «f(bn.adapted.h_res[0], 3)» and «f(bn.adapted.h_res[1], 3)» µm on levels of",
@@ -496,7 +497,7 @@ QUOTES = [
     # BN and BP (defects 3, 6)
     (R, "the creep depth within «pu(max(abs(bn.p2.ship.creep / c - 1) for c in (bn.p2.creep[-1], bn.p1.creep[-1], bn.adapted.creep[-1])))» "
         "of the finest uniform P2 («f(bn.p2.creep[-1], 1)» nm), P1 («f(bn.p1.creep[-1], 1)» nm) and adapted («f(bn.adapted.creep[-1], 1)» nm) meshes"),
-    (R, "+«g(100 * min(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])), '.0f')»–«g(100 * max(b / a - 1 for a, b in "
+    (R, "+«g(100 * min(b / a - 1 for a, b in zip(bn.p2.h_res[1:], bn.p2.h_res[2:])), '.1f')»–«g(100 * max(b / a - 1 for a, b in "
         "zip(bn.p2.h_res[1:], bn.p2.h_res[2:])), '.0f')» % per refinement on P1 and P2 alike (P2: «', '.join(f(x, 2) for x in bn.p2.h_res[1:])» µm), so the shipped mesh's «f(bn.p2.ship.h_res, 3)» µm is "
         "«pc(bn.p2.ship.h_res / bn.adapted.h_res[-1] - 1, 0)» against the converged «f(bn.adapted.h_res[-1], 3)» µm "
         "(adapted meshes, `microindent_BN_sector_adapt.yaml`; the axisymmetric twin: «f(bn.twin_h_res, 3)» µm)"),

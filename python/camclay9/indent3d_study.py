@@ -234,10 +234,11 @@ def intro(pv):
             "one run per rung, under nice -n 10. P: the indenter's whole load at the end of loading; creep: depth gained",
             "over the hold; h_res: residual depth. In brackets: the error against the Richardson limit of the ladder's own",
             "last three rungs. CPU: user + system of the driver (gmsh's meshing included) [s]; '(split)': the contact solve",
-            "was the field split (`-indent_solver auto` above 50 000 unknowns), else the kept factorisation (the rungs",
-            "record which); memory: the driver's peak resident set [MB]. On a shared machine (2 cores, other jobs",
-            "running) the wall time is not comparable, the CPU time roughly. The results are kept in",
-            "`docs/results/indent_convergence.json` (the bench's --results), each rung with its date and commit.", ""]
+            "was the field split (`-indent_solver auto` above 50 000 unknowns, its threshold when those rungs ran), else",
+            "the kept factorisation (the rungs record which); memory: the driver's peak resident set [MB]. On a shared",
+            "machine (2 cores, other jobs running) the wall time is not comparable, the CPU time roughly. The results",
+            "are kept in `docs/results/indent_convergence.json` (the bench's --results), each rung with its date and",
+            "commit.", ""]
 
 
 def section(store, root=None):

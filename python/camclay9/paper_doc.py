@@ -225,7 +225,7 @@ def bn_text(adapted=False):
             f"{bn['p1']['h_tip'][-1]:.3g} µm (P1) and meshes adapted to the "
             f"answer put the load within 1 % and the creep depth within {creep_dev * 100:.1f} % of the finest of each "
             f"({bn['p2']['creep'][-1]:.1f}, {bn['p1']['creep'][-1]:.1f}, {bn['adapted']['creep'][-1]:.1f} nm), but **the "
-            "residual depth does not converge on the uniform meshes**: it rises with every refinement on P1 and P2 alike "
+            "residual depth is not converged on any uniform mesh run**: it rises with every refinement on P1 and P2 alike "
             f"(P2: {', '.join(f'{x:.2f}' for x in bn['p2']['h_res'][1:])} µm); on meshes adapted to the answer it "
             f"converges to {h_conv:.3f} µm (levels of {bn['adapted']['unknowns'][-2] / 1e3:.1f} k and "
             f"{bn['adapted']['unknowns'][-1] / 1e3:.1f} k unknowns within {abs(bn['adapted']['h_res'][-2] / h_conv - 1) * 100:.1f} %; "
