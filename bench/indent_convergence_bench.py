@@ -2,7 +2,7 @@
 Mesh convergence of the 3D Cam-Clay indentation scenes (issue 12, items 3-4; issue 25, item 5): how converged are
 the 3D answers, and which model and element order reaches <= 2 % of the converged 3D answer at the least CPU time.
 
-Each ladder (bench/indent_ladders.py) is a scene of input/ as shipped (Cam-Clay IX; P = P0 exp(k t) up to the target
+Each ladder (camclay9.indent3d_study.MODELS) is a scene of input/ as shipped (Cam-Clay IX; P = P0 exp(k t) up to the target
 depth, hold 60 s, unload in 20 s; the shipped adaptive time-step settings, output measure tol 1.5e-2) on meshes of
 h_tip at ratio about sqrt 2:
   kerogen (nanoindent_kerogen*.yaml, phi = 0, 200 nm):
