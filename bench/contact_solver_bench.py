@@ -46,7 +46,6 @@ that store (camclay9.contact_solver_study; tools/doc_numbers.py checks the secti
 import argparse
 import re
 import statistics
-import sys
 import tempfile
 import time
 from pathlib import Path

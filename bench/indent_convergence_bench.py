@@ -36,7 +36,6 @@ camclay9.doc_quotes). The ladders are in camclay9.indent3d_study.MODELS.
 Usage: bench/indent_convergence_bench.py [--models sector2,sector1,bn2,...] [--hmin H] [--rungs N] [--quick] [--doc]
 """
 import argparse
-import json
 import math
 import re
 import resource
@@ -47,21 +46,13 @@ import time
 from pathlib import Path
 
 from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
+from camclay9 import results_store
 from camclay9.results_store import revision
 from camclay9.indent3d_study import MODELS, SHORT, TITLE, key, ladder, ladders, limits, section
 from camclay9.performance_doc import replace_section
 from step_control_bench import absolute, outputs
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def load(path):
-    """A store of this bench ({"provenance", "rungs"}); {} where there is none."""
-    return json.loads(path.read_text()) if path.exists() else {}
-
-
-def save(path, store):
-    path.write_text(json.dumps(store, indent=1, ensure_ascii=False) + "\n")
 
 
 def scene(model, h_tip, tol=None, work=None):
@@ -167,7 +158,7 @@ def run_rungs(todo, store, others, path, tol, max_cpu):
                 r = dict(failed=why[-1] if why else str(e)[-300:])
             r.update(model=m, h_tip=h, tol=tol, date=time.strftime("%Y-%m-%d"), rev=revision(ROOT))  # the run's provenance
             res[k] = r
-            save(path, store)
+            results_store.save(path.stem, store, path.parent)
             if "failed" not in r:
                 print(report(r), flush=True)
 
@@ -195,9 +186,9 @@ def main(argv=None):
     quick_dir = tempfile.TemporaryDirectory() if a.quick else None
     path = Path(quick_dir.name) / "quick.json" if a.quick else files[0]
     path.parent.mkdir(parents=True, exist_ok=True)
-    store = load(path)
+    store = results_store.load(path.stem, path.parent)   # {provenance, rungs}, or {}
     res = store.setdefault("rungs", {})
-    others = {} if a.quick else {k: v for f in files[1:] for k, v in load(f).get("rungs", {}).items()}
+    others = {} if a.quick else {k: v for f in files[1:] for k, v in results_store.load(f.stem, f.parent).get("rungs", {}).items()}
     # rung by rung across the models, coarsest first: a cut run has every model's coarse rungs
     todo = [(i, list(MODELS).index(m), m, h) for m in models for i, h in enumerate(MODELS[m]["hs"][:rungs or None])
             if a.hmin * (1 - 1e-9) <= h <= a.hmax * (1 + 1e-9)]
@@ -206,11 +197,11 @@ def main(argv=None):
     for m, tol in ladders(res):
         lim = limits(res, m, tol)
         print(m + (f" tol {tol:g}" if tol else "") + ": " + ", ".join(
-            f"{SHORT[k]} -> {lim[k][1]:.6g} (p {lim[k][0]:.2f})" if lim[k][1] else f"{SHORT[k]}: not monotone" for k in lim))
+            f"{SHORT[k]} -> {lim[k][1]:.6g} (p {lim[k][0]:.2f})" if lim[k][1] else f"{SHORT[k]}: no limit" for k in lim))
     if a.doc:
         command = a.command or "bench/indent_convergence_bench.py " + " ".join(argv or sys.argv[1:])
         store["provenance"] = dict(command=command, note=a.note, date=time.strftime("%Y-%m-%d", time.gmtime()))
-        save(path, store)
+        results_store.save(path.stem, store, path.parent)
         replace_section(TITLE, section(store))
         print(f"written: {path} (its provenance), docs/performance.md")
 

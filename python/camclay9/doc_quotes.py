@@ -21,7 +21,7 @@ camclay9.indent3d_study.numbers(), from the 3D ladders' store (indent_convergenc
 import re
 import statistics
 
-from camclay9 import coverage_study, indent3d_study, paper_doc_tri, results_store
+from camclay9 import coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
 from camclay9.indent2d_study import key
 
 
@@ -146,7 +146,7 @@ def namespace(store_dir=None):
     def err3(key):
         """A kerogen rung's errors against the converged 3D answer."""
         r, ref = i3["kerogen"]["rungs"][key], i3["kerogen"]["reference"]
-        return A(r.get("err") or {k: r[k] / ref[k] - 1 for k in ("P", "creep", "h_res")})
+        return A({k: r[k] / ref[k] - 1 for k in ("P", "creep", "h_res")})
 
     fe_row = {(r["size"], r["tol"], r["ranks"]): A(r) for r in fe.get("rows", [])}
     cs_rows = {(r["case"], r["solver"]): r for r in results_store.load("contact_solver", store_dir).get("rows", [])}
@@ -180,10 +180,6 @@ def namespace(store_dir=None):
     def rmsz(rows):
         """The rms of a fault's errors in units of their reported standard errors (1 when those are right)."""
         return (sum(r["z"] ** 2 for r in rows) / len(rows)) ** 0.5
-
-    def e3(key, q):
-        """A kerogen rung's error in output q as the section's tables print it ("+1.8", "-21.7"; the % after it)."""
-        return format(100 * err3(key)[q], "+.1f")
 
     def kbu(case, solver="fieldsplit"):
         """A contact-solver row's peak memory per unknown [kB]."""
@@ -232,10 +228,10 @@ def namespace(store_dir=None):
         return sc_rows[(scene, variant)][q]
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, zip=zip, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
-              cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th, e3=e3)
+              cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)
     ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir))
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
@@ -246,9 +242,18 @@ PART = re.compile(r"«(.*?)»")
 NUMBER = r"(?:[−+-]?(?:\d[\d., ]*\d|\d|X)(?: %)?)"   # what a «» place holds: a number, a list of them, or X
 
 
+class QuoteError(Exception):
+    """A quote whose expression the stores cannot compute (a reading written for other numbers)."""
+
+
 def render(text, ns):
-    """The quote's text with each «expression» replaced by its value."""
-    return PART.sub(lambda m: str(eval(m.group(1), {"__builtins__": {}, **ns})), text)
+    """The quote's text with each «expression» replaced by its value; QuoteError where one cannot be computed."""
+    def value(m):
+        try:
+            return str(eval(m.group(1), {"__builtins__": {}, **ns}))
+        except (ArithmeticError, LookupError, TypeError, ValueError, AttributeError) as e:
+            raise QuoteError(f"the quote '{text[:100]}' cannot be computed from the store ({type(e).__name__}: {e})") from e
+    return PART.sub(value, text)
 
 
 def pattern(text):
@@ -426,8 +431,8 @@ QUOTES = [
     (PL, "«f(kbu(S3[1], 'direct'), 0)» kB at «ku(S3[1])» k unknowns, «f(kbu(S3[3], 'direct'), 0)» at «ku(S3[3])» k and «f(kbu(S3[4], 'direct'), 0)» "
          "at «ku(S3[4])» k («f(cs(S3[4], 'direct', 'mem') / 1000, 1)» GB)"),
     # the adapted scenes (README's table; bench/adapt_bench.py, adapt_bench.json: the kerogen sector's, BN's and BP's cases)
-    (R, "| «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times the sector's CPU (docs/performance.md"),
-    (R, "(the kerogen half model: «f(im('half')['cpu'] / im('sector')['cpu'], 1)» times) |"),
+    (R, "| «f(half_over_sector, 1)» times the sector's CPU (docs/performance.md"),
+    (R, "(the kerogen half model: «f(half_over_sector, 1)» times) |"),
     (PF, "loading_rate_a1 and bedding_theta45 took «isp('loading_rate_a1').steps» and "
         "«isp('bedding_theta45').steps» steps,\n  «isp('loading_rate_a1').newton» and «isp('bedding_theta45').newton» Newton "
         "iterations after it, as before it (the store's run at 5ec347a, in git history); «isp('loading_rate_a1').stalled» and «isp('bedding_theta45').stalled» of their "
@@ -480,7 +485,7 @@ QUOTES = [
         "creep «pc(err3('sector2f8_0.1').creep)»)"),
     (R, "an independent mesh of this density (the cube, h_tip 0.12) is «pc(err3('half2_0.12').P)» in load, "
         "«pc(err3('half2_0.12').creep)» in creep depth and «pc(err3('half2_0.12').h_res)» in residual depth"),
-    (R, "«f(im('half')['cpu'] / im('sector')['cpu'], 1)» times less CPU than the half model; P2 reaches the 3D answer where P1 at "
+    (R, "«f(half_over_sector, 1)» times less CPU than the half model; P2 reaches the 3D answer where P1 at "
         "h_tip 0.05 µm is still «g(100 * min(abs(v) for v in err3('sector1_0.05').values()), '.0f')»–«pu(max(abs(v) for v in "
         "err3('sector1_0.05').values()), 0)» away at «f(kr('sector1_0.05').cpu / kr('sector2_0.12').cpu, 0)» times the CPU"),
     (R, "(a uniform zone within 1 % needs «f(kr('sector2_0.05').unknowns / 1e3, 0)» k unknowns)"),
@@ -489,11 +494,11 @@ QUOTES = [
     (R, "a ladder of h_tip «', '.join(g(x, '.3g') for x in bp.p2.h_tip)» µm (P2, the last «f(bp.p2.cpu[-1], 0)» s CPU)"),
     # the axisymmetric twin (defect 3)
     (R, "«pc(err3('axi1_0.02').P)» in load against the 3D answer (the tip's shape; × «k.berkovich_cone_elastic», the elastic "
-        "Berkovich/cone ratio, overshoots by «pu(k.rungs['axi1_0.02']['P'] * k.berkovich_cone_elastic / k.reference.P - 1)»: "
-        "with creep the converged 3D and axisymmetric loads are «f(k.reference.P / k.rungs['axi2_0.01']['P'], 2)»× apart), "
+        "Berkovich/cone ratio, overshoots by «pu(kr('axi1_0.02').P * k.berkovich_cone_elastic / k.reference.P - 1)»: "
+        "with creep the converged 3D and axisymmetric loads are «f(k.reference.P / kr('axi2_0.01').P, 2)»× apart), "
         "«pc(err3('axi1_0.02').creep, 0)» in creep depth, «pc(err3('axi1_0.02').h_res)» in residual depth; within "
-        "«pu(k.rungs['axi1_0.02']['P'] / k.rungs['axi2_0.01']['P'] - 1)» (load) and "
-        "«pu(k.rungs['axi1_0.02']['creep'] / k.rungs['axi2_0.01']['creep'] - 1)» (creep) of its own converged answer"),
+        "«pu(kr('axi1_0.02').P / kr('axi2_0.01').P - 1)» (load) and "
+        "«pu(kr('axi1_0.02').creep / kr('axi2_0.01').creep - 1)» (creep) of its own converged answer"),
     # BN and BP (defects 3, 6)
     (R, "the creep depth within «pu(max(abs(bn.p2.ship.creep / c - 1) for c in (bn.p2.creep[-1], bn.p1.creep[-1], bn.adapted.creep[-1])))» "
         "of the finest uniform P2 («f(bn.p2.creep[-1], 1)» nm), P1 («f(bn.p1.creep[-1], 1)» nm) and adapted («f(bn.adapted.creep[-1], 1)» nm) meshes"),
@@ -540,9 +545,9 @@ QUOTES = [
         "these scenes, «pc(rung2('bed', 0.25, 10.0).h_res)»)"),
     (R, "(the P1 mesh before the 2D study: «pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth)"),
     # below the table (defect 3)
-    (R, "were «f(k.rungs['old1_0.05']['cpu'], 0)» s for the sector but «pc(err3('old1_0.05').P, 0)» in load and "
+    (R, "were «f(kr('old1_0.05').cpu, 0)» s for the sector but «pc(err3('old1_0.05').P, 0)» in load and "
         "«pc(err3('old1_0.05').creep, 0)» in creep depth"),
-    (R, "with `h_tip: 0.2` (P2, «f(k.rungs['sector2_0.2']['cpu'], 0)» s CPU) are «pc(err3('sector2_0.2').P)» in load but "
+    (R, "with `h_tip: 0.2` (P2, «f(kr('sector2_0.2').cpu, 0)» s CPU) are «pc(err3('sector2_0.2').P)» in load but "
         "«pc(err3('sector2_0.2').creep, 0)» in creep depth and «pc(err3('sector2_0.2').h_res, 0)» in residual depth"),
     # the readings written by hand beside the generated tables (bench/*_conclusions.md, included in docs/performance.md)
     (C2, "creep depth «f(i2.reference.lr.creep.value * 1e3, 2)» nm ± «pu(i2.reference.lr.creep.hw)», residual\n  "

@@ -24,6 +24,12 @@ def checked(store):
     return {r["model"]: r for r in store["rows"]}
 
 
+def half_over_sector(store):
+    """The half model's CPU over the sector's (the kerogen scene as shipped on each), or None without both rows."""
+    cpu = {r["model"]: r["cpu"] for r in store.get("rows", [])}
+    return cpu["half"] / cpu["sector"] if {"half", "sector"} <= cpu.keys() else None
+
+
 def section(store, root=None):
     """The section's text: the command, one row per model against the half model, the reading computed from the rows.
     `root` is unused (the uniform call of tools/doc_numbers.py)."""

@@ -11,7 +11,7 @@ indent2d_convergence,fe_triaxial}.json).
 import shutil
 from pathlib import Path
 
-from camclay9 import indent3d_study, paper_doc_2d, paper_doc_tri, results_store
+from camclay9 import indent3d_study, indent_models_study, paper_doc_2d, paper_doc_tri, results_store
 from camclay9.indent2d_study import shipped_rung
 from camclay9.paper_numbers import THETAS_BEDDING, check_trends
 
@@ -57,7 +57,7 @@ def header(meta):
 def summary(n, trends):
     tri = n["triaxial"]
     rows = ["| figure | the paper reports | we get | verdict |", "|---|---|---|---|"]
-    rows.append(f"| 3–5 | P–h curves match the experiments (§3, Figs. 3–4) | our P–h curves, below | not compared: the paper gives the curves only as images |")
+    rows.append("| 3–5 | P–h curves match the experiments (§3, Figs. 3–4) | our P–h curves, below | not compared: the paper gives the curves only as images |")
     rows += paper_doc_2d.summary_rows(n, trends)
     if 0 in tri and 90 in tri:
         rows += paper_doc_tri.summary_rows(tri)
@@ -212,11 +212,9 @@ def bn_text(adapted=False):
         return "The meshes' errors: docs/performance.md, \"3D indentation: mesh convergence and the cheapest model\"."
     k, bn, bp = d["kerogen"], d["BN"], d["BP"]
     ref, sh = k["reference"], k["rungs"]["sector2_0.12"]
-    ks = bn["p2"]["h_tip"].index(bn["p2"]["shipped"])
-    c_ship = bn["p2"]["creep"][ks]
+    c_ship, h_ship, h_conv = bn["p2"]["ship"]["creep"], bn["p2"]["ship"]["h_res"], bn["adapted"]["h_res"][-1]
     creep_dev = max(abs(c_ship / c - 1) for c in (bn["p2"]["creep"][-1], bn["p1"]["creep"][-1], bn["adapted"]["creep"][-1]))
-    h_ship, h_conv = bn["p2"]["h_res"][ks], bn["adapted"]["h_res"][-1]
-    bs = bp["p2"]["h_tip"].index(bp["p2"]["shipped"])
+    bship, bfine = bp["p2"]["ship"], bp["p2"]["creep"][bp["p2"]["h_tip"].index(bp["p2"]["shipped"]):]
     return ("The kerogen mesh (h_tip 0.12 µm) is the cheapest measured within 2 % of the converged 3D answer in the load "
             f"at full depth ({_pct(_err(sh, ref, 'P'))}), the creep depth ({_pct(_err(sh, ref, 'creep'))}) and "
             f"the residual depth ({_pct(_err(sh, ref, 'h_res'))}) (docs/performance.md, \"3D indentation: mesh "
@@ -231,9 +229,9 @@ def bn_text(adapted=False):
             f"{bn['adapted']['unknowns'][-1] / 1e3:.1f} k unknowns within {abs(bn['adapted']['h_res'][-2] / h_conv - 1) * 100:.1f} %; "
             f"the axisymmetric twin: {bn['twin_h_res']:.3f} µm), so the shipped mesh's {h_ship:.3f} µm is "
             f"{_pct(h_ship / h_conv - 1)}; BP's ladder (h_tip {', '.join(f'{h:.3g}' for h in bp['p2']['h_tip'])} µm) puts the shipped mesh "
-            f"{_pct(bp['p2']['P'][bs] / bp['p2']['P'][-1] - 1, 2)} in load against the finest rung and within "
-            f"{max(abs(c / bp['p2']['creep'][bs] - 1) for c in bp['p2']['creep'][bs:]) * 100:.1f} % of the finer rungs' creep depths, and "
-            f"its residual depth {bp['p2']['h_res'][bs]:.3f} µm is {_pct(bp['p2']['h_res'][bs] / bp['adapted']['h_res'][-1] - 1)} "
+            f"{_pct(bship['P'] / bp['p2']['P'][-1] - 1, 2)} in load against the finest rung and within "
+            f"{max(abs(c / bship['creep'] - 1) for c in bfine) * 100:.1f} % of the finer rungs' creep depths, and "
+            f"its residual depth {bship['h_res']:.3f} µm is {_pct(bship['h_res'] / bp['adapted']['h_res'][-1] - 1)} "
             f"against the adapted meshes' {bp['adapted']['h_res'][-1]:.3f} µm. "
             + ("The runs of Figs. 3–5 here are the adapted scenes (input/nanoindent_kerogen_sector_adapt.yaml, "
                "microindent_BN_sector_adapt.yaml, microindent_BP_adapt.yaml): the table gives the mesh and time-step errors "
@@ -281,9 +279,9 @@ def indentation(n, images, rel):
             creep = _f(s['creep_depth'], '.3g') + _stated(s, "creep_mesh_error", "creep_time_error")
             L.append(f"| {k} | {_f(s['max_load'], '.4g')} | {_f(s['depth_end_of_load'], '.4g')} | {creep} | {res} |")
     L += kerogen_against_reference(ind.get("nanoindent_kerogen"))
-    cpu = {r["model"]: r["cpu"] for r in results_store.load("indent_models").get("rows", [])}
-    ratio = (f"{cpu['half'] / cpu['sector']:.1f} times less CPU than the half model (docs/performance.md, \"Indentation: "
-             "3D half model, sector and axisymmetric twin\")" if {"half", "sector"} <= cpu.keys() else "a sixth of its cells")
+    hs = indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE))
+    ratio = (f"{hs:.1f} times less CPU than the half model (docs/performance.md, \"Indentation: 3D half model, sector "
+             "and axisymmetric twin\")" if hs else "a third of its volume")
     L += ["", "Loads are the whole indenter's. The kerogen and BN scenes run on the 60° sector (input/*_sector.yaml, exact "
           f"for them: {ratio}), BP on the half model (its bedding normal e_x breaks the sector's "
           "symmetry), all on quadratic tetrahedra with the whole contact inside the fine zone. "
