@@ -87,6 +87,35 @@ def test_mesh_error_effectivity_hertz(tmp_path):
     assert all(0.5 <= e <= 2 for e in eff), eff
 
 
+@pytest.mark.parametrize("order,kin", [(1, "plane_strain"), (2, "plane_strain"), (2, "axisymmetric")])
+def test_contact_term_vanishes_on_a_uniform_state(tmp_path, order, kin):
+    """The contact surface's term of the indicator (contact_estimate.h) is the residual of the traction, sigma_h n_F
+    against the multipliers' lambda n. A flat punch over the whole top of a laterally confined block gives a uniform
+    uniaxial strain (test_contact_2d.py), so the stress is exact, the pressure equals -sigma_yy at every node and the
+    indicator, recovery and contact term alike, is zero to round-off: stated relative to sigma_yy sqrt(V), below
+    1e-7. A term with the traction's sign reversed, or a normal pointing into the cell, gives about 2 sigma_yy
+    sqrt(h_F A) per facet, a relative 0.89 here (measured); an indicator without the term would pass, so the term's sign is what
+    this asserts (its value where the state is not uniform: the Hertz rate test above and docs/adapt.md)."""
+    W, H, depth = 2.0, 1.0, 0.002
+    out = tmp_path / f"punch_p{order}_{kin}"
+    run(f"""scene: fe
+mesh: {{geometry: meshes/rectangle.geo, parameters: {{X0: {0 if kin == "axisymmetric" else -W / 2}, Lx: {W}, Ly: {H}, size: 0.2}},
+        kinematics: {kin}, order: {order}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: y0, components: [x, y]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}}]
+indenter: {{shape: flat_punch, radius: 5, tip: [0, {H}], contact: y1}}
+stages:
+  - {{name: push, duration: 1, indenter: {{depth: {depth}}}, steps: {{count: 2}}}}
+""", out)
+    E, nu = 1000.0, 0.3
+    syy = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) * depth / H
+    vol = W * H * (math.pi * W if kin == "axisymmetric" else 1)   # int 2 pi r dA = pi W^2 H (r from 0 to W)
+    eta = summary(out)["mesh"]["error_indicator"]
+    print(f"P{order} {kin}: indicator {eta:.3e}, relative {eta / (syy * math.sqrt(vol)):.3e}")
+    assert eta / (syy * math.sqrt(vol)) < 1e-7
+
+
 def test_adapt_two_ranks(tmp_path):
     """Adaptation on 2 ranks (the indicator's recovery across ranks, the size field gathered on rank 0): the same
     meshes and the same answer as on 1 rank, P2 Hertz with two levels (measured: 313, 909, 1711 cells on both; the

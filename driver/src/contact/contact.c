@@ -1,4 +1,5 @@
 #include "contact.h"
+#include "contact_estimate.h"
 #include "contact_mortar.h"
 
 #include <math.h>
@@ -107,7 +108,7 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
         PetscCall(PetscSectionGetOffset(ls, v, &loff)); /* a node on an inclined mirror plane has a frame of its own */
         PetscCall(fe_constraint_node_frame(&sp->con, loff, &ct->R[n * sp->dim * sp->dim]));
         *wsum += ct->w[n];
-        if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, v));
+        ct->vtx[n] = v;
         PetscCall(contact_vertex_rim(dm, sp->dim, v, row, nfacet, pStart, &ct->rim[n]));
       }
       n++;
@@ -116,7 +117,7 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
       ct->n = n;
       PetscCall(PetscMalloc5(n * sp->dim, &ct->X, n, &ct->w, n * sp->dim, &ct->row, n, &ct->g, n * sp->dim, &ct->nrm));
       PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
-      if (ct->mortar) PetscCall(contact_mortar_set_vertex(ct, n, -1)); /* room for n vertices */
+      PetscCall(PetscMalloc1(PetscMax(n, 1), &ct->vtx));
       PetscCall(PetscMalloc1(n * sp->dim * sp->dim, &ct->R));
     }
   }
@@ -183,6 +184,7 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
   ct->rstart -= ct->n;
   PetscCheck(ct->N > 0, comm, PETSC_ERR_ARG_WRONG, "key 'indenter.contact': the physical group '%s' has no boundary %s (the potential contact surface must be boundary %s of the mesh)", group, sp->dim == 3 ? "faces" : "edges", sp->dim == 3 ? "faces" : "edges");
   if (ct->mortar) PetscCall(contact_mortar_setup(p, label, ct, &wsum));
+  PetscCall(contact_estimate_setup(p, label, ct));
   PetscCall(MPIU_Allreduce(&wsum, &ct->weight_sum, 1, MPIU_REAL, MPI_SUM, comm));
   PetscCall(VecGetLocalSize(wvec, &nu)); /* the displacement layout */
   PetscCall(VecDestroy(&wvec));
@@ -195,6 +197,8 @@ PetscErrorCode contact_destroy(Contact *ct) {
   PetscCall(PetscFree5(ct->X, ct->w, ct->row, ct->g, ct->nrm));
   PetscCall(PetscFree2(ct->active, ct->rim));
   PetscCall(contact_mortar_destroy(ct));
+  PetscCall(contact_estimate_destroy(ct));
+  PetscCall(PetscFree(ct->vtx));
   PetscCall(PetscFree(ct->R));
   Mat *all[6] = {&ct->Bt, &ct->B, &ct->Ct, &ct->C, &ct->D, &ct->Kr};
   for (int k = 0; k < 6; k++) PetscCall(MatDestroy(all[k]));

@@ -28,6 +28,7 @@ typedef struct {
   IndenterShape shape;
   PetscInt      dim, n, N, rstart; /* nodes here, on all ranks, first global multiplier index here */
   PetscReal    *X, *w;             /* reference coordinates (dim per node), weights int N_i dGamma (eq. 18) */
+  PetscInt     *vtx;               /* the plex vertex of each node */
   PetscInt     *row;               /* dim per node: global displacement row of each component, < 0 if fixed */
   PetscReal    *R;                 /* dim x dim per node: its nodal frame (fe_constraint.h), u = R u_rows */
   PetscReal    *g, *nrm;           /* gap and normal (dim) of each node at the last evaluation */
@@ -42,6 +43,7 @@ typedef struct {
   PetscReal     kr;                /* the value in Kr */
   PetscBool     depth_control;     /* of the last contact_jacobian */
   struct ContactMortar *mortar;    /* P2: the facet integrals of contact_mortar.c; NULL: P1, nodal quadrature */
+  struct ContactEstimate *est;     /* the facets of the error indicator's contact term (contact_estimate.h) */
 } Contact;
 
 /* n_i . d of node i at the last gaps (d = -e_z in 3D, -e_y in 2D): the part of its pressure that bears

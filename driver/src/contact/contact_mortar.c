@@ -19,7 +19,6 @@ struct ContactMortar {
   PetscReal *L, *dA;          /* nq x nv barycentric coordinates; nf x nq: weight x measure (x 2 pi r, thickness) */
   PetscReal *nq_, *gq;        /* nf x nq x dim: the normal at the last gaps; nf x nq: the gap */
   PetscReal  ur;              /* the indenter's position at the last gaps (Uloc: the displacement) */
-  PetscInt  *vpt;             /* ct->n: the plex vertex of each multiplier */
   Vec        gn, wv, act;     /* multiplier layout: (dim + 1) x: int psi g, int psi n; int psi; active flags */
   Vec        lamloc, Uloc;
   VecScatter scat;
@@ -57,8 +56,7 @@ static void rows_to_frames(const struct ContactMortar *m, PetscInt dim, PetscInt
   }
 }
 
-/* The group's boundary facets on this rank (a boundary facet has one cell, so it lives on one rank only). */
-static PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscInt **list) {
+PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscInt **list) {
   PetscInt fStart, fEnd, n = 0;
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
@@ -102,13 +100,6 @@ PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, Pet
   PetscCall(DMGetPointSF(dm, &sf)); /* ... and on their owners */
   PetscCall(PetscSFReduceBegin(sf, MPIU_INT, *mark, *mark, MPI_MAX));
   PetscCall(PetscSFReduceEnd(sf, MPIU_INT, *mark, *mark, MPI_MAX));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode contact_mortar_set_vertex(Contact *ct, PetscInt i, PetscInt v) {
-  PetscFunctionBeginUser;
-  if (v < 0) PetscCall(PetscMalloc1(PetscMax(i, 1), &ct->mortar->vpt));
-  else ct->mortar->vpt[i] = v;
   PetscFunctionReturn(0);
 }
 
@@ -186,7 +177,7 @@ static PetscErrorCode multiplier_points(Contact *ct, PetscInt **mpt) {
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCall(PetscMalloc1(pEnd - pStart, mpt));
   for (PetscInt q = 0; q < pEnd - pStart; q++) (*mpt)[q] = -1;
-  for (PetscInt i = 0; i < ct->n; i++) (*mpt)[ct->mortar->vpt[i] - pStart] = ct->rstart + i;
+  for (PetscInt i = 0; i < ct->n; i++) (*mpt)[ct->vtx[i] - pStart] = ct->rstart + i;
   PetscCall(DMGetPointSF(dm, &sf));
   PetscCall(PetscSFBcastBegin(sf, MPIU_INT, *mpt, *mpt, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sf, MPIU_INT, *mpt, *mpt, MPI_REPLACE));
@@ -319,7 +310,6 @@ PetscErrorCode contact_mortar_destroy(Contact *ct) {
   PetscCall(PetscFree4(m->Xv, m->dA, m->nq_, m->gq));
   PetscCall(PetscFree(m->L));
   PetscCall(PetscFree(m->R));
-  PetscCall(PetscFree(m->vpt));
   PetscCall(VecDestroy(&m->gn));
   PetscCall(VecDestroy(&m->wv));
   PetscCall(VecDestroy(&m->act));

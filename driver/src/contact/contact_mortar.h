@@ -19,8 +19,8 @@
 /* Starts ct->mortar; mark (over the chart): 1 at the vertices of the group's boundary facets, on their owners too
    (the multiplier nodes are the marked owned vertices with a free axial component: contact.c's contact_nodes). */
 PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, PetscInt **mark);
-/* The plex vertex of multiplier i (v < 0: room for i multipliers). */
-PetscErrorCode contact_mortar_set_vertex(Contact *ct, PetscInt i, PetscInt v);
+/* The group's boundary facets on this rank (a boundary facet has one cell, so it lives on one rank only). */
+PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscInt **list);
 /* After the multipliers are numbered (ct->N, ct->rstart): the facets here, their quadrature, the weights
    w_j (wsum: their sum here) and the coupling blocks Bt and B with their fixed nonzero pattern. */
 PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, PetscReal *wsum);

@@ -1,5 +1,7 @@
 #include "semismooth.h"
 
+#include "contact_estimate.h"
+
 #include "contact_options.h"
 
 #include "../fe/fe_pmg.h"
@@ -369,6 +371,14 @@ static PetscErrorCode coarse_space(void *ctx, Mat *P, MatNullSpace *rbm) {
   PetscFunctionReturn(0);
 }
 
+/* The error indicator's contact term at a field output (fe_estimate.h's est.surface): the committed multipliers. */
+static PetscErrorCode surface_term(void *ctx, FeProblem *p) {
+  Semismooth *in = (Semismooth *)ctx;
+  PetscFunctionBeginUser;
+  PetscCall(contact_estimate(&in->ct, in->lam, p));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
   const FeSpace *sp = fe_problem_space(p);
   MPI_Comm comm = PetscObjectComm((PetscObject)sp->dm);
@@ -386,6 +396,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     }
   }
   PetscCall(contact_create(p, is->contact_group, &is->shape, &in->ct));
+  p->est.surface = surface_term, p->est.surface_ctx = in;
   PetscCall(DMCreateGlobalVector(sp->dm, &in->U));
   { /* K: AIJ in the displacement layout, its pattern from the cells by COO (fe_jacobian_coo_setup below; DMCreateMatrix's
        own preallocation was a fifth of a run's set-up), with the rigid-body modes for GAMG on the displacement block */
@@ -452,6 +463,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
 PetscErrorCode semismooth_destroy(Semismooth *in) {
   PetscFunctionBeginUser;
   PetscCall(indent_solver_destroy(&in->sol));
+  if (in->p && in->p->est.surface_ctx == in) in->p->est.surface = NULL, in->p->est.surface_ctx = NULL;
   PetscCall(contact_destroy(&in->ct));
   Vec *all[] = {&in->U, &in->Ru, &in->du, &in->Uk, &in->U0, &in->rateU, &in->lam, &in->Rlam, &in->dlam, &in->lamk, &in->lam0, &in->ratelam, NULL};
   for (int k = 0; all[k]; k++) PetscCall(VecDestroy(all[k]));

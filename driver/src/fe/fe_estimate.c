@@ -216,14 +216,31 @@ static PetscErrorCode recover(FeProblem *p, Source src, PetscReal *eta) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode fe_estimate_stress_at(FeProblem *p, PetscInt cell, const PetscReal x[], PetscReal s[6]) {
+  CellGeom g;
+  PetscFunctionBeginUser;
+  PetscCall(cell_geometry(p, cell, &g));
+  cell_field_at(p, cell - p->space.cStart, &g, x, SRC_STRESS, s);
+  PetscFunctionReturn(0);
+}
+
+void fe_estimate_add_surface(FeProblem *p, PetscInt cell, PetscReal e2) {
+  if (p->est.surf) p->est.surf[cell - p->space.cStart] += e2;
+}
+
 PetscErrorCode fe_estimate_update(FeProblem *p) {
   const PetscInt ncell = p->space.cEnd - p->space.cStart;
   PetscReal     *eta_e, norm2[2] = {0, 0};
   PetscFunctionBeginUser;
   PetscCall(vertex_dm(p));
-  if (!p->est.eta) PetscCall(PetscCalloc2(ncell + 1, &p->est.eta, ncell + 1, &p->est.eta_max));
+  if (!p->est.eta) PetscCall(PetscCalloc3(ncell + 1, &p->est.eta, ncell + 1, &p->est.eta_max, ncell + 1, &p->est.surf));
   PetscCall(PetscMalloc1(ncell + 1, &eta_e));
   PetscCall(recover(p, SRC_STRESS, p->est.eta));
+  PetscCall(PetscArrayzero(p->est.surf, ncell + 1));
+  if (p->est.surface) { /* a boundary's traction residual joins the stress's share (fe_estimate.h) */
+    PetscCall(p->est.surface(p->est.surface_ctx, p));
+    for (PetscInt c = 0; c < ncell; c++) p->est.eta[c] = PetscSqrtReal(p->est.eta[c] * p->est.eta[c] + p->est.surf[c]);
+  }
   if (material_quantity_size(&p->pts.mat, MATERIAL_EVP) == 6) PetscCall(recover(p, SRC_EVP, eta_e));
   else PetscCall(PetscArrayzero(eta_e, ncell + 1));
   for (PetscInt c = 0; c < ncell; c++) norm2[0] += p->est.eta[c] * p->est.eta[c], norm2[1] += eta_e[c] * eta_e[c];
@@ -326,7 +343,7 @@ PetscErrorCode fe_estimate_write_sizes(FeProblem *p, PetscReal target_cells, con
 
 PetscErrorCode fe_estimate_destroy(FeProblem *p) {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree2(p->est.eta, p->est.eta_max));
+  PetscCall(PetscFree3(p->est.eta, p->est.eta_max, p->est.surf));
   PetscCall(DMDestroy(&p->est.dmv));
   p->est.nupdates = 0;
   PetscFunctionReturn(0);

@@ -14,6 +14,10 @@
  * (docs/adapt.md, "Which field"). So the indicator is both fields' shares, each relative to its own norm:
  *     eta_K = |eta_s| ( (eta_s,K / |eta_s|)^2 + (eta_e,K / |eta_e|)^2 )^(1/2),   |eta|^2 = sum_K eta_K^2,
  * in the stress indicator's units; with no viscoplastic strain (an elastic run) it is eta_s,K.
+ * A boundary term (est.surface: an indentation's contact surface, contact_estimate.h) adds the residual of the
+ * traction on the cell's facets there to eta_s,K^2 before the shares are taken: the stress's recovery alone does not
+ * see a traction that disagrees with the contact pressure, and the creep and residual depths are carried by the
+ * contact surface's resolution (docs/adapt.md, "The contact surface").
  *
  * History: the fields of a run are written at its output times; each writes the indicator of the committed
  * state and keeps the largest value of every cell over those times (eta_max), the quantity the size field
@@ -26,6 +30,12 @@
 /* The indicator of the committed state (per local cell, into p->est.eta) and its running maximum (eta_max).
    Collective. */
 PetscErrorCode fe_estimate_update(FeProblem *p);
+
+/* The stress of local plex cell 'cell' at the point x (the cell's own linear fit through its quadrature points, the
+   field the recovery compares with), Voigt order 11, 22, 33, 12 (, 13, 23). */
+PetscErrorCode fe_estimate_stress_at(FeProblem *p, PetscInt cell, const PetscReal x[], PetscReal s[6]);
+/* Add e2 to the boundary share of local plex cell 'cell' at this output: called by est.surface only. */
+void fe_estimate_add_surface(FeProblem *p, PetscInt cell, PetscReal e2);
 
 /* The indicator's norm, sqrt(sum over all cells of eta_max^2) (collective), for the summary; 0 before any output. */
 PetscErrorCode fe_estimate_norm(FeProblem *p, PetscReal *norm);

@@ -79,13 +79,19 @@ typedef struct {
 } FeDiag;
 
 /* The error indicator per local cell (fe_estimate.h): of the last field output, and its largest over the outputs. */
+typedef struct FeProblem FeProblem;
 typedef struct {
   PetscReal *eta, *eta_max;
+  PetscReal *surf;     /* per local cell: a boundary's share of eta^2 at this output (fe_estimate_add_surface) */
   PetscInt   nupdates; /* outputs folded into eta_max */
   DM         dmv;      /* the mesh with 7 values per vertex (a stress and a weight), for the recovery */
+  /* a boundary term's source (the contact surface's, contact_mortar.h), called at each output before the fields'
+     recovery; NULL: none */
+  PetscErrorCode (*surface)(void *ctx, FeProblem *p);
+  void *surface_ctx;
 } FeEstimate;
 
-typedef struct FeProblem {
+struct FeProblem {
   FeSpace     space;
   FeQuadState pts;
   FeLoads     loads;
@@ -97,7 +103,7 @@ typedef struct FeProblem {
   /* the Jacobian's COO assembly (fe_jacobian_coo_setup, fe_jacobian_coo_release) */
   Mat          coo_mat;     /* the Jacobian assembled by COO, not owned */
   PetscScalar *coo_v;       /* its element matrices, cell by cell */
-} FeProblem;
+};
 
 /* Mesh from a gmsh .msh file (physical groups become labels of the same name), distributed. */
 PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm);
