@@ -21,7 +21,7 @@ camclay9.indent3d_study.numbers(), from the 3D ladders' store (indent_convergenc
 import re
 import statistics
 
-from camclay9 import coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
+from camclay9 import adapt_quotes, coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
 from camclay9.indent2d_study import key
 
 
@@ -232,7 +232,7 @@ def namespace(store_dir=None):
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)
-    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir))
+    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir), **adapt_quotes.helpers(store_dir))
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -569,4 +569,5 @@ QUOTES = [
     # line: the kerogen reference and ladders, the shipped mesh, the twin; BN's and BP's ladders, twins and adapted levels
     *[(C3, line) for line in K3],
     *[(C3, line) for line in BNP3],
+    *adapt_quotes.QUOTES,   # docs/adapt.md's "The contact surface" and the adapted meshes' reading
 ]

@@ -226,7 +226,7 @@ def bn_text(adapted=False):
             "residual depth is not converged on any uniform mesh run**: it rises with every refinement on P1 and P2 alike "
             f"(P2: {', '.join(f'{x:.2f}' for x in bn['p2']['h_res'][1:])} µm); on meshes adapted to the answer it "
             f"converges to {h_conv:.3f} µm (levels of {bn['adapted']['unknowns'][-2] / 1e3:.1f} k and "
-            f"{bn['adapted']['unknowns'][-1] / 1e3:.1f} k unknowns within {abs(bn['adapted']['h_res'][-2] / h_conv - 1) * 100:.1f} %; "
+            f"{bn['adapted']['unknowns'][-1] / 1e3:.1f} k unknowns within {abs(bn['adapted']['h_res'][-2] / h_conv - 1) * 100:.2f} %; "
             f"the axisymmetric twin: {bn['twin_h_res']:.3f} µm), so the shipped mesh's {h_ship:.3f} µm is "
             f"{_pct(h_ship / h_conv - 1)}; BP's ladder (h_tip {', '.join(f'{h:.3g}' for h in bp['p2']['h_tip'])} µm) puts the shipped mesh "
             f"{_pct(bship['P'] / bp['p2']['P'][-1] - 1, 2)} in load against the finest rung and within "
