@@ -93,27 +93,34 @@ def _fe_scaling(store_dir=None):
 
 
 def _adapted(store_dir=None):
-    """The quotes' helpers on bench/adapt_bench.py's store (docs/results/adapt_bench.json)."""
-    ab = results_store.load("adapt_bench", store_dir).get("cases", {})
+    """The quotes' helpers on bench/adapt_bench.py's store (docs/results/adapt_bench.json); before=True: a case as run
+    before the indicator's contact term (the store's before_contact_term)."""
+    store = results_store.load("adapt_bench", store_dir)
+    cases = {False: store.get("cases", {}), True: store.get("before_contact_term", {}).get("cases", {})}
 
-    def ad(case, level):
+    def ad(case, level, before=False):
         """A level of bench/adapt_bench.py's case (docs/results/adapt_bench.json): cells, unknowns, cpu, q, e."""
-        return A(ab[case]["levels"][level])
+        return A(cases[before][case]["levels"][level])
 
-    def ade(case, level, q):
+    def ade(case, level, q, before=False):
         """A level's error in output q relative to its case's reference."""
-        return ab[case]["levels"][level]["q"][q] / ab[case]["reference"][q] - 1
+        return cases[before][case]["levels"][level]["q"][q] / cases[before][case]["reference"][q] - 1
+
+    def adch(case, a, b, q, before=False):
+        """The size of the change in output q from level b to level a, relative to level b."""
+        lv = cases[before][case]["levels"]
+        return abs(lv[a]["q"][q] / lv[b]["q"][q] - 1)
 
     def adf(case, level, q):
         """A level's stated mesh error over its true error in output q (its effectivity)."""
-        lv = ab[case]["levels"][level]
-        return lv["e"][q] / abs(lv["q"][q] - ab[case]["reference"][q])
+        lv = cases[False][case]["levels"][level]
+        return lv["e"][q] / abs(lv["q"][q] - cases[False][case]["reference"][q])
 
     def adc(case, levels):
         """The CPU seconds of a case's first `levels` levels: an adapted scene that runs them."""
-        return sum(lv["cpu"] for lv in ab[case]["levels"][:levels])
+        return sum(lv["cpu"] for lv in cases[False][case]["levels"][:levels])
 
-    return dict(ad=ad, ade=ade, adf=adf, adc=adc)
+    return dict(ad=ad, ade=ade, adch=adch, adf=adf, adc=adc, **adapt_quotes.helpers(store))
 
 
 def _indent_speed(store_dir=None):
@@ -232,7 +239,7 @@ def namespace(store_dir=None):
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)
-    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir), **adapt_quotes.helpers(store_dir))
+    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir))
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns
@@ -274,6 +281,7 @@ CA = "docs/calibrate.md"
 AD = "docs/adapt.md"
 PL = "docs/parallel.md"
 PF = "docs/performance.md"
+CAD = "bench/adapt_conclusions.md"
 BNP3 = [  # the reading's lines that hold numbers (bench/indent_convergence_conclusions.md)
     "  Its load converges: on P2 «', '.join(th(x, 1) for x in bn.p2.P)» mN,",
     "  the shipped rung «pc(bn.p2.ship.P / bn.p2.P[-1] - 1, 2)» from the finest, and P1 approaches from above («', '.join(th(x, 1) for x in bn.p1.P)» mN).",
@@ -569,5 +577,7 @@ QUOTES = [
     # line: the kerogen reference and ladders, the shipped mesh, the twin; BN's and BP's ladders, twins and adapted levels
     *[(C3, line) for line in K3],
     *[(C3, line) for line in BNP3],
-    *adapt_quotes.QUOTES,   # docs/adapt.md's "The contact surface" and the adapted meshes' reading
+    # docs/adapt.md's "Which field" and "The contact surface"; the adapted meshes' reading, line by line
+    *[(AD, line) for line in adapt_quotes.ADAPT_MD],
+    *[(CAD, line) for line in adapt_quotes.LINES],
 ]

@@ -115,9 +115,8 @@ static PetscErrorCode contact_nodes(FeProblem *p, Vec wvec, PetscInt ustart, con
     }
     if (pass == 0) {
       ct->n = n;
-      PetscCall(PetscMalloc5(n * sp->dim, &ct->X, n, &ct->w, n * sp->dim, &ct->row, n, &ct->g, n * sp->dim, &ct->nrm));
+      PetscCall(PetscMalloc6(n * sp->dim, &ct->X, n, &ct->w, n, &ct->vtx, n * sp->dim, &ct->row, n, &ct->g, n * sp->dim, &ct->nrm));
       PetscCall(PetscCalloc2(n, &ct->active, n, &ct->rim));
-      PetscCall(PetscMalloc1(PetscMax(n, 1), &ct->vtx));
       PetscCall(PetscMalloc1(n * sp->dim * sp->dim, &ct->R));
     }
   }
@@ -194,11 +193,10 @@ PetscErrorCode contact_create(FeProblem *p, const char *group, const IndenterSha
 
 PetscErrorCode contact_destroy(Contact *ct) {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree5(ct->X, ct->w, ct->row, ct->g, ct->nrm));
+  PetscCall(PetscFree6(ct->X, ct->w, ct->vtx, ct->row, ct->g, ct->nrm));
   PetscCall(PetscFree2(ct->active, ct->rim));
   PetscCall(contact_mortar_destroy(ct));
   PetscCall(contact_estimate_destroy(ct));
-  PetscCall(PetscFree(ct->vtx));
   PetscCall(PetscFree(ct->R));
   Mat *all[6] = {&ct->Bt, &ct->B, &ct->Ct, &ct->C, &ct->D, &ct->Kr};
   for (int k = 0; k < 6; k++) PetscCall(MatDestroy(all[k]));

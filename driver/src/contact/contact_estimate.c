@@ -6,19 +6,15 @@
 
 #include <petscsf.h>
 
-#define MV 3 /* vertices of a facet, at most */
-
 struct ContactEstimate {
   PetscInt   nf, nq;     /* facets here; Gauss points per facet */
   PetscInt  *cell, *vx;  /* nf: the facet's cell; nf x dim: its vertices (plex points) */
   PetscReal *Xv;         /* nf x dim x dim: the vertices' reference coordinates */
-  PetscReal *nF, *hF;    /* nf x dim: the outward unit normal; nf: the facet's size */
-  PetscReal *meas;       /* nf: its measure (length, area) */
+  PetscReal *nF, *meas;  /* nf x dim: the outward unit normal; nf: its measure (length, area) */
   PetscReal *L, *qw;     /* nq x dim barycentric coordinates and weights of the reference facet (measure 2) */
 };
 
-/* Facet k's data: cell, vertices, outward normal (away from its cell's centroid), size (2D: its length; 3D: the
-   edge of the equilateral triangle of its area). */
+/* Facet k's data: cell, vertices, outward normal (away from its cell's centroid), measure. */
 static PetscErrorCode facet_geometry(DM dm, PetscInt dim, PetscInt f, PetscInt k, struct ContactEstimate *e) {
   const PetscInt *supp;
   PetscInt       *cl = NULL, ncl, nv = 0, vStart, vEnd, off;
@@ -33,7 +29,6 @@ static PetscErrorCode facet_geometry(DM dm, PetscInt dim, PetscInt f, PetscInt k
   for (PetscInt d = 0; d < dim; d++) dot += nrm[d] * (c[d] - cc[d]), len += nrm[d] * nrm[d];
   for (PetscInt d = 0; d < dim; d++) e->nF[k * dim + d] = (dot < 0 ? -nrm[d] : nrm[d]) / PetscSqrtReal(len);
   e->cell[k] = supp[0], e->meas[k] = meas;
-  e->hF[k]   = dim == 2 ? meas : PetscSqrtReal(4 * meas / PetscSqrtReal(3.0));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
   PetscCall(DMGetCoordinateSection(dm, &cs));
   PetscCall(DMGetCoordinatesLocal(dm, &X));
@@ -55,26 +50,15 @@ PetscErrorCode contact_estimate_setup(FeProblem *p, DMLabel label, Contact *ct) 
   const FeSpace          *sp  = fe_problem_space(p);
   const PetscInt          dim = sp->dim;
   struct ContactEstimate *e;
-  PetscInt               *facets, nq;
-  PetscQuadrature         quad;
-  const PetscReal        *qx, *qw;
+  PetscInt               *facets;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&e));
   ct->est = e;
   /* Gauss points of degree 4: the square of a linear residual on a facet, with the weight 2 pi r */
-  PetscCall(PetscDTSimplexQuadrature(dim - 1, 4, PETSCDTSIMPLEXQUAD_DEFAULT, &quad));
-  PetscCall(PetscQuadratureGetData(quad, NULL, NULL, &nq, &qx, &qw));
-  e->nq = nq;
-  PetscCall(PetscMalloc2(nq * dim, &e->L, nq, &e->qw));
-  for (PetscInt q = 0; q < nq; q++) { /* barycentric coordinates of the reference facet's points (vertices at -1, 1) */
-    PetscReal s = 0;
-    for (PetscInt a = 1; a < dim; a++) s += e->L[q * dim + a] = (qx[q * (dim - 1) + a - 1] + 1) / 2;
-    e->L[q * dim] = 1 - s, e->qw[q] = qw[q];
-  }
-  PetscCall(PetscQuadratureDestroy(&quad));
+  PetscCall(contact_facet_rule(dim, 4, &e->nq, &e->L, &e->qw));
   PetscCall(contact_facets(sp->dm, label, &e->nf, &facets));
   const PetscInt nf = PetscMax(e->nf, 1);
-  PetscCall(PetscMalloc6(nf, &e->cell, nf * dim, &e->vx, nf * dim * dim, &e->Xv, nf * dim, &e->nF, nf, &e->hF, nf, &e->meas));
+  PetscCall(PetscMalloc5(nf, &e->cell, nf * dim, &e->vx, nf * dim * dim, &e->Xv, nf * dim, &e->nF, nf, &e->meas));
   for (PetscInt k = 0; k < e->nf; k++) PetscCall(facet_geometry(sp->dm, dim, facets[k], k, e));
   PetscCall(PetscFree(facets));
   PetscFunctionReturn(0);
@@ -85,7 +69,7 @@ PetscErrorCode contact_estimate_destroy(Contact *ct) {
   PetscFunctionBeginUser;
   if (!e) PetscFunctionReturn(0);
   PetscCall(PetscFree2(e->L, e->qw));
-  PetscCall(PetscFree6(e->cell, e->vx, e->Xv, e->nF, e->hF, e->meas));
+  PetscCall(PetscFree5(e->cell, e->vx, e->Xv, e->nF, e->meas));
   PetscCall(PetscFree(ct->est));
   PetscFunctionReturn(0);
 }
@@ -147,10 +131,12 @@ PetscErrorCode contact_estimate(Contact *ct, Vec lam, FeProblem *p) {
         for (PetscInt a = 0; a < dim; a++) lnd += L[a] * ln[(e->vx[k * dim + a] - pStart) * dim + d];
         r2 += PetscSqr(t[d] - lnd);
       }
-      dA = e->qw[q] * e->meas[k] / 2 * (sp->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * X[0] : sp->kin == KIN_PLANE_STRAIN ? sp->thickness : 1);
+      dA = e->qw[q] * e->meas[k] / 2 * fe_space_weight(sp, X[0]);
       e2 += r2 * dA;
     }
-    fe_estimate_add_surface(p, e->cell[k], e->hF[k] * e2);
+    /* h_F: the facet's length (2D), the edge of the equilateral triangle of its area (3D) */
+    const PetscReal hF = dim == 2 ? e->meas[k] : PetscSqrtReal(4 * e->meas[k] / PetscSqrtReal(3.0));
+    fe_estimate_add_surface(p, e->cell[k], hF * e2);
   }
   PetscCall(PetscFree(ln));
   PetscFunctionReturn(0);

@@ -16,7 +16,7 @@ struct ContactMortar {
   PetscInt  *ab;              /* nf x nn x 2: the facet vertices of each node (a = b: a vertex) */
   PetscReal *R;               /* nf x nn x dim x dim: the nodal frame of each node (fe_constraint.h), u = R u_rows */
   PetscReal *Xv;              /* nf x nv x dim: reference coordinates of the vertices */
-  PetscReal *L, *dA;          /* nq x nv barycentric coordinates; nf x nq: weight x measure (x 2 pi r, thickness) */
+  PetscReal *L, *qw, *dA;     /* nq x nv barycentric coordinates, nq reference weights; nf x nq: weight x measure (x 2 pi r, thickness) */
   PetscReal *nq_, *gq;        /* nf x nq x dim: the normal at the last gaps; nf x nq: the gap */
   PetscReal  ur;              /* the indenter's position at the last gaps (Uloc: the displacement) */
   Vec        gn, wv, act;     /* multiplier layout: (dim + 1) x: int psi g, int psi n; int psi; active flags */
@@ -74,6 +74,22 @@ PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscInt **lis
     if (!pass) PetscCall(PetscMalloc1(PetscMax(n, 1), list));
   }
   *nf = n;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode contact_facet_rule(PetscInt dim, PetscInt degree, PetscInt *nq, PetscReal **L, PetscReal **w) {
+  PetscQuadrature  quad;
+  const PetscReal *qx, *qw;
+  PetscFunctionBeginUser;
+  PetscCall(PetscDTSimplexQuadrature(dim - 1, degree, PETSCDTSIMPLEXQUAD_DEFAULT, &quad));
+  PetscCall(PetscQuadratureGetData(quad, NULL, NULL, nq, &qx, &qw));
+  PetscCall(PetscMalloc2(*nq * dim, L, *nq, w));
+  for (PetscInt q = 0; q < *nq; q++) { /* barycentric coordinates of the reference simplex's points (vertices at -1, 1) */
+    PetscReal s = 0;
+    for (PetscInt a = 1; a < dim; a++) s += (*L)[q * dim + a] = (qx[q * (dim - 1) + a - 1] + 1) / 2;
+    (*L)[q * dim] = 1 - s, (*w)[q] = qw[q];
+  }
+  PetscCall(PetscQuadratureDestroy(&quad));
   PetscFunctionReturn(0);
 }
 
@@ -163,7 +179,7 @@ static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt
   for (PetscInt q = 0; q < m->nq; q++) { /* reference simplex of measure 2 (PetscDT); 2 pi r at the point's reference radius */
     PetscReal r = 0;
     for (PetscInt a = 0; a < nv; a++) r += m->L[q * nv + a] * m->Xv[(k * nv + a) * dim];
-    m->dA[k * m->nq + q] = qw[q] * meas / 2 * (sp->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : sp->kin == KIN_PLANE_STRAIN ? sp->thickness : 1);
+    m->dA[k * m->nq + q] = qw[q] * meas / 2 * fe_space_weight(sp, r);
   }
   PetscFunctionReturn(0);
 }
@@ -245,8 +261,6 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   MPI_Comm              comm = PetscObjectComm((PetscObject)sp->dm);
   const PetscInt        dim  = sp->dim;
   PetscInt             *facets, *mpt, nqp;
-  PetscQuadrature       quad;
-  const PetscReal      *qx, *qw;
   PetscSection          cs;
   Vec                   coords;
   const PetscScalar    *ca;
@@ -254,15 +268,8 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   m->nv = dim, m->nn = dim == 2 ? 3 : 6;
   /* Gauss points on the facet: degree 8 (2D) and 6 (3D) integrate psi N (2 pi r) exactly and the smooth gaps
      to well below the discretisation error */
-  PetscCall(PetscDTSimplexQuadrature(dim - 1, dim == 2 ? 8 : 6, PETSCDTSIMPLEXQUAD_DEFAULT, &quad));
-  PetscCall(PetscQuadratureGetData(quad, NULL, NULL, &nqp, &qx, &qw));
+  PetscCall(contact_facet_rule(dim, dim == 2 ? 8 : 6, &nqp, &m->L, &m->qw));
   m->nq = nqp;
-  PetscCall(PetscMalloc1(nqp * m->nv, &m->L));
-  for (PetscInt q = 0; q < nqp; q++) { /* barycentric coordinates of the reference simplex's points (vertices at -1, 1) */
-    PetscReal s = 0;
-    for (PetscInt a = 1; a < m->nv; a++) s += m->L[q * m->nv + a] = (qx[q * (dim - 1) + a - 1] + 1) / 2;
-    m->L[q * m->nv] = 1 - s;
-  }
   PetscCall(contact_facets(sp->dm, label, &m->nf, &facets));
   PetscInt nf = PetscMax(m->nf, 1);
   PetscCall(PetscMalloc5(nf * m->nv, &m->mult, nf * m->nv, &m->lmult, nf * m->nn * dim, &m->rows, nf * m->nn * dim, &m->dofs, nf * m->nn * 2, &m->ab));
@@ -272,11 +279,10 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   PetscCall(DMGetCoordinateSection(sp->dm, &cs));
   PetscCall(DMGetCoordinatesLocal(sp->dm, &coords));
   PetscCall(VecGetArrayRead(coords, &ca));
-  for (PetscInt k = 0; k < m->nf; k++) PetscCall(facet_data(p, m, k, facets[k], mpt, ca, cs, qw));
+  for (PetscInt k = 0; k < m->nf; k++) PetscCall(facet_data(p, m, k, facets[k], mpt, ca, cs, m->qw));
   PetscCall(VecRestoreArrayRead(coords, &ca));
   PetscCall(PetscFree(mpt));
   PetscCall(PetscFree(facets));
-  PetscCall(PetscQuadratureDestroy(&quad));
   PetscCall(multiplier_scatter(ct, comm));
   PetscCall(VecCreateMPI(comm, ct->n * (dim + 1), ct->N * (dim + 1), &m->gn));
   PetscCall(VecSetOption(m->gn, VEC_IGNORE_NEGATIVE_INDICES, PETSC_TRUE)); /* vertices without a multiplier */
@@ -308,7 +314,7 @@ PetscErrorCode contact_mortar_destroy(Contact *ct) {
   if (!m) PetscFunctionReturn(0);
   PetscCall(PetscFree5(m->mult, m->lmult, m->rows, m->dofs, m->ab));
   PetscCall(PetscFree4(m->Xv, m->dA, m->nq_, m->gq));
-  PetscCall(PetscFree(m->L));
+  PetscCall(PetscFree2(m->L, m->qw));
   PetscCall(PetscFree(m->R));
   PetscCall(VecDestroy(&m->gn));
   PetscCall(VecDestroy(&m->wv));

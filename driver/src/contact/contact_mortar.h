@@ -21,6 +21,9 @@
 PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, PetscInt **mark);
 /* The group's boundary facets on this rank (a boundary facet has one cell, so it lives on one rank only). */
 PetscErrorCode contact_facets(DM dm, DMLabel label, PetscInt *nf, PetscInt **list);
+/* A Gauss rule of the given degree on a facet (dimension dim - 1): the barycentric coordinates of its nq points
+   (L: nq x dim) and their weights (w: nq; the reference facet has measure 2); free with PetscFree2(*L, *w). */
+PetscErrorCode contact_facet_rule(PetscInt dim, PetscInt degree, PetscInt *nq, PetscReal **L, PetscReal **w);
 /* After the multipliers are numbered (ct->N, ct->rstart): the facets here, their quadrature, the weights
    w_j (wsum: their sum here) and the coupling blocks Bt and B with their fixed nonzero pattern. */
 PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, PetscReal *wsum);

@@ -48,7 +48,7 @@ static PetscErrorCode edge_load(FeProblem *p, PetscSection s, PetscInt face, Pet
   static const PetscReal gs[3] = {0.1127016653792583, 0.5, 0.8872983346207417}, gw[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
   for (int g = 0; g < 3; g++) {
     PetscReal sg = gs[g], r = (1 - sg) * PetscRealPart(xe[0]) + sg * PetscRealPart(xe[2]);
-    PetscReal w = gw[g] * area * (p->space.kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : p->space.thickness);
+    PetscReal w = gw[g] * area * fe_space_weight(&p->space, r); /* 2D: 2 pi r or the thickness */
     PetscReal Na = p->space.order == 1 ? 1 - sg : (1 - sg) * (1 - 2 * sg), Nb = p->space.order == 1 ? sg : sg * (2 * sg - 1);
     PetscReal Nm = p->space.order == 1 ? 0 : 4 * sg * (1 - sg);
     for (PetscInt d = 0; d < 2; d++) {
@@ -196,7 +196,7 @@ static PetscErrorCode point_geometry_setup(FeProblem *p) {
     PetscCall(DMPlexComputeCellGeometryFEM(p->space.dm, c, p->space.quad, v0, J, invJ, detJ));
     for (PetscInt q = 0; q < p->space.nq; q++) {
       PetscCheck(detJ[q] > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "cell %d is inverted (det J = %g)", (int)c, (double)detJ[q]);
-      PetscReal r = v0[q * p->space.dim], scale = p->space.kin == KIN_PLANE_STRAIN ? p->space.thickness : p->space.kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : 1;
+      PetscReal r = v0[q * p->space.dim], scale = fe_space_weight(&p->space, r);
       rmin = PetscMin(rmin, r);
       p->space.radius[SV(p, c, q)] = r;
       basis_gradients(p, q, &invJ[q * p->space.dim * p->space.dim], &p->space.grad[SV(p, c, q) * p->space.ns * p->space.dim]);

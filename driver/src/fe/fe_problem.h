@@ -45,6 +45,12 @@ typedef struct {
   FeConstraint    con;             /* fixed components and mirror planes (nodal frames) */
 } FeSpace;
 
+/* The scene's weight of a point at radius r (its first coordinate) in an integral over the model: 2 pi r
+   (axisymmetric), the thickness (plane strain), 1 (3D). */
+static inline PetscReal fe_space_weight(const FeSpace *sp, PetscReal r) {
+  return sp->kin == KIN_AXISYMMETRIC ? 2 * PETSC_PI * r : sp->kin == KIN_PLANE_STRAIN ? sp->thickness : 1;
+}
+
 /* The material at the quadrature points: its PROPS, phi per cell, the committed and trial states, the tangents of
  * the last residual, the last step's viscoplastic increments (fe_state.h). */
 typedef struct {
