@@ -23,8 +23,8 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
             mesh's alone (the steps' error is the same on every rung); bnfix3 ... bnfix0.475 BN's sector alike. On this
             2-core machine fix0.019 finished its load but not its hold (Newton failed on the hold's steps, which were
             cut back again and again; docs/contact.md, "The field split"): a job for a larger machine
-  whole0.0707, whole0.05  the sector (24 k and 63 k unknowns) through its whole load, hold and unload at the shipped
-            time-step control (about 600 steps), one rank, direct and field split: the size at which -indent_solver
+  whole0.0707, whole0.05, whole0.034  the sector (24 k, 63 k and 190 k unknowns) through its whole load, hold and
+            unload at the shipped time-step control (about 600 steps), one rank, direct and field split: the size at which -indent_solver
             auto should switch over a whole run, where the kept factorisation serves many steps
   ranks0.0425  the first 4 steps at 101 k unknowns on 2 ranks, with the driver's graph partitioner and with the
             simple one (the cells in the mesh file's order), with -log_view's events
@@ -93,6 +93,7 @@ CASES = {
     # where -indent_solver auto should switch over a whole run (the factorisation is kept across the steps)
     "whole0.0707": ("nanoindent_kerogen_sector", {"h_tip": 0.07071, "h_far": 0.28284}, None, None, ("direct", "fieldsplit")),
     "whole0.05": ("nanoindent_kerogen_sector", {"h_tip": 0.05, "h_far": 0.2}, None, None, ("direct", "fieldsplit")),
+    "whole0.034": ("nanoindent_kerogen_sector", {"h_tip": 0.034, "h_far": 0.136}, None, None, ("direct", "fieldsplit")),
 }
 # the sector's uniform ladder to a million unknowns on the steps of FIXED, the field split on 2 ranks: the Krylov
 # iterations from 1e5 to 1e6 unknowns under a whole load, hold and unload, and the mesh's share of the reported outputs at
@@ -111,7 +112,7 @@ FIXED = [{"count": 30}, {"count": 6}, {"count": 4}]
 CASES["ranks0.0425"] = ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 4,
                         ("fieldsplit", "fieldsplit, simple partition"))
 ONCE = ("sector0.05", "sector0.0425", "sector0.034", "sector0.018", "sector0.019", "lhu0.0707", "lhu0.0425",
-        "ranks0.0425", "whole0.0707", "whole0.05") + tuple(FIX)  # one run each
+        "ranks0.0425", "whole0.0707", "whole0.05", "whole0.034") + tuple(FIX)  # one run each
 RANKS = dict({"ranks0.0425": 2}, **{c: 2 for c in FIX})
 # a whole run in few steps: the stages' error tolerance 0.3 (shipped 1.5e-2 and 0.1), the load's first step 5 s
 LOOSE = {c: [{"first": 5, "max": 100}, {"first": 5, "max": 30}, {"first": 5, "max": 10}] for c in CASES if c.startswith("lhu")}
