@@ -124,6 +124,10 @@ def section_axi(p):
     if p["table"] is not None:
         lines += ["", "Nanoindentation (axisymmetric), each measure at three tolerances (unload stage: output 0.1 for "
                   "the relative", "measures), same reference:", ""] + table_lines(p["table"])
+        if any(r["measure"].startswith("output, the load") for r in p["table"]["rows"]):
+            lines += ["", "'output, the load relative to the stage': the load stage's error relative to the stage "
+                      "(`relative_to: stage`, docs/driver.md,", "Error measures), the hold's and the unload's relative "
+                      "to the step, as in the rows 'output'."]
         lines += ["", "![error against CPU time](step_control.png)"]
     return "\n".join(lines) + "\n"
 

@@ -16,7 +16,7 @@ static const char *measure_names[] = {"worst_point", "volume", "output"};
 
 const char *step_control_measure_name(ErrorMeasure m) { return measure_names[m]; }
 
-/* error: {measure: worst_point | volume | output, tol: t} */
+/* error: {measure: worst_point | volume | output, tol: t, relative_to: step | stage} */
 static int read_error(const YdDoc *doc, YdNode *x, const char *path, StepControl *sc, char *err, size_t errlen) {
   char sub[256];
   int  k = MEASURE_WORST_POINT;
@@ -28,6 +28,12 @@ static int read_error(const YdDoc *doc, YdNode *x, const char *path, StepControl
   if (keys_number(doc, x, "tol", &sc->tol, &v, err, errlen)) return 1;
   if (!v && sc->measure != MEASURE_WORST_POINT)
     FAIL("%s:%d: key '%s': the %s measure needs a tol", doc->file, x->line, sub, measure_names[sc->measure]);
+  int rel = 0;
+  if (keys_word(doc, x, "relative_to", NULL, &rel, &v, err, errlen)) return 1;
+  if (v && sc->measure != MEASURE_OUTPUT)
+    FAIL("%s:%d: key '%s.relative_to': only the output measure takes it (this one is %s)", doc->file, v->line, sub,
+         measure_names[sc->measure]);
+  sc->per_stage = rel == 1;
   return keys_check_unused(doc, x, NULL, err, errlen);
 }
 

@@ -17,6 +17,7 @@ typedef struct {
   int    pending_instant, k_planned, cut_in_plan, next_stage_time, have_prev, nout, kink;
   double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio, ratio_prev;
   double out_prev[STEP_MAX_OUT], dout_prev[STEP_MAX_OUT], out_scale[STEP_MAX_OUT];
+  double out_start[STEP_MAX_OUT]; /* the outputs at the stage's start (the 'output' measure relative to the stage) */
   long   history_offset;
   double report[RUNNER_MAX_STAGES + 1][RUNNER_MAX_REPORT]; /* the reported quantities at the start and stage ends */
   unsigned long long mesh_hash;                            /* of the run's mesh file (0: none): a restart needs the same */

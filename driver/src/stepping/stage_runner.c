@@ -106,7 +106,13 @@ static int progress_line(Run *r, const StepOutcome *o, double h, char *err) {
 static double departure(double d, double d_prev, double h, double h_prev) { return d - h / h_prev * d_prev; }
 
 /* The error estimate of a converged step relative to tol ('output', 'volume'), or -1 when there is none
- * (worst_point, fixed steps, the first step of a stage, an instant step, a solver that reports no outputs). */
+ * (worst_point, fixed steps, the first step of a stage, an instant step, a solver that reports no outputs).
+ * 'output' relative to the step: the departure over the step's increment, so the stage's accumulated error is about
+ * tol times its total change (docs/driver.md, Error measures). Relative to the stage (relative_to: stage): over the
+ * larger of the increment and the step's share of the stage's mean change so far, h |y - y_start| / (t - t_start):
+ * a step whose increment is small against the stage's mean rate (the tail of a transient, an exponential load's
+ * start) is asked for tol of that share, not of its own small increment: a share of the stage's change in
+ * proportion to the step's length. */
 static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
   const StepControl *sc = r->view.steps;
   RunState          *st = &r->st;
@@ -118,8 +124,9 @@ static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
     double num = 0, den = 0, scale = 0;
     for (int k = 0; k < o->nout; k++)
       if (o->group[k] == g) {
-        double d = o->out[k] - st->out_prev[k];
-        num += pow(departure(d, st->dout_prev[k], rq->h, st->h_prev), 2), den += d * d;
+        double d = o->out[k] - st->out_prev[k], s = 0;
+        if (sc->per_stage) s = rq->h * (o->out[k] - st->out_start[k]) / (rq->ts0 + rq->h);
+        num += pow(departure(d, st->dout_prev[k], rq->h, st->h_prev), 2), den += fmax(d * d, s * s);
         scale += fmax(st->out_scale[k] * st->out_scale[k], o->out[k] * o->out[k]);
       }
     double e = sqrt(num) / fmax(fmax(sqrt(den), 1e-6 * sqrt(scale)), 1e-300);
@@ -132,6 +139,7 @@ static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq)
   RunState *st = &r->st;
   int       same = st->have_prev && st->nout == o->nout, fresh = rq->first_in_stage || st->kink;
   for (int k = 0; k < o->nout && k < STEP_MAX_OUT; k++) {
+    if (rq->first_in_stage) st->out_start[k] = st->out_prev[k]; /* before the stage's first step */
     st->dout_prev[k] = same || fresh ? o->out[k] - st->out_prev[k] : 0;
     st->out_prev[k]  = o->out[k];
     st->out_scale[k] = fmax(st->out_scale[k], fabs(o->out[k]));
