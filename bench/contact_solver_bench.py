@@ -24,8 +24,8 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
             2-core machine fix0.019 finished its load but not its hold (Newton failed on the hold's steps, which were
             cut back again and again; docs/contact.md, "The field split"): a job for a larger machine
   whole0.0707, whole0.05, whole0.034  the sector (24 k, 63 k and 190 k unknowns) through its whole load, hold and
-            unload at the shipped time-step control (about 600 steps), one rank, direct and field split: the size at which -indent_solver
-            auto should switch over a whole run, where the kept factorisation serves many steps
+            unload at the shipped time-step control (about 600 steps), one rank, direct and field split: the size at
+            which -indent_solver auto should switch over a whole run, where the kept factorisation serves many steps
   ranks0.0425  the first 4 steps at 101 k unknowns on 2 ranks, with the driver's graph partitioner and with the
             simple one (the cells in the mesh file's order), with -log_view's events
 
