@@ -59,7 +59,7 @@ def before(name):
                                    text=True, check=True, timeout=60).stdout)
 
 
-STAGE = "output, the load relative to the stage"   # relative_to: stage on the load stage (docs/driver.md, Error measures)
+STAGE = study.LOAD_PER_STAGE   # relative_to: stage on the load stage (docs/driver.md, Error measures)
 
 
 def with_measure(text, measure, tol, unload_tol=None):

@@ -24,6 +24,7 @@ TITLE_3D = "## Time-step error control: 3D Berkovich half model"
 TITLES = {"axi": TITLE, "3d": TITLE_3D}
 SCENE_KEYS = ("name", "reference", "uncertainty", "rows")
 ROW_KEYS = ("variant", "steps", "newton", "calls", "wall_s", "cpu_s", "errors")
+LOAD_PER_STAGE = "output, the load relative to the stage"   # the table's rows with relative_to: stage on the load stage
 TABLE_KEYS = ("measure", "tol", "newton_rule", "steps", "newton", "wall_s", "cpu_s", "errors")
 TABLE_OUTPUTS = ("load at end of loading", "creep depth", "residual depth")
 QUIET_KEYS = ("note", "date", "nano_axi_wall_s", "nano_axi_cpu_s", "micro_axi_wall_s", "rate_wall_s", "bedding_wall_s",
@@ -124,8 +125,8 @@ def section_axi(p):
     if p["table"] is not None:
         lines += ["", "Nanoindentation (axisymmetric), each measure at three tolerances (unload stage: output 0.1 for "
                   "the relative", "measures), same reference:", ""] + table_lines(p["table"])
-        if any(r["measure"].startswith("output, the load") for r in p["table"]["rows"]):
-            lines += ["", "'output, the load relative to the stage': the load stage's error relative to the stage "
+        if any(r["measure"] == LOAD_PER_STAGE for r in p["table"]["rows"]):
+            lines += ["", f"'{LOAD_PER_STAGE}': the load stage's error relative to the stage "
                       "(`relative_to: stage`, docs/driver.md,", "Error measures), the hold's and the unload's relative "
                       "to the step, as in the rows 'output'."]
         lines += ["", "![error against CPU time](step_control.png)"]

@@ -122,7 +122,7 @@ PetscErrorCode contact_mortar_mark(FeProblem *p, DMLabel label, Contact *ct, Pet
 /* Per facet: its vertices (multiplier indices, coordinates), its P2 nodes (rows, local dofs, the vertex pair of
    each) and the measure at each Gauss point; mpt: the multiplier index of every plex point (< 0: none). */
 static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt k, PetscInt f, const PetscInt mpt[], const PetscScalar ca[],
-                                 PetscSection cs, const PetscReal qw[]) {
+                                 PetscSection cs) {
   const FeSpace *sp = fe_problem_space(p);
   DM           dm = sp->dm;
   PetscSection ls, gs;
@@ -179,7 +179,7 @@ static PetscErrorCode facet_data(FeProblem *p, struct ContactMortar *m, PetscInt
   for (PetscInt q = 0; q < m->nq; q++) { /* reference simplex of measure 2 (PetscDT); 2 pi r at the point's reference radius */
     PetscReal r = 0;
     for (PetscInt a = 0; a < nv; a++) r += m->L[q * nv + a] * m->Xv[(k * nv + a) * dim];
-    m->dA[k * m->nq + q] = qw[q] * meas / 2 * fe_space_weight(sp, r);
+    m->dA[k * m->nq + q] = m->qw[q] * meas / 2 * fe_space_weight(sp, r);
   }
   PetscFunctionReturn(0);
 }
@@ -279,7 +279,7 @@ PetscErrorCode contact_mortar_setup(FeProblem *p, DMLabel label, Contact *ct, Pe
   PetscCall(DMGetCoordinateSection(sp->dm, &cs));
   PetscCall(DMGetCoordinatesLocal(sp->dm, &coords));
   PetscCall(VecGetArrayRead(coords, &ca));
-  for (PetscInt k = 0; k < m->nf; k++) PetscCall(facet_data(p, m, k, facets[k], mpt, ca, cs, m->qw));
+  for (PetscInt k = 0; k < m->nf; k++) PetscCall(facet_data(p, m, k, facets[k], mpt, ca, cs));
   PetscCall(VecRestoreArrayRead(coords, &ca));
   PetscCall(PetscFree(mpt));
   PetscCall(PetscFree(facets));
