@@ -37,7 +37,7 @@ def section(store, root=None):
     once = list(dict.fromkeys(r["case"] for r in rows if r["repeats"] == 1))   # the bench's ONCE cases
     fewer = f" (one run for {', '.join(once)})" if once and max(r["repeats"] for r in rows) > 1 else ""
     also = "".join(f" {'Rows ' + '; '.join(m['rows']) if 'rows' in m else 'Cases ' + ', '.join(m['cases'])}: `{m['command']}` "
-                   f"({m['date']})." for m in merges(pv))
+                   f"({m['date']}{'; ' + m['note'] if m.get('note') else ''})." for m in merges(pv))
     lines = [TITLE, "",
              f"Command: `{pv['command']}` ({pv['date']}; a shared 2-core machine, one rank).{also} The first steps of the "
              "kerogen nanoindentation on each path (the bench's docstring gives the cases): CPU is user + system of the driver, "
@@ -96,7 +96,10 @@ def outputs_table(rows):
     return ["", "Reported outputs of the whole runs on equal fixed steps (in brackets: against the finest rung of the same "
             "scene): the load at the end of loading, the creep depth and the residual depth. The steps' own error is the same "
             "on every mesh and is in every row (these fixed steps give a creep depth well below the shipped scenes' adaptive "
-            "steps'), so the differences between rows are the mesh's share alone.", "",
+            "steps'), so the differences between rows are the mesh's share alone (a row with more steps had some of its steps "
+            "cut back). Newton stops at a residual of 1e-6 of the load; the row 'Newton to 1e-10' runs to the driver's default "
+            "on the same mesh.", "",
             "| case | unknowns | steps | P [µN] | creep [nm] | h_res [nm] |", "|---|---|---|---|---|---|"] + [
-            f"| {r['case']} | {r['unknowns']} | {r['steps']} | {rel(r, 'P')} | {rel(r, 'creep')} | {rel(r, 'h_res')} |"
+            f"| {r['case']}{'' if r['solver'] == 'fieldsplit' else ', ' + r['solver']} | {r['unknowns']} | {r['steps']} | "
+            f"{rel(r, 'P')} | {rel(r, 'creep')} | {rel(r, 'h_res')} |"
             for r in sorted(rows, key=lambda r: (family(r), r["unknowns"]))]
