@@ -113,8 +113,8 @@ CASES.update({c: ("microindent_BN_sector" if c.startswith("bn") else "nanoindent
 FIXED = [{"count": 30}, {"count": 6}, {"count": 4}]
 # ... to a residual of 1e-6 of the load (the driver's default 1e-10): fixed steps have no error measure to stop Newton
 # by its estimated error, and from about 1e5 unknowns on, the hold's 10 s steps end in a two-cycle of a few points of the
-# soft frame switching branch (theory.md §3.4) at about 2e-7 of the load, which the stall test cuts back again and again
-# (docs/contact.md, "The field split")
+# soft frame switching branch (theory.md §3.4) far below any output's tolerance, which the stall test cuts back again and
+# again (docs/contact.md, "The Newton loop")
 FIX_OPTIONS = ["-indent_rtol", "1e-6"]
 # 2 ranks, the first 4 steps: the graph partitioner against the simple one (docs/parallel.md, "The partition")
 CASES["ranks0.0425"] = ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 4,
