@@ -408,8 +408,8 @@ QUOTES = [
          "  sixth root of the unknowns (the two meshes are «f(cs(MIL, 'fieldsplit', 'unknowns') / cs(S3[3], 'fieldsplit', 'unknowns'), 1)» and «f(cs(BIG, 'fieldsplit', 'unknowns') / cs(S3[3], 'fieldsplit', 'unknowns'), 1)» times the 101 k one), which is what an estimate of the Schur\n"
          "  complement by diag(K)⁻¹ gives, whose condition grows as 1/h (next item)"),
     # the fixed-step ladder's whole runs at Newton 1e-6 (bench cases fix...)
-    (CT, "  Under the whole contact the field split took «f(kpn('fix0.12'), 0)», «f(kpn('fix0.0707'), 0)» and «f(kpn('fix0.0425'), 0)» Krylov iterations per Newton iteration\n"
-         "  at «ku('fix0.12')» k, «ku('fix0.0707')» k and «ku('fix0.0425')» k unknowns, in «f(1000 * cs('fix0.0425', 'fieldsplit', 'mem_all') / cs('fix0.0425', 'fieldsplit', 'unknowns'), 1)» kB per unknown over both ranks at «ku('fix0.0425')» k"),
+    (CT, "  Under the whole contact the field split took «f(kpn('fix0.12'), 0)», «f(kpn('fix0.0707'), 0)», «f(kpn('fix0.0425'), 0)» and «f(kpn('fix0.034'), 0)» Krylov iterations per Newton\n"
+         "  iteration at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, in «f(1000 * cs('fix0.034', 'fieldsplit', 'mem_all') / cs('fix0.034', 'fieldsplit', 'unknowns'), 1)» kB per unknown over both ranks at «ku('fix0.034')» k"),
     (CT, "«f(kpn(S3[1], LU), 1)» per Newton iteration at «ku(S3[1])» k unknowns and «f(kpn(S3[3], LU), 1)» at «ku(S3[3])» k"),
     (CT, "active: with the p-multigrid «f(kpn('lhu0.12'), 0)» Krylov iterations per Newton iteration at «ku('lhu0.12')» k unknowns, "
          "«f(kpn('lhu0.0707'), 0)» at «ku('lhu0.0707')» k and «f(kpn('lhu0.0425'), 0)» at «ku('lhu0.0425')» k; with\n  the displacement "
