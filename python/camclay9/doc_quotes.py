@@ -188,9 +188,9 @@ def namespace(store_dir=None):
         """The rms of a fault's errors in units of their reported standard errors (1 when those are right)."""
         return (sum(r["z"] ** 2 for r in rows) / len(rows)) ** 0.5
 
-    def kbu(case, solver="fieldsplit"):
-        """A contact-solver row's peak memory per unknown [kB]."""
-        return 1000 * cs(case, solver, "mem") / cs(case, solver, "unknowns")
+    def kbu(case, solver="fieldsplit", q="mem"):
+        """A contact-solver row's peak memory per unknown [kB]: the largest rank's (mem) or all ranks' (mem_all)."""
+        return 1000 * cs(case, solver, q) / cs(case, solver, "unknowns")
 
     def kpn(case, solver="fieldsplit"):
         """A contact-solver row's Krylov iterations per Newton iteration."""
@@ -409,7 +409,7 @@ QUOTES = [
          "  complement by diag(K)⁻¹ gives, whose condition grows as 1/h (next item)"),
     # the fixed-step ladder's whole runs at Newton 1e-6 (bench cases fix...)
     (CT, "  Under the whole contact the field split took «f(kpn('fix0.12'), 0)», «f(kpn('fix0.0707'), 0)», «f(kpn('fix0.0425'), 0)» and «f(kpn('fix0.034'), 0)» Krylov iterations per Newton\n"
-         "  iteration at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, in «f(1000 * cs('fix0.034', 'fieldsplit', 'mem_all') / cs('fix0.034', 'fieldsplit', 'unknowns'), 1)» kB per unknown over both ranks at «ku('fix0.034')» k"),
+         "  iteration at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, in «f(kbu('fix0.034', q='mem_all'), 1)» kB per unknown over both ranks at «ku('fix0.034')» k"),
     (CT, "«f(kpn(S3[1], LU), 1)» per Newton iteration at «ku(S3[1])» k unknowns and «f(kpn(S3[3], LU), 1)» at «ku(S3[3])» k"),
     (CT, "active: with the p-multigrid «f(kpn('lhu0.12'), 0)» Krylov iterations per Newton iteration at «ku('lhu0.12')» k unknowns, "
          "«f(kpn('lhu0.0707'), 0)» at «ku('lhu0.0707')» k and «f(kpn('lhu0.0425'), 0)» at «ku('lhu0.0425')» k; with\n  the displacement "
