@@ -35,6 +35,16 @@ driver's 'memory:' line). The same steps are run by every path (-max_steps), so 
 work; the Newton iterations say whether a path's directions cost the Newton extra iterations.
 
   bench/contact_solver_bench.py [--repeats 3] [--cases axi1,axi2,sector0.12,...] [--solvers 'direct;fieldsplit;...'] [--merge] [--no-doc]
+                                [--keep DIR [--budget SECONDS]]
+
+--keep runs in DIR (kept) with a checkpoint at every step; with --budget each run is stopped after that much wall time
+and the same command continues it from its last step: a run of hours (fix0.019) in parts, its CPU and Krylov iterations
+summed over the parts (a stopped part's unfinished step counts in its CPU, not in its iterations), its memory the
+largest part's (mem_all, the ranks' sum: its last part's). A finished run's measures are kept in DIR (done.json): the
+same command then reports them without running again. A checkpoint at every step rebuilds the kept multigrid hierarchy
+at every step (docs/driver.md, "What a restart reproduces"), so a kept run's Krylov iterations differ a little from
+one run straight through (fix0.12 in two parts, twice: 2 293 and 2 359 against 2 333, the same outputs to the digits
+printed).
 
 --merge replaces only the rows (case, solver) run in the store and keeps the others, each merge's command and date
 listed in the store's provenance.
@@ -44,7 +54,9 @@ Writes its numbers into the results store (docs/results/contact_solver.json), wh
 that store (camclay9.contact_solver_study; tools/doc_numbers.py checks the section against the store).
 """
 import argparse
+import json
 import re
+import signal
 import statistics
 import tempfile
 import time
@@ -160,22 +172,64 @@ def events(text):
     return out
 
 
-def run(scene, steps, solver, out, ranks=1, log_view=False, extra=()):
+# a run kept (--keep) writes a checkpoint at every step, and its log says every solve's Krylov iterations and every
+# Newton iteration: a run stopped by --budget continues from its last step at the next invocation, and its stall, if
+# any, can be read from the log
+RESUMABLE = ["-checkpoint_every", "1", "-indent_ksp_converged_reason", "-indent_monitor"]
+KSP_ITS = re.compile(r"^Linear indent_ solve \S+ due to \S+ iterations (\d+)", re.M)
+
+
+def stopped_part(text, cpu, mem):
+    """An invocation stopped by --budget: its CPU and peak memory, and the Krylov iterations of its whole steps (those
+    before its last progress line, each checkpointed; the step it was stopped in is solved again after the restart,
+    so its iterations are not counted, though its CPU is)."""
+    last = [m.start() for m in re.finditer(r"^step +\d+ ", text, re.M)]
+    done = text[:last[-1]] if last else ""
+    return {"cpu": cpu, "mem": mem, "krylov": sum(int(k) for k in KSP_ITS.findall(done)), "steps": len(last)}
+
+
+def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=None, keep=False):
     """One run (steps None: the whole run): its CPU [s] (user + system, its children's included: every rank's) and peak
-    memory [MB] (camclay9.run_measured: the largest process's), and the driver's counts from its summary line."""
+    memory [MB] (camclay9.run_measured: the largest process's), and the driver's counts from its summary line. keep: a
+    run that can be stopped after `budget` seconds and resumed from its checkpoint by the same command; its parts are
+    listed in OUT/parts.json, and it returns None until its last part is done (then CPU and Krylov iterations summed
+    over the parts, memory their largest; the steps and Newton iterations are the driver's, which a restart carries on)."""
     out.mkdir(parents=True, exist_ok=True)
-    opts = (["-max_steps", steps] if steps else []) + list(extra) + SOLVERS[solver] + (["-log_view"] if log_view else [])
-    log, cmd = out / "driver.out", driver_command(scene, out, opts, root=ROOT, ranks=ranks)
-    rc, cpu, mem, _ = run_measured(cmd, log, timeout=TIMEOUT * (4 if steps is None else 1))
-    if rc:
-        raise SystemExit(f"{' '.join(cmd)} failed ({rc}):\n{log.read_text()[-2000:]}")
+    if keep and (out / "done.json").exists():   # finished by an earlier invocation: its measures, not a second run
+        return json.loads((out / "done.json").read_text())
+    parts = json.loads((out / "parts.json").read_text()) if keep and (out / "parts.json").exists() else []
+    resume = ["-restart"] if keep and (out / "checkpoint.latest").exists() else []
+    opts = ((["-max_steps", steps] if steps else []) + list(extra) + SOLVERS[solver] + (["-log_view"] if log_view else [])
+            + (RESUMABLE + resume if keep else []))
+    log = out / (f"driver.{len(parts)}.out" if keep else "driver.out")
+    if keep and log.exists():   # a part that ended otherwise than by its budget (killed, or failed): not measured
+        raise SystemExit(f"{log}: a part of this run that was not stopped by --budget (killed or failed), so its CPU and "
+                         f"Krylov iterations are not in {out / 'parts.json'} and a total would be wrong; remove {out} to run "
+                         "the case again from its start")
+    cmd = driver_command(scene, out, opts, root=ROOT, ranks=ranks)
+    rc, cpu, mem, _ = run_measured(cmd, log, timeout=TIMEOUT * (4 if steps is None else 1), budget=budget)
     text = log.read_text()
+    if keep and rc == -signal.SIGTERM:
+        parts.append(dict(stopped_part(text, cpu, mem), date=time.strftime("%Y-%m-%d %H:%M")))
+        (out / "parts.json").write_text(json.dumps(parts, indent=1))
+        print(f"stopped after --budget {budget:g} s, {parts[-1]['steps']} steps in this part: the same command continues "
+              f"from the last checkpoint in {out}", flush=True)
+        return None
+    if rc:
+        raise SystemExit(f"{' '.join(cmd)} failed ({rc}):\n{text[-2000:]}")
     s, m, part, memory = summary_line(text), mesh_line(text), partition_line(text), memory_line(text)
-    return {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
-            "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks,
-            **({"partition": {k: part[k] for k in ("type", "vertices", "copies")}} if part else {}),
-            **({"mem_all": memory["all_mb"]} if memory and ranks > 1 else {}),
-            **({"events": events(text)} if log_view else {})}
+    if parts:   # the earlier parts' CPU and Krylov iterations added, the largest memory kept
+        cpu, mem = cpu + sum(p["cpu"] for p in parts), max([mem] + [p["mem"] for p in parts])
+        s["krylov_iterations"] += sum(p["krylov"] for p in parts)
+    r = {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
+         "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks,
+         **({"parts": len(parts) + 1} if parts else {}),
+         **({"partition": {k: part[k] for k in ("type", "vertices", "copies")}} if part else {}),
+         **({"mem_all": memory["all_mb"]} if memory and ranks > 1 else {}),
+         **({"events": events(text)} if log_view else {})}
+    if keep:
+        (out / "done.json").write_text(json.dumps(r, indent=1))
+    return r
 
 
 def outputs(run_dir):
@@ -186,15 +240,19 @@ def outputs(run_dir):
             "h_res": 1e3 * reported(s, "unload", "depth")}
 
 
-def measure(case, repeats, work, solvers=None):
-    """Every solver of the case (or those of them in `solvers`), repeats runs each."""
+def measure(case, repeats, work, solvers=None, budget=None, keep=False):
+    """Every solver of the case (or those of them in `solvers`), repeats runs each; a kept run stopped by its budget
+    gives no row (the same command continues it)."""
     scene = scene_file(case, work)
     rows = []
     for solver in (x for x in CASES[case][4] if solvers is None or x in solvers):
-        runs = [run(scene, CASES[case][3], solver, work / f"{case}_{k}", RANKS.get(case, 1), case in LOG_VIEW,
-                    FIX_OPTIONS if case in FIX else ()) for k in range(repeats)]
+        dirs = [work / f"{case}_{re.sub(r'[^A-Za-z0-9.]+', '_', solver)}_{k}" for k in range(repeats)]
+        runs = [run(scene, CASES[case][3], solver, d, RANKS.get(case, 1), case in LOG_VIEW,
+                    FIX_OPTIONS if case in FIX else (), budget, keep) for d in dirs]
+        if None in runs:
+            continue
         if case in FIX:   # the outputs of equal fixed steps, the study's ladder table (the LOOSE runs' steps differ)
-            runs[-1]["outputs"] = outputs(work / f"{case}_{repeats - 1}")
+            runs[-1]["outputs"] = outputs(dirs[-1])
         r = dict(runs[-1], case=case, solver=solver, repeats=repeats, cpu=statistics.median(x["cpu"] for x in runs),
                  mem=max(x["mem"] for x in runs))
         print(f"{case:13s} {solver:19s} {r['unknowns']:7d} unknowns  {r['newton']:4d} Newton  {r['krylov']:6d} Krylov  "
@@ -212,19 +270,30 @@ def main(argv=None):
     ap.add_argument("--solvers", default=None, help=f"only these of each case's solvers, separated by ';' ({'; '.join(SOLVERS)})")
     ap.add_argument("--merge", action="store_true", help="replace only the rows (case, solver) run in the store, keep its others")
     ap.add_argument("--note", default="", help="--merge: a remark on the machine kept beside this run's command (e.g. shared)")
+    ap.add_argument("--keep", type=Path, default=None, help="run in this directory, kept, with a checkpoint at every step "
+                    "(default: a temporary one): a run stopped by --budget continues at the same command")
+    ap.add_argument("--budget", type=float, default=None, help="--keep: stop each run after this many seconds of wall "
+                    "time, to be continued by the same command (its row is stored by the invocation that finishes it)")
     a = ap.parse_args(argv)
+    if a.budget is not None and (a.keep is None or a.budget <= 0):
+        raise SystemExit(f"--budget {a.budget:g}: expected a positive number of seconds, with --keep")
     solvers = a.solvers.split(";") if a.solvers else None   # a solver's name may hold a comma
     if solvers and set(solvers) - set(SOLVERS):
         raise SystemExit(f"--solvers: {sorted(set(solvers) - set(SOLVERS))} unknown; expected among {list(SOLVERS)}")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
+        work = a.keep.resolve() if a.keep else Path(tmp)
+        work.mkdir(parents=True, exist_ok=True)
         for case in a.cases.split(","):
-            rows += measure(case, 1 if case in ONCE else a.repeats, Path(tmp), solvers)
+            rows += measure(case, 1 if case in ONCE else a.repeats, work, solvers, a.budget, a.keep is not None)
+    if not rows:
+        return
     stamp = time.strftime("%Y-%m-%d")
     rows = [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats", "ranks", "outputs",
-                               "partition", "mem_all", "events")
+                               "partition", "mem_all", "events", "parts")
              if k in r} for r in rows]
-    command = f"bench/contact_solver_bench.py --repeats {a.repeats} --cases {a.cases}" + (f" --solvers '{a.solvers}'" if a.solvers else "")
+    command = (f"bench/contact_solver_bench.py --repeats {a.repeats} --cases {a.cases}" + (f" --solvers '{a.solvers}'" if a.solvers else "")
+               + (f" --keep DIR --budget {a.budget:g}" if a.budget else " --keep DIR" if a.keep else ""))
     store = {"provenance": {"command": command, "date": stamp}, "rows": rows}
     if a.merge:   # the store's other rows kept (read now, as late as possible), this run's command listed beside its own
         old = results_store.load(study.STORE)

@@ -7,7 +7,8 @@ The store: {"provenance": {"command", "date", ...}, "rows": [...]}, each row {"c
 the repeats, summed over the ranks; memory the largest process's, the largest of the repeats); on more than one rank
 also "mem_all" (the ranks' peaks summed [MB], the driver's 'memory:' line) and "partition" ({"type", "vertices",
 "copies"}: the driver's 'partition:' line); a whole run's row also "outputs" ({"P" [µN], "creep", "h_res" [nm]}); a
-row run with -log_view "events" ({event: seconds}); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
+row run with -log_view "events" ({event: seconds}); a run stopped and resumed from its checkpoints (the bench's --keep
+--budget) "parts", their number (its CPU and Krylov iterations summed over them, its memory the largest part's); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
 {"command", "date", "rows" (or "cases")}: those rows (cases) rerun by the bench's --merge, in order. A row may also hold "cpu_ratio" and
 "mem_ratio", its CPU and memory over the direct path's on the same case as a table printed them from the run's full
 digits, where the store keeps only the table's digits of CPU and memory (rows taken over from an earlier table; the
@@ -52,7 +53,8 @@ def section(store, root=None):
     direct = {r["case"]: r for r in rows if r["solver"] == "direct"}
     for r in rows:
         cpu_ratio, mem_ratio = ((f"{x:.2f}" for x in ratios(r, direct[r["case"]])) if r["case"] in direct else ("—", "—"))
-        ranks = f" ({r['ranks']} ranks)" if r.get("ranks", 1) > 1 else ""
+        parts = f", in {r['parts']} parts" if r.get("parts", 1) > 1 else ""   # stopped and resumed from its checkpoints
+        ranks = f" ({r['ranks']} ranks{parts})" if r.get("ranks", 1) > 1 else f" ({parts[2:]})" if parts else ""
         mem = f"{r['mem']:.0f}" + (f" ({r['mem_all']:.0f} in all)" if "mem_all" in r else "")
         lines.append(f"| {r['case']}{ranks} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
                      f"{r['cpu']:.2f} | {cpu_ratio} | {mem} | {mem_ratio} |")

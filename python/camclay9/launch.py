@@ -13,6 +13,8 @@ subprocess.CompletedProcess (text stdout and stderr) with its wall and CPU secon
 check (the default) a failure raises DriverError naming the command, the exit code and the tail of stderr.
 """
 import os
+import signal
+import re
 import resource
 import shlex
 import subprocess
@@ -101,23 +103,56 @@ def run_command(cmd, timeout=3600, cwd=None, env=None, check=True):
     return proc
 
 
-def run_measured(cmd, log, timeout=3600, cwd=None):
+def _tree_usage(pid):
+    """A running process's CPU (user + system of it and of every descendant alive, and of the children it has waited
+    for) and the largest peak resident memory among them [MB], from /proc (Linux)."""
+    tick, parent, stat = os.sysconf("SC_CLK_TCK"), {}, {}
+    for d in Path("/proc").iterdir():
+        try:
+            f = (d / "stat").read_text().rsplit(")", 1)[1].split()
+            parent[int(d.name)], stat[int(d.name)] = int(f[1]), [int(x) for x in f[11:15]]
+        except (ValueError, OSError, IndexError):
+            continue
+    tree, grew = {pid}, True
+    while grew:
+        new = {p for p, q in parent.items() if q in tree} - tree
+        tree, grew = tree | new, bool(new)
+    cpu = sum(sum(stat[p][:2]) for p in tree if p in stat) + sum(stat.get(pid, [0] * 4)[2:])
+    hwm = 0
+    for p in tree:
+        try:
+            hwm = max(hwm, int(re.search(r"VmHWM:\s+(\d+)", Path(f"/proc/{p}/status").read_text())[1]))
+        except (OSError, TypeError):
+            continue
+    return cpu / tick, hwm / 1024
+
+
+def run_measured(cmd, log, timeout=3600, cwd=None, budget=None):
     """Run a command line with its output (stdout and stderr) written to the file `log` as it runs, within `timeout`
     seconds, and measure that one process from wait4: its CPU (user + system, its waited-for children's included)
     and peak resident memory, which run_command's totals over all children cannot give. Returns (exit code, CPU s,
-    peak MB, wall s); DriverError when it cannot start or times out (the process is killed)."""
+    peak MB, wall s); DriverError when it cannot start or times out (the process is killed). `budget` (s): after
+    that long the process and its descendants (its own session) are stopped by SIGTERM, their CPU and peak memory
+    read from /proc just before, and the exit code is -SIGTERM: for a run that writes checkpoints and is resumed later."""
     if not timeout or timeout <= 0:
         raise ValueError(f"timeout = {timeout!r}: expected a positive number of seconds")
+    if budget is not None and budget <= 0:
+        raise ValueError(f"budget = {budget!r}: expected a positive number of seconds")
     t0 = time.perf_counter()
     with open(log, "w") as f:
         try:
-            proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd)
+            proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd, start_new_session=budget is not None)
         except OSError as err:
             raise DriverError(cmd, None, "", str(err), "could not start") from None
         while True:  # wait4 collects the process with its own resources; polled, for the timeout
             pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
             if pid:
                 break
+            if budget is not None and time.perf_counter() - t0 > budget:
+                cpu, mb = _tree_usage(proc.pid)   # read before the stop: mpiexec does not pass its ranks' usage on
+                os.killpg(proc.pid, signal.SIGTERM)   # its own session: the ranks too, whatever mpiexec passes on
+                os.wait4(proc.pid, 0)
+                return -signal.SIGTERM, cpu, mb, time.perf_counter() - t0
             if time.perf_counter() - t0 > timeout:
                 proc.kill()
                 os.wait4(proc.pid, 0)

@@ -4,6 +4,7 @@ summary.json and a log; its launcher on stand-in drivers (a failure, a timeout, 
 driver itself (a point scene, under a second). The package is imported as installed by tools/setup.sh, and the
 installed copy must be python/camclay9 as it is now: a stale or missing install fails here, never passes."""
 import filecmp
+import signal
 import stat
 import sys
 from pathlib import Path
@@ -237,6 +238,21 @@ def test_run_measured_memory_exit_code_timeout(tmp_path):
     assert 200 < mem < 200 + 100 and cpu > 0 and wall >= cpu * 0.5
     with pytest.raises(DriverError, match=r"timed out after 0\.5 s"):
         run_measured(["sleep", "30"], tmp_path / "log2", timeout=0.5)
+
+
+def test_run_measured_budget_counts_the_stopped_tree(tmp_path):
+    """A budget stops the run (exit code -SIGTERM) and still measures it: the CPU and peak memory of a grandchild that
+    holds 150 MB and spins (the shell between stands for mpiexec, which does not pass its ranks' usage on when it is
+    stopped), read before the stop."""
+    spin = ("import time; b = bytearray(150 * 2**20); b[::4096] = b'x' * len(b[::4096]); print('held', flush=True)\n"
+            "while True: pass")
+    cmd = ["sh", "-c", f'"{sys.executable}" -c "{spin}"; true']
+    rc, cpu, mem, wall = run_measured(cmd, tmp_path / "log", timeout=60, budget=2.0)
+    assert rc == -signal.SIGTERM and 2.0 <= wall < 30
+    assert 150 < mem < 150 + 100 and cpu > 0.3, (cpu, mem)
+    assert (tmp_path / "log").read_text().startswith("held")
+    with pytest.raises(ValueError, match="budget"):
+        run_measured(["true"], tmp_path / "log3", budget=0)
 
 
 def test_run_driver_on_a_point_scene(tmp_path):
