@@ -164,6 +164,23 @@ def test_the_attempt_after_a_stall_runs_to_the_limit(tmp_path):
         assert nxt["converged"] or len(nxt["its"]) > window + 1, (i, attempts[i], nxt)
 
 
+def test_a_stall_below_the_square_root_of_rtol_says_so(tmp_path):
+    """A step that fails for good names the residual Newton reached (relative to the load, as -indent_rtol), and where
+    that lies between rtol and its square root, says which option ends such a step (indent_stepper.c: failure). Here
+    fixed steps on the cone with -indent_rtol 1e-16, below round-off: the first step stalls at about 1e-15 and fails
+    for good; the message's residual lies between the tolerance and its square root, as the hint requires, and the
+    option it names, at the value it names, runs the same scene to its end."""
+    scene = camclay_cone("  - {name: load, duration: 10, indenter: {load: 150}, steps: {count: 5}}\n"
+                         "  - {name: hold, duration: 10, indenter: {load: hold}, steps: {count: 5}}")
+    proc = run(scene, tmp_path / "tight", args=["-indent_rtol", "1e-16"], check=False)
+    err = proc.stdout + proc.stderr
+    m = re.search(r"step failed for good .*: Newton (?:stalled|did not converge).*at a residual of (\S+) of the load "
+                  r"against -indent_rtol 1e-16: below the tolerance's square root.*a larger -indent_rtol \(e\.g\. (\S+)\)", err)
+    assert proc.returncode != 0 and m, err[-1500:]
+    assert 1e-16 < float(m[1]) < 1e-8, m[1]
+    assert run(scene, tmp_path / "hint", args=["-indent_rtol", m[2]], check=False).returncode == 0
+
+
 def newton_attempts(stdout):
     """Each Newton attempt of a step (-indent_monitor): its iterations' (active-set changes, merit), and whether it
     converged (a step line follows) or was given up (the next attempt starts at newton 0)."""
