@@ -104,8 +104,8 @@ def run_command(cmd, timeout=3600, cwd=None, env=None, check=True):
 
 
 def _tree_usage(pid):
-    """A running process's CPU (user + system of it and of every descendant alive, and of the children it has waited
-    for) and the largest peak resident memory among them [MB], from /proc (Linux)."""
+    """A running process's CPU (user + system of it and of every descendant alive, each with the children it has
+    waited for) and the largest peak resident memory among them [MB], from /proc (Linux)."""
     tick, parent, stat = os.sysconf("SC_CLK_TCK"), {}, {}
     for d in Path("/proc").iterdir():
         try:
@@ -117,7 +117,7 @@ def _tree_usage(pid):
     while grew:
         new = {p for p, q in parent.items() if q in tree} - tree
         tree, grew = tree | new, bool(new)
-    cpu = sum(sum(stat[p][:2]) for p in tree if p in stat) + sum(stat.get(pid, [0] * 4)[2:])
+    cpu = sum(sum(stat[p]) for p in tree if p in stat)   # each one's own and its waited-for children's (e.g. a rank's gmsh)
     hwm = 0
     for p in tree:
         try:
