@@ -176,7 +176,7 @@ def events(text):
 # Newton iteration: a run stopped by --budget continues from its last step at the next invocation, and its stall, if
 # any, can be read from the log
 RESUMABLE = ["-checkpoint_every", "1", "-indent_ksp_converged_reason", "-indent_monitor"]
-KSP_ITS = re.compile(r"^Linear indent_ solve \S+ due to \S+ iterations (\d+)", re.M)
+KSP_ITS = re.compile(r"^Linear indent_ solve (?:converged|did not converge) due to \S+ iterations (\d+)", re.M)
 
 
 def stopped_part(text, cpu, mem):
@@ -218,6 +218,9 @@ def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=Non
     if rc:
         raise SystemExit(f"{' '.join(cmd)} failed ({rc}):\n{text[-2000:]}")
     s, m, part, memory = summary_line(text), mesh_line(text), partition_line(text), memory_line(text)
+    if keep and sum(int(k) for k in KSP_ITS.findall(text)) != s["krylov_iterations"]:   # how a stopped part is counted
+        raise SystemExit(f"{log}: its solves' Krylov iterations (-indent_ksp_converged_reason) do not add up to its summary's "
+                         f"{s['krylov_iterations']}: the count of a stopped part would be wrong")
     if parts:   # the earlier parts' CPU and Krylov iterations added, the largest memory kept
         cpu, mem = cpu + sum(p["cpu"] for p in parts), max([mem] + [p["mem"] for p in parts])
         s["krylov_iterations"] += sum(p["krylov"] for p in parts)
