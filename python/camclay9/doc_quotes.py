@@ -410,6 +410,12 @@ QUOTES = [
     # the fixed-step ladder's whole runs at Newton 1e-6 (bench cases fix...)
     (CT, "  Under the whole contact the field split took «f(kpn('fix0.12'), 0)», «f(kpn('fix0.0707'), 0)», «f(kpn('fix0.0425'), 0)» and «f(kpn('fix0.034'), 0)» Krylov iterations per Newton\n"
          "  iteration at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, in «f(kbu('fix0.034', q='mem_all'), 1)» kB per unknown over both ranks at «ku('fix0.034')» k"),
+    # BN's sector on the same fixed steps (bench cases bnfix...): the residual depth on the uniform rungs
+    (CT, "  BN's sector on the same fixed steps (bench cases bnfix…: the same meshes at 25 times the size) took «f(kpn('bnfix3'), 0)», «f(kpn('bnfix1.768'), 0)»,\n"
+         "  «f(kpn('bnfix1.062'), 0)» and «f(kpn('bnfix0.85'), 0)» Krylov iterations per Newton iteration at «ku('bnfix3')» k, «ku('bnfix1.768')» k, «ku('bnfix1.062')» k and «ku('bnfix0.85')» k unknowns. Its residual\n"
+         "  depth still rises with each uniform rung: «f(cs('bnfix3', 'fieldsplit', 'outputs')['h_res'], 0)», «f(cs('bnfix1.768', 'fieldsplit', 'outputs')['h_res'], 0)», «f(cs('bnfix1.062', 'fieldsplit', 'outputs')['h_res'], 0)» and «f(cs('bnfix0.85', 'fieldsplit', 'outputs')['h_res'], 0)» nm, "
+         "«f(100 * (cs('bnfix0.85', 'fieldsplit', 'outputs')['h_res'] / cs('bnfix1.062', 'fieldsplit', 'outputs')['h_res'] - 1), 1)» % from\n"
+         "  «ku('bnfix1.062')» k to «ku('bnfix0.85')» k"),
     (CT, "«f(kpn(S3[1], LU), 1)» per Newton iteration at «ku(S3[1])» k unknowns and «f(kpn(S3[3], LU), 1)» at «ku(S3[3])» k"),
     (CT, "active: with the p-multigrid «f(kpn('lhu0.12'), 0)» Krylov iterations per Newton iteration at «ku('lhu0.12')» k unknowns, "
          "«f(kpn('lhu0.0707'), 0)» at «ku('lhu0.0707')» k and «f(kpn('lhu0.0425'), 0)» at «ku('lhu0.0425')» k; with\n  the displacement "
