@@ -13,10 +13,10 @@ subprocess.CompletedProcess (text stdout and stderr) with its wall and CPU secon
 check (the default) a failure raises DriverError naming the command, the exit code and the tail of stderr.
 """
 import os
-import signal
 import re
 import resource
 import shlex
+import signal
 import subprocess
 import sys
 import time
