@@ -40,8 +40,8 @@ work; the Newton iterations say whether a path's directions cost the Newton extr
 --keep runs in DIR (kept) with a checkpoint at every step; with --budget each run is stopped after that much wall time
 and the same command continues it from its last step: a run of hours (fix0.019) in parts, its CPU and Krylov iterations
 summed over the parts (a stopped part's unfinished step counts in its CPU, not in its iterations), its memory the
-largest part's (mem_all, the ranks' sum: its last part's). A finished run's measures are kept in DIR (done.json): the
-same command then reports them without running again. A checkpoint at every step rebuilds the kept multigrid hierarchy
+largest part's (mem_all, the ranks' sum: its last part's). A finished run's last part is kept in DIR's parts.json with
+the driver's counts: the same command then reports the run again without running it. A checkpoint at every step rebuilds the kept multigrid hierarchy
 at every step (docs/driver.md, "What a restart reproduces"), so a kept run's Krylov iterations differ a little from
 one run straight through (fix0.12 in two parts, twice: 2 293 and 2 359 against 2 333, the same outputs to the digits
 printed).
@@ -188,16 +188,24 @@ def stopped_part(text, cpu, mem):
     return {"cpu": cpu, "mem": mem, "krylov": sum(int(k) for k in KSP_ITS.findall(done)), "steps": len(last)}
 
 
+def combined(parts):
+    """A run's row from its parts (the last one finished, holding the driver's counts): CPU and Krylov iterations
+    summed, memory the largest part's; the steps and Newton iterations are the driver's, which a restart carries on."""
+    n = len(parts)
+    return dict(parts[-1]["row"], cpu=sum(x["cpu"] for x in parts), mem=max(x["mem"] for x in parts),
+                krylov=sum(x["krylov"] for x in parts), **({"parts": n} if n > 1 else {}))
+
+
 def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=None, keep=False):
     """One run (steps None: the whole run): its CPU [s] (user + system, its children's included: every rank's) and peak
     memory [MB] (camclay9.run_measured: the largest process's), and the driver's counts from its summary line. keep: a
     run that can be stopped after `budget` seconds and resumed from its checkpoint by the same command; its parts are
-    listed in OUT/parts.json, and it returns None until its last part is done (then CPU and Krylov iterations summed
-    over the parts, memory their largest; the steps and Newton iterations are the driver's, which a restart carries on)."""
+    listed in OUT/parts.json, and it returns None until its last part is done (then combined), and that part's row
+    again at a later invocation."""
     out.mkdir(parents=True, exist_ok=True)
-    if keep and (out / "done.json").exists():   # finished by an earlier invocation: its measures, not a second run
-        return json.loads((out / "done.json").read_text())
     parts = json.loads((out / "parts.json").read_text()) if keep and (out / "parts.json").exists() else []
+    if parts and "row" in parts[-1]:   # finished by an earlier invocation: its measures, not a second run
+        return combined(parts)
     resume = ["-restart"] if keep and (out / "checkpoint.latest").exists() else []
     opts = ((["-max_steps", steps] if steps else []) + list(extra) + SOLVERS[solver] + (["-log_view"] if log_view else [])
             + (RESUMABLE + resume if keep else []))
@@ -221,18 +229,14 @@ def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=Non
     if keep and sum(int(k) for k in KSP_ITS.findall(text)) != s["krylov_iterations"]:   # how a stopped part is counted
         raise SystemExit(f"{log}: its solves' Krylov iterations (-indent_ksp_converged_reason) do not add up to its summary's "
                          f"{s['krylov_iterations']}: the count of a stopped part would be wrong")
-    if parts:   # the earlier parts' CPU and Krylov iterations added, the largest memory kept
-        cpu, mem = cpu + sum(p["cpu"] for p in parts), max([mem] + [p["mem"] for p in parts])
-        s["krylov_iterations"] += sum(p["krylov"] for p in parts)
-    r = {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"],
-         "krylov": s["krylov_iterations"], "cpu": cpu, "mem": mem, "ranks": ranks,
-         **({"parts": len(parts) + 1} if parts else {}),
-         **({"partition": {k: part[k] for k in ("type", "vertices", "copies")}} if part else {}),
-         **({"mem_all": memory["all_mb"]} if memory and ranks > 1 else {}),
-         **({"events": events(text)} if log_view else {})}
+    parts.append({"cpu": cpu, "mem": mem, "krylov": s["krylov_iterations"], "date": time.strftime("%Y-%m-%d %H:%M"),
+                  "row": {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"], "ranks": ranks,
+                          **({"partition": {k: part[k] for k in ("type", "vertices", "copies")}} if part else {}),
+                          **({"mem_all": memory["all_mb"]} if memory and ranks > 1 else {}),
+                          **({"events": events(text)} if log_view else {})}})
     if keep:
-        (out / "done.json").write_text(json.dumps(r, indent=1))
-    return r
+        (out / "parts.json").write_text(json.dumps(parts, indent=1))
+    return combined(parts)
 
 
 def outputs(run_dir):

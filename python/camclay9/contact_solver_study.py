@@ -53,8 +53,8 @@ def section(store, root=None):
     direct = {r["case"]: r for r in rows if r["solver"] == "direct"}
     for r in rows:
         cpu_ratio, mem_ratio = ((f"{x:.2f}" for x in ratios(r, direct[r["case"]])) if r["case"] in direct else ("—", "—"))
-        parts = f", in {r['parts']} parts" if r.get("parts", 1) > 1 else ""   # stopped and resumed from its checkpoints
-        ranks = f" ({r['ranks']} ranks{parts})" if r.get("ranks", 1) > 1 else f" ({parts[2:]})" if parts else ""
+        how = [f"{r.get('ranks')} ranks"] * (r.get("ranks", 1) > 1) + [f"in {r.get('parts')} parts"] * (r.get("parts", 1) > 1)
+        ranks = f" ({', '.join(how)})" if how else ""   # parts: stopped and resumed from its checkpoints
         mem = f"{r['mem']:.0f}" + (f" ({r['mem_all']:.0f} in all)" if "mem_all" in r else "")
         lines.append(f"| {r['case']}{ranks} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
                      f"{r['cpu']:.2f} | {cpu_ratio} | {mem} | {mem_ratio} |")

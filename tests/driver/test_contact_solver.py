@@ -168,16 +168,20 @@ def test_a_stall_below_the_square_root_of_rtol_says_so(tmp_path):
     """A step that fails for good names the residual Newton reached (relative to the load, as -indent_rtol), and where
     that lies between rtol and its square root, says which option ends such a step (indent_stepper.c: failure). Here
     fixed steps on the cone with -indent_rtol 1e-16, below round-off: the first step stalls at about 1e-15 and fails
-    for good; the message's residual lies between the tolerance and its square root, as the hint requires, and the
-    option it names, at the value it names, runs the same scene to its end."""
+    for good; the message's residual is the last iterate's (the Newton monitor's last merit, printed independently of
+    the message) and lies between the tolerance and its square root, as the hint requires, and the option it names,
+    at the value it names, runs the same scene to its end."""
     scene = camclay_cone("  - {name: load, duration: 10, indenter: {load: 150}, steps: {count: 5}}\n"
                          "  - {name: hold, duration: 10, indenter: {load: hold}, steps: {count: 5}}")
-    proc = run(scene, tmp_path / "tight", args=["-indent_rtol", "1e-16"], check=False)
+    proc = run(scene, tmp_path / "tight", args=["-indent_rtol", "1e-16", "-indent_monitor"], check=False)
     err = proc.stdout + proc.stderr
     m = re.search(r"step failed for good .*: Newton (?:stalled|did not converge).*at a residual of (\S+) of the load "
                   r"against -indent_rtol 1e-16: below the tolerance's square root.*a larger -indent_rtol \(e\.g\. (\S+)\)", err)
     assert proc.returncode != 0 and m, err[-1500:]
     assert 1e-16 < float(m[1]) < 1e-8, m[1]
+    # the residual stated is the one the failed attempt's last iterate had (the Newton monitor's last merit)
+    last = float(re.findall(r"^\s+newton\s+\d+ .* merit (\S+)$", proc.stdout, re.M)[-1])
+    assert f"{last:.2g}" == m[1], (last, m[1])
     assert run(scene, tmp_path / "hint", args=["-indent_rtol", m[2]], check=False).returncode == 0
 
 

@@ -58,8 +58,25 @@ static PetscErrorCode active_signature(Semismooth *in, unsigned long long *sig) 
   PetscFunctionReturn(0);
 }
 
-const char *semismooth_failure[] = {"", "Newton did not converge", "the active set cycles", "the linear solver failed",
-                                    "Newton stalled (the merit did not fall tenfold over -indent_stall_window iterations)"};
+static const char *failure_reason[] = {"", "Newton did not converge", "the active set cycles", "the linear solver failed",
+                                       "Newton stalled (the merit did not fall tenfold over -indent_stall_window iterations)"};
+
+/* Why a step failed, with the residual Newton reached (relative to the load, as -indent_rtol). Stalled between rtol
+   and its square root, far below what any output needs, it is round-off or, on fixed steps (no error estimate there
+   to stop Newton earlier), the two-cycle of a few points switching branch (docs/contact.md, "The Newton loop"): the
+   message says so, and which option ends such a step. */
+const char *semismooth_failure(Semismooth *in, int status) {
+  PetscReal r = in->history.n ? in->history.merit[in->history.n - 1] : -1;
+  if (r < 0) return failure_reason[status];
+  snprintf(in->why, sizeof in->why, "%s, at a residual of %.2g of the load against -indent_rtol %g%s", failure_reason[status], (double)r,
+           (double)in->rtol,
+           (status == STEP_STALLED || status == STEP_DIVERGED) && r < PetscSqrtReal(in->rtol)
+             ? ": below the tolerance's square root, far below what an output needs, where round-off or, on fixed steps, a few "
+               "points switching branch can hold Newton (docs/contact.md, \"The Newton loop\"); a larger -indent_rtol (e.g. 1e-6) "
+               "ends such a step"
+             : "");
+  return in->why;
+}
 
 /* The residual (R_u, R_r, R_lambda) at (U, ur, lam) + e (du, dur, dlam), into (ru, rr, rl); the active set
    stays the one the tangent was built for. */

@@ -47,10 +47,12 @@ typedef struct {
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
   PetscInt     its_total, cycles;
   ActiveSetHistory history;
+  char             why[640]; /* a failed step's reason, with its residual (semismooth_failure) */
 } Semismooth;
 
 enum { STEP_OK = 0, STEP_DIVERGED, STEP_CYCLING, STEP_LINEAR, STEP_STALLED };
-extern const char *semismooth_failure[];
+/* Why the last step failed (status of semismooth_step, not STEP_OK), with the residual Newton reached. */
+const char *semismooth_failure(Semismooth *in, int status);
 
 /* Contact nodes, vectors, the eq. 15 solver and the options (-indent_*), the initial state (the UMAT's
  * zero increment), the complementarity constant and the indenter-row shift. */

@@ -17,7 +17,6 @@ typedef struct {
   Semismooth   in;
   double       load, load_max, stage_start, force, pen, lmin;
   char         until_key[64];
-  char         why[640]; /* a failed step's reason, with its residual */
 } Indent;
 
 static const char *shape_name(const IndentScene *is) {
@@ -53,24 +52,6 @@ static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, c
   PetscFunctionReturn(0);
 }
 
-/* Why a step failed, with the residual Newton reached (relative to the load, as -indent_rtol). Stalled between rtol
-   and its square root, far below what any output needs, it is round-off or, on fixed steps (no error estimate there
-   to stop Newton earlier), the two-cycle of a few points switching branch (docs/contact.md, "The Newton loop"): the
-   message says so, and which option ends such a step. */
-static const char *failure(Indent *d, int status) {
-  const Semismooth *in = &d->in;
-  PetscReal         r  = in->history.n ? in->history.merit[in->history.n - 1] : -1;
-  if (r < 0) return semismooth_failure[status];
-  snprintf(d->why, sizeof d->why, "%s, at a residual of %.2g of the load against -indent_rtol %g%s", semismooth_failure[status], (double)r,
-           (double)in->rtol,
-           (status == STEP_STALLED || status == STEP_DIVERGED) && r < PetscSqrtReal(in->rtol)
-             ? ": below the tolerance's square root, far below what an output needs, where round-off or, on fixed steps, a few "
-               "points switching branch can hold Newton (docs/contact.md, \"The Newton loop\"); a larger -indent_rtol (e.g. 1e-6) "
-               "ends such a step"
-             : "");
-  return d->why;
-}
-
 static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   Indent      *d  = ctx;
   Semismooth  *in = &d->in;
@@ -86,7 +67,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   PetscInt its = 0;
   fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
   PetscCall(semismooth_step(in, rq->h, &status, &its));
-  o->converged = status == STEP_OK, o->its = (int)its, o->why = status == STEP_OK ? "" : failure(d, status), o->stalled = status == STEP_STALLED;
+  o->converged = status == STEP_OK, o->its = (int)its, o->why = status == STEP_OK ? "" : semismooth_failure(in, status), o->stalled = status == STEP_STALLED;
   if (!o->converged) PetscFunctionReturn(0);
   PetscReal tol = umat_control_tol(fe_problem_material(p), rq->umat), m;
   if (tol > 0) { /* the same state, now with the UMAT's PNEWDT */
