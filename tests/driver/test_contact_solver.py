@@ -166,7 +166,7 @@ def test_the_attempt_after_a_stall_runs_to_the_limit(tmp_path):
 
 def test_a_stall_below_the_square_root_of_rtol_says_so(tmp_path):
     """A step that fails for good names the residual Newton reached (relative to the load, as -indent_rtol), and where
-    that lies between rtol and its square root, says which option ends such a step (indent_stepper.c: failure). Here
+    that lies between rtol and its square root, says which option ends such a step (semismooth.c: semismooth_failure). Here
     fixed steps on the cone with -indent_rtol 1e-16, below round-off: the first step stalls at about 1e-15 and fails
     for good; the message's residual is the last iterate's (the Newton monitor's last merit, printed independently of
     the message) and lies between the tolerance and its square root, as the hint requires, and the option it names,
