@@ -2,7 +2,8 @@
 
 * flat punch over the whole top of a laterally confined block (rollers on the sides, bottom fixed): the
   strain is uniform uniaxial, eps_yy = -h/H, so P = E(1-nu)/((1+nu)(1-2nu)) h/H W t exactly (P1 too),
-  proportional to h; t = 0.5 checks that the thickness enters the plane-strain contact weights.
+  proportional to h; t = 0.5 checks that the thickness enters the plane-strain contact weights. The same block
+  under force control with a table load: the force-control predictor is then exact.
 * wedge (tip angle 136.51 deg, the paper's 2D section; linearised vertical gap) on a large block, two
   independent checks: (1) the 2D wedge on an elastic half-plane (Johnson, Contact Mechanics, 1985, ch. 5:
   p(x) = (E* tan(alpha)/pi) arccosh(a/|x|), hence P = E* a tan(alpha) per unit thickness, alpha = 90 deg -
@@ -56,6 +57,33 @@ stages:
     print(f"plane-strain flat punch: P = {h['load'][1:]}, exact {exact}")
     assert np.allclose(h["depth"][1:], [0.001, 0.002], rtol=1e-12, atol=0)
     assert np.max(np.abs(h["load"][1:] / exact - 1)) < 1e-9
+
+
+def test_force_control_predicts_a_linear_response_exactly(tmp_path):
+    """The flat punch under force control, the load a table that jumps to 8 at the start and then rises by 4, 2 and 1
+    in equal steps: the response is linear in the load once the punch is down, so the predictor's extrapolation by
+    the ratio of load increments (semismooth.c, predictor_ratio: here the smaller ratio, 1/3 and 1/2) is the solution
+    itself, and steps 2 and 3 converge with no Newton iteration. Scaled by the ratio of step lengths (1) instead, it
+    predicts the last step's load increment again, and each of those steps needs one iteration."""
+    W, H, t = 2.0, 1.0, 0.5
+    (tmp_path / "load.csv").write_text("t,P\n0,8\n1,12\n2,14\n3,15\n")
+    h = run(f"""scene: fe
+mesh: {{geometry: {ROOT}/meshes/rectangle.geo, parameters: {{X0: {-W / 2}, Lx: {W}, Ly: {H}, size: 0.2}},
+        kinematics: plane_strain, thickness: {t}}}
+material: {ELASTIC}
+boundary:
+  fixed: [{{group: y0, components: [x, y]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}}]
+indenter: {{shape: flat_punch, radius: 5, tip: [0, {H}], contact: y1}}
+stages:
+  - {{name: push, duration: 3, indenter: {{load: {{table: {{file: load.csv, time: t, value: P}}}}}}, steps: {{count: 3}}}}
+""", tmp_path / "punch")
+    target = np.array([12.0, 14.0, 15.0])
+    exact = target / (E * (1 - NU) / ((1 + NU) * (1 - 2 * NU)) / H * W * t)
+    print(f"flat punch under a table load: loads {h['load'][1:]}, depths {h['depth'][1:]} (exact {exact}), "
+          f"Newton iterations {h['newton_its'][1:]}")
+    assert np.allclose(h["load"][1:], target, rtol=1e-9, atol=0)
+    assert np.allclose(h["depth"][1:], exact, rtol=1e-9, atol=0)
+    assert h["newton_its"][1] > 0 and list(h["newton_its"][2:]) == [0, 0]
 
 
 def wedge_scene(k, h_tip, r_fine):
