@@ -55,6 +55,10 @@ BREAKS = [
          why="the normal gap's distance to the face off by 1 % of its height term"),
     # (measured and replaced: eq. 14 with a closed inequality, lambda - c g >= -eps, passed driver.contact: it changes
     # only nodes within eps of the switch, and the converged contact solution does not depend on the active-set rule)
+    dict(id="contact.predictor_larger_ratio", file="driver/src/contact/semismooth.c",
+         old="*r = PetscMin(*r, PetscMax(0, step / dP));", new="*r = PetscMax(*r, PetscMax(0, step / dP));",
+         test="driver.contact_2d", k="predicts_a_linear",
+         why="the force-control predictor takes the larger of the step-length and load-increment ratios"),
     dict(id="contact.rest_on_surface", file="driver/src/contact/semismooth.c",
          old="/* down onto the surface, or up out of it */\n    in->ur += all;",
          new="/* down onto the surface, or up out of it */\n    in->ur += 0.5 * all;",

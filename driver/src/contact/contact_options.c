@@ -9,7 +9,7 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
   o->rtol = 1e-10, o->max_it = 30, o->stall_window = 8, o->predictor = PETSC_TRUE, o->monitor = PETSC_FALSE, o->line_search = PETSC_TRUE;
   o->newton_estimate = PETSC_TRUE, o->check_tangent = PETSC_FALSE, o->solver = 2, o->tangent_part = 0;
   o->refactor_its = 20, o->rtol_tight = 1e-10, o->check_solve = PETSC_FALSE, o->fieldsplit_above = FIELDSPLIT_ABOVE;
-  o->pmg = PETSC_TRUE;
+  o->pmg = PETSC_TRUE, o->ksp_ew = PETSC_FALSE;
   options_petsc_prefix("indent_"); /* the contact solver's KSP (indent_solver.c) */
   PetscOptionsBegin(comm, NULL, "Indentation (semismooth Newton, Box 1; docs/contact.md)", NULL);
   PetscCall(options_real(PetscOptionsObject, "-indent_rtol", "residual tolerance relative to the load", o->rtol, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
@@ -56,6 +56,10 @@ PetscErrorCode indent_options(MPI_Comm comm, IndentOptions *o) {
                          "GMRES' relative tolerance while the active set changes or Newton iterates to a small residual (direct with a "
                          "kept factorisation, fieldsplit; -indent_ksp_rtol otherwise)", o->rtol_tight, 0, 1, OPTIONS_LO_OPEN | OPTIONS_HI_OPEN,
                          &o->rtol_tight, NULL));
+  PetscCall(options_bool(PetscOptionsObject, "-indent_ksp_ew",
+                         "on a settled active set, GMRES' tolerance by the inexact Newton forcing term of Eisenstat and Walker (as "
+                         "loose as Newton's progress allows, at most 0.1, never tighter than -indent_rtol needs; docs/contact.md) instead "
+                         "of -indent_ksp_rtol or -indent_ksp_rtol_tight", o->ksp_ew, &o->ksp_ew, NULL));
   PetscCall(options_bool(PetscOptionsObject, "-indent_check_solve",
                          "direct, kept factorisation: compare every solve with a fresh LU solve of the same system (prints the difference)",
                          o->check_solve, &o->check_solve, NULL));

@@ -19,6 +19,7 @@ typedef struct {
   PetscBool pmg;             /* fieldsplit, P2: the displacement block by p-multigrid to P1 (fe_pmg.h), not GAMG on P2 */
   PetscInt  refactor_its;    /* the cost of a factorisation or GAMG set-up in Krylov iterations; 0: at every iteration */
   PetscReal rtol_tight;      /* GMRES' tolerance while the active set changes (indent_solver.h) */
+  PetscBool ksp_ew;          /* GMRES' tolerance on a settled set by the inexact Newton forcing term (semismooth.c, forcing) */
   PetscBool check_solve;     /* direct, kept: compare every solve with a fresh LU solve of the same system */
   PetscInt  tangent_part;    /* -indent_check_tangent_part: 0 all, 1 u, 2 r, 3 lambda */
 } IndentOptions;

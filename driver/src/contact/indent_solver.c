@@ -349,7 +349,7 @@ static PetscErrorCode solve_split(IndentSolver *s, Contact *ct, PetscBool tight,
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, PetscReal eta, Vec du,
                                    PetscReal *dur, Vec dlam, PetscBool *ok) {
   double             t0 = wall();
   KSPConvergedReason reason;
@@ -368,7 +368,8 @@ PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscRe
   PetscCall(VecRestoreSubVector(s->F, s->is[1], &sub));
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY)); /* the nest takes note of its changed blocks */
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
-  PetscCall(KSPSetTolerances(s->ksp, tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  if (eta > 0) tight = PETSC_FALSE; /* a forcing term's solve counts with the loose ones (solve_split's base_its) */
+  PetscCall(KSPSetTolerances(s->ksp, eta > 0 ? eta : tight ? PetscMin(s->rtol, s->rtol_tight) : s->rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   if (!s->fieldsplit) PetscCall(solve_kept(s, ct->c, &reason));
   else PetscCall(solve_split(s, ct, tight, &reason));
   *ok = reason > 0 ? PETSC_TRUE : PETSC_FALSE;

@@ -76,8 +76,9 @@ PetscErrorCode indent_solver_destroy(IndentSolver *s);
 /* The next solve factors afresh (a new stage, a checkpoint). */
 static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }
 /* Solve J dx = -F for the current blocks; F is given by its parts (R_r on rank 0), dx returned likewise. tight:
- * solve to -indent_ksp_rtol_tight, not -indent_ksp_rtol (when it is the smaller). */
-PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, Vec du,
+ * solve to -indent_ksp_rtol_tight, not -indent_ksp_rtol (when it is the smaller); eta > 0: to eta instead of either
+ * (an inexact Newton forcing term, semismooth.c). */
+PetscErrorCode indent_solver_solve(IndentSolver *s, Contact *ct, Vec Ru, PetscReal Rr, Vec Rlam, PetscBool tight, PetscReal eta, Vec du,
                                    PetscReal *dur, Vec dlam, PetscBool *ok);
 
 /* The product of the current blocks with a direction (du, dur, dlam): (ju, jr, jlam) = J d (for the

@@ -186,22 +186,23 @@ static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
 }
 
 /* The predictor's scale of the last converged increment: the ratio of the step lengths (h / h_prev) or, under force
- * control, the ratio of this step's load increment to the last one's when that is the smaller (both loads from the
- * multipliers, eq. 19, so that a restart needs nothing its checkpoint lacks). The smaller of the two because a rising
- * indentation stiffens as its contact grows (depth about proportional to sqrt(P) for a pointed tip): where the steps
- * are steady the load ratio (e^{k h} of an exp load) overshoots, and after a load that jumps (exp's P0, a table) the
- * step ratio does, by several times. Measured on the fixed-step sector rungs (bench/contact_solver_bench.py, cases fix0.12 and fix0.0707, one rank):
- * 82 -> 77 Newton iterations at 5.9 k unknowns, 93 -> 89 at 24 k. Exact for a linear response under shrinking load
- * increments (test_contact_2d). A last load increment below 1e-8 of the force scale (a hold) leaves the step ratio;
- * never negative: a load that turns within a stage starts from the committed state. */
+ * control, the ratio of this step's load increment to the last one's when that is the smaller. This step's is exact
+ * (its target less the committed one); the last one's is the multipliers' (eq. 19), so that a restart needs nothing
+ * its checkpoint lacks. In a hold (this step's increment zero), and after a last increment below 1e-8 of the force
+ * scale, the step ratio. The
+ * smaller of the two because a rising indentation stiffens as its contact grows (depth about proportional to sqrt(P)
+ * for a pointed tip): where the steps are steady the load ratio (e^{k h} of an exp load) overshoots, and after a load
+ * that jumps (exp's P0, a table) the step ratio does, by several times. Measured on the kerogen sector's fixed steps
+ * (bench/contact_solver_bench.py's ladder with its hold in 10 s steps, one rank): 82 -> 77 Newton iterations at 5.9 k
+ * unknowns, 93 -> 89 at 24 k. Exact for a linear response under shrinking load increments (test_contact_2d). Never
+ * negative: a load that turns within a stage starts from the committed state. */
 static PetscErrorCode predictor_ratio(Semismooth *in, PetscReal h, PetscReal *r) {
-  PetscReal P0, dP, unused[2];
+  PetscReal dP, unused[2], step = in->target - in->committed;
   PetscFunctionBeginUser;
   *r = h / in->dt_prev;
-  if (in->depth_control) PetscFunctionReturn(0);
-  PetscCall(contact_summary(&in->ct, in->lam0, &P0, &unused[0], &unused[1]));
+  if (in->depth_control || step == 0) PetscFunctionReturn(0);
   PetscCall(contact_summary(&in->ct, in->ratelam, &dP, &unused[0], &unused[1]));
-  if (PetscAbsReal(dP) > 1e-8 * in->fref) *r = PetscMin(*r, PetscMax(0, (in->target - P0) / dP));
+  if (PetscAbsReal(dP) > 1e-8 * in->fref) *r = PetscMin(*r, PetscMax(0, step / dP));
   PetscFunctionReturn(0);
 }
 
@@ -280,18 +281,47 @@ static PetscErrorCode converged(Semismooth *in, PetscInt k, PetscInt changes, Pe
   PetscFunctionReturn(0);
 }
 
+/* The inexact Newton forcing term (-indent_ksp_ew), GMRES' relative tolerance at this iterate of a settled set: choice 2
+ * of Eisenstat & Walker (SIAM J. Sci. Comput. 17, 1996, 16-32), eta = gamma (m_k / m_{k-1})^2 with gamma = 0.9, with
+ * Kelley's safeguards (Iterative Methods for Linear and Nonlinear Equations, SIAM 1995, §6.3): not below gamma
+ * eta_{k-1}^2 while that exceeds 0.1 (no sudden tightening), at most eta_max = 0.1, and not below 0.5 rtol / m_k (a
+ * direction more exact than -indent_rtol needs is wasted). m is the merit (eq. 15's residual relative to the load),
+ * the ratio that of the last two iterates whether or not the set changed between them. Solved tight instead
+ * (-indent_ksp_rtol_tight): a step's first iterate, which has no ratio, so that a response linear within the step
+ * still converges in one iteration (with eta_max there, an elastic cone's 24 Newton iterations became 51); and after a
+ * damped step (the line search's alpha < 1), whose small fall of the merit says nothing of the direction's accuracy:
+ * read as slow progress it loosened the next solve to eta_max, which again fell by half (the Cam-Clay IX cone of
+ * test_contact_solver: 20 to 27 Newton iterations per step where tight solves took 3 to 5). Never below
+ * -indent_ksp_rtol_tight. */
+static PetscReal forcing(Semismooth *in, PetscReal merit) {
+  const PetscReal gamma = 0.9, eta_max = 0.1;
+  const PetscInt  n     = in->history.n;
+  PetscReal       eta   = 0;
+  if (n >= 2 && in->history.merit[n - 2] > 0 && in->alpha == 1) {
+    PetscReal safe = gamma * in->eta * in->eta;
+    eta            = gamma * PetscSqr(merit / in->history.merit[n - 2]);
+    if (safe > 0.1) eta = PetscMax(eta, safe);
+    eta = PetscMin(eta_max, PetscMax(eta, 0.5 * in->rtol / merit));
+  }
+  return PetscMax(eta, in->sol.rtol_tight);
+}
+
 /* Solve: eq. 15 for the current set, with a stiffness shift on the indenter row when no node is in contact (force
- * control: the row would be empty); the direction into (du, dur, dlam). The linear solve may be loose only while
- * the error estimate stops Newton and the set is settled (indent_solver.h). */
+ * control: the row would be empty); the direction into (du, dur, dlam). The linear solve may be loose only on a settled
+ * set: while the error estimate stops Newton (indent_solver.h), or by the forcing term (-indent_ksp_ew); while the set
+ * changes it is tight, since an inexact direction could flip a node onto another branch of a non-unique contact
+ * solution (indent_solver.h). */
 static PetscErrorCode solve(Semismooth *in, PetscInt changes, PetscBool shift, PetscReal *merit, PetscReal *dur, PetscBool *ok) {
   PetscBool tight = changes > 0 || !in->newton_estimate || in->etol <= 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscReal eta   = in->ksp_ew && changes == 0 ? forcing(in, *merit) : 0;
   PetscFunctionBeginUser;
+  if (in->ksp_ew) in->eta = eta > 0 ? eta : in->sol.rtol_tight; /* the last direction's tolerance, for the safeguard */
   PetscCall(PetscLogEventBegin(driver_event(EV_CONTACT), 0, 0, 0, 0));
   PetscCall(contact_jacobian(&in->ct, in->depth_control, shift));
   PetscCall(PetscLogEventEnd(driver_event(EV_CONTACT), 0, 0, 0, 0));
   PetscCall(contact_constraint_residual(&in->ct, in->lam, in->Rlam));
   if (in->fd_check && !shift) PetscCall(check_tangent(in, merit)); /* the shift is in the tangent only */
-  PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, tight, in->du, dur, in->dlam, ok));
+  PetscCall(indent_solver_solve(&in->sol, &in->ct, in->Ru, in->Rr, in->Rlam, tight, eta, in->du, dur, in->dlam, ok));
   PetscFunctionReturn(0);
 }
 
@@ -313,7 +343,7 @@ static PetscErrorCode line_search(Semismooth *in, PetscReal dur, PetscBool searc
   }
   *merit = trial;
   PetscCall(VecNorm(in->du, NORM_INFINITY, &in->du_norm));
-  in->du_norm *= alpha, in->dur_last = alpha * dur;
+  in->du_norm *= alpha, in->dur_last = alpha * dur, in->alpha = alpha;
   PetscFunctionReturn(0);
 }
 
@@ -325,7 +355,7 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
   PetscReal merit;
   PetscInt  k, changes, damp = 0;
   PetscFunctionBeginUser;
-  *status = STEP_DIVERGED, in->changes = 0, in->history.n = 0;
+  *status = STEP_DIVERGED, in->changes = 0, in->history.n = 0, in->eta = 0;
   PetscCall(predict(in, h));
   in->stall_retry = in->stall_retry == 1 ? 2 : 0; /* the attempt after a stalled one: the stall test off */
   PetscCall(semismooth_evaluate(in, &merit));
@@ -459,7 +489,7 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
   IndentOptions o; /* -indent_*: contact_options.c */
   PetscCall(indent_options(comm, &o));
   in->rtol = o.rtol, in->max_it = o.max_it, in->predictor = o.predictor, in->monitor = o.monitor, in->line_search = o.line_search;
-  in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent, in->tangent_part = o.tangent_part;
+  in->newton_estimate = o.newton_estimate, in->fd_check = o.check_tangent, in->tangent_part = o.tangent_part, in->ksp_ew = o.ksp_ew;
   in->stall_window = o.stall_window, in->stall_retry = 0;
   PetscCall(PetscMalloc2(in->max_it + 1, &in->history.sig, in->max_it + 1, &in->history.merit));
   PetscCall(fe_jacobian_coo_setup(p, in->K));
@@ -518,8 +548,8 @@ void semismooth_set_stage(Semismooth *in, PetscBool depth_control, PetscBool new
 
 /* The force scale of the residual test: the largest load so far or this target (force control), or the depth row's
    force k_n |target| (depth control; contact.h). */
-void semismooth_set_target(Semismooth *in, PetscReal target, PetscReal load_max, PetscReal etol) {
-  in->target = target, in->etol = etol;
+void semismooth_set_target(Semismooth *in, PetscReal target, PetscReal committed, PetscReal load_max, PetscReal etol) {
+  in->target = target, in->committed = committed, in->etol = etol;
   in->fref   = PetscMax(PetscMax(load_max, in->depth_control ? in->ct.kn * PetscAbsReal(target) : target), 1e-300);
 }
 

@@ -32,7 +32,8 @@ typedef struct {
   Vec          Uk, lamk;                         /* the iterate before a line search */
   Vec          U0, lam0, rateU, ratelam;         /* committed; last converged increment */
   PetscReal    ur, ur0, rateur, dt_prev;
-  PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate;
+  PetscBool    have_rate, predictor, monitor, line_search, fd_check, newton_estimate, ksp_ew;
+  PetscReal    eta;                              /* the last forcing term (-indent_ksp_ew; 0: none yet this step) */
   PetscReal    rtol, fref;
   PetscInt     max_it, tangent_part;              /* tangent_part: -indent_check_tangent_part (contact_options.h) */
   PetscInt     stall_window;                      /* -indent_stall_window (stalled in semismooth.c); 0: off */
@@ -40,10 +41,11 @@ typedef struct {
   /* the step being solved */
   PetscBool    depth_control;
   PetscReal    target;                           /* load or depth at the step's end */
+  PetscReal    committed;                        /* the load at the step's start (force control: the last target) */
   PetscReal    etol;                             /* > 0: also stop on the estimated remaining error (see
                                                     semismooth_step); 0: on the residual only */
   PetscReal    Rr, ncp, ru;                      /* residual parts at the last evaluation */
-  PetscReal    du_norm, dur_last;                /* the last correction: |alpha du|_inf, alpha dur */
+  PetscReal    du_norm, dur_last, alpha;         /* the last correction: |alpha du|_inf, alpha dur, and its alpha */
   PetscInt     nactive, changes;                 /* active nodes; changes over the step's iterations */
   PetscInt     its_total, cycles;
   ActiveSetHistory history;
@@ -68,9 +70,9 @@ PetscErrorCode semismooth_step(Semismooth *in, PetscReal h, int *status, PetscIn
 PetscErrorCode semismooth_rest_on_surface(Semismooth *in);
 /* A stage's control (force or depth); new_stage: the last increment no longer predicts the next step. */
 void semismooth_set_stage(Semismooth *in, PetscBool depth_control, PetscBool new_stage);
-/* The next step's target (load or depth at its end), the largest load so far (the residual test's force scale) and
-   Newton's error tolerance (etol, see semismooth_step). */
-void semismooth_set_target(Semismooth *in, PetscReal target, PetscReal load_max, PetscReal etol);
+/* The next step's target (load or depth at its end), the committed load (the last step's target under force control),
+   the largest load so far (the residual test's force scale) and Newton's error tolerance (etol, see semismooth_step). */
+void semismooth_set_target(Semismooth *in, PetscReal target, PetscReal committed, PetscReal load_max, PetscReal etol);
 /* The state a restart needs that every rank holds alike (the depth, its last increment, the counters, the number
    of active nodes): written or read (write 0) in one order. Returns nonzero when f failed. */
 int semismooth_state_io(Semismooth *in, BinFile *f, int write);

@@ -62,7 +62,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   PetscCall(fe_common_set_loads(&d->c, rq));
   double target = indent_stage_value(st, d->stage_start, rq->lambda, ts);
   if (st->until_load > 0 && rq->lambda >= 1) target = st->until_load; /* the event time is the stage's end */
-  semismooth_set_target(in, target, d->load_max, rq->newton_etol);
+  semismooth_set_target(in, target, d->load, d->load_max, rq->newton_etol);
   int      status;
   PetscInt its = 0;
   fe_problem_set_umat_control(p, umat_control(UMAT_CONTROL_OFF, 0)); /* Newton iterates without it */
