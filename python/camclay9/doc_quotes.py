@@ -63,6 +63,7 @@ class A(dict):
 S3, S2 = ("sector0.12", "sector0.0707", "sector0.05", "sector0.0425", "sector0.034"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
 BIG, MIL = "sector0.018", "sector0.019"  # its cases at 1.21 M and 1.03 M unknowns (field split alone)
 G, LU = "fieldsplit, GAMG on P2", "fieldsplit, LU on u"  # its field split with GAMG on the P2 block; with the block solved exactly
+FT = "fieldsplit, forcing term"  # ... with GMRES' tolerance by the inexact Newton forcing term (-indent_ksp_ew)
 SP, R2 = "fieldsplit, simple partition", "ranks0.0425"  # its field split on the simple partition; its 2-rank partition case
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
@@ -235,7 +236,7 @@ def namespace(store_dir=None):
         return sc_rows[(scene, variant)][q]
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, zip=zip, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU,
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU, FT=FT,
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)
@@ -410,6 +411,9 @@ QUOTES = [
     # the fixed-step ladder's whole runs at Newton 1e-6 (bench cases fix...)
     (CT, "  Under the whole contact the field split took «f(kpn('fix0.12'), 0)», «f(kpn('fix0.0707'), 0)», «f(kpn('fix0.0425'), 0)» and «f(kpn('fix0.034'), 0)» Krylov iterations per Newton\n"
          "  iteration at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, in «f(kbu('fix0.034', q='mem_all'), 1)» kB per unknown over both ranks at «ku('fix0.034')» k"),
+    # the inexact Newton forcing term against the tight solves on the ladder (bench solver 'fieldsplit, forcing term')
+    (CT, "ladder's fixed steps the forcing term took «f(csr('fix0.12', 'cpu', FT, 'fieldsplit'), 2)»×, «f(csr('fix0.0707', 'cpu', FT, 'fieldsplit'), 2)»×, «f(csr('fix0.0425', 'cpu', FT, 'fieldsplit'), 2)»× and «f(csr('fix0.034', 'cpu', FT, 'fieldsplit'), 2)»× the\n  tight solves' CPU at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, with «f(kpn('fix0.0425', FT), 0)» Krylov iterations per Newton iteration instead of\n"
+         "  «f(kpn('fix0.0425'), 0)» and «f(cs('fix0.0425', FT, 'newton'), 0)» Newton iterations instead of «f(cs('fix0.0425', 'fieldsplit', 'newton'), 0)» at «ku('fix0.0425')» k."),
     # BN's sector on the same fixed steps (bench cases bnfix...): the residual depth on the uniform rungs
     (CT, "  BN's sector on the same fixed steps (bench cases bnfix…: the same meshes at 25 times the size) took «f(kpn('bnfix3'), 0)», «f(kpn('bnfix1.768'), 0)»,\n"
          "  «f(kpn('bnfix1.062'), 0)» and «f(kpn('bnfix0.85'), 0)» Krylov iterations per Newton iteration at «ku('bnfix3')» k, «ku('bnfix1.768')» k, «ku('bnfix1.062')» k and «ku('bnfix0.85')» k unknowns. Its residual\n"
