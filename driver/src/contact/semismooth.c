@@ -189,13 +189,12 @@ static PetscErrorCode approach(Semismooth *in, PetscReal *merit) {
  * control, the ratio of this step's load increment to the last one's when that is the smaller. This step's is exact
  * (its target less the committed one); the last one's is the multipliers' (eq. 19), so that a restart needs nothing
  * its checkpoint lacks. In a hold (this step's increment zero), and after a last increment below 1e-8 of the force
- * scale, the step ratio. The
- * smaller of the two because a rising indentation stiffens as its contact grows (depth about proportional to sqrt(P)
- * for a pointed tip): where the steps are steady the load ratio (e^{k h} of an exp load) overshoots, and after a load
- * that jumps (exp's P0, a table) the step ratio does, by several times. Measured on the kerogen sector's fixed steps
- * (bench/contact_solver_bench.py's ladder with its hold in 10 s steps, one rank): 82 -> 77 Newton iterations at 5.9 k
- * unknowns, 93 -> 89 at 24 k. Exact for a linear response under shrinking load increments (test_contact_2d). Never
- * negative: a load that turns within a stage starts from the committed state. */
+ * scale, the step ratio. The smaller of the two because a rising indentation stiffens as its contact grows (depth
+ * about proportional to sqrt(P) for a pointed tip): where the steps are steady the load ratio (e^{k h} of an exp
+ * load) overshoots, and after a load that jumps (exp's P0, a table) the step ratio does, by several times. Measured
+ * on the kerogen sector's fixed steps (bench/contact_solver_bench.py's ladder with its hold in 10 s steps, one rank):
+ * 82 -> 77 Newton iterations at 5.9 k unknowns, 93 -> 89 at 24 k. Exact for a linear response under shrinking load
+ * increments (test_contact_2d). Never negative: a load that turns within a stage starts from the committed state. */
 static PetscErrorCode predictor_ratio(Semismooth *in, PetscReal h, PetscReal *r) {
   PetscReal dP, unused[2], step = in->target - in->committed;
   PetscFunctionBeginUser;
