@@ -41,19 +41,29 @@ def msh_nodes(path):
     return np.array(xyz)
 
 
-def test_flat_punch_on_a_confined_block(tmp_path):
-    W, H, t = 2.0, 1.0, 0.5
-    h = run(f"""scene: fe
-mesh: {{geometry: meshes/rectangle.geo, parameters: {{X0: {-W / 2}, Lx: {W}, Ly: {H}, size: 0.2}},
-        kinematics: plane_strain, thickness: {t}}}
+# the laterally confined block under a flat punch over its whole top: uniform uniaxial strain eps_yy = -h/H, so
+# P = M h/H W t, M = E(1-nu)/((1+nu)(1-2nu)) the constrained modulus, exactly (P1 too)
+BW, BH, BT = 2.0, 1.0, 0.5
+BLOCK_STIFFNESS = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU)) / BH * BW * BT
+
+
+def confined_block(stage):
+    """The confined block's scene with one stage (its YAML flow mapping)."""
+    return f"""scene: fe
+mesh: {{geometry: {ROOT}/meshes/rectangle.geo, parameters: {{X0: {-BW / 2}, Lx: {BW}, Ly: {BH}, size: 0.2}},
+        kinematics: plane_strain, thickness: {BT}}}
 material: {ELASTIC}
 boundary:
   fixed: [{{group: y0, components: [x, y]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}}]
-indenter: {{shape: flat_punch, radius: 5, tip: [0, {H}], contact: y1}}
+indenter: {{shape: flat_punch, radius: 5, tip: [0, {BH}], contact: y1}}
 stages:
-  - {{name: push, duration: 1, indenter: {{depth: 0.002}}, steps: {{count: 2}}}}
-""", tmp_path / "punch")
-    exact = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU)) * h["depth"][1:] / H * W * t
+  - {stage}
+"""
+
+
+def test_flat_punch_on_a_confined_block(tmp_path):
+    h = run(confined_block("{name: push, duration: 1, indenter: {depth: 0.002}, steps: {count: 2}}"), tmp_path / "punch")
+    exact = BLOCK_STIFFNESS * h["depth"][1:]
     print(f"plane-strain flat punch: P = {h['load'][1:]}, exact {exact}")
     assert np.allclose(h["depth"][1:], [0.001, 0.002], rtol=1e-12, atol=0)
     assert np.max(np.abs(h["load"][1:] / exact - 1)) < 1e-9
@@ -65,20 +75,11 @@ def test_force_control_predicts_a_linear_response_exactly(tmp_path):
     the ratio of load increments (semismooth.c, predictor_ratio: here the smaller ratio, 1/3 and 1/2) is the solution
     itself, and steps 2 and 3 converge with no Newton iteration. Scaled by the ratio of step lengths (1) instead, it
     predicts the last step's load increment again, and each of those steps needs one iteration."""
-    W, H, t = 2.0, 1.0, 0.5
     (tmp_path / "load.csv").write_text("t,P\n0,8\n1,12\n2,14\n3,15\n")
-    h = run(f"""scene: fe
-mesh: {{geometry: {ROOT}/meshes/rectangle.geo, parameters: {{X0: {-W / 2}, Lx: {W}, Ly: {H}, size: 0.2}},
-        kinematics: plane_strain, thickness: {t}}}
-material: {ELASTIC}
-boundary:
-  fixed: [{{group: y0, components: [x, y]}}, {{group: x0, components: [x]}}, {{group: x1, components: [x]}}]
-indenter: {{shape: flat_punch, radius: 5, tip: [0, {H}], contact: y1}}
-stages:
-  - {{name: push, duration: 3, indenter: {{load: {{table: {{file: load.csv, time: t, value: P}}}}}}, steps: {{count: 3}}}}
-""", tmp_path / "punch")
+    h = run(confined_block("{name: push, duration: 3, indenter: {load: {table: {file: load.csv, time: t, value: P}}}, "
+                           "steps: {count: 3}}"), tmp_path / "punch")
     target = np.array([12.0, 14.0, 15.0])
-    exact = target / (E * (1 - NU) / ((1 + NU) * (1 - 2 * NU)) / H * W * t)
+    exact = target / BLOCK_STIFFNESS
     print(f"flat punch under a table load: loads {h['load'][1:]}, depths {h['depth'][1:]} (exact {exact}), "
           f"Newton iterations {h['newton_its'][1:]}")
     assert np.allclose(h["load"][1:], target, rtol=1e-9, atol=0)
