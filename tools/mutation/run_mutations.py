@@ -11,7 +11,8 @@ are rewritten only when their content differs, so their timestamps stay and make
 is "caught" when its test fails (a non-zero exit of ctest, a timeout included), "missed" when it passes, and
 "build error" when the break does not compile (a defect of the list, not a catch). --baseline first runs every
 named test (and its pytest filter) on the unbroken copy: a test that fails there catches nothing. Results are
-kept in DIR/results.json, so --only reruns some breaks and the table keeps the others' last results.
+kept in DIR/results.json, so --only reruns some breaks and the table keeps the others' last results (without
+DIR/results.json, as on a fresh machine, the others' results are read from the README's table).
 
 A benchmark, not part of the CI suite (not registered in CTest); about 40 min on 2 busy cores.
 """
@@ -125,6 +126,24 @@ def write_readme(results, when):
     path.write_text(f"{head}{BEGIN}\n{when}\n\n{table(results)}{END}{tail}")
 
 
+def readme_results():
+    """The last results as the README's table shows them ({id: {line, result, seconds}}), so that --only on a machine
+    without DIR/results.json (a fresh one) keeps the other breaks' rows instead of marking them 'not run'."""
+    text = (ROOT / "tests" / "README.md").read_text()
+    if BEGIN not in text or END not in text:
+        return {}
+    results = {}
+    for row in text.split(BEGIN, 1)[1].split(END, 1)[0].splitlines():
+        cells = [c.strip() for c in row.strip().strip("|").split("|")]
+        if len(cells) != 6 or not cells[0].isdigit() or ":" not in cells[1] or ":" not in cells[2]:
+            continue
+        line, result = cells[2].rsplit(":", 1)[1], cells[4]
+        if result == "not run" or not line.isdigit():
+            continue
+        results[cells[1].split(":", 1)[0]] = {"line": int(line), "result": result, "seconds": float(cells[5] or 0)}
+    return results
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scratch", default="/tmp/camclay9-mutation")
@@ -136,7 +155,7 @@ def main():
     scratch = Path(a.scratch)
     scratch.mkdir(parents=True, exist_ok=True)
     store = scratch / "results.json"
-    results = json.loads(store.read_text()) if store.is_file() else {}
+    results = json.loads(store.read_text()) if store.is_file() else readme_results()
     todo = [b for b in BREAKS if not a.only or b["id"] in a.only.split(",")]
     sync_tree(scratch)
     r = build(scratch, 3600)
