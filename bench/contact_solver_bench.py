@@ -51,7 +51,7 @@ printed).
 listed in the store's provenance.
 
 Writes its numbers into the results store (docs/results/contact_solver.json), which docs/contact.md's reading quotes
-(camclay9.doc_quotes), and the section "## Contact solve: direct against field split" of docs/performance.md from
+(camclay9.contact_quotes), and the section "## Contact solve: direct against field split" of docs/performance.md from
 that store (camclay9.contact_solver_study; tools/doc_numbers.py checks the section against the store).
 """
 import argparse
