@@ -80,11 +80,9 @@ def run_test(scratch, test, k, timeout):
 def apply(scratch, b):
     """The break's file with its one edit; returns (original text, 1-based line) or raises if the edit is stale."""
     path = scratch / b["file"]
-    text = path.read_text()
-    n = text.count(b["old"])
-    if n != 1:
-        raise ValueError(f"{b['id']}: the text to break occurs {n} times in {b['file']}")
-    line = text[: text.index(b["old"])].count("\n") + 1
+    text, line = path.read_text(), break_line(b, scratch)
+    if line is None:
+        raise ValueError(f"{b['id']}: the text to break does not occur exactly once in {b['file']}")
     path.write_text(text.replace(b["old"], b["new"]))
     return text, line
 
@@ -105,14 +103,24 @@ def one(scratch, b, timeout):
         (scratch / b["file"]).write_text(original)
 
 
+def break_line(b, root=ROOT):
+    """The 1-based line of the break's text in root's file as it is now, or None when the text is not there exactly
+    once (the code moved on and the break is stale: its last result says nothing about the code)."""
+    text = (root / b["file"]).read_text()
+    return text[: text.index(b["old"])].count("\n") + 1 if text.count(b["old"]) == 1 else None
+
+
 def table(results):
+    """The README's rows: each break's file:line from the tree as it is now, its last result (a stale break's
+    result replaced by 'stale')."""
     rows = ["| # | break | file:line | test (pytest -k) | result | s |", "|---|---|---|---|---|---|"]
+    caught = 0
     for i, b in enumerate(BREAKS, 1):
-        r = results.get(b["id"], {})
+        r, line = results.get(b["id"], {}), break_line(b)
+        result = r.get("result", "not run") if line else "stale: its text is not in the file"
+        caught += result.startswith("caught")
         test = f"`{b['test']}`" + (f" ({b['k']})" if b.get("k") else "")
-        rows.append(f"| {i} | {b['id']}: {b['why']} | {b['file']}:{r.get('line', '?')} | {test} | {r.get('result', 'not run')} | "
-                    f"{r.get('seconds', '')} |")
-    caught = sum(1 for b in BREAKS if results.get(b["id"], {}).get("result", "").startswith("caught"))
+        rows.append(f"| {i} | {b['id']}: {b['why']} | {b['file']}:{line or '?'} | {test} | {result} | {r.get('seconds', '')} |")
     return "\n".join(rows) + f"\n\n{caught} of {len(BREAKS)} breaks caught.\n"
 
 
@@ -127,20 +135,18 @@ def write_readme(results, when):
 
 
 def readme_results():
-    """The last results as the README's table shows them ({id: {line, result, seconds}}), so that --only on a machine
-    without DIR/results.json (a fresh one) keeps the other breaks' rows instead of marking them 'not run'."""
+    """The last results as the README's table shows them ({id: {result, seconds}}), so that --only on a machine
+    without DIR/results.json (a fresh one) keeps the other breaks' rows instead of marking them 'not run' (their
+    lines are the tree's, table())."""
     text = (ROOT / "tests" / "README.md").read_text()
     if BEGIN not in text or END not in text:
         return {}
     results = {}
     for row in text.split(BEGIN, 1)[1].split(END, 1)[0].splitlines():
         cells = [c.strip() for c in row.strip().strip("|").split("|")]
-        if len(cells) != 6 or not cells[0].isdigit() or ":" not in cells[1] or ":" not in cells[2]:
+        if len(cells) != 6 or not cells[0].isdigit() or ":" not in cells[1] or cells[4] == "not run" or cells[4].startswith("stale"):
             continue
-        line, result = cells[2].rsplit(":", 1)[1], cells[4]
-        if result == "not run" or not line.isdigit():
-            continue
-        results[cells[1].split(":", 1)[0]] = {"line": int(line), "result": result, "seconds": float(cells[5] or 0)}
+        results[cells[1].split(":", 1)[0]] = {"result": cells[4], "seconds": float(cells[5] or 0)}
     return results
 
 
