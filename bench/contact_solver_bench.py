@@ -125,18 +125,25 @@ CASES.update({c: ("microindent_BN_sector" if c.startswith("bn") else "nanoindent
                   + (("fieldsplit, forcing term",) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034") else ()))
               for c, (t, f) in FIX.items()})
 # fixed steps, equal on every mesh: the load's 20 s (the depth of 200 nm near 205 s; BN's 13.3 s, 5 um near 140 s), the
-# hold's 2.5 s, the unload's 5 s. The hold's steps are a quarter of the 10 s they were: at 1.03 M unknowns the second
+# hold's and the unload's 2.5 s (the shipped scenes' unload takes at most 1 s). The unload's steps are half the 5 s they
+# were: at 1.03 M unknowns the first 5 s unload step stalled (14 Newton iterations, the merit settled near 1e-5 of the
+# load) and was cut back, and the unload's solves took 113 Krylov iterations each against the hold's 75; at 101 k and
+# 190 k every rung's last 5 s step, which releases the whole contact, stalled in a two-cycle of the soft frame and was
+# cut back. At 101 k the 2.5 s steps cost more than the 5 s ones (10 steps, 54 solves: the release still stalls once and
+# is cut back; against 6 steps, 50 solves), but at 1.03 M the 5 s steps cost twice as many solves as a step that
+# converges. The hold's steps are a quarter of the 10 s they were: at 1.03 M unknowns the second
 # 10 s step did not converge (its Newton settled near 1e-5 of the load, its solves needed up to 500 Krylov iterations),
 # while from the same state 2.5 s steps converged in 2 Newton iterations of about 75 Krylov iterations each (restarts
 # from that run's checkpoint of its first hold step, by hand, with the Newton monitor). A 10 s step
 # outruns the soft frame's softening time at points near the yield surface, whose backward-Euler solution then jumps
 # (theory.md §3.4): Newton cannot settle those points, and the finer the mesh the more of them there are
-FIXED = [{"count": 30}, {"count": 24}, {"count": 4}]
+FIXED = [{"count": 30}, {"count": 24}, {"count": 8}]
 # ... to a residual of 1e-6 of the load (the driver's default 1e-10): fixed steps have no error measure to stop Newton
 # by its estimated error, and from about 1e5 unknowns on, the hold's 10 s steps ended in a two-cycle of a few points of the
 # soft frame switching branch (theory.md §3.4) far below any output's tolerance, which the stall test cuts back again and
 # again (docs/contact.md, "The Newton loop")
-FIX_OPTIONS = ["-indent_rtol", "1e-6"]
+# ... and every solve's Krylov iterations in the log, so that the rows give them by stage (stage_split)
+FIX_OPTIONS = ["-indent_rtol", "1e-6", "-indent_ksp_converged_reason"]
 # 2 ranks, the first 4 steps: the graph partitioner against the simple one (docs/parallel.md, "The partition")
 CASES["ranks0.0425"] = ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 4,
                         ("fieldsplit", "fieldsplit, simple partition"))
@@ -188,21 +195,52 @@ RESUMABLE = ["-checkpoint_every", "1", "-indent_ksp_converged_reason", "-indent_
 KSP_ITS = re.compile(r"^Linear indent_ solve (?:converged|did not converge) due to \S+ iterations (\d+)", re.M)
 
 
+STEP_LINE = re.compile(r"^step +\d+ +(\S+) ", re.M)
+
+
+def stage_split(text):
+    """{stage: {"steps", "solves", "krylov"}} of a log's whole steps: each solve's Krylov iterations
+    (-indent_ksp_converged_reason) counted in the stage of the progress line that ends its step, rejected attempts
+    (cut back, stalled) included; what follows the last progress line (a step stopped by --budget) is not counted."""
+    out, start = {}, 0
+    for m in STEP_LINE.finditer(text):
+        its = [int(k) for k in KSP_ITS.findall(text, start, m.start())]
+        d = out.setdefault(m[1], {"steps": 0, "solves": 0, "krylov": 0})
+        d["steps"], d["solves"], d["krylov"] = d["steps"] + 1, d["solves"] + len(its), d["krylov"] + sum(its)
+        start = m.end()
+    return out
+
+
 def stopped_part(text, cpu, mem):
     """An invocation stopped by --budget: its CPU and peak memory, and the Krylov iterations of its whole steps (those
     before its last progress line, each checkpointed; the step it was stopped in is solved again after the restart,
-    so its iterations are not counted, though its CPU is)."""
+    so its iterations are not counted, though its CPU is), also by stage."""
     last = [m.start() for m in re.finditer(r"^step +\d+ ", text, re.M)]
     done = text[:last[-1]] if last else ""
-    return {"cpu": cpu, "mem": mem, "krylov": sum(int(k) for k in KSP_ITS.findall(done)), "steps": len(last)}
+    return {"cpu": cpu, "mem": mem, "krylov": sum(int(k) for k in KSP_ITS.findall(done)), "steps": len(last),
+            "stages": stage_split(text)}
+
+
+def summed_stages(parts):
+    """The parts' stage splits summed (a part without one, from before the split was kept: none at all)."""
+    if not all("stages" in x for x in parts):
+        return {}
+    out = {}
+    for x in parts:
+        for name, d in x["stages"].items():
+            o = out.setdefault(name, {k: 0 for k in d})
+            for k, v in d.items():
+                o[k] += v
+    return {"stages": out} if out else {}
 
 
 def combined(parts):
     """A run's row from its parts (the last one finished, holding the driver's counts): CPU and Krylov iterations
-    summed, memory the largest part's; the steps and Newton iterations are the driver's, which a restart carries on."""
+    summed, memory the largest part's, the stage split summed; the steps and Newton iterations are the driver's, which
+    a restart carries on."""
     n = len(parts)
     return dict(parts[-1]["row"], cpu=sum(x["cpu"] for x in parts), mem=max(x["mem"] for x in parts),
-                krylov=sum(x["krylov"] for x in parts), **({"parts": n} if n > 1 else {}))
+                krylov=sum(x["krylov"] for x in parts), **summed_stages(parts), **({"parts": n} if n > 1 else {}))
 
 
 def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=None, keep=False):
@@ -238,7 +276,8 @@ def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=Non
     if keep and sum(int(k) for k in KSP_ITS.findall(text)) != s["krylov_iterations"]:   # how a stopped part is counted
         raise SystemExit(f"{log}: its solves' Krylov iterations (-indent_ksp_converged_reason) do not add up to its summary's "
                          f"{s['krylov_iterations']}: the count of a stopped part would be wrong")
-    parts.append({"cpu": cpu, "mem": mem, "krylov": s["krylov_iterations"], "date": time.strftime("%Y-%m-%d %H:%M"),
+    split = {"stages": stage_split(text)} if KSP_ITS.search(text) else {}
+    parts.append({"cpu": cpu, "mem": mem, "krylov": s["krylov_iterations"], **split, "date": time.strftime("%Y-%m-%d %H:%M"),
                   "row": {"unknowns": m["unknowns"], "steps": s["steps"], "newton": s["newton_iterations"], "ranks": ranks,
                           **({"partition": {k: part[k] for k in ("type", "vertices", "copies")}} if part else {}),
                           **({"mem_all": memory["all_mb"]} if memory and ranks > 1 else {}),
@@ -306,7 +345,7 @@ def main(argv=None):
         return
     stamp = time.strftime("%Y-%m-%d")
     rows = [{k: r[k] for k in ("case", "solver", "unknowns", "steps", "newton", "krylov", "cpu", "mem", "repeats", "ranks", "outputs",
-                               "partition", "mem_all", "events", "parts")
+                               "partition", "mem_all", "events", "parts", "stages")
              if k in r} for r in rows]
     command = (f"bench/contact_solver_bench.py --repeats {a.repeats} --cases {a.cases}" + (f" --solvers '{a.solvers}'" if a.solvers else "")
                + (f" --keep DIR --budget {a.budget:g}" if a.budget else " --keep DIR" if a.keep else ""))

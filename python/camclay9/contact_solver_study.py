@@ -58,7 +58,22 @@ def section(store, root=None):
         mem = f"{r['mem']:.0f}" + (f" ({r['mem_all']:.0f} in all)" if "mem_all" in r else "")
         lines.append(f"| {r['case']}{ranks} | {r['unknowns']} | {r['steps']} | {r['solver']} | {r['newton']} | {r['krylov']} | "
                      f"{r['cpu']:.2f} | {cpu_ratio} | {mem} | {mem_ratio} |")
-    return "\n".join(lines + partitions(rows) + breakdown(rows) + outputs_table(rows)) + "\n"
+    return "\n".join(lines + partitions(rows) + breakdown(rows) + outputs_table(rows) + stage_table(rows)) + "\n"
+
+
+def stage_table(rows):
+    """The rows with a stage split (the bench's fixed-step cases, from the solves' Krylov iterations in their logs):
+    each stage's Krylov iterations per solve and its solves, the solves of rejected attempts included."""
+    rows = sorted((r for r in rows if r.get("stages")), key=lambda r: (re.match(r"[a-z]+", r["case"])[0], r["unknowns"]))
+    if not rows:
+        return []
+    names = list(dict.fromkeys(n for r in rows for n in r["stages"]))
+    cell = lambda d: f"{d['krylov'] / d['solves']:.1f} ({d['solves']})" if d and d["solves"] else "—"
+    return ["", "Krylov iterations per solve by stage (in brackets: the stage's solves, those of attempts cut back included), "
+            "from each solve's count in the run's log:", "",
+            "| case | solver | unknowns | " + " | ".join(names) + " |", "|---|---|---|" + "---|" * len(names)] + [
+            f"| {r['case']} | {r['solver']} | {r['unknowns']} | " + " | ".join(cell(r["stages"].get(n)) for n in names) + " |"
+            for r in rows]
 
 
 def breakdown(rows):
