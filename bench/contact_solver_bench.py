@@ -23,7 +23,8 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
             mesh's alone (the steps' error is the same on every rung); bnfix3 ... bnfix0.475 BN's sector alike. Newton
             stops at a residual of 1e-6 of the load (FIX_OPTIONS): at the default 1e-10 the finer rungs' hold steps
             stalled and were cut back again and again; fix0.0707 also runs to the default ('fieldsplit, Newton to 1e-10');
-            fix0.12 to fix0.034 also with GMRES' tolerance by the forcing term ('fieldsplit, forcing term')
+            fix0.12 to fix0.019 and bnfix0.475 also with GMRES' tolerance by the forcing term ('fieldsplit, forcing
+            term'); each row's Krylov iterations also by stage (the solves' counts in its log)
   whole0.0707, whole0.05, whole0.034  the sector (24 k, 63 k and 190 k unknowns) through its whole load, hold and
             unload at the shipped time-step control (about 600 steps), one rank, direct and field split: the size at
             which -indent_solver auto should switch over a whole run, where the kept factorisation serves many steps
@@ -122,7 +123,7 @@ FIX = {"fix0.12": (0.12, 0.48), "fix0.0707": (0.07071, 0.28284), "fix0.0425": (0
 FIX.update({f"bnfix{25 * t:.4g}": (round(25 * t, 6), round(25 * f, 6)) for t, f in list(FIX.values())})
 CASES.update({c: ("microindent_BN_sector" if c.startswith("bn") else "nanoindent_kerogen_sector", {"h_tip": t, "h_far": f},
                   None, None, ("fieldsplit",) + (("fieldsplit, Newton to 1e-10",) if c == "fix0.0707" else ())
-                  + (("fieldsplit, forcing term",) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034") else ()))
+                  + (("fieldsplit, forcing term",) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034", "fix0.019", "bnfix0.475") else ()))
               for c, (t, f) in FIX.items()})
 # fixed steps, equal on every mesh: the load's 20 s (the depth of 200 nm near 205 s; BN's 13.3 s, 5 um near 140 s), the
 # hold's and the unload's 2.5 s (the shipped scenes' unload takes at most 1 s). The unload's steps are half the 5 s they
@@ -284,7 +285,10 @@ def run(scene, steps, solver, out, ranks=1, log_view=False, extra=(), budget=Non
                           **({"events": events(text)} if log_view else {})}})
     if keep:
         (out / "parts.json").write_text(json.dumps(parts, indent=1))
-    return combined(parts)
+    row = combined(parts)
+    if sum(d["krylov"] for d in row.get("stages", {}).values()) not in (0, row["krylov"]):   # every solve in one stage
+        raise SystemExit(f"{out}: the Krylov iterations by stage {row['stages']} do not add up to the run's {row['krylov']}")
+    return row
 
 
 def outputs(run_dir):

@@ -1,6 +1,6 @@
 """The quotes of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py's store,
 docs/results/contact_solver.json): the lines that hold numbers, each with «expression» where a number stands, in
-camclay9.doc_quotes' namespace (its contact-solver helpers cs, csr, kpn, kbu, ku and the case names S3, BIG, MIL,
+camclay9.doc_quotes' namespace (its contact-solver helpers cs, csr, kpn, kps, kbu, ku and the case names S3, BIG, MIL,
 R2, G, LU, FT); doc_quotes checks and writes them like every other quote."""
 
 CONTACT_MD = [
@@ -35,6 +35,8 @@ CONTACT_MD = [
     # the fixed-step ladder's whole runs at Newton 1e-6 (bench cases fix...)
     ("  Under the whole contact the field split took «f(kpn('fix0.12'), 0)», «f(kpn('fix0.0707'), 0)», «f(kpn('fix0.0425'), 0)» and «f(kpn('fix0.034'), 0)» Krylov iterations per Newton\n"
          "  iteration at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, in «f(kbu('fix0.034', q='mem_all'), 1)» kB per unknown over both ranks at «ku('fix0.034')» k"),
+    # the ladder's Krylov iterations per solve by stage (the bench's stage split)
+    ("By stage, the Krylov iterations per solve at «ku('fix0.0425')» k and\n  «ku('fix0.034')» k unknowns: «f(kps('fix0.0425', 'load'), 0)» and «f(kps('fix0.034', 'load'), 0)» in the load,\n  «f(kps('fix0.0425', 'hold'), 0)» and «f(kps('fix0.034', 'hold'), 0)» in the hold, «f(kps('fix0.0425', 'unload'), 0)» and\n  «f(kps('fix0.034', 'unload'), 0)» in the unload"),
     # the inexact Newton forcing term against the tight solves on the ladder (bench solver 'fieldsplit, forcing term')
     ("ladder's fixed steps the forcing term took «f(csr('fix0.12', 'cpu', FT, 'fieldsplit'), 2)»×, «f(csr('fix0.0707', 'cpu', FT, 'fieldsplit'), 2)»×, «f(csr('fix0.0425', 'cpu', FT, 'fieldsplit'), 2)»× and «f(csr('fix0.034', 'cpu', FT, 'fieldsplit'), 2)»× the\n  tight solves' CPU at «ku('fix0.12')» k, «ku('fix0.0707')» k, «ku('fix0.0425')» k and «ku('fix0.034')» k unknowns, with «f(kpn('fix0.0425', FT), 0)» Krylov iterations per Newton iteration instead of\n"
          "  «f(kpn('fix0.0425'), 0)» and «f(cs('fix0.0425', FT, 'newton'), 0)» Newton iterations instead of «f(cs('fix0.0425', 'fieldsplit', 'newton'), 0)» at «ku('fix0.0425')» k."),
