@@ -161,7 +161,6 @@ def write_scene(msh, path, outdir, tol, plan=None, phi=True):
     """The driver's scene: input/triaxial.yaml's physics on the .msh, the plan's increments (or adaptive)."""
     p = props(tol)
     st = []
-    periods = {"hold": 0.0}
     for k, s in enumerate(plan if plan is not None else ADAPTIVE):
         phase = s[0]
         pres = {"hold": "{top: 35, side: 35}", "ramp": "{top: 75, side: 35}", "creep": "{top: 75, side: 35}"}[phase]
