@@ -83,7 +83,7 @@ SOLVERS = {"direct": ["-indent_solver", "direct"], "fieldsplit": ["-indent_solve
            # the fixed-step ladder's rung with Newton to the driver's default residual (FIX_OPTIONS' 1e-6 overridden)
            "fieldsplit, Newton to 1e-10": ["-indent_solver", "fieldsplit", "-indent_rtol", "1e-10"],
            # GMRES' tolerance by the inexact Newton forcing term on a settled active set (semismooth.c, forcing)
-           "fieldsplit, forcing term": ["-indent_solver", "fieldsplit", "-indent_ksp_ew"]}
+           study.FORCING: ["-indent_solver", "fieldsplit", "-indent_ksp_ew"]}
 ALL = ("direct", "fieldsplit", "fieldsplit, GAMG on P2", "fieldsplit, before")
 SPLITS = ("direct", "fieldsplit", "fieldsplit, GAMG on P2")
 # case: (scene in input/, mesh overrides, order, steps, solvers)
@@ -123,7 +123,7 @@ FIX = {"fix0.12": (0.12, 0.48), "fix0.0707": (0.07071, 0.28284), "fix0.0425": (0
 FIX.update({f"bnfix{25 * t:.4g}": (round(25 * t, 6), round(25 * f, 6)) for t, f in list(FIX.values())})
 CASES.update({c: ("microindent_BN_sector" if c.startswith("bn") else "nanoindent_kerogen_sector", {"h_tip": t, "h_far": f},
                   None, None, ("fieldsplit",) + (("fieldsplit, Newton to 1e-10",) if c == "fix0.0707" else ())
-                  + (("fieldsplit, forcing term",) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034", "fix0.019", "bnfix0.475") else ()))
+                  + ((study.FORCING,) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034", "fix0.019", "bnfix0.475") else ()))
               for c, (t, f) in FIX.items()})
 # fixed steps, equal on every mesh: the load's 20 s (the depth of 200 nm near 205 s; BN's 13.3 s, 5 um near 140 s), the
 # hold's and the unload's 2.5 s (the shipped scenes' unload takes at most 1 s). The unload's steps are half the 5 s they
@@ -217,10 +217,9 @@ def stopped_part(text, cpu, mem):
     """An invocation stopped by --budget: its CPU and peak memory, and the Krylov iterations of its whole steps (those
     before its last progress line, each checkpointed; the step it was stopped in is solved again after the restart,
     so its iterations are not counted, though its CPU is), also by stage."""
-    last = [m.start() for m in re.finditer(r"^step +\d+ ", text, re.M)]
-    done = text[:last[-1]] if last else ""
-    return {"cpu": cpu, "mem": mem, "krylov": sum(int(k) for k in KSP_ITS.findall(done)), "steps": len(last),
-            "stages": stage_split(text)}
+    stages = stage_split(text)
+    return {"cpu": cpu, "mem": mem, "krylov": sum(d["krylov"] for d in stages.values()),
+            "steps": sum(d["steps"] for d in stages.values()), "stages": stages}
 
 
 def summed_stages(parts):

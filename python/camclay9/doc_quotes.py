@@ -22,7 +22,7 @@ camclay9.indent3d_study.numbers(), from the 3D ladders' store (indent_convergenc
 import re
 import statistics
 
-from camclay9 import adapt_quotes, contact_quotes, coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
+from camclay9 import adapt_quotes, contact_quotes, contact_solver_study, coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
 from camclay9.indent2d_study import key
 
 
@@ -64,7 +64,7 @@ class A(dict):
 S3, S2 = ("sector0.12", "sector0.0707", "sector0.05", "sector0.0425", "sector0.034"), ("axi1", "axi2")  # bench/contact_solver_bench.py's 3D and 2D cases
 BIG, MIL = "sector0.018", "sector0.019"  # its cases at 1.21 M and 1.03 M unknowns (field split alone)
 G, LU = "fieldsplit, GAMG on P2", "fieldsplit, LU on u"  # its field split with GAMG on the P2 block; with the block solved exactly
-FT = "fieldsplit, forcing term"  # ... with GMRES' tolerance by the inexact Newton forcing term (-indent_ksp_ew)
+FT = contact_solver_study.FORCING  # ... with GMRES' tolerance by the inexact Newton forcing term (-indent_ksp_ew)
 SP, R2 = "fieldsplit, simple partition", "ranks0.0425"  # its field split on the simple partition; its 2-rank partition case
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
