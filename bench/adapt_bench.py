@@ -21,13 +21,22 @@ Converged answers (where each comes from):
 - bn, bp: microindent_BN_sector and microindent_BP: no 3D answer is known (no reference run: their rows give the levels'
   own changes); BN's axisymmetric twin converges to a residual depth of 2.112 um (docs/performance.md, the 3D mesh
   study), which BN's 3D value should approach.
+- sector_fixed, bn_fixed: sector and bn on the fixed steps of the contact solver's uniform ladder (its
+  contact_solver_study.FIXED_STEPS, Newton to 1e-6 of the load), against that ladder's finest rung on the same steps:
+  uniform P2 at 1.03 M unknowns, the field split on 2 ranks (docs/results/contact_solver.json, rows fix0.019 and
+  bnfix0.475 with the forcing term). The steps' error is the same in both, so the difference is the meshes' alone: the
+  adapted levels against a uniform mesh of 13 to 600 times their unknowns (issue 33's cross-check of the two). That rung
+  is not a converged answer (BN's residual depth still rises on the uniform rungs): errors against it, no effectivity.
 """
 import argparse
 import json
 import time
 from pathlib import Path
 
+import yaml
 from camclay9 import read_summary, results_store, run_driver
+from camclay9.contact_solver_study import FIXED_RTOL, FIXED_STEPS, FORCING
+from camclay9.contact_solver_study import STORE as LADDER
 from camclay9.adapt_study import STORE, TITLE, section
 from camclay9.performance_doc import replace_section
 
@@ -61,6 +70,9 @@ CASES = {
     "bn": ("microindent_BN_sector.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, None),
     "bp": ("microindent_BP.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, None),
 }
+# the same cases on the uniform ladder's fixed steps: (case, the ladder's row (case, solver) that is their reference)
+ON_FIXED_STEPS = {"sector_fixed": ("sector", ("fix0.019", FORCING)), "bn_fixed": ("bn", ("bnfix0.475", FORCING))}
+CASES.update({c: CASES[of][:3] + (row,) for c, (of, row) in ON_FIXED_STEPS.items()})
 
 
 def scene_text(case, order=None):
@@ -74,7 +86,23 @@ def scene_text(case, order=None):
     if order:
         text = text.replace("  kinematics:", f"  order: {order}\n  kinematics:", 1) if "order:" not in text else \
             text.replace("order: 1", f"order: {order}").replace("order: 2", f"order: {order}")
+    if case in ON_FIXED_STEPS:
+        d = yaml.safe_load(text)
+        assert len(d["stages"]) == len(FIXED_STEPS), f"{case}: {len(d['stages'])} stages, the fixed steps are for 3"
+        for stage, steps in zip(d["stages"], FIXED_STEPS):
+            stage["steps"] = dict(steps)
+        text = yaml.safe_dump(d, sort_keys=False)
     return text
+
+
+def ladder_reference(case, solver):
+    """The outputs of the uniform ladder's row (case, solver) in the contact solver's store, with where they come from."""
+    rows = [r for r in results_store.load(LADDER).get("rows", []) if (r["case"], r["solver"]) == (case, solver)]
+    if not rows or "outputs" not in rows[-1]:
+        raise SystemExit(f"docs/results/{LADDER}.json: no row {case}, '{solver}' with outputs (run "
+                         f"bench/contact_solver_bench.py --cases {case} --solvers '{solver}' --merge first)")
+    return dict(rows[-1]["outputs"], **{"from": f"uniform P2, {rows[-1]['unknowns']} unknowns, the same steps ({case}, {solver})",
+                                        "converged": False})
 
 
 def run(case, out, levels, order=None, extra=()):
@@ -82,6 +110,7 @@ def run(case, out, levels, order=None, extra=()):
     scene = out.parent / f"{out.name}.yaml"
     scene.write_text(scene_text(case, order))
     t0 = time.time()
+    extra = (*extra, *FIXED_RTOL) if case in ON_FIXED_STEPS else extra   # Newton stopped as on the ladder's rungs
     proc = run_driver(scene, out, ["-adapt_levels", levels, *extra], root=ROOT, timeout=7200, check=False)
     (out.parent / f"{out.name}.log").write_text(proc.stdout + proc.stderr)
     if proc.returncode:
@@ -114,6 +143,13 @@ def levels_of(out):
     return rows
 
 
+def run_info(out, note):
+    """When a case's levels in `out` ran (the date of its first level's summary) and on what machine (`note`); the
+    section gives it beside the case where it differs from the store's first runs."""
+    first = out / "adapt" / "level0" / "summary.json"
+    return {"date": time.strftime("%Y-%m-%d", time.gmtime(first.stat().st_mtime)), "note": note} if first.exists() else None
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cases", default="lr1,sector,axi,sphere")
@@ -126,7 +162,8 @@ def main():
                     help="axi, sphere: take the reference runs already in out/adapt_bench (their answers do not depend on the estimate)")
     a = ap.parse_args()
     base = Path("out/adapt_bench")
-    results = json.loads(Path(a.results).read_text()) if Path(a.results).exists() else {}
+    # the levels of earlier runs: --results, else the store's (so that --no-run --doc over every case keeps them)
+    results = json.loads(Path(a.results).read_text()) if Path(a.results).exists() else results_store.load(STORE).get("cases", {})
     for case in a.cases.split(","):
         out = base / case
         if a.no_run and case in results and not (out / "adapt").is_dir():
@@ -136,7 +173,9 @@ def main():
             if CASES[case][3] is None and case in ("axi", "sphere") and not a.keep_references:   # the reference: P2 on its own meshes, a level more
                 run(case, base / f"{case}_ref", a.levels + 1, order=2)
         ref = CASES[case][3]
-        if isinstance(ref, str) or (ref is None and case in ("axi", "sphere")):   # a reference run's answer, or its last level done
+        if isinstance(ref, tuple):   # a row of the uniform ladder on the same fixed steps
+            ref = ladder_reference(*ref)
+        elif isinstance(ref, str) or (ref is None and case in ("axi", "sphere")):   # a reference run's answer, or its last level done
             of = ref if isinstance(ref, str) else case
             ref = None
             done = [d / "summary.json" for d in sorted((base / f"{of}_ref" / "adapt").glob("level*"), key=lambda p: int(p.name[5:]))
@@ -144,14 +183,15 @@ def main():
             if done:
                 ref = quantities(read_summary(done[-1]))[0]
                 ref["from"] = f"P2, {read_summary(done[-1])['mesh']['unknowns']} unknowns"
-        results[case] = {"levels": levels_of(out), "reference": ref}
+        results[case] = {"levels": levels_of(out), "reference": ref, "run": run_info(out, a.note)}
     Path(a.results).parent.mkdir(parents=True, exist_ok=True)
     Path(a.results).write_text(json.dumps(results, indent=1))
+    kept = results_store.load(STORE)   # the cases run before the indicator's contact term, which the reading compares
+    first = kept.get("provenance", {"date": time.strftime("%Y-%m-%d", time.gmtime()), "note": a.note})   # the store's first runs
     store = {"provenance": {"command": "`bench/adapt_bench.py --cases CASE --levels N` for each case, N its table's last level, "
                                        f"then `bench/adapt_bench.py --cases {a.cases} --no-run --doc`",
-                            "date": time.strftime("%Y-%m-%d", time.gmtime()), "note": a.note},
+                            "date": first["date"], "note": first["note"]},
              "cases": {c: results[c] for c in a.cases.split(",")}}
-    kept = results_store.load(STORE)   # the cases run before the indicator's contact term, which the reading compares
     if "before_contact_term" in kept:
         store["before_contact_term"] = kept["before_contact_term"]
     text = section(store, ROOT)

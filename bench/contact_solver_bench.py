@@ -18,12 +18,12 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
   lhu0.12, lhu0.0707, lhu0.0425  the sector through its whole load, hold and unload in about 23 steps (the stages'
             error tolerance 0.3: LOOSE), one rank
   fix0.12 ... fix0.019  the sector's uniform ladder from 5.9 k to 1.03 M unknowns, each through its whole load, hold and
-            unload on the same fixed steps (FIXED), the field split on 2 ranks: Krylov iterations per Newton iteration
-            from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose differences between rungs are the
+            unload on the same fixed steps (contact_solver_study.FIXED_STEPS), the field split on 2 ranks: Krylov
+            iterations per Newton iteration from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose differences between rungs are the
             mesh's alone (the steps' error is the same on every rung); bnfix3 ... bnfix0.475 BN's sector alike. Newton
             stops at a residual of 1e-6 of the load (FIX_OPTIONS): at the default 1e-10 the finer rungs' hold steps
             stalled and were cut back again and again; fix0.0707 also runs to the default ('fieldsplit, Newton to 1e-10');
-            fix0.12 to fix0.019 and bnfix0.475 also with GMRES' tolerance by the forcing term ('fieldsplit, forcing
+            fix0.12 to fix0.019, bnfix1.062 and bnfix0.475 also with GMRES' tolerance by the forcing term ('fieldsplit, forcing
             term'); each row's Krylov iterations also by stage (the solves' counts in its log)
   whole0.0707, whole0.05, whole0.034  the sector (24 k, 63 k and 190 k unknowns) through its whole load, hold and
             unload at the shipped time-step control (about 600 steps), one rank, direct and field split: the size at
@@ -113,8 +113,8 @@ CASES = {
     "whole0.05": ("nanoindent_kerogen_sector", {"h_tip": 0.05, "h_far": 0.2}, None, None, ("direct", "fieldsplit")),
     "whole0.034": ("nanoindent_kerogen_sector", {"h_tip": 0.034, "h_far": 0.136}, None, None, ("direct", "fieldsplit")),
 }
-# the sector's uniform ladder to a million unknowns on the steps of FIXED, the field split on 2 ranks: the Krylov
-# iterations from 1e5 to 1e6 unknowns under a whole load, hold and unload, and the mesh's share of the reported outputs at
+# the sector's uniform ladder to a million unknowns on the steps of study.FIXED_STEPS, the field split on 2 ranks: the
+# Krylov iterations from 1e5 to 1e6 unknowns under a whole load, hold and unload, and the mesh's share of the reported outputs at
 # equal time steps (the converged 3D answer's cross-check beyond the direct path's memory)
 FIX = {"fix0.12": (0.12, 0.48), "fix0.0707": (0.07071, 0.28284), "fix0.0425": (0.0425, 0.17), "fix0.034": (0.034, 0.136),
        "fix0.019": (0.019, 0.076)}
@@ -123,29 +123,11 @@ FIX = {"fix0.12": (0.12, 0.48), "fix0.0707": (0.07071, 0.28284), "fix0.0425": (0
 FIX.update({f"bnfix{25 * t:.4g}": (round(25 * t, 6), round(25 * f, 6)) for t, f in list(FIX.values())})
 CASES.update({c: ("microindent_BN_sector" if c.startswith("bn") else "nanoindent_kerogen_sector", {"h_tip": t, "h_far": f},
                   None, None, ("fieldsplit",) + (("fieldsplit, Newton to 1e-10",) if c == "fix0.0707" else ())
-                  + ((study.FORCING,) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034", "fix0.019", "bnfix0.475") else ()))
+                  + ((study.FORCING,) if c in ("fix0.12", "fix0.0707", "fix0.0425", "fix0.034", "fix0.019", "bnfix1.062", "bnfix0.475")
+                     else ()))
               for c, (t, f) in FIX.items()})
-# fixed steps, equal on every mesh: the load's 20 s (the depth of 200 nm near 205 s; BN's 13.3 s, 5 um near 140 s), the
-# hold's and the unload's 2.5 s (the shipped scenes' unload takes at most 1 s). The unload's steps are half the 5 s they
-# were: at 1.03 M unknowns the first 5 s unload step stalled (14 Newton iterations, the merit settled near 1e-5 of the
-# load) and was cut back, and the unload's solves took 113 Krylov iterations each against the hold's 75; at 101 k and
-# 190 k the last 5 s step, which releases the whole contact, stalled and was cut back (at 101 k, traced with the Newton
-# monitor, in a two-cycle of the soft frame). On 2.5 s steps 190 k cuts no step back (140 Newton iterations in the whole
-# run against 171) and 1.03 M one (the forcing term: 60 unload solves of 48 Krylov iterations); 101 k still cuts its
-# release back once, and there the 2.5 s steps cost a little more than the 5 s ones (161 Newton iterations against 157).
-# The hold's steps are a quarter of the 10 s they were: at 1.03 M unknowns the second
-# 10 s step did not converge (its Newton settled near 1e-5 of the load, its solves needed up to 500 Krylov iterations),
-# while from the same state 2.5 s steps converged in 2 Newton iterations of about 75 Krylov iterations each (restarts
-# from that run's checkpoint of its first hold step, by hand, with the Newton monitor). A 10 s step
-# outruns the soft frame's softening time at points near the yield surface, whose backward-Euler solution then jumps
-# (theory.md §3.4): Newton cannot settle those points, and the finer the mesh the more of them there are
-FIXED = [{"count": 30}, {"count": 24}, {"count": 8}]
-# ... to a residual of 1e-6 of the load (the driver's default 1e-10): fixed steps have no error measure to stop Newton
-# by its estimated error, and from about 1e5 unknowns on, the hold's 10 s steps ended in a two-cycle of a few points of the
-# soft frame switching branch (theory.md §3.4) far below any output's tolerance, which the stall test cuts back again and
-# again (docs/contact.md, "The Newton loop")
 # ... and every solve's Krylov iterations in the log, so that the rows give them by stage (stage_split)
-FIX_OPTIONS = ["-indent_rtol", "1e-6", "-indent_ksp_converged_reason"]
+FIX_OPTIONS = study.FIXED_RTOL + ["-indent_ksp_converged_reason"]
 # 2 ranks, the first 4 steps: the graph partitioner against the simple one (docs/parallel.md, "The partition")
 CASES["ranks0.0425"] = ("nanoindent_kerogen_sector", {"h_tip": 0.0425, "h_far": 0.17}, None, 4,
                         ("fieldsplit", "fieldsplit, simple partition"))
@@ -167,7 +149,7 @@ def scene_file(case, work):
         d["mesh"]["order"] = order
     for stage, steps in zip(d["stages"], LOOSE.get(case, [])):
         stage["steps"].update(steps, error={"measure": "output", "tol": 0.3})
-    for stage, steps in zip(d["stages"], FIXED if case in FIX else []):
+    for stage, steps in zip(d["stages"], study.FIXED_STEPS if case in FIX else []):
         stage["steps"] = dict(steps)
     out = work / f"{case}.yaml"
     out.write_text(yaml.safe_dump(d, sort_keys=False))
@@ -339,6 +321,11 @@ def main(argv=None):
     solvers = a.solvers.split(";") if a.solvers else None   # a solver's name may hold a comma
     if solvers and set(solvers) - set(SOLVERS):
         raise SystemExit(f"--solvers: {sorted(set(solvers) - set(SOLVERS))} unknown; expected among {list(SOLVERS)}")
+    for case in a.cases.split(","):   # a case the bench does not know, or none of whose solvers was asked, runs nothing
+        if case not in CASES:
+            raise SystemExit(f"--cases: '{case}' unknown; expected among {', '.join(CASES)}")
+        if solvers and not set(solvers) & set(CASES[case][4]):
+            raise SystemExit(f"--solvers: case {case} runs none of {solvers}; its solvers: {'; '.join(CASES[case][4])}")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         work = a.keep.resolve() if a.keep else Path(tmp)

@@ -50,6 +50,15 @@ CONTACT_MD = [
          "  depth still rises with each uniform rung: «f(cs('bnfix3', 'fieldsplit', 'outputs')['h_res'], 0)», «f(cs('bnfix1.768', 'fieldsplit', 'outputs')['h_res'], 0)», «f(cs('bnfix1.062', 'fieldsplit', 'outputs')['h_res'], 0)» and «f(cs('bnfix0.85', 'fieldsplit', 'outputs')['h_res'], 0)» nm, "
          "«f(100 * (cs('bnfix0.85', 'fieldsplit', 'outputs')['h_res'] / cs('bnfix1.062', 'fieldsplit', 'outputs')['h_res'] - 1), 1)» % from\n"
          "  «ku('bnfix1.062')» k to «ku('bnfix0.85')» k"),
+    # BN's 1.03 M rung (bench row bnfix0.475) against the 101 k rung with the same solver
+    ("  bnfix0.475, 2 ranks): «cs('bnfix0.475', FT, 'steps')» steps, «f(kpn('bnfix0.475', FT), 1)» Krylov iterations per Newton iteration against «f(kpn('bnfix1.062', FT), 1)» at «ku('bnfix1.062')» k unknowns with\n"
+         "  the same solver («f(100 * (kpn('bnfix0.475', FT) / kpn('bnfix1.062', FT) - 1), 0)» % more), in «f(kbu('bnfix0.475', FT, q='mem_all'), 1)» kB per unknown over both ranks. Its residual depth, «f(cs('bnfix0.475', FT, 'outputs')['h_res'], 0)» nm, is «f(100 * (cs('bnfix0.475', FT, 'outputs')['h_res'] / cs('bnfix0.85', 'fieldsplit', 'outputs')['h_res'] - 1), 2)» %\n"
+         "  above the «ku('bnfix0.85')» k rung's"),
+    # the uniform rungs beside the adapted meshes on the same fixed steps (bench/adapt_bench.py, sector_fixed and bn_fixed)
+    ("  their meshes alone). The kerogen sector's adapted level 3 («th(ad('sector_fixed', 3).unknowns)» unknowns) is within «pu(max(abs(ade('sector_fixed', 3, q)) for q in ('P', 'creep', 'h_res')), 2)» of the 1.03 M rung in all\n"
+         "  three outputs, where the uniform «ku('fix0.034')» k rung is «pu(cs('fix0.034', 'fieldsplit', 'outputs')['creep'] / cs('fix0.019', FT, 'outputs')['creep'] - 1, 2)» off in the creep depth. BN's adapted residual depth settles at\n"
+         "  «f(min(ad('bn_fixed', k).q['h_res'] for k in range(2, 6)) / 1e3, 3)» to «f(max(ad('bn_fixed', k).q['h_res'] for k in range(2, 6)) / 1e3, 3)» µm from level 2 («th(ad('bn_fixed', 2).unknowns)» unknowns) on, and the uniform rungs climb toward it: the limit of the last\n"
+         "  two («ku('bnfix0.85')» k and 1.03 M) is «f(rich(('bnfix0.85', 'fieldsplit'), ('bnfix0.475', FT), 'h_res', 2) / 1e3, 3)» to «f(rich(('bnfix0.85', 'fieldsplit'), ('bnfix0.475', FT), 'h_res', 1) / 1e3, 3)» µm if their error falls as h_tip to h_tip²"),
     ("«f(kpn(S3[1], LU), 1)» per Newton iteration at «ku(S3[1])» k unknowns and «f(kpn(S3[3], LU), 1)» at «ku(S3[3])» k"),
     ("active: with the p-multigrid «f(kpn('lhu0.12'), 0)» Krylov iterations per Newton iteration at «ku('lhu0.12')» k unknowns, "
          "«f(kpn('lhu0.0707'), 0)» at «ku('lhu0.0707')» k and «f(kpn('lhu0.0425'), 0)» at «ku('lhu0.0425')» k; with\n  the displacement "
