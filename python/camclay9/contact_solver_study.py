@@ -25,8 +25,9 @@ TITLE = "## Contact solve: direct against field split"
 # load) and was cut back, and the unload's solves took 113 Krylov iterations each against the hold's 75; at 101 k and
 # 190 k the last 5 s step, which releases the whole contact, stalled and was cut back (at 101 k, traced with the Newton
 # monitor, in a two-cycle of the soft frame). On 2.5 s steps 190 k cuts no step back (140 Newton iterations in the whole
-# run against 171) and 1.03 M one (the forcing term: 60 unload solves of 48 Krylov iterations); 101 k still cuts its
-# release back once, and there the 2.5 s steps cost a little more than the 5 s ones (161 Newton iterations against 157).
+# run against 171), 1.03 M one (the forcing term: 60 unload solves of 48 Krylov iterations) and BN's 1.03 M none;
+# 101 k still cuts its release back once, and there the 2.5 s steps cost a little more than the 5 s ones (161 Newton
+# iterations against 157).
 # The hold's steps are a quarter of the 10 s they were: at 1.03 M unknowns the second
 # 10 s step did not converge (its Newton settled near 1e-5 of the load, its solves needed up to 500 Krylov iterations),
 # while from the same state 2.5 s steps converged in 2 Newton iterations of about 75 Krylov iterations each (restarts
