@@ -19,12 +19,13 @@ u": a fresh MUMPS LU of K at every Newton iteration), on the first steps of the 
             error tolerance 0.3: LOOSE), one rank
   fix0.12 ... fix0.019  the sector's uniform ladder from 5.9 k to 1.03 M unknowns, each through its whole load, hold and
             unload on the same fixed steps (contact_solver_study.FIXED_STEPS), the field split on 2 ranks: Krylov
-            iterations per Newton iteration from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose differences between rungs are the
-            mesh's alone (the steps' error is the same on every rung); bnfix3 ... bnfix0.475 BN's sector alike. Newton
+            iterations per Newton iteration from 1e5 to 1e6 unknowns, memory, and the reported outputs, whose
+            differences between rungs are the mesh's alone (the steps' error is the same on every rung); bnfix3 ...
+            bnfix0.475 BN's sector alike. Newton
             stops at a residual of 1e-6 of the load (FIX_OPTIONS): at the default 1e-10 the finer rungs' hold steps
             stalled and were cut back again and again; fix0.0707 also runs to the default ('fieldsplit, Newton to 1e-10');
-            fix0.12 to fix0.019, bnfix1.062 and bnfix0.475 also with GMRES' tolerance by the forcing term ('fieldsplit, forcing
-            term'); each row's Krylov iterations also by stage (the solves' counts in its log)
+            fix0.12 to fix0.019, bnfix1.062 and bnfix0.475 also with GMRES' tolerance by the forcing term
+            ('fieldsplit, forcing term'); each row's Krylov iterations also by stage (the solves' counts in its log)
   whole0.0707, whole0.05, whole0.034  the sector (24 k, 63 k and 190 k unknowns) through its whole load, hold and
             unload at the shipped time-step control (about 600 steps), one rank, direct and field split: the size at
             which -indent_solver auto should switch over a whole run, where the kept factorisation serves many steps
@@ -114,8 +115,8 @@ CASES = {
     "whole0.034": ("nanoindent_kerogen_sector", {"h_tip": 0.034, "h_far": 0.136}, None, None, ("direct", "fieldsplit")),
 }
 # the sector's uniform ladder to a million unknowns on the steps of study.FIXED_STEPS, the field split on 2 ranks: the
-# Krylov iterations from 1e5 to 1e6 unknowns under a whole load, hold and unload, and the mesh's share of the reported outputs at
-# equal time steps (the converged 3D answer's cross-check beyond the direct path's memory)
+# Krylov iterations from 1e5 to 1e6 unknowns under a whole load, hold and unload, and the mesh's share of the reported
+# outputs at equal time steps (the converged 3D answer's cross-check beyond the direct path's memory)
 FIX = {"fix0.12": (0.12, 0.48), "fix0.0707": (0.07071, 0.28284), "fix0.0425": (0.0425, 0.17), "fix0.034": (0.034, 0.136),
        "fix0.019": (0.019, 0.076)}
 # ... and BN's sector alike: the same geometry at 25 times the size (input/microindent_BN_sector.yaml), so the same

@@ -5,24 +5,17 @@ like every other quote, with its level helpers ad, ade and adch.
 
 The store keeps, beside the cases run with the indicator as it is, the same cases as they were run with the indicator
 before its contact-surface term ("before_contact_term"), so that the reading compares the two from runs."""
+from camclay9.adapt_study import effectivity
+
 BAND = (0.5, 2.0)      # the effectivities the issue asks for
-MEASURABLE = 2e-3      # a level's true error must be at least the references' own uncertainty (0.2 %)
 
 
 def effectivities(cases):
-    """(case, level, output, effectivity) of every level with a stated error whose true error is measurable."""
-    out = []
-    for case, r in cases.items():
-        ref = r.get("reference") or {}
-        if not ref.get("converged", True):   # another mesh's answer on the same steps: no true error
-            continue
-        for lv in r["levels"]:
-            for q, v in lv["q"].items():
-                e, rv = lv["e"].get(q), ref.get(q)
-                if q == "h_max" or rv is None or e is None or e != e or abs(v / rv - 1) < MEASURABLE:
-                    continue
-                out.append((case, lv["level"], q, e / abs(v - rv)))
-    return out
+    """(case, level, output, effectivity) of every level and output but h_max with a stated error whose true error is
+    measurable (adapt_study.effectivity)."""
+    found = ((case, lv["level"], q, effectivity(r.get("reference"), q, v, lv["e"].get(q)))
+             for case, r in cases.items() for lv in r["levels"] for q, v in lv["q"].items() if q != "h_max")
+    return [x for x in found if x[3] is not None]
 
 
 def helpers(store):

@@ -18,6 +18,17 @@ MEASURABLE = 2e-3   # errors below 0.2 % of the reference are within the referen
 OUTPUTS = ("h_max", "P", "creep", "h_res")
 
 
+def effectivity(ref, k, value, stated):
+    """A level's stated mesh error in output k over its true error against the reference, or None where no true error
+    is known: no reference value or no stated error (None or NaN), a reference that is not a converged answer
+    ("converged": false), or a true error below MEASURABLE (within the reference's own uncertainty)."""
+    rv = (ref or {}).get(k)
+    if (not isinstance(rv, (int, float)) or stated is None or stated != stated or not ref.get("converged", True)
+            or abs(value - rv) < MEASURABLE * abs(rv)):
+        return None
+    return abs(stated) / abs(value - rv)
+
+
 def cell(q, e, ref, k):
     """One output of one level: its value, and against the reference its error, the stated error and their ratio."""
     if k not in q:
@@ -28,8 +39,8 @@ def cell(q, e, ref, k):
         s += f" ({err / ref[k]:+.2%}"
         if e.get(k) == e.get(k):   # not NaN
             s += f"; est. ±{abs(e[k]) / abs(ref[k]):.2%}"
-            if abs(err) >= MEASURABLE * abs(ref[k]) and ref.get("converged", True):   # else within its own uncertainty
-                s += f", eff. {abs(e[k]) / abs(err):.2g}"
+            eff = effectivity(ref, k, q[k], e.get(k))
+            s += f", eff. {eff:.2g}" if eff is not None else ""
         s += ")"
     elif e.get(k) == e.get(k):
         s += f" (est. ±{abs(e[k]) / abs(q[k]):.2%})"

@@ -1,6 +1,6 @@
 """The quotes of docs/contact.md's reading "The field split" (bench/contact_solver_bench.py's store,
 docs/results/contact_solver.json): the lines that hold numbers, each with «expression» where a number stands, in
-camclay9.doc_quotes' namespace (its contact-solver helpers cs, csr, kpn, kps, kbu, ku and the case names S3, BIG, MIL,
+camclay9.doc_quotes' namespace (its contact-solver helpers cs, csr, kpn, kps, kbu, ku, fband and the case names S3, BIG, MIL,
 R2, G, LU, FT); doc_quotes checks and writes them like every other quote."""
 
 CONTACT_MD = [
@@ -58,7 +58,7 @@ CONTACT_MD = [
     ("  their meshes alone). The kerogen sector's adapted level 3 («th(ad('sector_fixed', 3).unknowns)» unknowns) is within «pu(max(abs(ade('sector_fixed', 3, q)) for q in ('P', 'creep', 'h_res')), 2)» of the 1.03 M rung in all\n"
          "  three outputs, where the uniform «ku('fix0.034')» k rung is «pu(cs('fix0.034', 'fieldsplit', 'outputs')['creep'] / cs('fix0.019', FT, 'outputs')['creep'] - 1, 2)» off in the creep depth. BN's adapted residual depth settles at\n"
          "  «f(min(ad('bn_fixed', k).q['h_res'] for k in range(2, 6)) / 1e3, 3)» to «f(max(ad('bn_fixed', k).q['h_res'] for k in range(2, 6)) / 1e3, 3)» µm from level 2 («th(ad('bn_fixed', 2).unknowns)» unknowns) on, and the uniform rungs climb toward it: the limit of the last\n"
-         "  two («ku('bnfix0.85')» k and 1.03 M) is «f(rich(('bnfix0.85', 'fieldsplit'), ('bnfix0.475', FT), 'h_res', 2) / 1e3, 3)» to «f(rich(('bnfix0.85', 'fieldsplit'), ('bnfix0.475', FT), 'h_res', 1) / 1e3, 3)» µm if their error falls as h_tip to h_tip²"),
+         "  two («ku('bnfix0.85')» k and 1.03 M) is «f(fband(('bnfix0.85', 'fieldsplit'), ('bnfix0.475', FT), 'h_res')[0] / 1e3, 3)» to «f(fband(('bnfix0.85', 'fieldsplit'), ('bnfix0.475', FT), 'h_res')[1] / 1e3, 3)» µm if their error falls as h_tip to h_tip²"),
     ("«f(kpn(S3[1], LU), 1)» per Newton iteration at «ku(S3[1])» k unknowns and «f(kpn(S3[3], LU), 1)» at «ku(S3[3])» k"),
     ("active: with the p-multigrid «f(kpn('lhu0.12'), 0)» Krylov iterations per Newton iteration at «ku('lhu0.12')» k unknowns, "
          "«f(kpn('lhu0.0707'), 0)» at «ku('lhu0.0707')» k and «f(kpn('lhu0.0425'), 0)» at «ku('lhu0.0425')» k; with\n  the displacement "

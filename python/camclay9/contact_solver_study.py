@@ -6,10 +6,11 @@ The store: {"provenance": {"command", "date", ...}, "rows": [...]}, each row {"c
 "newton", "krylov", "cpu" [s], "mem" [MB], "repeats", "ranks" (1 if absent)} as the bench measured it (CPU the median of
 the repeats, summed over the ranks; memory the largest process's, the largest of the repeats); on more than one rank
 also "mem_all" (the ranks' peaks summed [MB], the driver's 'memory:' line) and "partition" ({"type", "vertices",
-"copies"}: the driver's 'partition:' line); a whole run's row also "outputs" ({"P" [µN], "creep", "h_res" [nm]}); a
-row run with -log_view "events" ({event: seconds}); a run stopped and resumed from its checkpoints (the bench's --keep
+"copies"}: the driver's 'partition:' line); a whole run's row also "outputs" ({"P" [µN], "creep", "h_res" [nm]}) and,
+on fixed steps, "stages" ({stage: {"steps", "solves", "krylov"}}: its solves' Krylov iterations by stage, from its log,
+adding up to "krylov"); a row run with -log_view "events" ({event: seconds}); a run stopped and resumed from its checkpoints (the bench's --keep
 --budget) "parts", their number (its CPU and Krylov iterations summed over them, its memory the largest part's); a case may lack a direct row (beyond its memory: no ratios). "provenance" may hold "merged", a list of
-{"command", "date", "rows" (or "cases")}: those rows (cases) rerun by the bench's --merge, in order. A row may also hold "cpu_ratio" and
+{"command", "date", "rows" (or "cases"), "note" (optional)}: those rows (cases) rerun by the bench's --merge, in order. A row may also hold "cpu_ratio" and
 "mem_ratio", its CPU and memory over the direct path's on the same case as a table printed them from the run's full
 digits, where the store keeps only the table's digits of CPU and memory (rows taken over from an earlier table; the
 provenance says so); else the ratios are computed.
@@ -27,18 +28,17 @@ TITLE = "## Contact solve: direct against field split"
 # monitor, in a two-cycle of the soft frame). On 2.5 s steps 190 k cuts no step back (140 Newton iterations in the whole
 # run against 171), 1.03 M one (the forcing term: 60 unload solves of 48 Krylov iterations) and BN's 1.03 M none;
 # 101 k still cuts its release back once, and there the 2.5 s steps cost a little more than the 5 s ones (161 Newton
-# iterations against 157).
-# The hold's steps are a quarter of the 10 s they were: at 1.03 M unknowns the second
-# 10 s step did not converge (its Newton settled near 1e-5 of the load, its solves needed up to 500 Krylov iterations),
-# while from the same state 2.5 s steps converged in 2 Newton iterations of about 75 Krylov iterations each (restarts
-# from that run's checkpoint of its first hold step, by hand, with the Newton monitor). A 10 s step
-# outruns the soft frame's softening time at points near the yield surface, whose backward-Euler solution then jumps
-# (theory.md §3.4): Newton cannot settle those points, and the finer the mesh the more of them there are
+# iterations against 157). The hold's steps are a quarter of the 10 s they were: at 1.03 M unknowns the second 10 s
+# step did not converge (its Newton settled near 1e-5 of the load, its solves needed up to 500 Krylov iterations), while
+# from the same state 2.5 s steps converged in 2 Newton iterations of about 75 Krylov iterations each (restarts from
+# that run's checkpoint of its first hold step, by hand, with the Newton monitor). A 10 s step outruns the soft frame's
+# softening time at points near the yield surface, whose backward-Euler solution then jumps (theory.md §3.4): Newton
+# cannot settle those points, and the finer the mesh the more of them there are
 FIXED_STEPS = [{"count": 30}, {"count": 24}, {"count": 8}]
 # Newton on them to a residual of 1e-6 of the load (the driver's default 1e-10): fixed steps have no error measure to
-# stop Newton by its estimated error, and from about 1e5 unknowns on, the hold's 10 s steps ended in a two-cycle of a few points of the
-# soft frame switching branch (theory.md §3.4) far below any output's tolerance, which the stall test cuts back again and
-# again (docs/contact.md, "The Newton loop")
+# stop Newton by its estimated error, and from about 1e5 unknowns on, the hold's 10 s steps ended in a two-cycle of a
+# few points of the soft frame switching branch (theory.md §3.4) far below any output's tolerance, which the stall test
+# cuts back again and again (docs/contact.md, "The Newton loop")
 FIXED_RTOL = ["-indent_rtol", "1e-6"]
 
 

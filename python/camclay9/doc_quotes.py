@@ -203,13 +203,12 @@ def namespace(store_dir=None):
         d = cs(case, solver, "stages")[stage]
         return d["krylov"] / d["solves"]
 
-    def rich(coarse, fine, q, p):
-        """Richardson's limit of output q from two rungs of the fixed-step ladder, (case, solver) each (h_tip from the
-        case's name), if its error falls as h_tip^p."""
-        (a, sa), (b, sb) = coarse, fine
-        ha, hb = (float(re.sub(r"^[a-z]+", "", c)) for c in (a, b))
-        ya, yb = cs(a, sa, "outputs")[q], cs(b, sb, "outputs")[q]
-        return yb + (yb - ya) / ((ha / hb) ** p - 1)
+    def fband(coarse, fine, q):
+        """The limits of output q that two rungs of the fixed-step ladder, (case, solver) each (h_tip from the case's
+        name), give if its error falls as h_tip and as h_tip² (indent3d_study.bracket): (low, high)."""
+        rungs = (coarse, fine)
+        return indent3d_study.bracket([float(re.sub(r"^[a-z]+", "", c)) for c, _ in rungs],
+                                      [cs(c, s, "outputs")[q] for c, s in rungs])
 
     def pcopies(case, solver="fieldsplit"):
         """A 2-rank row's vertices also held by the rank that does not own them [%] (the driver's 'partition:' line)."""
@@ -250,7 +249,7 @@ def namespace(store_dir=None):
         return sc_rows[(scene, variant)][q]
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, zip=zip, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
-              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, kps=kps, rich=rich, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU, FT=FT,
+              bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, kps=kps, fband=fband, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU, FT=FT,
               pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)

@@ -271,3 +271,21 @@ def test_run_driver_on_a_point_scene(tmp_path):
     assert [st["name"] for st in summ["stages"]][1:] == list(dict.fromkeys(h["stage_name"][1:]))
     assert reported(summ, last["stage_name"], "strain_volumetric") == pytest.approx(
         last["eps_11"] + last["eps_22"] + last["eps_33"], rel=1e-9, abs=1e-15)
+
+
+def test_adapt_effectivity_only_against_a_converged_answer():
+    """camclay9.adapt_study.effectivity, which the section's tables and the reading's count both use: the stated error
+    over the true one (here 0.5 stated against 1.0 true: 0.5), and no effectivity within the reference's own
+    uncertainty (a true error below 0.2 %), without a stated error, or against another mesh's answer
+    ("converged": false, as the adapt bench's cases on the uniform ladder's fixed steps)."""
+    from camclay9.adapt_quotes import effectivities
+    from camclay9.adapt_study import effectivity
+    ref = {"P": 100.0}
+    assert effectivity(ref, "P", 101.0, 0.5) == pytest.approx(0.5)
+    assert effectivity(ref, "P", 100.1, 0.5) is None
+    assert effectivity(ref, "P", 101.0, float("nan")) is None and effectivity(ref, "creep", 101.0, 0.5) is None
+    assert effectivity(dict(ref, converged=False), "P", 101.0, 0.5) is None
+    level = {"level": 1, "q": {"P": 101.0, "h_max": 101.0}, "e": {"P": 2.0, "h_max": 2.0}}
+    cases = {"a": {"reference": {"P": 100.0, "h_max": 100.0}, "levels": [level]},
+             "b": {"reference": {"P": 100.0, "converged": False}, "levels": [level]}}
+    assert effectivities(cases) == [("a", 1, "P", pytest.approx(2.0))]
