@@ -179,6 +179,21 @@ def test_adapt_needs_geometry(tmp_path):
         assert code == 2 and key in out and "mesh.geometry" in out, out
 
 
+def test_adapt_relative_paths(tmp_path):
+    """The README's command form, `driver -input input/<scene>.yaml` from the folder above, with the scene's
+    geometry relative to the scene (../meshes/...): the adapted level's .geo includes the scene's .geo, and gmsh
+    resolves an Include against the including file's folder, so the path must not be the working directory's.
+    Before the fix level 1 stopped with gmsh's "Unable to open file '.../adapt/level1/input/../meshes/...'"."""
+    (tmp_path / "input").mkdir()
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "block.geo").write_text((ROOT / "meshes" / "indent_block2d.geo").read_text())
+    text = hertz_scene(1, 0.05, 0.4, adapt="\n  adapt: {levels: 1}").replace(f"{ROOT}/meshes/indent_block2d.geo", "../meshes/block.geo")
+    (tmp_path / "input" / "hertz.yaml").write_text(text)
+    proc = run_driver("input/hertz.yaml", "out", (), driver=BIN / "driver_elastic", cwd=tmp_path, timeout=300, check=False)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert len(summary(tmp_path / "out")["levels"]) == 2
+
+
 def test_restart_refuses_another_mesh(tmp_path):
     """A checkpoint carries its mesh's hash: the same scene file restarted after its .geo changed (so the same scene
     hash, another mesh) is refused with the checkpoint's own message, exit status 2, and the earlier history and mesh

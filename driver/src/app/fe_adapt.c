@@ -1,8 +1,10 @@
 /* Adaptation by rerun (fe_adapt.h; docs/adapt.md). */
 #include "fe_adapt.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -48,8 +50,15 @@ PetscErrorCode fe_adapt_options(YdDoc *doc, FeScene *sc, PetscBool restart, char
 /* The .geo of level k: the scene's own, its physical groups and parameters unchanged, with the size field of
    the level before as its background field (a gmsh PostView field of the view in sizes). */
 static int write_level_geo(const FeScene *sc, const char *geo, const char *sizes, char *err, size_t errlen) {
-  if (strchr(sc->geometry, '"') || strchr(sizes, '"')) {
-    snprintf(err, errlen, "%s: mesh.adapt: a path with a double quote cannot be named in a .geo", sc->geometry);
+  /* gmsh resolves an Include against the including file's folder, not the working directory: the scene's .geo by
+     its absolute path (level 0 has meshed it, so it exists) */
+  char scene_geo[PATH_MAX];
+  if (!realpath(sc->geometry, scene_geo)) {
+    snprintf(err, errlen, "%s: mesh.geometry: cannot resolve the path of the scene's geometry", sc->geometry);
+    return 1;
+  }
+  if (strchr(scene_geo, '"') || strchr(sizes, '"')) {
+    snprintf(err, errlen, "%s: mesh.adapt: a path with a double quote cannot be named in a .geo", scene_geo);
     return 1;
   }
   FILE *fp = fopen(geo, "w");
@@ -59,7 +68,7 @@ static int write_level_geo(const FeScene *sc, const char *geo, const char *sizes
   }
   fprintf(fp, "// The scene's geometry with the element sizes made from the error indicator of the level before (docs/adapt.md).\n"
               "Include \"%s\";\nMerge \"%s\";\nField[901] = PostView;\nField[901].ViewIndex = PostProcessing.NbViews - 1;\n"
-              "Background Field = 901;\n", sc->geometry, sizes);
+              "Background Field = 901;\n", scene_geo, sizes);
   return fclose(fp) ? (snprintf(err, errlen, "%s: cannot write the adapted geometry", geo), 1) : 0;
 }
 
