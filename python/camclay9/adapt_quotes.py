@@ -20,11 +20,11 @@ def effectivities(cases):
 
 def helpers(store):
     """The quotes' names on the adapt_bench store: effs (the measurable effectivities, now or "before" the contact
-    term, of every case or of one) and in_band (how many of them lie in BAND); with doc_quotes' ad, ade, adch."""
+    term, of every case or of one, of the levels in `levels`) and in_band (how many of them lie in BAND); with doc_quotes' ad, ade, adch."""
     cases = {"now": store.get("cases", {}), "before": store.get("before_contact_term", {}).get("cases", {})}
 
-    def effs(which="now", case=None):
-        return [x[3] for x in effectivities(cases[which]) if case in (None, x[0])]
+    def effs(which="now", case=None, levels=range(99)):
+        return [x[3] for x in effectivities(cases[which]) if case in (None, x[0]) and x[1] in levels]
 
     def in_band(values):
         return sum(BAND[0] <= v <= BAND[1] for v in values)
@@ -76,6 +76,8 @@ LINES = [  # the reading's lines that hold numbers (bench/adapt_conclusions.md)
     "  From a coarse first mesh (**sphere_coarse**, h_tip 0.1 µm, «th(ad('sphere_coarse', 0).unknowns)» unknowns) the levels' errors are measurable: «in_band(effs('now', 'sphere_coarse'))» of its",
     "  «len(effs('now', 'sphere_coarse'))» effectivities lie in [0.5, 2] («in_band(effs('before', 'sphere_coarse'))» of «len(effs('before', 'sphere_coarse'))» before the contact term). The elastic sphere of Hertz's contact, whose load is",
     "  least 0.2 %) it lies in [0.5, 2] in «in_band(effs())» of «len(effs())» cases, «sum(e < 0.5 for e in effs())» below and «sum(e > 2 for e in effs())» above (before the contact term: «in_band(effs('before'))» of «len(effs('before'))», «sum(e < 0.5 for e in effs('before'))» below,",
+    "  two reruns the answer's estimate uses three levels. From three levels or more (level 2 on) it lies in [0.5, 2] in «in_band(effs(levels=range(2, 99)))»",
+    "  of «len(effs(levels=range(2, 99)))» cases; the first rerun's, from two levels (one change from the coarse start, nothing to check it), in «in_band(effs(levels=[1]))» of «len(effs(levels=[1]))». The",
     "  counted above, that rung not being a converged answer) the kerogen sector's level 2 states «f(adf('sector_fixed', 2, 'P'), 1)», «f(adf('sector_fixed', 2, 'creep'), 1)» and «f(adf('sector_fixed', 2, 'h_res'), 1)» times",
     "  «sum(e > 2 for e in effs('before'))» above). The ones above are where a level's answer lies closer than its levels' changes say, which no",
 ]
