@@ -123,7 +123,7 @@ class Job:
         cmd = [driver, "-input", str(scene), "-output_dir", str(out)]
         self.cmd = (mpiexec() + cmd) if ranks > 1 else cmd
         self.proc = self.log = None
-        self.t0 = self.wall = None
+        self.t0 = self.wall = self.cpu = None
 
     def start(self):
         self.out.mkdir(parents=True, exist_ok=True)
@@ -131,11 +131,21 @@ class Job:
         self.t0 = time.monotonic()
         self.proc = subprocess.Popen(self.cmd, cwd=ROOT, stdout=self.log, stderr=subprocess.STDOUT)
 
+    def reap(self, flags):
+        """The exit status once the run has ended (None before), with its CPU seconds: user + system of the driver and
+        of every process it waited for (gmsh; mpiexec's ranks), from wait4's resource usage."""
+        pid, status, usage = os.wait4(self.proc.pid, flags)
+        if pid == 0:
+            return None
+        self.proc.returncode = os.waitstatus_to_exitcode(status)
+        self.cpu = usage.ru_utime + usage.ru_stime
+        return self.proc.returncode
+
     def poll(self):
-        rc = self.proc.poll()
+        rc = self.reap(os.WNOHANG)
         if rc is None and self.timeout and time.monotonic() - self.t0 > self.timeout:
             self.proc.kill()   # --job-timeout: a hung run fails instead of holding the whole reproduction
-            rc = self.proc.wait(timeout=60)
+            rc = self.reap(0)
             print(f"{self.key}: killed after {self.timeout:g} s (--job-timeout)", flush=True)
         if rc is not None:
             self.wall = time.monotonic() - self.t0
@@ -150,8 +160,9 @@ def last_line(path, prefix):
 
 
 def run_all(jobs, slots):
-    """Run the jobs, at most `slots` cores busy (an MPI job of n ranks takes n). Returns {key: wall}."""
-    pending, running, walls, failed = list(jobs), [], {}, []
+    """Run the jobs, at most `slots` cores busy (an MPI job of n ranks takes n). Returns {key: wall}, {key: CPU} and
+    the keys of the runs that failed."""
+    pending, running, walls, cpus, failed = list(jobs), [], {}, {}, []
     n, done = len(jobs), 0
     while pending or running:
         busy = sum(j.ranks for j in running)
@@ -168,13 +179,13 @@ def run_all(jobs, slots):
                 continue
             running.remove(j)
             done += 1
-            walls[j.key] = j.wall
+            walls[j.key], cpus[j.key] = j.wall, j.cpu
             summary = last_line(j.out / "driver.log", ("indentation", "fe scene"))
             status = "done" if rc == 0 else f"FAILED (exit {rc})"
-            print(f"[{done:2d}/{n}] {status} {j.key} in {j.wall:.1f} s: {summary[:150]}", flush=True)
+            print(f"[{done:2d}/{n}] {status} {j.key} in {j.wall:.1f} s ({j.cpu:.1f} s CPU): {summary[:150]}", flush=True)
             if rc != 0:
                 failed.append(j.key)
-    return walls, failed
+    return walls, cpus, failed
 
 
 def main(argv=None):
@@ -214,11 +225,12 @@ def main(argv=None):
     rerun = sorted(set(prev.get("rerun", [])) | set(a.only)) if a.only else []
     today = time.strftime("%Y-%m-%d", time.gmtime())
     if a.no_run:
-        walls, t_runs, rerun = prev.get("walls", {}), prev.get("wall_runs", float("nan")), prev.get("rerun", [])
+        walls, cpus = prev.get("walls", {}), prev.get("cpus", {})
+        t_runs, rerun = prev.get("wall_runs", float("nan")), prev.get("rerun", [])
         runs = prev
     else:
         print(f"reproduce ({mode}): {len(jobs)} scenes, {a.jobs} at a time, driver {a.driver}, output {out}", flush=True)
-        walls, failed = run_all(jobs, max(1, a.jobs))
+        walls, cpus, failed = run_all(jobs, max(1, a.jobs))
         t_runs = time.monotonic() - t_start
         if failed:
             print(f"reproduce: {len(failed)} scene(s) failed: {', '.join(failed)} (see DIR/<scene>/driver.log)")
@@ -226,9 +238,10 @@ def main(argv=None):
         dates = {**prev.get("dates", {}), **{k: today for k in walls}}
         if a.only:  # the other scenes keep their runs and times; the whole run's time stays the last full run's
             walls, t_runs = {**prev.get("walls", {}), **walls}, prev.get("wall_runs", float("nan"))
-            runs = {**prev, "walls": walls, "rerun": rerun, "dates": dates}
+            cpus = {**prev.get("cpus", {}), **cpus}
+            runs = {**prev, "walls": walls, "cpus": cpus, "rerun": rerun, "dates": dates}
         else:
-            runs = {"walls": walls, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
+            runs = {"walls": walls, "cpus": cpus, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
                     "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs"}
         meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
     print(f"runs: {t_runs:.1f} s wall; plotting", flush=True)
@@ -243,7 +256,7 @@ def main(argv=None):
     if not partial:
         runs["wall_total"] = total
         meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
-    meta = {"mode": mode, "date": today, "wall_runs": t_runs, "wall_total": total, "walls": walls, "out": str(out),
+    meta = {"mode": mode, "date": today, "wall_runs": t_runs, "wall_total": total, "walls": walls, "cpus": cpus, "out": str(out),
             "rerun": rerun, "run_dates": runs.get("dates", {}), "whole_run_date": runs.get("whole_run_date", today),
             "load_note": runs.get("load_note", "load not recorded"),
             "scene_source": "input/*.yaml as shipped" if not a.quick else "coarse variants (out/.../scenes)"}

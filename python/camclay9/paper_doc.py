@@ -304,19 +304,31 @@ def checks(trends):
 
 
 def _wall_rows(meta, order=None):
-    dates = meta.get("run_dates", {})
+    """A row per scene: its wall and CPU seconds (user + system of the driver and of what it started; '—' for runs
+    recorded before the CPU was) and its date."""
+    dates, cpus = meta.get("run_dates", {}), meta.get("cpus", {})
     items = sorted(meta["walls"].items(), key=lambda kv: -kv[1]) if order == "longest" else meta["walls"].items()
-    return [f"| {k} | {v:.1f} | {dates.get(k, meta['date'])} |" for k, v in items]
+    return [f"| {k} | {v:.1f} | {f'{cpus[k]:.1f}' if cpus.get(k) is not None else '—'} | {dates.get(k, meta['date'])} |" for k, v in items]
+
+
+
+def _cpu_sentence(meta):
+    """The scenes' CPU against the cores' wall time: how much of the 2 cores the runs had."""
+    cpus = [c for c in meta.get("cpus", {}).values() if c is not None]
+    if len(cpus) < len(meta["walls"]) or not meta["wall_runs"] == meta["wall_runs"]:
+        return ""
+    return (f" The scenes' CPU adds up to {sum(cpus):.0f} s, {sum(cpus) / (2 * meta['wall_runs']):.0%} of the 2 cores over the "
+            "runs' wall time.")
 
 
 def timings(meta):
     L = ["## Run times", "", "Wall time of each scene's run: two at a time on the 2 cores (the triaxial cylinders on 2 ranks, "
-         "alone), on a machine shared with other jobs, so a scene's time depends on what ran beside it (CPU times per scene: "
-         "docs/performance.md). A scene rerun with `--only` shows that run's time and date.", "",
-         "| scene | wall [s] | run |", "|---|---|---|"]
+         "alone), so a scene's wall time depends on what ran beside it; its CPU time does not. A scene rerun with `--only` shows that run's time and date. CPU: user + system seconds of the "
+         "driver and of what it started (gmsh, the ranks)." + _cpu_sentence(meta), "",
+         "| scene | wall [s] | CPU [s] | run |", "|---|---|---|---|"]
     L += _wall_rows(meta)
-    return L + [f"| all runs of the whole run (2 at a time) | {meta['wall_runs']:.1f} | {meta.get('whole_run_date', meta['date'])} |",
-                f"| with plots | {meta['wall_total']:.1f} | |", ""]
+    return L + [f"| all runs of the whole run (2 at a time) | {meta['wall_runs']:.1f} | | {meta.get('whole_run_date', meta['date'])} |",
+                f"| with plots | {meta['wall_total']:.1f} | | |", ""]
 
 
 PERFORMANCE_TITLE = "## Reproducing the paper"
@@ -330,7 +342,8 @@ def performance_section(meta):
             f"docs/paper.md). The whole run of {meta.get('whole_run_date', meta['date'])}: runs {meta['wall_runs']:.0f} s, in all "
             f"{meta['wall_total']:.0f} s wall on 2 cores ({meta.get('load_note', 'load not recorded')}). Wall time of each "
             "scene, as docs/paper.md lists them (two ran at once; a scene rerun since with `--only` shows that run's time "
-            "and date):\n\n| scene | wall [s] | run |\n|---|---|---|\n" + "\n".join(_wall_rows(meta, "longest")) + "\n")
+            "and date), and its CPU (user + system of the driver and of what it started)." + _cpu_sentence(meta)
+            + "\n\n| scene | wall [s] | CPU [s] | run |\n|---|---|---|---|\n" + "\n".join(_wall_rows(meta, "longest")) + "\n")
 
 
 def small_copy(src, dest):
