@@ -118,11 +118,15 @@ def _adapted(store_dir=None):
         lv = cases[False][case]["levels"][level]
         return lv["e"][q] / abs(lv["q"][q] - cases[False][case]["reference"][q])
 
+    def adr(case):
+        """A case's reference: its outputs and where they come from."""
+        return A(cases[False][case]["reference"])
+
     def adc(case, levels):
         """The CPU seconds of a case's first `levels` levels: an adapted scene that runs them."""
         return sum(lv["cpu"] for lv in cases[False][case]["levels"][:levels])
 
-    return dict(ad=ad, ade=ade, adch=adch, adf=adf, adc=adc, **adapt_quotes.helpers(store))
+    return dict(ad=ad, ade=ade, adch=adch, adf=adf, adc=adc, adr=adr, **adapt_quotes.helpers(store))
 
 
 def _indent_speed(store_dir=None):
@@ -422,11 +426,13 @@ QUOTES = [
         "h_tip 0.02 µm, «pc(rung2('lr', 0.005, 0.4, order=1).creep, 0)» at 0.005 µm and «f(rung2('lr', 0.005, 0.4, order=1).cpu, 0)» s of "
         "CPU, against «pc(rung2('lr', 0.01414, 0.9).creep, 1)» for the shipped P2 at «f(rung2('lr', 0.01414, 0.9).cpu, 0)» s)"),
     (R, "at α = 10 −0.3 %; its time steps «pc(stc('loading_rate_a1', 'creep depth'), 2)» in creep depth"),
-    (R, "last level («f(ad('sector', 2).unknowns / 1000, 1)» k unknowns): load «pc(ade('sector', 2, 'P'), 2)», creep depth "
-        "«pc(ade('sector', 2, 'creep'), 2)», residual depth «pc(ade('sector', 2, 'h_res'), 2)» against the converged 3D answer"),
-    (R, "its stated mesh error «f(adf('sector', 2, 'P'))», «f(adf('sector', 2, 'creep'), 0)» and «f(adf('sector', 2, 'h_res'))» "
-        "times the true one in the three"),
-    (R, "«f(adc('sector', 3), 0)» s CPU for the three levels, «f(ad('sector', 2).cpu, 0)» s for the last alone"),
+    (R, "last level («f(ad('sector', 3).unknowns / 1000, 1)» k unknowns): load «pc(ade('sector', 3, 'P'), 2)», creep depth "
+        "«pc(ade('sector', 3, 'creep'), 2)», residual depth «pc(ade('sector', 3, 'h_res'), 2)» against the sector adapted to level 5 "
+        "(«f(ad('sector', 5).unknowns / 1000, 1)» k unknowns), whose creep depth «f(adr('sector').creep, 2)» nm is "
+        "«pu(adr('sector').creep / k.reference.creep - 1, 2)» above the uniform ladder's converged answer"),
+    (R, "its stated mesh error «pu(ad('sector', 3).e['P'] / ad('sector', 3).q['P'])», «pu(ad('sector', 3).e['creep'] / ad('sector', 3).q['creep'])» "
+        "and «pu(ad('sector', 3).e['h_res'] / ad('sector', 3).q['h_res'])» in the three"),
+    (R, "«f(adc('sector', 4), 0)» s CPU for the four levels, «f(ad('sector', 3).cpu, 0)» s for the last alone"),
     (R, "«f(adc('bn', 4), 0)» s CPU for its four levels on a loaded machine"),
     (R, "«f(adc('bp', 3), 0)» s CPU for its three levels on a loaded machine"),
     # the FE solvers' speed and memory (docs/parallel.md; bench/scaling_bench.py, fe_scaling.json)
@@ -468,7 +474,7 @@ QUOTES = [
     (R, "«f(half_over_sector, 1)» times less CPU than the half model; P2 reaches the 3D answer where P1 at "
         "h_tip 0.05 µm is still «g(100 * min(abs(v) for v in err3('sector1_0.05').values()), '.0f')»–«pu(max(abs(v) for v in "
         "err3('sector1_0.05').values()), 0)» away at «f(kr('sector1_0.05').cpu / kr('sector2_0.12').cpu, 0)» times the CPU"),
-    (R, "(a uniform zone within 1 % needs «f(kr('sector2_0.05').unknowns / 1e3, 0)» k unknowns)"),
+    (R, "(a uniform zone within 1 % of that answer needs «f(kr('sector2_0.05').unknowns / 1e3, 0)» k unknowns)"),
     (R, "ladders of the sector on P2 (h_tip «g(bn.p2.h_tip[0], 'g')» to «g(bn.p2.h_tip[-1], '.3g')» µm, «f(bn.p2.unknowns[-1] / 1e3, 0)» k "
         "unknowns) and P1 («g(bn.p1.h_tip[0], 'g')» to «g(bn.p1.h_tip[-1], '.3g')» µm)"),
     (R, "a ladder of h_tip «', '.join(g(x, '.3g') for x in bp.p2.h_tip)» µm (P2, the last «f(bp.p2.cpu[-1], 0)» s CPU)"),
