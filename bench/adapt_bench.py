@@ -106,7 +106,7 @@ def level_reference(results, base, case, n):
             if lv["level"] == n]
     if not done:
         return None
-    return dict(done[0]["q"], **{"from": f"the sector adapted to level {n}, P2, {done[0]['unknowns']} unknowns"})
+    return dict(done[0]["q"], **{"from": f"{case} adapted to level {n}, {done[0]['unknowns']} unknowns"})
 
 
 def ladder_reference(case, solver):

@@ -311,7 +311,6 @@ def _wall_rows(meta, order=None):
     return [f"| {k} | {v:.1f} | {f'{cpus[k]:.1f}' if cpus.get(k) is not None else '—'} | {dates.get(k, meta['date'])} |" for k, v in items]
 
 
-
 def _cpu_sentence(meta):
     """The scenes' CPU against the cores' wall time: how much of the 2 cores the runs had."""
     cpus = [c for c in meta.get("cpus", {}).values() if c is not None]
@@ -323,8 +322,9 @@ def _cpu_sentence(meta):
 
 def timings(meta):
     L = ["## Run times", "", "Wall time of each scene's run: two at a time on the 2 cores (the triaxial cylinders on 2 ranks, "
-         "alone), so a scene's wall time depends on what ran beside it; its CPU time does not. A scene rerun with `--only` shows that run's time and date. CPU: user + system seconds of the "
-         "driver and of what it started (gmsh, the ranks)." + _cpu_sentence(meta), "",
+         "alone), so a scene's wall time depends on what ran beside it; its CPU time does not. A scene rerun with `--only` "
+         "shows that run's time and date. CPU: user + system seconds of the driver and of what it started (gmsh, the ranks)."
+         + _cpu_sentence(meta), "",
          "| scene | wall [s] | CPU [s] | run |", "|---|---|---|---|"]
     L += _wall_rows(meta)
     return L + [f"| all runs of the whole run (2 at a time) | {meta['wall_runs']:.1f} | | {meta.get('whole_run_date', meta['date'])} |",
