@@ -468,6 +468,8 @@ QUOTES = [
     (R, "(P2 to h_tip 0.035: P «f(k.reference.P, 1)» µN ± «pu(k.reference.hw.P)», creep depth «f(k.reference.creep, 2)» nm ± "
         "«pu(k.reference.hw.creep)», residual depth «f(k.reference.h_res, 1)» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
         "«pc(err3('sector2_0.12').P)», creep depth «pc(err3('sector2_0.12').creep)», residual depth «pc(err3('sector2_0.12').h_res)»"),
+    (R, "(against the sector adapted to level 5, whose creep depth is higher: creep depth «pc(kr('sector2_0.12').creep / adr('sector').creep - 1)», "
+        "residual depth «pc(kr('sector2_0.12').h_res / adr('sector').h_res - 1)»)"),
     (R, "another mesh of this density is «pc(err3('sector2f8_0.12').h_res)» in residual depth"),
     (R, "«f(isp('nanoindent_kerogen_sector').cpu, 0)» s CPU on a shared machine (docs/performance.md, \"Indentation speed\"); "
         "on an idle machine «f(k.shipped_cost.cpu_median, 0)» s (median of «k.shipped_cost.runs»; «k.shipped_cost.umat_calls_M» M "
