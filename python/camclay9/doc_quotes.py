@@ -463,7 +463,7 @@ QUOTES = [
     (R, "> 10× the hard one only until «f(f18.until[0], 0)» s (θ = 0) and «f(f18.until[90], 0)» s (θ = 90) of the 36 000 s"),
     (R, "(size 6 mm: «pu(fe[(6, 1e-06, 2)].err_10h, 2)» from the finest run at 10 h, with another φ draw) | "
         "«f(fe[(6, 1e-06, 2)].wall, 0)» s wall on 2 quiet cores (the main job above) |"),
-    (R, "docs/paper.md (about «f(meta.wall_runs / 60, 0)» min on a loaded"),
+    (R, "docs/paper.md (about «f(meta.wall_runs / 60, 0)» min on an idle"),
     # the kerogen sector (defect 3)
     (R, "(P2 to h_tip 0.035: P «f(k.reference.P, 1)» µN ± «pu(k.reference.hw.P)», creep depth «f(k.reference.creep, 2)» nm ± "
         "«pu(k.reference.hw.creep)», residual depth «f(k.reference.h_res, 1)» nm ± «pu(k.reference.hw.h_res)»): load at 200 nm "
