@@ -48,18 +48,21 @@ PetscErrorCode fe_adapt_options(YdDoc *doc, FeScene *sc, PetscBool restart, char
 }
 
 /* The .geo of level k: the scene's own, its physical groups and parameters unchanged, with the size field of
-   the level before as its background field (a gmsh PostView field of the view in sizes). */
+   the level before as its background field (a gmsh PostView field of the view in sizes). gmsh resolves the paths
+   in an Include or a Merge against the including file's folder, not the working directory: both by their absolute
+   paths (both exist: level 0 has meshed the scene's .geo, level k - 1 written its sizes). */
 static int write_level_geo(const FeScene *sc, const char *geo, const char *sizes, char *err, size_t errlen) {
-  /* gmsh resolves an Include against the including file's folder, not the working directory: the scene's .geo by
-     its absolute path (level 0 has meshed it, so it exists) */
-  char scene_geo[PATH_MAX];
-  if (!realpath(sc->geometry, scene_geo)) {
-    snprintf(err, errlen, "%s: mesh.geometry: cannot resolve the path of the scene's geometry", sc->geometry);
-    return 1;
-  }
-  if (strchr(scene_geo, '"') || strchr(sizes, '"')) {
-    snprintf(err, errlen, "%s: mesh.adapt: a path with a double quote cannot be named in a .geo", scene_geo);
-    return 1;
+  char        abs_paths[2][PATH_MAX];
+  const char *paths[2] = {sc->geometry, sizes}, *keys[2] = {"mesh.geometry", "mesh.adapt"};
+  for (int i = 0; i < 2; i++) {
+    if (!realpath(paths[i], abs_paths[i])) {
+      snprintf(err, errlen, "%s: %s: cannot resolve the path for the adapted geometry", paths[i], keys[i]);
+      return 1;
+    }
+    if (strchr(abs_paths[i], '"')) {
+      snprintf(err, errlen, "%s: mesh.adapt: a path with a double quote cannot be named in a .geo", abs_paths[i]);
+      return 1;
+    }
   }
   FILE *fp = fopen(geo, "w");
   if (!fp) {
@@ -68,7 +71,7 @@ static int write_level_geo(const FeScene *sc, const char *geo, const char *sizes
   }
   fprintf(fp, "// The scene's geometry with the element sizes made from the error indicator of the level before (docs/adapt.md).\n"
               "Include \"%s\";\nMerge \"%s\";\nField[901] = PostView;\nField[901].ViewIndex = PostProcessing.NbViews - 1;\n"
-              "Background Field = 901;\n", scene_geo, sizes);
+              "Background Field = 901;\n", abs_paths[0], abs_paths[1]);
   return fclose(fp) ? (snprintf(err, errlen, "%s: cannot write the adapted geometry", geo), 1) : 0;
 }
 
@@ -160,10 +163,7 @@ static int run_level(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *o
   snprintf(sizes, sizeof sizes, "%s/sizes.pos", dir);
   snprintf(geo, sizeof geo, "%s/adapted.geo", dir);
   if (k > 0) {
-    char cwd[400] = ".";
-    if (prev->dir[0] != '/' && !getcwd(cwd, sizeof cwd)) snprintf(cwd, sizeof cwd, ".");
-    if (prev->dir[0] == '/') snprintf(prev_sizes, sizeof prev_sizes, "%s/sizes.pos", prev->dir); /* gmsh reads it from the .geo's folder */
-    else snprintf(prev_sizes, sizeof prev_sizes, "%s/%.280s/sizes.pos", cwd, prev->dir);
+    snprintf(prev_sizes, sizeof prev_sizes, "%s/sizes.pos", prev->dir);
     if (!rank) rc = fs_prepare_output_dir(dir, err, errlen) ? 2 : write_level_geo(sc, geo, prev_sizes, err, errlen);
     MPI_Bcast(&rc, 1, MPI_INT, 0, PETSC_COMM_WORLD);
     MPI_Bcast(err, (int)errlen, MPI_CHAR, 0, PETSC_COMM_WORLD);
