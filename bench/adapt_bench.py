@@ -34,6 +34,7 @@ import argparse
 import json
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import yaml
 from camclay9 import read_summary, results_store, run_driver
@@ -50,16 +51,29 @@ UNLOAD = """  - name: unload
     steps: {adaptive: true, first: 1, min: 1.0e-9, max: 1, error: {measure: output, tol: 0.1}}
 """
 
-# case: (scene in input/, parameter replacements for the coarse start, add an unload, the reference or None)
+class LevelOf(NamedTuple):
+    """A reference: level `level` of this bench's case `case` (level_reference)."""
+    case: str
+    level: int
+
+
+class LadderRow(NamedTuple):
+    """A reference: the uniform ladder's row (case, solver) in the contact solver's store (ladder_reference)."""
+    case: str
+    solver: str
+
+
+# case: (scene in input/, parameter replacements for the coarse start, add an unload, the reference: a dict of outputs,
+# a LevelOf, a LadderRow, the name of the case whose reference run is its reference, or None)
 CASES = {
     "lr1": ("loading_rate_a1.yaml", {"h_tip: 0.01414, h_far: 0.106": "h_tip: 0.04, h_far: 0.3"}, True,
             {"h_max": 194.91, "creep": 35.47, "h_res": 125.64}),
     # against its own level 5 (the module's docstring)
     "sector": ("nanoindent_kerogen_sector.yaml", {"h_tip: 0.12, h_far: 0.48": "h_tip: 0.2, h_far: 0.8"}, False,
-               ("level", "sector", 5)),
+               LevelOf("sector", 5)),
     # the sector on P1 elements from the same coarse start: what the element order buys on adapted meshes
     "sector_p1": ("nanoindent_kerogen_sector.yaml", {"h_tip: 0.12, h_far: 0.48": "h_tip: 0.2, h_far: 0.8",
-                                                     "order: 2": "order: 1"}, False, ("level", "sector", 5)),
+                                                     "order: 2": "order: 1"}, False, LevelOf("sector", 5)),
     "axi": ("nanoindent_kerogen_axi.yaml", {}, False, None),
     "sphere": ("nanoindent_kerogen_axi.yaml", {"indenter: {shape: cone, half_angle: 70.3, contact: contact}":
                                                "indenter: {shape: sphere, radius: 2, contact: contact}",
@@ -74,7 +88,7 @@ CASES = {
     "bp": ("microindent_BP.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, None),
 }
 # the same cases on the uniform ladder's fixed steps: (case, the ladder's row (case, solver) that is their reference)
-ON_FIXED_STEPS = {"sector_fixed": ("sector", ("fix0.019", FORCING)), "bn_fixed": ("bn", ("bnfix0.475", FORCING))}
+ON_FIXED_STEPS = {"sector_fixed": ("sector", LadderRow("fix0.019", FORCING)), "bn_fixed": ("bn", LadderRow("bnfix0.475", FORCING))}
 CASES.update({c: CASES[of][:3] + (row,) for c, (of, row) in ON_FIXED_STEPS.items()})
 
 
@@ -157,6 +171,23 @@ def levels_of(out):
     return rows
 
 
+def reference(case, results, base):
+    """A case's reference (CASES): its outputs, or None where the runs it comes from are neither here nor in results."""
+    ref = CASES[case][3]
+    if isinstance(ref, LevelOf):
+        return level_reference(results, base, *ref)
+    if isinstance(ref, LadderRow):   # on the same fixed steps
+        return ladder_reference(*ref)
+    if isinstance(ref, str) or (ref is None and case in ("axi", "sphere")):   # a reference run's answer, its last level done
+        done = [d / "summary.json" for d in sorted((base / f"{ref or case}_ref" / "adapt").glob("level*"), key=lambda p: int(p.name[5:]))
+                if (d / "summary.json").exists()]
+        if not done:
+            return None
+        s = read_summary(done[-1])
+        return dict(quantities(s)[0], **{"from": f"P2, {s['mesh']['unknowns']} unknowns"})
+    return ref
+
+
 def run_info(out, note):
     """When a case's levels in `out` ran (the date of its first level's summary) and on what machine (`note`); the
     section gives it beside the case where it differs from the store's first runs."""
@@ -180,26 +211,14 @@ def main():
     results = json.loads(Path(a.results).read_text()) if Path(a.results).exists() else results_store.load(STORE).get("cases", {})
     for case in a.cases.split(","):
         out = base / case
-        if a.no_run and case in results and not (out / "adapt").is_dir():
-            continue   # its runs are not here: the levels kept in --results
         if not a.no_run:
             run(case, out, a.levels)
             if CASES[case][3] is None and case in ("axi", "sphere") and not a.keep_references:   # the reference: P2 on its own meshes, a level more
                 run(case, base / f"{case}_ref", a.levels + 1, order=2)
-        ref = CASES[case][3]
-        if isinstance(ref, tuple) and ref[0] == "level":   # a level of a case of this bench
-            ref = level_reference(results, base, *ref[1:])
-        elif isinstance(ref, tuple):   # a row of the uniform ladder on the same fixed steps
-            ref = ladder_reference(*ref)
-        elif isinstance(ref, str) or (ref is None and case in ("axi", "sphere")):   # a reference run's answer, or its last level done
-            of = ref if isinstance(ref, str) else case
-            ref = None
-            done = [d / "summary.json" for d in sorted((base / f"{of}_ref" / "adapt").glob("level*"), key=lambda p: int(p.name[5:]))
-                    if (d / "summary.json").exists()]
-            if done:
-                ref = quantities(read_summary(done[-1]))[0]
-                ref["from"] = f"P2, {read_summary(done[-1])['mesh']['unknowns']} unknowns"
-        results[case] = {"levels": levels_of(out), "reference": ref, "run": run_info(out, a.note)}
+        if a.no_run and case in results and not (out / "adapt").is_dir():   # its runs are not here: the levels kept in --results,
+            results[case]["reference"] = reference(case, results, base) or results[case]["reference"]   # the reference as CASES says
+            continue
+        results[case] = {"levels": levels_of(out), "reference": reference(case, results, base), "run": run_info(out, a.note)}
     Path(a.results).parent.mkdir(parents=True, exist_ok=True)
     Path(a.results).write_text(json.dumps(results, indent=1))
     kept = results_store.load(STORE)   # the cases run before the indicator's contact term, which the reading compares
@@ -211,7 +230,7 @@ def main():
     if "before_contact_term" in kept:
         store["before_contact_term"] = kept["before_contact_term"]
         for c, r in store["before_contact_term"].get("cases", {}).items():   # one reference for both, where it is a level
-            if c in store["cases"] and isinstance(CASES.get(c, (None,) * 4)[3], tuple) and CASES[c][3][0] == "level":
+            if c in store["cases"] and isinstance(CASES[c][3], LevelOf):
                 r["reference"] = store["cases"][c]["reference"]
     text = section(store, ROOT)
     print(text)
