@@ -23,6 +23,7 @@ import re
 import statistics
 
 from camclay9 import adapt_quotes, contact_quotes, contact_solver_study, coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
+from camclay9.adapt_study import effectivity
 from camclay9.indent2d_study import key
 
 
@@ -114,9 +115,10 @@ def _adapted(store_dir=None):
         return abs(lv[a]["q"][q] / lv[b]["q"][q] - 1)
 
     def adf(case, level, q):
-        """A level's stated mesh error over its true error in output q (its effectivity)."""
+        """A level's stated mesh error over its difference from its case's reference in output q: the effectivity's rule
+        (adapt_study.effectivity), here also against a reference that is not a converged answer."""
         lv = cases[False][case]["levels"][level]
-        return lv["e"][q] / abs(lv["q"][q] - cases[False][case]["reference"][q])
+        return effectivity(dict(cases[False][case]["reference"], converged=True), q, lv["q"][q], lv["e"][q])
 
     def adr(case):
         """A case's reference: its outputs and where they come from."""

@@ -8,6 +8,7 @@ tools/doc_numbers.py (CTest docs.numbers) checks that the document and the store
 indentation text also quote the stores of the mesh studies (docs/results/{indent_convergence,indent3d,adapt_bench,
 indent2d_convergence,fe_triaxial}.json).
 """
+import math
 import shutil
 from pathlib import Path
 
@@ -314,7 +315,7 @@ def _wall_rows(meta, order=None):
 def _cpu_sentence(meta):
     """The scenes' CPU against the cores' wall time: how much of the 2 cores the runs had."""
     cpus = [c for c in meta.get("cpus", {}).values() if c is not None]
-    if len(cpus) < len(meta["walls"]) or not meta["wall_runs"] == meta["wall_runs"]:
+    if len(cpus) < len(meta["walls"]) or math.isnan(meta["wall_runs"]):
         return ""
     return (f" The scenes' CPU adds up to {sum(cpus):.0f} s, {sum(cpus) / (2 * meta['wall_runs']):.0%} of the 2 cores over the "
             "runs' wall time.")
