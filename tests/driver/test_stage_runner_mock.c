@@ -30,6 +30,13 @@
  *                whole; once with -checkpoint_every 3 stopped by -max_steps 7; then restarted: the restart reads
  *                checkpoint.latest = step 6 and its accepted times, steps and x are those of the whole run from
  *                step 6 on, bit for bit.
+ *  8 jump        x constant but for a jump J = 0.3 at t = 0.5 (a snap at a limit point: every step across it holds the
+ *                whole jump, however short), the 'output' measure at tol 0.02: the step across it is accepted once a
+ *                shorter one did not lower its estimate, and the step after it has no estimate (its predecessor's
+ *                increment predicts nothing: docs/driver.md). Before, that step was measured against the jump and
+ *                cut to min (the run failed: "the time-step error stays above its tolerance"). Checked: the run
+ *                ends at t = 1 exactly, x = x0 + J (1e-12), one accepted step holds the jump and the summary counts
+ *                one jump, and no step after it is shorter than a tenth of that step (no cutback chain).
  *  7 errors      (stage_runner.h, docs/driver.md "Error codes") a check that fails with STEP_FAIL after t = 0.45 (0.1 s
  *                steps): status 1, err exactly the callback's message, 5 steps accepted; a solve that fails with a PETSc
  *                error (PETSC_ERR_MEM) on its 3rd call: that code returned, err empty (main prints PETSc's message), 2
@@ -68,6 +75,7 @@ typedef struct {
   int    petsc_error_solve;     /* this solve call fails with a PETSc error (0: none) */
   double fail_after;            /* > 0: the check fails (STEP_FAIL) once t is past it */
   int    spike_solve;           /* this solve call's estimate is spike x tol */
+  double t_jump, jump;          /* jump != 0: x jumps by it in the step across t_jump (a snap) */
   double spike, err_level;      /* otherwise err_level x tol, or ... */
   double err_coef;              /* ... when > 0: err_coef h (1 + 0.5 sin 5 t0), an estimate that varies */
   int    nsolve, naccept, nwrite;
@@ -95,6 +103,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   if (call <= MAXREC) m->solve_h[call - 1] = rq->h;
   PetscCheck(call != m->petsc_error_solve, PETSC_COMM_SELF, PETSC_ERR_MEM, "mock: a PETSc error on purpose");
   m->x_trial   = m->x * exp(-rq->h / m->tau);
+  if (m->jump != 0 && m->t < m->t_jump && m->t + rq->h >= m->t_jump) m->x_trial += m->jump;
   o->converged = call != m->fail_solve;
   o->why       = "mock: not converged on purpose";
   o->its       = 1;
@@ -364,6 +373,28 @@ static void case_checkpoint(const char *tmp) {
         "restart: x %.17g, t %.17g; whole run x %.17g, t %.17g (expected equal bit for bit, t = 2)", resumed.x, s_res.t, whole.x, s_whole.t);
 }
 
+/* A snap: the answer jumps at t = 0.5 whatever the step (module comment, case 8). */
+static void case_jump(void) {
+  Mock          m;
+  RunnerSummary sum;
+  mock_init(&m);
+  m.tau = 1e12, m.t_jump = 0.5, m.jump = 0.3; /* x constant (3) but for the jump */
+  m.nstage = 1, m.stage[0] = adaptive_stage(1.0, 0.05, 1.5, 0.3, MEASURE_OUTPUT, 0.02);
+  if (run_quiet(&m, &sum)) return;
+  check_end_exactly(__func__, &m, &sum, 1.0);
+  CHECK(near(m.x, m.x0 + m.jump, 1e-12), "x = %.17g, expected x0 + J = %.17g", m.x, m.x0 + m.jump);
+  int k_jump = -1;
+  for (int k = 0; k < m.naccept && k < MAXREC; k++)
+    if (m.accept_t[k] >= m.t_jump && (k == 0 || m.accept_t[k - 1] < m.t_jump)) k_jump = k;
+  CHECK(k_jump > 0, "no accepted step across t = %g", m.t_jump);
+  if (k_jump <= 0) return;
+  printf("jump: %d steps, %d cutbacks; the step across the jump h = %.3g\n", m.naccept, sum.cutbacks, m.accept_h[k_jump]);
+  CHECK(sum.jumps == 1, "%d steps counted as across a jump, expected 1", sum.jumps);
+  for (int k = k_jump + 1; k < m.naccept && k < MAXREC; k++)
+    CHECK(m.accept_h[k] >= 0.1 * m.accept_h[k_jump] || m.accept_t[k] >= 1 - 1e-12, "step %d after the jump: h = %.3g, below a tenth of the jump's step %.3g",
+          k, m.accept_h[k], m.accept_h[k_jump]);
+}
+
 /* ---------------------------------------------------------------------------------------------------- */
 /* Errors                                                                                               */
 
@@ -400,6 +431,7 @@ int main(int argc, char **argv) {
   case_output_times();
   case_checkpoint(tmp);
   case_errors();
+  case_jump();
   char cmd[128];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
   if (!failures && system(cmd)) fprintf(stderr, "note: could not remove %s\n", tmp);

@@ -80,8 +80,8 @@ static void stages_and_counters(FILE *fp, const char *const *name, int nname, co
   fputs(",\n  \"stages\": [\n", fp);
   for (int k = 0; k <= s->nstages_done; k++) stage_entry(fp, k ? name[k - 1] : "start", s, me, k);
   fprintf(fp, "  ],\n  \"counters\": {\"steps\": %d, \"cutbacks\": %d, \"rejected_by_error\": %d, \"rejected_by_umat\": %d, "
-              "\"rejected_stalled\": %d, \"rejected_not_converged\": %d, \"newton_its\": %d, \"umat_calls\": %ld}",
-          s->steps, s->cutbacks, s->rejected_error, s->rejected_umat, s->rejected_stalled, s->rejected_unconverged, s->its, s->umat_calls);
+              "\"rejected_stalled\": %d, \"rejected_not_converged\": %d, \"jumps\": %d, \"newton_its\": %d, \"umat_calls\": %ld}",
+          s->steps, s->cutbacks, s->rejected_error, s->rejected_umat, s->rejected_stalled, s->rejected_unconverged, s->jumps, s->its, s->umat_calls);
   failure_entry(fp, name, nname, s, end);
 }
 

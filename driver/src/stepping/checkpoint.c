@@ -10,10 +10,11 @@
 #include <unistd.h>
 
 #define CKPT_MAGIC 0x43433952 /* "CC9R" */
-#define CKPT_VERSION 9 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState; 6: their time-step errors;
+#define CKPT_VERSION 10 /* 4: the indenter's counters as integers (semismooth_state_io); 5: reported quantities and the mesh's hash in RunState; 6: their time-step errors;
                           7: a point's UMAT call count in its state (PointSummary.umat_calls), and the one history layout (a point's
                           segment column is stage, an FE history has stage_name: a format-6 checkpoint's history.csv has the old one);
-                          8: the cutbacks by their cause in RunState; 9: the outputs at the stage's start in RunState */
+                          8: the cutbacks by their cause in RunState; 9: the outputs at the stage's start in RunState;
+                          10: the rejected attempt's estimate size beside its ratio (stage_runner.c, judge: a jump told apart), the jumps */
 
 static void set_path(const RunnerOptions *opt, int step, int rank, char *path, size_t n) {
   snprintf(path, n, "%s/checkpoint.%d.rank%d.bin", opt->outdir, step, rank);

@@ -14,8 +14,9 @@
 typedef struct {
   int    stage, in_stage, first_in_stage, step, its, cutbacks, cut_in_step, rejected_error;
   int    rejected_umat, rejected_stalled, rejected_unconverged; /* the cutbacks by their cause (RunnerSummary) */
+  int    jumps;                                                 /* steps accepted across a jump (RunnerSummary) */
   int    pending_instant, k_planned, cut_in_plan, next_stage_time, have_prev, nout, kink;
-  double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio, ratio_prev;
+  double t, t_stage, dt, landing, event_prev, h_prev, reject_ratio, reject_size, ratio_prev;
   double out_prev[STEP_MAX_OUT], dout_prev[STEP_MAX_OUT], out_scale[STEP_MAX_OUT];
   double out_start[STEP_MAX_OUT]; /* the outputs at the stage's start (the 'output' measure relative to the stage) */
   long   history_offset;

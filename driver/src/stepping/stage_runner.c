@@ -112,14 +112,17 @@ static double departure(double d, double d_prev, double h, double h_prev) { retu
  * larger of the increment and the step's share of the stage's mean change so far, h |y - y_start| / (t - t_start):
  * a step whose increment is small against the stage's mean rate (the tail of a transient, an exponential load's
  * start) is asked for tol of that share, not of its own small increment: a share of the stage's change in
- * proportion to the step's length. */
-static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
+ * proportion to the step's length. *size tells a jump apart (judge): for 'output' the departure itself over the
+ * outputs' scale, which falls as h (h + h_prev) where the answer is smooth and stays that of the jump where it
+ * jumps (the ratio, relative to the increment, tends to h_prev y''/(2 y') as h goes to 0); for 'volume' the ratio. */
+static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq, double *size) {
   const StepControl *sc = r->view.steps;
   RunState          *st = &r->st;
+  *size = -1;
   if (!sc->adaptive || sc->measure == MEASURE_WORST_POINT || rq->h == 0) return -1;
-  if (sc->measure == MEASURE_VOLUME) return rq->first_in_stage || o->vol_err < 0 ? -1 : o->vol_err / sc->tol;
+  if (sc->measure == MEASURE_VOLUME) return rq->first_in_stage || o->vol_err < 0 ? -1 : (*size = o->vol_err / sc->tol);
   if (rq->first_in_stage || !st->have_prev || o->nout <= 0 || st->nout != o->nout || st->h_prev <= 0) return -1;
-  double worst = 0;
+  double worst = 0, worst_size = 0;
   for (int g = 0; g <= o->group[o->nout - 1]; g++) {
     double num = 0, den = 0, scale = 0;
     for (int k = 0; k < o->nout; k++)
@@ -129,11 +132,19 @@ static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq) {
         num += pow(departure(d, st->dout_prev[k], rq->h, st->h_prev), 2), den += fmax(d * d, s * s);
         scale += fmax(st->out_scale[k] * st->out_scale[k], o->out[k] * o->out[k]);
       }
-    double e = sqrt(num) / fmax(fmax(sqrt(den), 1e-6 * sqrt(scale)), 1e-300);
-    worst    = fmax(worst, e);
+    double e   = sqrt(num) / fmax(fmax(sqrt(den), 1e-6 * sqrt(scale)), 1e-300);
+    worst      = fmax(worst, e);
+    worst_size = fmax(worst_size, sqrt(num) / fmax(sqrt(scale), 1e-300));
   }
+  *size = worst_size;
   return worst / sc->tol;
 }
+
+/* RunState.kink: what the last accepted step crossed. A kink of the rate (a contact node came or went): the next
+ * step's estimate starts from this step's increment. A jump of the value (a step accepted because shorter ones did
+ * not lower its estimate: a snap at a limit point of the load's path): its increment predicts nothing, so the
+ * estimates start afresh from the next step's increment, as after a stage's first step. */
+enum { KINK_NONE, KINK_RATE, KINK_JUMP };
 
 static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq) {
   RunState *st = &r->st;
@@ -146,8 +157,8 @@ static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq)
   }
   /* The stage's first step may hold a jump of the load (an exp load from P0, an instant load): its increment
      predicts nothing, so the estimate starts from the second step's increment, at the third. */
-  st->have_prev = rq->h > 0 && (same || fresh) && !rq->first_in_stage;
-  st->kink      = rq->first_in_stage;
+  st->have_prev = rq->h > 0 && (same || fresh) && !rq->first_in_stage && st->kink != KINK_JUMP;
+  st->kink      = rq->first_in_stage || st->kink == KINK_JUMP ? KINK_RATE : KINK_NONE; /* the next increment starts afresh */
   st->nout      = o->nout;
   st->h_prev    = rq->h;
 }
@@ -208,28 +219,37 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
                  size_t errlen) {
   RunState          *st = &r->st;
   const StepControl *sc = r->view.steps;
+  double size = -1, kink_size = -1;
   *landed = 0, *ratio = -1, *kink_ratio = -1;
   /* A step whose Newton method made no iteration (the predictor met the tolerance) is the extrapolation
      itself: its estimate would be zero whatever the error, so it gets none. A step across a kink (a contact
      node came or went) mixes the jump of the rate into its estimate: it is not rejected on it, but the estimate
      may hold the next step's length (after_accept). */
-  if (o->converged && !o->kink && o->its > 0) *ratio = error_ratio(r, o, rq);
-  if (o->converged && o->kink && o->its > 0) *kink_ratio = error_ratio(r, o, rq);
-  if (o->converged && o->kink) st->kink = 1;
+  if (o->converged && !o->kink && o->its > 0) *ratio = error_ratio(r, o, rq, &size);
+  if (o->converged && o->kink && o->its > 0) *kink_ratio = error_ratio(r, o, rq, &kink_size);
+  if (o->converged && o->kink) st->kink = KINK_RATE;
+  /* A rejected step redone shorter (by 0.5 or less) whose estimate did not fall by half. If the estimate's size
+     (error_ratio) did not halve either, the step holds a jump (of the load, of the answer at a limit point of the
+     load's path): accept it, and restart the estimates after it (KINK_JUMP). If only the ratio did not, the
+     estimate is mostly the previous step's, which was long for the rate now (the ratio tends to h_prev y''/(2 y')):
+     accept it, and estimate the next step from this one's increment. */
+  int jump = 0;
   if (*ratio > 1 && st->reject_ratio > 0 && *ratio > 0.5 * st->reject_ratio) {
-    /* A shorter step did not lower the estimate as O(dt) would: the previous increment belongs to another
-       regime (a jump of the load, a point starting to yield). Accept, and restart the estimate here. */
-    *ratio = -1, st->kink = 1;
+    jump = st->reject_size > 0 && size > 0.5 * st->reject_size;
+    if (!jump) st->kink = KINK_RATE;
+    *ratio = -1;
   }
-  int error_cut = *ratio > 1 && rq->h > sc->min * (1 + 1e-9);
+  int error_cut = *ratio > 1 && rq->h > sc->min * (1 + 1e-9); /* a step of min is accepted as it is */
   if (!o->converged || o->pnewdt < 1 || error_cut) {
     double factor = step_control_cut_factor(!o->converged, o->pnewdt, *ratio);
     st->cutbacks++, st->cut_in_step++;
-    if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio;
+    int only_error = error_cut && o->converged && o->pnewdt >= 1;
+    if (only_error) st->rejected_error++, st->reject_ratio = *ratio, st->reject_size = size;
     if (!o->converged) o->stalled ? st->rejected_stalled++ : st->rejected_unconverged++;
     else if (o->pnewdt < 1) st->rejected_umat++;
     st->ratio_prev = -1;
-    if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min)) {
+    if (only_error && rq->h * factor < sc->min) factor = sc->min / rq->h; /* the error alone: try the shortest step */
+    if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min * (1 - 1e-12))) {
       snprintf(err, errlen, "%s: %s[%d] (stage '%s'): step failed for good at t = %.6g s (dt = %.3g s): %s", scene_file(r),
                stage_list(r), st->stage, r->view.name, st->t, rq->h,
                !o->converged ? (o->why ? o->why : "not converged")
@@ -250,6 +270,7 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
     }
     *landed = d >= -EVENT_TOL;
   }
+  if (jump) st->kink = KINK_JUMP, st->jumps++;
   return STEP_ACCEPTED;
 }
 
@@ -276,7 +297,7 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   st->first_in_stage = 0, st->cut_in_step = 0;
   /* a later rejection starts afresh, unless this step was the predictor itself (no Newton iteration): then
      the rejection before it still tells whether shorter steps lower the estimate */
-  if (ratio >= 0 || o->its > 0) st->reject_ratio = 0;
+  if (ratio >= 0 || o->its > 0) st->reject_ratio = st->reject_size = 0;
 }
 
 /* The scene's reported quantities at the start (k = 0) or at the end of stage k - 1, with the time-step error of
@@ -298,13 +319,15 @@ static void keep_report(Run *r, int k) {
  * held stage, it estimates the error of the change over it (the creep depth). Where the loads change, the same
  * departure holds the curvature of the response to them (elastic, rate-independent), which is no time-step error:
  * no estimate there (StageView.held). A stage's first step (a kink of the rate) and an instant step predict
- * nothing: the estimate starts at the step after the next. */
+ * nothing: the estimate starts at the step after the next. A step accepted as a jump (KINK_JUMP) is no O(h^2)
+ * error: it adds nothing, and the estimate starts afresh after it. */
 static void time_error_step(Run *r, const StepRequest *rq) {
   RunState *st = &r->st;
   double    v[RUNNER_MAX_REPORT];
   if (!r->sv->report) return;
   r->sv->report(r->sv->ctx, v);
-  int have = st->rep_have_prev && !rq->first_in_stage && rq->h > 0 && st->rep_h_prev > 0;
+  int jump = st->kink == KINK_JUMP; /* no time-step error: shorter steps would not have lowered it */
+  int have = st->rep_have_prev && !rq->first_in_stage && rq->h > 0 && st->rep_h_prev > 0 && !jump;
   for (int q = 0; q < r->sv->nreport; q++) {
     double d = v[q] - st->rep_prev[q];
     if (have) {
@@ -313,7 +336,7 @@ static void time_error_step(Run *r, const StepRequest *rq) {
     }
     st->drep_prev[q] = d, st->rep_prev[q] = v[q];
   }
-  st->rep_have_prev = rq->h > 0 && !rq->first_in_stage;
+  st->rep_have_prev = rq->h > 0 && !rq->first_in_stage && !jump;
   st->rep_h_prev    = rq->h;
 }
 
@@ -363,6 +386,9 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     SOLVER_CALL(sv->accept(sv->ctx, &rq, err, errlen));
     st->t += rq.h, st->t_stage += rq.h, st->step++, st->its += o.its;
     time_error_step(r, &rq);
+    if (st->kink == KINK_JUMP && !r->rank && !opt->quiet)
+      printf("step %d (stage '%s', t = %.9g s): accepted across a jump of the outputs: shorter steps did not lower its error "
+             "estimate (a snap, not a time-step error); the estimates restart after it\n", st->step, r->view.name, st->t);
     after_accept(r, &rq, &o, ratio, kink_ratio);
     if (promote(r)) {
       snprintf(err, errlen, "%s: cannot rename the new output files into place", opt->outdir);
@@ -439,6 +465,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   MPI_Allreduce(&calls, &sum->umat_calls, 1, MPI_LONG, MPI_SUM, sv->comm);
   sum->steps = r.st.step, sum->cutbacks = r.st.cutbacks, sum->its = r.st.its, sum->rejected_error = r.st.rejected_error;
   sum->rejected_umat = r.st.rejected_umat, sum->rejected_stalled = r.st.rejected_stalled, sum->rejected_unconverged = r.st.rejected_unconverged;
+  sum->jumps = r.st.jumps;
   sum->failed = rc != 0, sum->t = r.st.t, sum->wall = wall_since(&r.w0);
   sum->ran = 1, sum->replaced = r.promoted || opt->restart;
   sum->nreport = sv->report ? sv->nreport : 0, sum->nstages_done = PetscMin(r.st.stage, RUNNER_MAX_STAGES);

@@ -155,6 +155,8 @@ typedef struct RunnerSummary_ {
      stalled (contact: -indent_stall_window), Newton did not converge otherwise (its limit, a cycling active set, the
      linear solver) */
   int    rejected_umat, rejected_stalled, rejected_unconverged;
+  int    jumps; /* steps accepted across a jump of the outputs: shorter ones did not lower the error estimate (a snap at a
+                   limit point of the load's path; docs/driver.md, Error measures) */
   int    ran;      /* the run got past its set-up (the history's first row written, or a checkpoint read): only then is
                       there a summary to write */
   int    replaced; /* the run's files replaced an earlier run's (its first step done, or a restart continuing them) */
