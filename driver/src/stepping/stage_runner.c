@@ -145,6 +145,7 @@ static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq, d
  * not lower its estimate: a snap at a limit point of the load's path): its increment predicts nothing, so the
  * estimates start afresh from the next step's increment, as after a stage's first step. */
 enum { KINK_NONE, KINK_RATE, KINK_JUMP };
+#define JUMP_SHARE 0.5 /* a jump's departure from the extrapolation: at least this share of the step's increment */
 
 static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq) {
   RunState *st = &r->st;
@@ -228,14 +229,15 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
   if (o->converged && !o->kink && o->its > 0) *ratio = error_ratio(r, o, rq, &size);
   if (o->converged && o->kink && o->its > 0) *kink_ratio = error_ratio(r, o, rq, &kink_size);
   if (o->converged && o->kink) st->kink = KINK_RATE;
-  /* A rejected step redone shorter (by 0.5 or less) whose estimate did not fall by half. If the estimate's size
-     (error_ratio) did not halve either, the step holds a jump (of the load, of the answer at a limit point of the
-     load's path): accept it, and restart the estimates after it (KINK_JUMP). If only the ratio did not, the
-     estimate is mostly the previous step's, which was long for the rate now (the ratio tends to h_prev y''/(2 y')):
-     accept it, and estimate the next step from this one's increment. */
+  /* A rejected step redone shorter (by 0.5 or less) whose estimate did not fall by half: accept it. It holds a jump
+     (of the load, of the answer at a limit point of the load's path) if the estimate's size (error_ratio) did not
+     halve either and the departure is at least JUMP_SHARE of the increment: then the estimates restart after it
+     (KINK_JUMP). Otherwise the estimate is mostly the previous step's, which was long for the rate now (the ratio
+     tends to h_prev y''/(2 y')), or the solver's noise on a small increment: the next step is estimated from this
+     one's increment, as after a kink of the rate. */
   int jump = 0;
   if (*ratio > 1 && st->reject_ratio > 0 && *ratio > 0.5 * st->reject_ratio) {
-    jump = st->reject_size > 0 && size > 0.5 * st->reject_size;
+    jump = st->reject_size > 0 && size > 0.5 * st->reject_size && *ratio * sc->tol >= JUMP_SHARE;
     if (!jump) st->kink = KINK_RATE;
     *ratio = -1;
   }
