@@ -36,7 +36,8 @@
  *                increment predicts nothing: docs/driver.md). Before, that step was measured against the jump and
  *                cut to min (the run failed: "the time-step error stays above its tolerance"). Checked: the run
  *                ends at t = 1 exactly, x = x0 + J (1e-12), one accepted step holds the jump and the summary counts
- *                one jump, and no step after it is shorter than a tenth of that step (no cutback chain).
+ *                one jump, no step after it is shorter than a tenth of that step (no cutback chain), and the
+ *                stated time-step error of x's change over the (held) stage is below 1e-9 J (the jump is exact).
  *  7 errors      (stage_runner.h, docs/driver.md "Error codes") a check that fails with STEP_FAIL after t = 0.45 (0.1 s
  *                steps): status 1, err exactly the callback's message, 5 steps accepted; a solve that fails with a PETSc
  *                error (PETSC_ERR_MEM) on its 3rd call: that code returned, err empty (main prints PETSc's message), 2
@@ -76,6 +77,7 @@ typedef struct {
   double fail_after;            /* > 0: the check fails (STEP_FAIL) once t is past it */
   int    spike_solve;           /* this solve call's estimate is spike x tol */
   double t_jump, jump;          /* jump != 0: x jumps by it in the step across t_jump (a snap) */
+  int    held;                  /* the stages are held (StageView.held): the runner states x's time-step error */
   double spike, err_level;      /* otherwise err_level x tol, or ... */
   double err_coef;              /* ... when > 0: err_coef h (1 + 0.5 sin 5 t0), an estimate that varies */
   int    nsolve, naccept, nwrite;
@@ -91,6 +93,7 @@ static void mock_init(Mock *m) {
 static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, char *err, size_t errlen) {
   Mock *m = ctx;
   stage_view_of(&m->stage[s], v);
+  if (m->held) v->held = 1;
   v->event_start = m->t; /* q = t */
   m->stage_t0[s] = m->t;
   return 0;
@@ -158,10 +161,13 @@ static PetscErrorCode load(void *ctx, BinFile *f) {
   return 0;
 }
 
+static void report_x(void *ctx, double *v) { v[0] = ((const Mock *)ctx)->x; }
+
 static StepSolver mock_solver(Mock *m) {
   return (StepSolver){.ctx = m, .kind = "mock", .nstage = m->nstage, .comm = PETSC_COMM_SELF, .stage_begin = stage_begin,
                       .solve = solve, .accept = accept, .check = check, .columns = columns, .ncolumns = 1,
-                      .write_fields = write_fields, .save = save, .load = load};
+                      .write_fields = write_fields, .save = save, .load = load, .nreport = 1, .report = report_x,
+                      .report_names = {"x"}};
 }
 
 static Stage fixed_stage(double duration, int count, double ratio) {
@@ -378,7 +384,7 @@ static void case_jump(void) {
   Mock          m;
   RunnerSummary sum;
   mock_init(&m);
-  m.tau = 1e12, m.t_jump = 0.5, m.jump = 0.3; /* x constant (3) but for the jump */
+  m.tau = 1e12, m.t_jump = 0.5, m.jump = 0.3, m.held = 1; /* x constant (3) but for the jump */
   m.nstage = 1, m.stage[0] = adaptive_stage(1.0, 0.05, 1.5, 0.3, MEASURE_OUTPUT, 0.02);
   if (run_quiet(&m, &sum)) return;
   check_end_exactly(__func__, &m, &sum, 1.0);
@@ -390,6 +396,8 @@ static void case_jump(void) {
   if (k_jump <= 0) return;
   printf("jump: %d steps, %d cutbacks; the step across the jump h = %.3g\n", m.naccept, sum.cutbacks, m.accept_h[k_jump]);
   CHECK(sum.jumps == 1, "%d steps counted as across a jump, expected 1", sum.jumps);
+  double terr = sum.time_error_change[1][0]; /* x's change over the stage: the jump, exact whatever the steps */
+  CHECK(terr >= 0 && terr < 1e-9 * m.jump, "stated time-step error of x's change %.3g, expected about 0 (the jump is no time-step error)", terr);
   for (int k = k_jump + 1; k < m.naccept && k < MAXREC; k++)
     CHECK(m.accept_h[k] >= 0.1 * m.accept_h[k_jump] || m.accept_t[k] >= 1 - 1e-12, "step %d after the jump: h = %.3g, below a tenth of the jump's step %.3g",
           k, m.accept_h[k], m.accept_h[k_jump]);
