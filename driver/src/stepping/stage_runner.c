@@ -220,14 +220,14 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
                  size_t errlen) {
   RunState          *st = &r->st;
   const StepControl *sc = r->view.steps;
-  double size = -1, kink_size = -1;
+  double size = -1; /* the estimate's size (error_ratio) */
   *landed = 0, *ratio = -1, *kink_ratio = -1;
   /* A step whose Newton method made no iteration (the predictor met the tolerance) is the extrapolation
      itself: its estimate would be zero whatever the error, so it gets none. A step across a kink (a contact
      node came or went) mixes the jump of the rate into its estimate: it is not rejected on it, but the estimate
      may hold the next step's length (after_accept). */
   if (o->converged && !o->kink && o->its > 0) *ratio = error_ratio(r, o, rq, &size);
-  if (o->converged && o->kink && o->its > 0) *kink_ratio = error_ratio(r, o, rq, &kink_size);
+  if (o->converged && o->kink && o->its > 0) *kink_ratio = error_ratio(r, o, rq, &size);
   if (o->converged && o->kink) st->kink = KINK_RATE;
   /* A rejected step redone shorter (by 0.5 or less) whose estimate did not fall by half: accept it. It holds a jump
      (of the load, of the answer at a limit point of the load's path) if the estimate's size (error_ratio) did not
