@@ -88,6 +88,7 @@ CASES = {
     "bp": ("microindent_BP.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, None),
 }
 # the same cases on the uniform ladder's fixed steps: (case, the ladder's row (case, solver) that is their reference)
+OWN_REFERENCE_RUN = ("axi", "sphere")   # cases whose reference is a P2 run on its own adapted meshes (the module docstring)
 ON_FIXED_STEPS = {"sector_fixed": ("sector", LadderRow("fix0.019", FORCING)), "bn_fixed": ("bn", LadderRow("bnfix0.475", FORCING))}
 CASES.update({c: CASES[of][:3] + (row,) for c, (of, row) in ON_FIXED_STEPS.items()})
 
@@ -178,7 +179,7 @@ def reference(case, results, base):
         return level_reference(results, base, *ref)
     if isinstance(ref, LadderRow):   # on the same fixed steps
         return ladder_reference(*ref)
-    if isinstance(ref, str) or (ref is None and case in ("axi", "sphere")):   # a reference run's answer, its last level done
+    if isinstance(ref, str) or (ref is None and case in OWN_REFERENCE_RUN):   # a reference run's answer, its last level done
         done = [d / "summary.json" for d in sorted((base / f"{ref or case}_ref" / "adapt").glob("level*"), key=lambda p: int(p.name[5:]))
                 if (d / "summary.json").exists()]
         if not done:
@@ -213,7 +214,7 @@ def main():
         out = base / case
         if not a.no_run:
             run(case, out, a.levels)
-            if CASES[case][3] is None and case in ("axi", "sphere") and not a.keep_references:   # the reference: P2 on its own meshes, a level more
+            if CASES[case][3] is None and case in OWN_REFERENCE_RUN and not a.keep_references:   # the reference: P2 on its own meshes, a level more
                 run(case, base / f"{case}_ref", a.levels + 1, order=2)
         if a.no_run and case in results and not (out / "adapt").is_dir():   # its runs are not here: the levels kept in --results,
             results[case]["reference"] = reference(case, results, base) or results[case]["reference"]   # the reference as CASES says

@@ -243,22 +243,20 @@ static int judge(Run *r, const StepRequest *rq, const StepOutcome *o, double *ra
   }
   int error_cut = *ratio > 1 && rq->h > sc->min * (1 + 1e-9); /* a step of min is accepted as it is */
   if (!o->converged || o->pnewdt < 1 || error_cut) {
-    double factor = step_control_cut_factor(!o->converged, o->pnewdt, *ratio);
+    double h_cut = step_control_cut(sc, rq->h, !o->converged, o->pnewdt, *ratio);
     st->cutbacks++, st->cut_in_step++;
-    int only_error = error_cut && o->converged && o->pnewdt >= 1;
-    if (only_error) st->rejected_error++, st->reject_ratio = *ratio, st->reject_size = size;
+    if (error_cut && o->converged && o->pnewdt >= 1) st->rejected_error++, st->reject_ratio = *ratio, st->reject_size = size;
     if (!o->converged) o->stalled ? st->rejected_stalled++ : st->rejected_unconverged++;
     else if (o->pnewdt < 1) st->rejected_umat++;
     st->ratio_prev = -1;
-    if (only_error && rq->h * factor < sc->min) factor = sc->min / rq->h; /* the error alone: try the shortest step */
-    if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && rq->h * factor < sc->min * (1 - 1e-12))) {
+    if (rq->h == 0 || st->cut_in_step > STEP_MAX_CUTBACKS || (sc->adaptive && h_cut < sc->min * (1 - 1e-12))) {
       snprintf(err, errlen, "%s: %s[%d] (stage '%s'): step failed for good at t = %.6g s (dt = %.3g s): %s", scene_file(r),
                stage_list(r), st->stage, r->view.name, st->t, rq->h,
                !o->converged ? (o->why ? o->why : "not converged")
                : o->pnewdt < 1 ? "the UMAT asked for a smaller step" : "the time-step error stays above its tolerance");
       return STEP_FAILED;
     }
-    st->dt = rq->h * factor, st->landing = 0, st->cut_in_plan = !sc->adaptive;
+    st->dt = h_cut, st->landing = 0, st->cut_in_plan = !sc->adaptive;
     return STEP_RETRY;
   }
   int dir = event_direction(r->view.until.kind);

@@ -26,9 +26,9 @@ double step_control_next(const StepControl *sc, const StepGains *g, double dt, d
   return fmin(fmax(dt * f, sc->min), sc->max);
 }
 
-double step_control_cut_factor(int diverged, double pnewdt, double ratio) {
-  if (diverged) return STEP_CUT_DIVERGED;
-  if (pnewdt < 1) return fmax(fmin(pnewdt, 0.5), 0.1);
-  return fmax(fmin(STEP_SAFETY / ratio, 0.5), 0.1);
+double step_control_cut(const StepControl *sc, double dt, int diverged, double pnewdt, double ratio) {
+  if (diverged) return dt * STEP_CUT_DIVERGED;
+  if (pnewdt < 1) return dt * fmax(fmin(pnewdt, 0.5), 0.1);
+  return fmax(dt * fmax(fmin(STEP_SAFETY / ratio, 0.5), 0.1), sc->min);
 }
 

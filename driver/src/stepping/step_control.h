@@ -25,7 +25,9 @@ double step_control_planned(const StepControl *sc, double duration, int k);
  * ratio: error estimate / tol of a relative measure (< 0: none this step); ratio_prev: the previous accepted
  * step's (< 0: none: then the elementary controller); g: the controller's exponents. */
 double step_control_next(const StepControl *sc, const StepGains *g, double dt, double pnewdt, double ratio, double ratio_prev);
-/* The factor a rejected step is cut by: the UMAT's PNEWDT (< 1), or error ratio (> 1), or divergence. */
-double step_control_cut_factor(int diverged, double pnewdt, double ratio);
+/* The length a rejected step of length dt is redone at: cut by divergence, or the UMAT's PNEWDT (< 1), or the error
+ * ratio (> 1). A step rejected on its error alone is redone at min at the shortest (a step of min is accepted
+ * whatever its estimate); the others may come out below min, where the run stops. */
+double step_control_cut(const StepControl *sc, double dt, int diverged, double pnewdt, double ratio);
 
 #endif
