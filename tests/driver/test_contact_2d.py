@@ -9,12 +9,14 @@
   p(x) = (E* tan(alpha)/pi) arccosh(a/|x|), hence P = E* a tan(alpha) per unit thickness, alpha = 90 deg -
   half angle) with the contact half-width a bracketed by the last active and the first inactive node of
   the top (read from the run's mesh.msh), 2 % slack for the FE error of P; (2) self-similarity: scaling
-  every length (block, mesh sizes, depth) by 2 scales the load per unit thickness by exactly 2.
+  every length (block, mesh sizes, depth) by 2 scales the load per unit thickness by exactly 2. The same
+  bracket on the half model (x >= 0, mirror plane x = 0, indenter.copies 2), whose history holds the whole load.
 """
 import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 from camclay9 import read_history, run_driver
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -23,11 +25,11 @@ ESTAR = E / (1 - NU**2)
 ELASTIC = "{umat: elastic, props: [1000.0, 0.3], nstatv: 0}"
 
 
-def run(text, out):
+def run(text, out, check=True):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)
-    run_driver(scene, out, name="driver_elastic", root=ROOT, cwd=ROOT, timeout=600)  # DriverError: it failed
-    return read_history(out)
+    proc = run_driver(scene, out, name="driver_elastic", root=ROOT, cwd=ROOT, timeout=600, check=check)  # DriverError: it failed
+    return read_history(out) if check else proc
 
 
 def msh_nodes(path):
@@ -87,16 +89,20 @@ def test_force_control_predicts_a_linear_response_exactly(tmp_path):
     assert h["newton_its"][1] > 0 and list(h["newton_its"][2:]) == [0, 0]
 
 
-def wedge_scene(k, h_tip, r_fine):
+def wedge_scene(k, h_tip, r_fine, half=False, copies=None):
+    """The wedge on the whole block, or (half) on its half x >= 0 with the mirror plane x = 0."""
+    sides = ("[{group: bottom, components: [x, y]}, {group: right, components: [x]}]\n  mirror: [{group: left, normal: [1, 0]}]"
+             if half else "[{group: bottom, components: [x, y]}, {group: left, components: [x]}, {group: right, components: [x]}]")
+    more = f", copies: {copies}" if copies else ""
     return f"""scene: fe
 mesh:
   geometry: meshes/indent_block2d.geo
-  parameters: {{W: {40 * k}, H: {20 * k}, half: 0, h_tip: {h_tip * k}, h_far: {2 * k}, r_fine: {r_fine * k}, r_contact: {3 * r_fine * k}}}
+  parameters: {{W: {40 * k}, H: {20 * k}, half: {int(half)}, h_tip: {h_tip * k}, h_far: {2 * k}, r_fine: {r_fine * k}, r_contact: {3 * r_fine * k}}}
   kinematics: plane_strain
 material: {ELASTIC}
 boundary:
-  fixed: [{{group: bottom, components: [x, y]}}, {{group: left, components: [x]}}, {{group: right, components: [x]}}]
-indenter: {{shape: wedge, tip_angle: 136.51, contact: contact, gap: vertical}}
+  fixed: {sides}
+indenter: {{shape: wedge, tip_angle: 136.51, contact: contact, gap: vertical{more}}}
 stages:
   - {{name: push, duration: 1, indenter: {{depth: {0.02 * k}}}, steps: {{count: 2}}}}
 """
@@ -114,6 +120,32 @@ def test_wedge_johnson_half_width(tmp_path):
           f"the contact edge between {a_lo:.5f} and {a_hi:.5f}")
     assert n >= 15 and a_hi - a_lo < 0.15 * a            # the bracket resolves a
     assert a_lo * 0.98 <= a <= a_hi * 1.02
+
+
+def test_wedge_half_model_carries_the_whole_load(tmp_path):
+    """indenter.copies: 2 on the plane-strain half x >= 0 (mirror plane x = 0): the history's load is the whole wedge's,
+    so Johnson's half-width from it, a = P / (E* tan alpha), falls between the last active and the first inactive node
+    of the half as it does on the whole block (a load of the half alone would put it at half the bracket)."""
+    tan_alpha = 1 / math.tan(math.radians(136.51 / 2))
+    h = run(wedge_scene(1, 0.001, 0.03, half=True, copies=2), tmp_path / "half")
+    xy = msh_nodes(tmp_path / "half" / "mesh.msh")
+    assert xy[:, 0].min() > -1e-12
+    top = np.sort(xy[np.abs(xy[:, 1]) < 1e-12, 0])
+    n = int(h["active_nodes"][-1])
+    a_lo, a_hi = top[n - 1], top[n]
+    a = h["load"][-1] / (ESTAR * tan_alpha)
+    print(f"half wedge, h = 0.02: whole load P = {h['load'][-1]:.5g}, Johnson's a = {a:.5f}; {n} active nodes, "
+          f"the contact edge between {a_lo:.5f} and {a_hi:.5f}")
+    assert n >= 8 and a_hi - a_lo < 0.15 * a
+    assert a_lo * 0.98 <= a <= a_hi * 1.02
+
+
+@pytest.mark.parametrize("half,copies,word", [(False, 2, "lies on both sides"), (True, 3, "or its half on one side")])
+def test_bad_plane_strain_copies(tmp_path, half, copies, word):
+    """copies 2 on the whole block would report twice its load; plane strain has no cut with more than 2 copies."""
+    proc = run(wedge_scene(1, 0.004, 0.03, half=half, copies=copies), tmp_path / "bad", check=False)
+    print(proc.stderr.strip())
+    assert proc.returncode == 2 and "indenter.copies" in proc.stderr and word in proc.stderr and "bad.yaml" in proc.stderr
 
 
 def test_wedge_self_similar(tmp_path):

@@ -228,7 +228,6 @@ def test_p2_sector_tangent_against_finite_differences(tmp_path):
     axes constrained) and the contact nodes on the plane at 30 degrees are framed; the mortar blocks with their
     rows rotated (Bt, B) are the exact derivatives of the residual: below 1e-8 at every iterate checked (with
     Bt left in global axes: 1.3e-6). The contact must reach past the tip: at least 4 active multipliers."""
-    import re
     sector = mesh_sector(tmp_path / "sector.msh", L=2, span=60, h_tip=0.08, h_far=0.8, r_fine=0.4, r_contact=0.6)
     text = sector_scene(sector, order=2, indenter="""indenter: {shape: berkovich, half_angle: 65.27, contact: contact}
 stages:
@@ -299,10 +298,15 @@ stages:
 
 
 @pytest.mark.parametrize("copies,kin,word", [(2.5, "3d", "expected a whole number >= 1"), (0, "3d", "expected a whole number >= 1"),
-                                             (2, "axisymmetric", "already carries the whole indenter's load")])
+                                             (2, "axisymmetric", "already carries the whole indenter's load"),
+                                             (6, "3d half", "spanning at most 60 degrees about it, but its contact surface 'contact' spans 180")])
 def test_bad_copies(tmp_path, copies, kin, word):
-    text = (ROOT / "input" / ("nanoindent_kerogen_sector.yaml" if kin == "3d" else "nanoindent_kerogen_axi.yaml")).read_text()
-    text = text.replace("../meshes/", f"{ROOT}/meshes/").replace(", copies: 6}", "}").replace("contact: contact", f"contact: contact, copies: {copies}", 1)
+    """Bad indenter.copies; the half model (180 degrees about the axis) said to be one of 6 copies would carry 3 times
+    its share of the load."""
+    scene = {"3d": "nanoindent_kerogen_sector.yaml", "3d half": "nanoindent_kerogen.yaml", "axisymmetric": "nanoindent_kerogen_axi.yaml"}[kin]
+    text = (ROOT / "input" / scene).read_text()
+    text = text.replace("../meshes/", f"{ROOT}/meshes/").replace(", copies: 6}", "}").replace(", copies: 2}", "}")
+    text = text.replace("contact: contact", f"contact: contact, copies: {copies}", 1)
     proc = run(text, tmp_path / "bad", exe="driver", check=False)
     print(proc.stderr.strip())
     assert proc.returncode == 2 and "indenter.copies" in proc.stderr and word in proc.stderr and "bad.yaml" in proc.stderr

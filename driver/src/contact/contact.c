@@ -388,3 +388,45 @@ PetscErrorCode contact_first_touch(Contact *ct, PetscBool pointwise, PetscReal *
   PetscCall(MPIU_Allreduce(&loc, dmin, 1, MPIU_REAL, MPI_MIN, PetscObjectComm((PetscObject)ct->D)));
   PetscFunctionReturn(0);
 }
+
+/* The angle about the indenter's axis through `tip` that the potential contact surface spans, in degrees: the
+   circle less its largest gap free of nodes, the nodes' azimuths taken in bins of a tenth of a degree (nodes within
+   1e-9 of the surface's reach from the axis have none). 2D: 0 with every node on one side of the axis, 180 with
+   nodes on both. A model that is one of `copies` mirror images of the body spans at most 360 / copies (3D; 2D: 0). */
+PetscErrorCode contact_azimuth_span(Contact *ct, const double tip[], PetscReal *span) {
+  enum { NBIN = 3600 };
+  const PetscInt nl = ct->dim - 1;
+  PetscInt      *bin, *all, gap = 0, run = 0, first = -1;
+  PetscReal      reach = 0, loc;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)ct->D);
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < ct->n; i++) {
+    PetscReal r = 0;
+    for (PetscInt k = 0; k < nl; k++) r += PetscSqr(ct->X[i * ct->dim + k] - tip[k]);
+    reach = PetscMax(reach, PetscSqrtReal(r));
+  }
+  loc = reach;
+  PetscCall(MPIU_Allreduce(&loc, &reach, 1, MPIU_REAL, MPI_MAX, comm));
+  PetscCall(PetscCalloc2(NBIN, &bin, NBIN, &all));
+  for (PetscInt i = 0; i < ct->n; i++) {
+    const PetscReal *x = &ct->X[i * ct->dim], dx = x[0] - tip[0], dy = nl > 1 ? x[1] - tip[1] : 0;
+    if (PetscSqrtReal(dx * dx + dy * dy) <= 1e-9 * reach) continue;
+    PetscReal az = atan2(dy, dx) * 180 / PETSC_PI; /* (-180, 180] */
+    bin[((PetscInt)PetscFloorReal((az + 180) * NBIN / 360)) % NBIN] = 1;
+  }
+  PetscCall(MPIU_Allreduce(bin, all, NBIN, MPIU_INT, MPI_MAX, comm));
+  for (PetscInt b = 0; b < 2 * NBIN; b++) { /* twice round: the largest empty run of bins on the circle */
+    if (all[b % NBIN]) {
+      if (first < 0) first = b;
+      run = 0;
+    } else if (first >= 0) {
+      run++;
+      gap = PetscMax(gap, run);
+    }
+  }
+  PetscCall(PetscFree2(bin, all));
+  if (first < 0) *span = 0; /* every node on the axis */
+  else if (nl == 1) *span = gap >= NBIN / 2 ? 0 : 180;
+  else *span = 360.0 * (NBIN - PetscMin(gap, NBIN)) / NBIN;
+  PetscFunctionReturn(0);
+}

@@ -83,6 +83,8 @@ PetscErrorCode contact_on_rim(Contact *ct, PetscInt *count);
  * active set turns on), or with pointwise on P2 over the Gauss points and nodes of the contact facets (where the
  * surface itself touches: the mean gaps would set the tip into the surface by part of an element). */
 PetscErrorCode contact_first_touch(Contact *ct, PetscBool pointwise, PetscReal *dmin);
+/* The angle about the indenter's axis (through tip) that the potential contact surface spans [deg]; 2D: 0 or 180. */
+PetscErrorCode contact_azimuth_span(Contact *ct, const double tip[], PetscReal *span);
 /* k_n: the largest diagonal entry of the stiffness K on the contact nodes (a one-node stiffness). */
 PetscErrorCode contact_node_stiffness(Contact *ct, Mat K);
 

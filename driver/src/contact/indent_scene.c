@@ -141,9 +141,12 @@ int indent_scene_read(YdDoc *doc, const FeScene *sc, IndentScene *is, char *err,
     if (!(is->copies >= 1 && is->copies == floor(is->copies)))
       FAIL("%s:%d: key 'indenter.copies': expected a whole number >= 1 (how many copies of the model make the whole: 2 for a half "
            "model, 6 for a 60-degree sector), got %g", doc->file, v->line, is->copies);
-    if (sc->kin != KIN_3D && is->copies != 1)
-      FAIL("%s:%d: key 'indenter.copies': a %s model already carries the whole indenter's load (1), got %g", doc->file, v->line,
-           sc->kin == KIN_AXISYMMETRIC ? "axisymmetric" : "plane-strain", is->copies);
+    if (sc->kin == KIN_AXISYMMETRIC && is->copies != 1)
+      FAIL("%s:%d: key 'indenter.copies': an axisymmetric model already carries the whole indenter's load (1), got %g", doc->file,
+           v->line, is->copies);
+    if (sc->kin == KIN_PLANE_STRAIN && is->copies > 2)
+      FAIL("%s:%d: key 'indenter.copies': a plane-strain model is the whole body (1) or its half on one side of the indenter's "
+           "axis (2), got %g", doc->file, v->line, is->copies);
   }
   if (keys_check_unused(doc, nd, NULL, err, errlen)) return 1;
   if (sc->kin == KIN_AXISYMMETRIC && (sh->tip[0] != 0))

@@ -446,6 +446,28 @@ static PetscErrorCode surface_term(void *ctx, FeProblem *p) {
   PetscFunctionReturn(0);
 }
 
+/* indenter.copies > 1: the model is one of copies mirror images of the body, a cut through the indenter's axis; a whole
+   body under copies > 1 would carry the load of a part (a load copies times too large): *bad 2 with the message. */
+static PetscErrorCode check_copies(Contact *ct, const IndentScene *is, const char *msh, char *err, size_t errlen, int *bad) {
+  PetscFunctionBeginUser;
+  if (is->copies > 1) {
+    PetscReal span, most = ct->dim == 2 ? 0 : 360 / is->copies;
+    PetscCall(contact_azimuth_span(ct, is->shape.tip, &span));
+    if (span > most + 1) {
+      if (ct->dim == 2)
+        snprintf(err, errlen, "%s: key 'indenter.copies': %g copies of the model make the body, so the model must be the half on one "
+                 "side of the indenter's axis (x = %g), but its contact surface '%s' lies on both sides (mesh %s): a whole body has "
+                 "copies 1", is->file, is->copies, is->shape.tip[0], is->contact_group, msh);
+      else
+        snprintf(err, errlen, "%s: key 'indenter.copies': %g copies of the model make the body, so the model must be a cut through the "
+                 "indenter's axis spanning at most %g degrees about it, but its contact surface '%s' spans %.1f (mesh %s): a whole "
+                 "body has copies 1", is->file, is->copies, (double)most, is->contact_group, (double)span, msh);
+      *bad = 2;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char *msh, Semismooth *in, char *err, size_t errlen, int *bad) {
   const FeSpace *sp = fe_problem_space(p);
   MPI_Comm comm = PetscObjectComm((PetscObject)sp->dm);
@@ -463,6 +485,8 @@ PetscErrorCode semismooth_create(FeProblem *p, const IndentScene *is, const char
     }
   }
   PetscCall(contact_create(p, is->contact_group, &is->shape, &in->ct));
+  PetscCall(check_copies(&in->ct, is, msh, err, errlen, bad));
+  if (*bad) PetscFunctionReturn(0);
   p->est.surface = surface_term, p->est.surface_ctx = in;
   PetscCall(DMCreateGlobalVector(sp->dm, &in->U));
   { /* K: AIJ in the displacement layout, its pattern from the cells by COO (fe_jacobian_coo_setup below; DMCreateMatrix's

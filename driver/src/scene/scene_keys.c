@@ -92,7 +92,7 @@ static const KeyDecl decl[] = {
   {"indenter.contact", FE, KEY_TEXT, N, N, REQ, NULL, NULL, NULL, "the group of faces (2D: edges) that may come into contact"},
   {"indenter.gap", FE, KEY_WORD, N, N, 0, "normal, vertical", "normal", NULL, "the gap: normal to the indenter (current position) or vertical (Sneddon's, Hertz's)"},
   {"indenter.complementarity_c", FE, KEY_NUMBER, 0, N, GT, NULL, "E / contact-node spacing", "MPa/length", "the complementarity constant of eq. 13"},
-  {"indenter.copies", FE, KEY_NUMBER, 1, N, 0, NULL, "1", NULL, "a whole number: copies of the model that make the body (2: half model, 6: 60-degree sector; 3D only)"},
+  {"indenter.copies", FE, KEY_NUMBER, 1, N, 0, NULL, "1", NULL, "a whole number: copies of the model that make the body (2: half model, 6: 60-degree sector; plane strain: 1 or 2; axisymmetric: 1)"},
 
   {"stages", FE, KEY_LIST, N, N, REQ, NULL, NULL, NULL, "the load stages, 1 to " STR(MAXSTAGES) " ({stage} below)"},
   {"segments", PT, KEY_LIST, N, N, REQ, NULL, NULL, NULL, "the segments, at least one ({stage} below)"},
