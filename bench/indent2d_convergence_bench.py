@@ -4,7 +4,8 @@ and bedding studies are, why P1 and P2 differ, and the cheapest model within 1 %
 depths and the creep depth and 5 % on the stress under the tip.
 
 The scenes are input/loading_rate_a1.yaml and input/bedding_theta45.yaml as shipped (plane strain, the wedge of the
-Berkovich's section; the shipped time-step settings), with an unload stage added (to zero in 20 s, as the 3D
+Berkovich's section; the shipped time-step settings), the loading-rate scene on the whole block its half model is half of
+(camclay9.indent2d_study.whole_block: the model the ladders ran on), with an unload stage added (to zero in 20 s, as the 3D
 scenes) for the residual depth, on ladders of
   h_tip   the element size within r_fine of the tip (ratio about sqrt 2; h_far = FAR h_tip: the whole mesh refined);
   r_fine  the fine zone's radius at a fixed h_tip (the shipped 0.4 um ends inside the loading-rate contact);
@@ -36,7 +37,7 @@ from pathlib import Path
 import numpy as np
 from camclay9 import read_history, results_store
 from camclay9.indent2d_study import (LADDERS, R2, SCENES, STORE, TITLE, key, ratio_cell, rungs, section,
-                                     store_data)
+                                     store_data, whole_block)
 from indent_convergence_bench import run
 from camclay9.performance_doc import replace_section
 from step_control_bench import absolute
@@ -52,7 +53,7 @@ def scene_text(skey, order, h_tip, r_fine, tol=None, far=FAR):
     """The scene as shipped with this mesh, fields at the stages' ends only, and the unload stage; tol: the load and
     hold stages' output error tolerance (shipped 1.5e-2)."""
     name, scale, _, change = SCENES[skey]
-    t = absolute((ROOT / "input" / f"{name}.yaml").read_text())
+    t = whole_block(absolute((ROOT / "input" / f"{name}.yaml").read_text()))   # the ladders' model: the whole block
     if change:
         assert change[0] in t, f"{name}.yaml: no '{change[0]}' to change"
         t = t.replace(change[0], change[1])

@@ -83,7 +83,8 @@ def sector_shares(H, values, a, rmax=3.0, level=0.1):
     tot = np.sum(w[zone])
     shares = [float(np.sum(w[zone & (ang >= lo) & (ang < hi)]) / tot) for lo, hi in ((0, 30), (30, 60), (60, 90.01))]
     R = np.percentile(r[zone], 95)
-    fill = float(np.sum(H.A[zone & (r <= R)]) / (0.5 * math.pi * R * R))
+    whole = 2 if half_model(F) else 1                 # a half model holds half of the zone's area
+    fill = float(whole * np.sum(H.A[zone & (r <= R)]) / (0.5 * math.pi * R * R))
     return dict(surface=shares[0], middle=shares[1], beneath=shares[2], fill=fill, radius=float(R / a))
 
 
@@ -149,6 +150,7 @@ def flow_direction(run, a, theta):
         return None
     with Hold(run) as H:
         F = H.F
+        assert not half_model(F), f"{run}: a half model has no flow direction of its own (the bedding scenes are whole blocks)"
         du = F.u[H.k1] - F.u[H.k0]
         sel = (np.hypot(F.x[:, 0], F.x[:, 1]) < 2 * a) & (F.x[:, 1] < 0)
         T = du[sel].T @ du[sel]
@@ -161,9 +163,16 @@ def flow_direction(run, a, theta):
 
 
 # ------------------------------------------------------------------ figures
+def half_model(F):
+    """Whether the run's mesh is a half model x >= 0 (the loading-rate scenes: mirror plane x = 0, indenter.copies 2)."""
+    return bool(F.x[:, 0].min() >= -1e-9 * np.ptp(F.x[:, 0]))
+
+
 def _map(fig, ax, F, nodal, lim, clim, cmap, title):
-    tri = Triangulation(F.x[:, 0], F.x[:, 1], F.cells)
-    pc = ax.tripcolor(tri, nodal, shading="gouraud", cmap=cmap, vmin=clim[0], vmax=clim[1])
+    """A map of nodal values; a half model's with its mirror image, so that it shows the whole block."""
+    for sign in ((1, -1) if half_model(F) else (1,)):
+        tri = Triangulation(sign * F.x[:, 0], F.x[:, 1], F.cells)
+        pc = ax.tripcolor(tri, nodal, shading="gouraud", cmap=cmap, vmin=clim[0], vmax=clim[1])
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-lim, 0.05 * lim)
     ax.set_aspect("equal")

@@ -1,6 +1,5 @@
 """camclay9.paper_numbers: the numbers of docs/paper.md and the trend checks of tools/reproduce.py --quick,
 on synthetic runs whose answers are known."""
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -93,3 +92,35 @@ def test_stated_errors_of_an_adapted_run(tmp_path):
     assert s == {"meshes": 4, "creep_mesh_error": 0.003, "creep_time_error": 0.0004, "residual_mesh_error": 0.021}
     assert paper_doc._stated(s, "creep_mesh_error", "creep_time_error") == " (± 0.003 mesh, 4 meshes; ± 0.0004 time steps)"
     assert pn.stated_errors(tmp_path) == {}
+
+
+def test_fig11_zone_of_a_half_model_is_the_whole_blocks():
+    """Fig. 11's zone numbers (camclay9.paper_fields.sector_shares) on a mesh mirror-symmetric about x = 0 and on its
+    half x >= 0 (the loading-rate scenes' half model) under a symmetric field: the same shares and the same fill of the
+    half-disc (the half holds half of the zone's area, which the fill counts twice)."""
+    from types import SimpleNamespace
+    from camclay9 import paper_fields as pf
+
+    n = 40                                                  # the half [0, 1] x [-1, 0], two triangles per square
+    xs, ys = np.linspace(0, 1, n + 1), np.linspace(-1, 0, n + 1)
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    x = np.c_[X.ravel(), Y.ravel()]
+    v = lambda i, j: i * (n + 1) + j
+    cells = np.array([c for i in range(n) for j in range(n)
+                      for c in ((v(i, j), v(i + 1, j), v(i + 1, j + 1)), (v(i, j), v(i + 1, j + 1), v(i, j + 1)))])
+    whole_x = np.r_[x, x * [-1, 1]]                         # the mirror image's nodes follow
+    whole_cells = np.r_[cells, cells + len(x)]
+
+    def run(x, cells):
+        F = SimpleNamespace(x=x, cells=cells, centroids=x[cells].mean(axis=1))
+        e1, e2 = (x[cells[:, 1]] - x[cells[:, 0]]), (x[cells[:, 2]] - x[cells[:, 0]])
+        H = SimpleNamespace(F=F, A=0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]))
+        c = F.centroids
+        field = np.exp(-((c[:, 0] / 0.3) ** 2 + ((c[:, 1] + 0.1) / 0.2) ** 2))
+        return pf.sector_shares(H, field, 0.25)
+
+    half, whole = run(x, cells), run(whole_x, whole_cells)
+    print(f"half model {half}\nwhole block {whole}")
+    assert pf.half_model(SimpleNamespace(x=x)) and not pf.half_model(SimpleNamespace(x=whole_x))
+    for k in ("surface", "middle", "beneath", "fill", "radius"):
+        assert half[k] == pytest.approx(whole[k], rel=1e-9), k

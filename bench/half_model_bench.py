@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""The loading-rate scenes as half models against the whole block (issue 32): each scene as shipped (the half x >= 0,
+the mirror plane x = 0, indenter.copies 2) and on the whole block it is half of (camclay9.indent2d_study.whole_block),
+on the same mesh parameters, fields as shipped, one rank, --repeats runs of each, --jobs at once. Per run: CPU (user +
+system of the driver and its gmsh, from wait4), wall, unknowns, steps, UMAT calls, the depth at the end of loading
+and the creep depth; these against the scene's converged 2D answer (the 2D mesh and element study's store,
+docs/results/indent2d_convergence.json). Keeps every number in docs/results/half_model.json
+(camclay9.half_model_study) and writes the section "2D indentation: the half model" of docs/performance.md from it.
+
+    bench/half_model_bench.py [--scenes loading_rate_a1,...] [--repeats 3] [--jobs 2] [--out DIR] [--machine NOTE] [--no-doc]
+"""
+import argparse
+import json
+import re
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from camclay9 import driver_command, mesh_line, results_store, run_measured
+from camclay9 import half_model_study as study
+from camclay9 import indent2d_study as i2d
+from camclay9.performance_doc import publish
+
+ROOT = Path(__file__).resolve().parents[1]
+SKEY = {name: k for k, (name, *_rest) in i2d.SCENES.items() if k in i2d.REFERENCE}   # scene -> the 2D study's key
+
+
+def scene_text(scene, model):
+    text = (ROOT / "input" / f"{scene}.yaml").read_text().replace("geometry: ../meshes/", f"geometry: {ROOT}/meshes/")
+    assert "half: 1," in text, f"input/{scene}.yaml is not a half model"
+    return text if model == "half" else i2d.whole_block(text)
+
+
+def one_run(scene, model, k, out):
+    """One run: its row's numbers (cpu_s, wall_s as single values)."""
+    d = Path(out) / f"{scene}_{model}_{k}"
+    d.mkdir(parents=True, exist_ok=True)
+    path = d / "scene.yaml"
+    path.write_text(scene_text(scene, model))
+    rc, cpu, _, wall = run_measured(driver_command(path, d / "run", root=ROOT), d / "driver.log", timeout=4 * 3600, cwd=d)
+    log = (d / "driver.log").read_text()
+    if rc:
+        raise SystemExit(f"{path}: the driver failed:\n{log[-2000:]}")
+    s = json.loads((d / "run" / "summary.json").read_text())
+    st = {g["name"]: g for g in s["stages"]}
+    row = {"scene": scene, "model": model, "unknowns": mesh_line(log)["unknowns"], "steps": s["counters"]["steps"],
+           "umat_calls": s["counters"]["umat_calls"], "cpu_s": cpu, "wall_s": wall, "h_max": st["load"]["end"]["depth"],
+           "creep": st["hold"]["change"]["depth"]}
+    print(f"{scene} {model} #{k}: CPU {cpu:.1f} s, {row['unknowns']} unknowns, h_max {row['h_max']:.6g}, creep {row['creep']:.6g}",
+          flush=True)
+    return row
+
+
+def references(scenes):
+    store = results_store.load(i2d.STORE, ROOT / "docs" / "results")
+    out = {}
+    for s in scenes:
+        ref = i2d.reference(store["rungs"], SKEY[s]) if s in SKEY else None
+        if not ref:
+            raise SystemExit(f"{s}: no converged 2D answer in docs/results/{i2d.STORE}.json")
+        out[s] = {"h_max": ref["h_max"]["value"], "creep": ref["creep"]["value"], "hw_h_max": ref["h_max"]["hw"],
+                  "hw_creep": ref["creep"]["hw"], "from": f"{i2d.REFERENCE[SKEY[s]][0]} ({ref['creep']['rule']})"}
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", default="loading_rate_a1")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--jobs", type=int, default=2, help="runs at once (default: %(default)s)")
+    ap.add_argument("--out", default=str(ROOT / "out" / "half_model"), help="the runs' folders (default: %(default)s)")
+    ap.add_argument("--machine", default="2 cores, two runs at once, the machine otherwise idle")
+    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
+    a = ap.parse_args(argv)
+    scenes = a.scenes.split(",")
+    ref = references(scenes)
+    todo = [(s, m, k) for k in range(a.repeats) for s in scenes for m in ("whole", "half")]   # interleaved
+    with ThreadPoolExecutor(a.jobs) as pool:
+        runs = list(pool.map(lambda t: one_run(*t, a.out), todo))
+    rows = []
+    for s in scenes:
+        for m in ("half", "whole"):
+            mine = [r for r in runs if r["scene"] == s and r["model"] == m]
+            row = dict(mine[0], cpu_s=[r["cpu_s"] for r in mine], wall_s=[r["wall_s"] for r in mine])
+            assert all(r["creep"] == row["creep"] for r in mine), f"{s} {m}: the repeats differ"
+            rows.append(row)
+    cmd = "bench/half_model_bench.py" + "".join(f" --{k} {v}" for k, v, d in (("scenes", a.scenes, "loading_rate_a1"),
+                                                                              ("repeats", a.repeats, 3), ("jobs", a.jobs, 2)) if v != d)
+    provenance = {"command": re.sub(r"\s+", " ", cmd), "date": time.strftime("%Y-%m-%d", time.gmtime()),
+                  "rev": results_store.revision(ROOT) or "unknown", "machine": a.machine}
+    store = {"provenance": provenance, "reference": ref, "rows": rows}
+    publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
+
+
+if __name__ == "__main__":
+    main()
