@@ -313,13 +313,17 @@ def test_restart_checks_the_checkpoint_first(tmp_path):
 def test_your_own_scene_template(tmp_path):
     """input/your_indent_axi.yaml (README, "Your own indentation scene") runs as a user would run it, here with one
     rerun (-adapt_levels 1): summary.json gives the creep depth (the hold's depth change) and the residual depth with
-    their mesh errors, and the log a line per stage. Expected: the creep depth within 2 % of the P2 reference of
+    their mesh errors, and the log a line per stage and one on how the estimate was made (from two levels: unchecked).
+    Expected: the creep depth within 2 % of the P2 reference of
     docs/performance.md ("Adapted meshes", the sphere: 8.196 nm), the residual depth within 1 % (40.44 nm) [reg: this
     code's P2 run], each stated error positive."""
     out = tmp_path / "yours"
     proc = run_driver(ROOT / "input" / "your_indent_axi.yaml", out, ["-adapt_levels", "1"], driver=BIN / "driver",
                       timeout=600)  # DriverError: it failed
     assert "reported, stage 'hold'" in proc.stdout and "mesh error" in proc.stdout
+    # one rerun: the estimate rests on one change, and the log and the summary say that nothing checks it yet
+    assert "mesh error: the last change over the fall of the squared error indicator, from two levels: nothing checks it yet" in proc.stdout
+    assert "from two levels" in summary(out)["mesh_error"]["how"]
     st = summary(out)["stages"]
     creep, h_res = 1000 * st[2]["change"]["depth"], 1000 * st[3]["end"]["depth"]
     e_creep, e_res = 1000 * st[2]["mesh_error"]["change"]["depth"], 1000 * st[3]["mesh_error"]["end"]["depth"]

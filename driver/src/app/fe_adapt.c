@@ -119,7 +119,8 @@ static void estimate(const RunInfo *levels, int n, int order, int dim, MeshError
   for (int l = 1; l < n; l++) g[l] = error_ratio(levels, l, order, dim);
   me->have = 1, me->ratio = g[n - 1];
   me->how  = n >= 3 ? "the larger of the last change and the level before's estimate, each over the fall of the squared error indicator (docs/adapt.md)"
-                    : "the last change over the fall of the squared error indicator (docs/adapt.md)";
+                    : "the last change over the fall of the squared error indicator, from two levels: nothing checks it yet, "
+                      "a further level does (docs/adapt.md)";
   for (int k = 0; k <= a->nstages_done; k++)
     for (int q = 0; q < a->nreport; q++) {
       for (int l = 0; l < n; l++) {
