@@ -11,6 +11,7 @@ from camclay9.convergence import richardson
 from camclay9.launch import repo_root
 
 TITLE = "## 2D indentation: mesh and element study"
+R2 = math.sqrt(2)
 # The shipped loading-rate scenes are half models (x >= 0, the mirror plane x = 0, indenter.copies 2); the study's
 # ladders ran on the whole block, and keep to it: these replacements turn the one into the other.
 HALF_TO_WHOLE = (("half: 1,", "half: 0,"),
@@ -27,7 +28,8 @@ def whole_block(text):
         assert text.count(old) == 1, f"the half model's scene has no single {old!r}"
         text = text.replace(old, new)
     return text
-R2 = math.sqrt(2)
+
+
 # scene key: (scene file, length scale (the bedding block is the loading-rate block x 25), region under the tip,
 # a change of the scene's text or None). "lrphi": the loading-rate scene with the hard frame (phi 0.5, as the
 # bedding scenes), whose elastic shear stiffness keeps the mixture from the incompressibility of the soft frame's flow

@@ -30,6 +30,11 @@ WINDOW = 0.6    # half-width of the loading-rate maps [um]
 DPI = 90
 
 
+def half_model(F):
+    """Whether the run's mesh is a half model x >= 0 (the loading-rate scenes: mirror plane x = 0, indenter.copies 2)."""
+    return bool(F.x[:, 0].min() >= -1e-9 * np.ptp(F.x[:, 0]))
+
+
 class Hold:
     """A 2D run's fields at the start of the hold (k0), its end (k1), the hold times (ks) and every output in it."""
 
@@ -163,11 +168,6 @@ def flow_direction(run, a, theta):
 
 
 # ------------------------------------------------------------------ figures
-def half_model(F):
-    """Whether the run's mesh is a half model x >= 0 (the loading-rate scenes: mirror plane x = 0, indenter.copies 2)."""
-    return bool(F.x[:, 0].min() >= -1e-9 * np.ptp(F.x[:, 0]))
-
-
 def _map(fig, ax, F, nodal, lim, clim, cmap, title):
     """A map of nodal values; a half model's with its mirror image, so that it shows the whole block."""
     for sign in ((1, -1) if half_model(F) else (1,)):

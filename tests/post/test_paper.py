@@ -124,3 +124,19 @@ def test_fig11_zone_of_a_half_model_is_the_whole_blocks():
     assert pf.half_model(SimpleNamespace(x=x)) and not pf.half_model(SimpleNamespace(x=whole_x))
     for k in ("surface", "middle", "beneath", "fill", "radius"):
         assert half[k] == pytest.approx(whole[k], rel=1e-9), k
+
+
+@pytest.mark.parametrize("alpha", ["0.1", "1", "10"])
+def test_whole_block_of_a_shipped_half_model(alpha):
+    """camclay9.indent2d_study.whole_block turns each shipped loading-rate half model back into the whole block the 2D
+    study's ladders ran on: x from -W/2, both sides fixed in x, no mirror plane, no copies; the rest unchanged."""
+    from camclay9.indent2d_study import whole_block
+
+    half = (ROOT / "input" / f"loading_rate_a{alpha}.yaml").read_text()
+    whole = whole_block(half)
+    assert "half: 1," in half and "copies: 2" in half and "mirror:" in half
+    assert "half: 0," in whole and "copies" not in whole.split("indenter:")[-1].split("\n")[0] and "\n  mirror:" not in whole
+    assert "    - {group: left, components: [x]}\n    - {group: right, components: [x]}\n" in whole
+    assert whole_block(whole) == whole
+    strip = lambda t: [l for l in t.splitlines() if not l.startswith("#")]
+    assert len(strip(half)) - len(strip(whole)) == 1          # the mirror key and its entry against the left side's entry
