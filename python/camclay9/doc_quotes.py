@@ -437,7 +437,7 @@ QUOTES = [
     (R, "its time steps «pc(tet('kerogen_sector'), 2)» in creep depth (docs/adapt.md, \"The time-step error\")"),
     (R, "P1 locks under the soft frame's nearly isochoric flow (creep depth «pc(rung2('lr', 0.02, 0.9, order=1).creep, 0)» on P1 at "
         "h_tip 0.02 µm, «pc(rung2('lr', 0.005, 0.4, order=1).creep, 0)» at 0.005 µm and «f(rung2('lr', 0.005, 0.4, order=1).cpu, 0)» s of "
-        "CPU, against «pc(rung2('lr', 0.01414, 0.9).creep, 1)» for the shipped P2 at «f(rung2('lr', 0.01414, 0.9).cpu, 0)» s)"),
+        "CPU, against «pc(rung2('lr', 0.01414, 0.9).creep, 1)» for the shipped P2 density on the whole block at «f(rung2('lr', 0.01414, 0.9).cpu, 0)» s)"),
     (R, "at α = 10 −0.3 %; its time steps «pc(stc('loading_rate_a1', 'creep depth'), 2)» in creep depth"),
     (R, "last level («f(ad('sector', 3).unknowns / 1000, 1)» k unknowns): load «pc(ade('sector', 3, 'P'), 2)», creep depth "
         "«pc(ade('sector', 3, 'creep'), 2)», residual depth «pc(ade('sector', 3, 'h_res'), 2)» against the sector adapted to level 5 "
