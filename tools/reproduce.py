@@ -40,7 +40,7 @@ IND2 = {"tol": 1.0e-3, "fields_every": 20, "order": 1}  # quick 2D: P1 (the ship
 # output times alone (issue 36, referee's defect 9).
 FIELDS_EVERY = 25
 LR_FULL = {"full": {"fields_every": FIELDS_EVERY}}
-MESH_SCALED = ("h_tip", "r_fine")  # a variant's mesh_scale: the sizes near the tip (the far field's stays the scene's)
+MESH_SCALED = ("h_tip", "r_fine")  # a variant's mesh_scale: the sizes near the tip (the far field: its "full" mesh, else the scene's)
 QUICK_OUTPUT_TOL = 0.05  # quick: the output error measure's tol (the shipped scenes: 1.5e-2)
 SCENES = {
     # the 3D scenes on their cheapest exact model (README, "Which model each scene uses"): kerogen and BN on the
@@ -60,14 +60,15 @@ SCENES = {
     "bedding_theta90": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     # Fig. 14's sensitivity to the plane-strain thickness (the paper gives none): 3 um, about the Berkovich-equivalent
     # thickness at 15 mN (t = 4.9 h_B, h_B = 0.62 um), the indent about a third as wide: the mesh near the tip scaled
-    # by 1/3 (h_tip, r_fine: MESH_SCALED), the far field as at 1 um (h_far: the block is the same 50 um). Measured at
-    # theta = 45 (2026-12-01, one rank; the scene this writes, out/paper/scenes/bedding_theta45_t3.yaml, run by the
-    # driver with its mesh parameters changed) against h_tip 0.059 um and h_far 0.625 um (208 k unknowns; depth at the
-    # end of loading 0.87825 um, creep depth 0.29121 um): h_far scaled too (0.625 um: 158 k unknowns, 356 s CPU)
-    # -0.02 % and -0.19 %; as here (52 k, 116 s) -0.02 % and -0.37 %. The 1 um scene's mesh is -0.8 % in creep depth
-    # against its converged 2D answer (docs/performance.md, "2D indentation: mesh and element study").
+    # by 1/3 (h_tip, r_fine: MESH_SCALED), the far field coarser than at 1 um (h_far 3.75 um: the block is the same
+    # 50 um, the fine zone a third as wide). Measured at theta = 45 (2026-12-01, one rank; the scene this writes,
+    # out/paper/scenes/bedding_theta45_t3.yaml, run by the driver with its mesh parameters changed) against h_tip
+    # 0.059 um and h_far 0.625 um (208 k unknowns; depth at the end of loading 0.87825 um, creep depth 0.29121 um):
+    # h_far scaled too (0.625 um: 158 k unknowns, 356 s CPU) -0.02 % and -0.19 %; h_far as at 1 um (1.875 um: 52 k,
+    # 116 s) -0.02 % and -0.37 %; as here (35.7 k, 76 s) -0.02 % and +0.04 %. The 1 um scene's mesh is -0.8 % in
+    # creep depth against its converged 2D answer (docs/performance.md, "2D indentation: mesh and element study").
     **{f"bedding_theta{t}_t3": dict(IND2, file=f"bedding_theta{t}", mesh={"h_tip": 1.25, "h_far": 7.5}, thickness=3,
-                                    mesh_scale=1 / 3) for t in (0, 30, 45, 60, 90)},
+                                    mesh_scale=1 / 3, full={"mesh": {"h_far": 3.75}}) for t in (0, 30, 45, 60, 90)},
     "triaxial_theta0": {"mesh": {"size": 12.0}, "mpi": 2},
     "triaxial_theta90": {"mesh": {"size": 12.0}, "mpi": 2},
 }
@@ -80,7 +81,7 @@ def scene_file(key):
 
 def variant_scene(key, dest, quick):
     """Write the scene of key to dest: input/<file>.yaml with an absolute mesh path and the key's variant (a
-    plane-strain thickness, the mesh's lengths scaled; in the full run, the outputs of "full"), and with --quick
+    plane-strain thickness, the mesh's lengths scaled; in the full run, the outputs and mesh sizes of "full"), and with --quick
     its coarse variant (quick_scene)."""
     q = SCENES[key]
     d = yaml.safe_load(scene_file(key).read_text(encoding="utf-8"))
@@ -89,7 +90,10 @@ def variant_scene(key, dest, quick):
     if quick:
         quick_scene(q, d)
     elif "full" in q:
-        d["output"]["fields_every"] = q["full"]["fields_every"]
+        full = q["full"]
+        if "fields_every" in full:
+            d["output"]["fields_every"] = full["fields_every"]
+        d["mesh"]["parameters"].update(full.get("mesh", {}))
     if "thickness" in q:
         d["mesh"]["thickness"] = q["thickness"]
         d["name"] = key
