@@ -536,8 +536,8 @@ QUOTES = [
         "«pc(rung2('lr', 0.01414, 0.9).sig_hold)» and its change over the hold (Fig. 13's quantity) "
         "«pc(rung2('lr', 0.01414, 0.9).dsig)»; the shipped half model on its own mesh (its h_far rounded) "
         "«pc(ind.loading_rate_a1.creep_depth / i2.reference.lr.creep.value - 1)» in creep depth"),
-    (R, "the same mesh at α = 0.1 «pc(rung2('lr01', 0.01414, 0.9).creep)» in creep depth (its ladder has not settled) "
-        "and at α = 10 «pc(rung2('lr10', 0.01414, 0.9).creep)»"),
+    (R, "the same mesh at α = 0.1 «pc(rung2('lr01', 0.01414, 0.9).creep)» in creep depth (its ladder has not settled; adapted meshes pass its finest rung with a fifth of "
+        "the unknowns and head below its extrapolation: docs/performance.md, \"Adapted meshes\") and at α = 10 «pc(rung2('lr10', 0.01414, 0.9).creep)»"),
     (R, "(at 20 k unknowns: creep «pc(rung2('bed', 0.3536, 10.0).creep)» against "
         "«pc(rung2('bed', 0.1768, 10.0, 1).creep)», residual depth «pc(rung2('bed', 0.3536, 10.0).h_res)» against "
         "«pc(rung2('bed', 0.1768, 10.0, 1).h_res)»)"),
