@@ -3,23 +3,23 @@
 the mirror plane x = 0, indenter.copies 2) and on the whole block it is half of (camclay9.indent2d_study.whole_block),
 on the same mesh parameters, fields as shipped, one rank, --repeats runs of each, --jobs at once. Per run: CPU (user +
 system of the driver and its gmsh, from wait4), wall, unknowns, steps, UMAT calls, the depth at the end of loading
-and the creep depth; these against the scene's converged 2D answer (the 2D mesh and element study's store,
+and the creep depth (indent_convergence_bench.run, as the mesh studies measure their rungs); these against the scene's converged 2D answer (the 2D mesh and element study's store,
 docs/results/indent2d_convergence.json). Keeps every number in docs/results/half_model.json
 (camclay9.half_model_study) and writes the section "2D indentation: the half model" of docs/performance.md from it.
 
     bench/half_model_bench.py [--scenes loading_rate_a1,...] [--repeats 3] [--jobs 2] [--out DIR] [--machine NOTE] [--no-doc]
 """
 import argparse
-import json
 import re
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from camclay9 import driver_command, mesh_line, results_store, run_measured
 from camclay9 import half_model_study as study
 from camclay9 import indent2d_study as i2d
+from camclay9 import results_store
 from camclay9.performance_doc import publish
+from indent_convergence_bench import run
 
 ROOT = Path(__file__).resolve().parents[1]
 SKEY = {name: k for k, (name, *_rest) in i2d.SCENES.items() if k in i2d.REFERENCE}   # scene -> the 2D study's key
@@ -27,27 +27,18 @@ SKEY = {name: k for k, (name, *_rest) in i2d.SCENES.items() if k in i2d.REFERENC
 
 def scene_text(scene, model):
     text = (ROOT / "input" / f"{scene}.yaml").read_text().replace("geometry: ../meshes/", f"geometry: {ROOT}/meshes/")
-    assert "half: 1," in text, f"input/{scene}.yaml is not a half model"
+    assert i2d.half_model_scene(text), f"input/{scene}.yaml is not a half model"
     return text if model == "half" else i2d.whole_block(text)
 
 
 def one_run(scene, model, k, out):
-    """One run: its row's numbers (cpu_s, wall_s as single values)."""
-    d = Path(out) / f"{scene}_{model}_{k}"
-    d.mkdir(parents=True, exist_ok=True)
-    path = d / "scene.yaml"
-    path.write_text(scene_text(scene, model))
-    rc, cpu, _, wall = run_measured(driver_command(path, d / "run", root=ROOT), d / "driver.log", timeout=4 * 3600, cwd=d)
-    log = (d / "driver.log").read_text()
-    if rc:
-        raise SystemExit(f"{path}: the driver failed:\n{log[-2000:]}")
-    s = json.loads((d / "run" / "summary.json").read_text())
-    st = {g["name"]: g for g in s["stages"]}
-    row = {"scene": scene, "model": model, "unknowns": mesh_line(log)["unknowns"], "steps": s["counters"]["steps"],
-           "umat_calls": s["counters"]["umat_calls"], "cpu_s": cpu, "wall_s": wall, "h_max": st["load"]["end"]["depth"],
-           "creep": st["hold"]["change"]["depth"]}
-    print(f"{scene} {model} #{k}: CPU {cpu:.1f} s, {row['unknowns']} unknowns, h_max {row['h_max']:.6g}, creep {row['creep']:.6g}",
-          flush=True)
+    """One run (indent_convergence_bench.run: CPU from wait4, its counts, its outputs): the store's row, cpu_s and
+    wall_s as single values."""
+    r = run(scene_text(scene, model), Path(out) / f"{scene}_{model}_{k}")
+    row = {"scene": scene, "model": model, "unknowns": r["unknowns"], "steps": r["steps"], "umat_calls": r["umat_calls"],
+           "cpu_s": r["cpu"], "wall_s": r["wall"], "h_max": r["o"]["depth at end of loading"], "creep": r["o"]["creep depth"]}
+    print(f"{scene} {model} #{k}: CPU {row['cpu_s']:.1f} s, {row['unknowns']} unknowns, h_max {row['h_max']:.6g}, "
+          f"creep {row['creep']:.6g}", flush=True)
     return row
 
 

@@ -22,7 +22,8 @@ camclay9.indent3d_study.numbers(), from the 3D ladders' store (indent_convergenc
 import re
 import statistics
 
-from camclay9 import adapt_quotes, contact_quotes, contact_solver_study, coverage_study, indent3d_study, indent_models_study, paper_doc_tri, results_store
+from camclay9 import (adapt_quotes, contact_quotes, contact_solver_study, coverage_study, half_model_study, indent3d_study,
+                      indent_models_study, paper_doc_tri, results_store)
 from camclay9.adapt_study import effectivity
 from camclay9.indent2d_study import key
 
@@ -69,7 +70,6 @@ FT = contact_solver_study.FORCING  # ... with GMRES' tolerance by the inexact Ne
 SP, R2 = "fieldsplit, simple partition", "ranks0.0425"  # its field split on the simple partition; its 2-rank partition case
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
-LR = ("loading_rate_a0.1", "loading_rate_a1", "loading_rate_a10")  # the 2D scenes of bench/indent_speed_bench.py
 BED = ("bedding_theta0", "bedding_theta45", "bedding_theta90")
 
 
@@ -139,14 +139,19 @@ def _indent_speed(store_dir=None):
         """A scene's row of bench/indent_speed_bench.py (docs/results/indent_speed.json): cpu, steps, log_view, ..."""
         return A(isr[(scene, driver)])
 
-    hms = results_store.load("half_model", store_dir).get("rows", [])
+    return dict(isp=isp)
+
+
+def _half_model(store_dir=None):
+    """The quotes' helper on bench/half_model_bench.py's store (docs/results/half_model.json)."""
+    rows = {(r["scene"], r["model"]): r for r in results_store.load(half_model_study.STORE, store_dir).get("rows", [])}
 
     def hm(scene, model="half"):
-        """A scene's row of bench/half_model_bench.py (docs/results/half_model.json), cpu its median CPU."""
-        r = next(r for r in hms if (r["scene"], r["model"]) == (scene, model))
-        return A(r | {"cpu": statistics.median(r["cpu_s"])})
+        """A scene's row, model 'half' or 'whole'; cpu: its median CPU."""
+        r = rows[(scene, model)]
+        return A(r | {"cpu": half_model_study.cpu(r)})
 
-    return dict(isp=isp, hm=hm)
+    return dict(hm=hm)
 
 
 def namespace(store_dir=None):
@@ -263,10 +268,10 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, zip=zip, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, kps=kps, fband=fband, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU, FT=FT,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, LR=LR, BED=BED,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, BED=BED,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)
-    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir))
+    ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir), **_half_model(store_dir))
     if 0 in tri and 90 in tri:
         ns.update(rd=A(paper_doc_tri.fig17_readings(tri)), f18=A(paper_doc_tri.fig18(tri)))
     return ns

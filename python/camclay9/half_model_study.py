@@ -43,9 +43,14 @@ def pairs(store):
     return [(by[(s, "half")], by[(s, "whole")]) for s in scenes if (s, "half") in by and (s, "whole") in by]
 
 
+def cpu(row):
+    """A row's median CPU over its repeats [s]."""
+    return statistics.median(row["cpu_s"])
+
+
 def speedup(half, whole):
     """The whole block's median CPU over the half model's."""
-    return statistics.median(whole["cpu_s"]) / statistics.median(half["cpu_s"])
+    return cpu(whole) / cpu(half)
 
 
 def section(store, root=None):
@@ -65,7 +70,7 @@ def section(store, root=None):
         R = ref[r["scene"]]
         c = r["cpu_s"]
         lines.append(f"| {r['scene']} | {r['model']} | {r['unknowns']} | {r['steps']} | {r['umat_calls'] / 1e6:.1f} M | "
-                     f"{statistics.median(c):.1f} ({min(c):.1f}–{max(c):.1f}) | {r['h_max'] * 1e3:.2f} ({error(r, R, 'h_max'):+.2%}) | "
+                     f"{cpu(r):.1f} ({min(c):.1f}–{max(c):.1f}) | {r['h_max'] * 1e3:.2f} ({error(r, R, 'h_max'):+.2%}) | "
                      f"{r['creep'] * 1e3:.3f} ({error(r, R, 'creep'):+.2%}) |")
     for s, R in ref.items():
         lines.append(f"| {s} | converged 2D answer | | | | | {R['h_max'] * 1e3:.2f} (± {R['hw_h_max']:.2%}) | "

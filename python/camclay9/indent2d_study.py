@@ -20,9 +20,14 @@ HALF_TO_WHOLE = (("half: 1,", "half: 0,"),
                  ("contact: contact, copies: 2}", "contact: contact}"))
 
 
+def half_model_scene(text):
+    """Whether a loading-rate scene's text is the half model (indent_block2d.geo's half: 1)."""
+    return HALF_TO_WHOLE[0][0] in text
+
+
 def whole_block(text):
     """A shipped plane-strain half model's scene text as the whole block it is half of (unchanged if it is not one)."""
-    if "half: 1," not in text:
+    if not half_model_scene(text):
         return text
     for old, new in HALF_TO_WHOLE:
         assert text.count(old) == 1, f"the half model's scene has no single {old!r}"
@@ -190,7 +195,7 @@ def shipped_lines(skey, ref, paper, root=None):
     if not s or not ref:
         return []
     e = {"h_max": s["depth_end_of_load"] / ref["h_max"]["value"] - 1, "creep": s["creep_depth"] / ref["creep"]["value"] - 1}
-    half = "half: 1," in (Path(root or repo_root()) / "input" / f"{SHIPPED[skey][0]}.yaml").read_text()
+    half = half_model_scene((Path(root or repo_root()) / "input" / f"{SHIPPED[skey][0]}.yaml").read_text())
     model = ("the half model x ≥ 0 on a mesh of the shipped density (\"2D indentation: the half model\")" if half
              else "its own mesh of the shipped density")
     return [f"The shipped scene itself ({SHIPPED[skey][0]}.yaml, as docs/paper.md runs it; {model}, another draw of the same "
