@@ -23,6 +23,26 @@ static PetscErrorCode nest_of(Contact *ct, Mat K, Mat *A) {
   PetscFunctionReturn(0);
 }
 
+/* The direct path's package (-indent_pc_factor_mat_solver_type overrides it). A 2D model on one rank: UMFPACK with
+ * METIS' ordering, whose triangular solves, the main cost of the 2D contact solve, take about 0.7 of MUMPS' time there
+ * (MUMPS as Debian builds it orders by PORD only; docs/contact.md, "The linear solver"). 3D or several ranks: MUMPS
+ * (in 3D its factors are the sparser, UMFPACK is serial). Both pivot, as the zero diagonal of the multiplier rows and of
+ * the indenter row under force control asks; MUMPS' ICNTL(14) leaves room for those delayed pivots. */
+static PetscErrorCode direct_package(MPI_Comm comm, PetscInt dim, PC pc) {
+  PetscMPIInt size;
+  PetscBool   umfpack = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (dim == 2 && size == 1) {
+    PetscBool type;
+    PetscCall(MatSolverTypeGet(MATSOLVERUMFPACK, MATSEQAIJ, MAT_FACTOR_LU, &type, &umfpack, NULL));
+  }
+  PetscCall(PCFactorSetMatSolverType(pc, umfpack ? MATSOLVERUMFPACK : MATSOLVERMUMPS));
+  PetscCall(options_default("-indent_mat_umfpack_ordering", "METIS"));
+  PetscCall(options_default("-indent_mat_mumps_icntl_14", "100"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), PetscErrorCode (*coarse)(void *, Mat *, MatNullSpace *),
                                    void *actx, const IndentOptions *o, IndentSolver *s) {
   MPI_Comm  comm = PetscObjectComm((PetscObject)K);
@@ -69,8 +89,7 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
       PetscCall(KSPGMRESSetRestart(s->ksp, 30));
     } else PetscCall(KSPSetType(s->ksp, KSPPREONLY));
     PetscCall(PCSetType(pc, PCLU));
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    PetscCall(options_default("-indent_mat_mumps_icntl_14", "100")); /* room for the delayed pivots (zero diagonal) */
+    PetscCall(direct_package(comm, ct->dim, pc));
   } else {
     PetscCall(ISGetLocalSize(s->is[1], &nr));
     PetscCall(KSPSetType(s->ksp, KSPFGMRES));
@@ -106,6 +125,21 @@ PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode 
   }
   PetscCall(KSPSetFromOptions(s->ksp));
   PetscCall(KSPGetTolerances(s->ksp, &s->rtol, NULL, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The path and, on the direct one, its package, for the log: "direct (umfpack)", "fieldsplit". */
+PetscErrorCode indent_solver_name(IndentSolver *s, char *name, size_t len) {
+  PC            pc;
+  MatSolverType type = NULL;
+  PetscFunctionBeginUser;
+  if (s->fieldsplit) {
+    PetscCall(PetscSNPrintf(name, len, "fieldsplit"));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(KSPGetPC(s->ksp, &pc));
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  PetscCall(PetscSNPrintf(name, len, "direct (%s)", type ? type : "?"));
   PetscFunctionReturn(0);
 }
 

@@ -72,6 +72,8 @@ typedef struct {
  * field split takes it. */
 PetscErrorCode indent_solver_create(Contact *ct, Mat K, Mat Kmf, PetscErrorCode (*assemble)(void *), PetscErrorCode (*coarse)(void *, Mat *, MatNullSpace *),
                                    void *actx, const IndentOptions *o, IndentSolver *s);
+/* The path and, on the direct one, its package, for the log: "direct (umfpack)", "fieldsplit". */
+PetscErrorCode indent_solver_name(IndentSolver *s, char *name, size_t len);
 PetscErrorCode indent_solver_destroy(IndentSolver *s);
 /* The next solve factors afresh (a new stage, a checkpoint). */
 static inline void indent_solver_refresh(IndentSolver *s) { s->refactor = PETSC_TRUE; }

@@ -261,10 +261,12 @@ int indent_stepper_run(FeScene *sc, IndentScene *is, FeProblem *p, const RunnerO
   if (ierr) return stage_runner_status(ierr, err);
   if (bad) return bad;
   ierr = fe_common_init(&d.c, sc, p, opt);
+  char solver[64];
+  if (!ierr) ierr = indent_solver_name(&d.in.sol, solver, sizeof solver);
   if (!ierr)
     ierr = PetscPrintf(comm, "indenter: %s, %d potential contact nodes (group '%s', weights sum %.6g), solver %s, complementarity c = %.4g, "
                              "indenter-row shift %.4g\n",
-                       shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, d.in.sol.fieldsplit ? "fieldsplit" : "direct",
+                       shape_name(is), (int)d.in.ct.N, is->contact_group, (double)d.in.ct.weight_sum, solver,
                        (double)d.in.ct.c, (double)d.in.ct.kn);
   if (ierr) return stage_runner_status(ierr, err);
   StepSolver sv = {.ctx = &d, .kind = "indentation", .nstage = sc->nstage, .comm = comm, .stage_begin = stage_begin,

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""The direct contact solve's package and the loading stage's step control, measured on shipped indentation scenes
+(issue 32): each scene as shipped and as it was before (MUMPS; the loading steps relative to each step), 2D scenes also
+with UMFPACK alone, --repeats runs of each, --jobs at once, and one reference run at tol 5e-3 (the time-step reference
+on the same mesh). Per run: CPU (user + system of the driver and its gmsh, from wait4), wall, the driver's counts and
+the scene's outputs (indent_convergence_bench.run, as the mesh studies measure their rungs). Keeps every number in
+docs/results/loading_steps.json (camclay9.loading_steps_study) and writes the section "Indentation: the direct solver
+and the loading steps" of docs/performance.md from it.
+
+    bench/loading_steps_bench.py [--scenes loading_rate_a1,nanoindent_kerogen_sector] [--repeats 3] [--jobs 2]
+                                 [--out DIR] [--machine NOTE] [--no-doc]
+"""
+import argparse
+import re
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from camclay9 import loading_steps_study as study
+from camclay9 import results_store
+from camclay9.performance_doc import publish
+from indent_convergence_bench import run
+
+ROOT = Path(__file__).resolve().parents[1]
+STAGE = ", relative_to: stage"
+
+
+def scene_text(scene, variant):
+    """The scene's text for a variant (loading_steps_study.VARIANTS)."""
+    text = (ROOT / "input" / f"{scene}.yaml").read_text().replace("geometry: ../meshes/", f"geometry: {ROOT}/meshes/")
+    if STAGE not in text or re.search(r"^solver:", text, re.M):
+        raise SystemExit(f"input/{scene}.yaml: expected its loading steps relative to the stage and no solver key")
+    if variant in ("before", "UMFPACK"):
+        text = text.replace(STAGE, "")
+    if variant == "before":
+        text += 'solver: {options: "-indent_pc_factor_mat_solver_type mumps"}\n'
+    if variant == "reference":
+        text = text.replace("tol: 1.5e-2", "tol: 5.0e-3")
+    return text
+
+
+def two_d(scene):
+    return "kinematics: 3d" not in (ROOT / "input" / f"{scene}.yaml").read_text()
+
+
+def one_run(scene, variant, k, out):
+    r = run(scene_text(scene, variant), Path(out) / f"{scene}_{variant}_{k}")
+    row = {"scene": scene, "variant": variant, "unknowns": r["unknowns"], "steps": r["steps"], "newton": r["newton"],
+           "krylov": r["krylov"], "factorisations": r["factorisations"], "umat_calls": r["umat_calls"],
+           "solve_s": r["solve_s"], "cpu_s": r["cpu"], "wall_s": r["wall"],
+           "outputs": {o: r["o"][o] for o in study.OUTPUTS if o in r["o"]}}
+    print(f"{scene} {variant} #{k}: CPU {row['cpu_s']:.1f} s, {row['steps']} steps, " +
+          ", ".join(f"{o} {v:.6g}" for o, v in row["outputs"].items()), flush=True)
+    return row
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", default="loading_rate_a1,nanoindent_kerogen_sector")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--jobs", type=int, default=2, help="runs at once (default: %(default)s)")
+    ap.add_argument("--out", default=str(ROOT / "out" / "loading_steps"), help="the runs' folders (default: %(default)s)")
+    ap.add_argument("--machine", default="2 cores, two runs at once, the machine otherwise idle")
+    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
+    a = ap.parse_args(argv)
+    scenes = a.scenes.split(",")
+    variants = {s: [v for v in ("before", "UMFPACK", "shipped") if v != "UMFPACK" or two_d(s)] for s in scenes}
+    todo = [(s, "reference", 0) for s in scenes]
+    todo += [(s, v, k) for k in range(a.repeats) for s in scenes for v in variants[s]]   # interleaved
+    with ThreadPoolExecutor(a.jobs) as pool:
+        runs = list(pool.map(lambda t: one_run(*t, a.out), todo))
+    rows = []
+    for s in scenes:
+        for v in study.VARIANTS:
+            mine = [r for r in runs if r["scene"] == s and r["variant"] == v]
+            if mine:
+                rows.append(dict(mine[0], cpu_s=[r["cpu_s"] for r in mine], wall_s=[r["wall_s"] for r in mine]))
+    defaults = (("scenes", a.scenes, "loading_rate_a1,nanoindent_kerogen_sector"), ("repeats", a.repeats, 3), ("jobs", a.jobs, 2))
+    cmd = "bench/loading_steps_bench.py" + "".join(f" --{k} {v}" for k, v, d in defaults if v != d)
+    provenance = {"command": cmd, "date": time.strftime("%Y-%m-%d", time.gmtime()),
+                  "rev": results_store.revision(ROOT) or "unknown", "machine": a.machine}
+    store = {"provenance": provenance, "rows": rows}
+    publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
+
+
+if __name__ == "__main__":
+    main()
