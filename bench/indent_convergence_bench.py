@@ -61,7 +61,8 @@ def scene(model, h_tip, tol=None, work=None):
     order, far, r_fine, base = m["order"], m["far"], m["r_fine"], m.get("nested")
     t = absolute((ROOT / "input" / f"{m['scene']}.yaml").read_text())
     if tol:  # the load and hold stages' output tolerance (shipped: 1.5e-2; the unload stage's 0.1 kept)
-        t = t.replace("measure: output, tol: 1.5e-2}", f"measure: output, tol: {tol:g}}}")
+        assert t.count("measure: output, tol: 1.5e-2") == 2, "expected the load and hold stages at the output measure's tol 1.5e-2"
+        t = t.replace("measure: output, tol: 1.5e-2", f"measure: output, tol: {tol:g}")   # the load's relative_to kept
     t = re.sub(r"h_tip: [0-9.e-]+", f"h_tip: {base or h_tip:.6g}", t, count=1)
     t = re.sub(r"h_far: [0-9.e-]+", f"h_far: {far * (base or h_tip):.6g}", t, count=1)
     if r_fine:

@@ -11,6 +11,7 @@ and the loading steps" of docs/performance.md from it.
                                  [--out DIR] [--machine NOTE] [--no-doc]
 """
 import argparse
+import json
 import re
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -69,6 +70,7 @@ def main(argv=None):
     todo += [(s, v, k) for k in range(a.repeats) for s in scenes for v in variants[s]]   # interleaved
     with ThreadPoolExecutor(a.jobs) as pool:
         runs = list(pool.map(lambda t: one_run(*t, a.out), todo))
+    (Path(a.out) / "runs.json").write_text(json.dumps(runs, indent=1))   # kept should the section fail
     rows = []
     for s in scenes:
         for v in study.VARIANTS:

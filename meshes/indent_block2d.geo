@@ -5,7 +5,9 @@
 // h_tip (element size within r_fine of the tip), h_far (element size from about W/2 on), r_fine,
 // r_contact (the top is split at x = +-r_contact; the central part is the potential contact surface),
 // x_mark (if > 0, a mesh node is forced at x = x_mark, and -x_mark when half = 0, on the top, e.g. the
-// edge of a flat punch; 0: none).
+// edge of a flat punch; 0: none), mirror (0 or 1, with half = 0: the half x <= 0 meshed as the mirror image of
+// the half x >= 0, so that the whole block's mesh is symmetric and its half x >= 0 is the half = 1 mesh; 0: one
+// mesh of the whole block).
 // Physical groups: surface "block"; curves "bottom" (y = -H), "left" (x = min: the axis when half = 1),
 // "right" (x = max), "top" (all of y = 0), "contact" (the part of y = 0 with |x| <= r_contact); point
 // "tip" (the origin).
@@ -34,15 +36,28 @@ EndIf
 If (!Exists(x_mark))
   x_mark = 0;
 EndIf
+If (!Exists(mirror))
+  mirror = 0;
+EndIf
 If (r_contact <= 0 || r_contact >= W / 2)
   Error("indent_block2d.geo: need 0 < r_contact < W/2 (r_contact = %g, W = %g)", r_contact, W);
 EndIf
 If (x_mark < 0 || x_mark >= W / 2)
   Error("indent_block2d.geo: need 0 <= x_mark < W/2 (x_mark = %g, W = %g)", x_mark, W);
 EndIf
+If (mirror != 0 && (mirror != 1 || half != 0))
+  Error("indent_block2d.geo: mirror is 0, or 1 with half = 0 (mirror = %g, half = %g)", mirror, half);
+EndIf
 xmin = (half == 1) ? 0 : -W / 2;
 xmax = W / 2;
-Rectangle(1) = {xmin, -H, 0, xmax - xmin, H};
+If (mirror == 1)
+  Rectangle(1) = {0, -H, 0, xmax, H};
+  Rectangle(2) = {xmin, -H, 0, -xmin, H};
+  blocks[] = {1, 2};
+Else
+  Rectangle(1) = {xmin, -H, 0, xmax - xmin, H};
+  blocks[] = {1};
+EndIf
 // The top is cut at the tip, at +-r_contact and at +-x_mark by fragmenting the rectangle with points on
 // its top edge: OpenCASCADE splits the edge there, so the pieces share their end points and the
 // triangles are conforming across them, whatever the order of r_contact and x_mark (a point given twice
@@ -63,12 +78,12 @@ For k In {0 : #xcut[] - 1}
     cut[] += p;
   EndIf
 EndFor
-If (half == 0)
+If (half == 0 && mirror == 0)
   p = newp;
   Point(p) = {0, 0, 0};
   cut[] += p;
 EndIf
-BooleanFragments{ Surface{1}; Delete; }{ Point{cut[]}; Delete; }
+BooleanFragments{ Surface{blocks[]}; Delete; }{ Point{cut[]}; Delete; }
 // Groups by position, not by tag: the fragment operation renumbers entities.
 e = 1e-6 * (W + H);
 Physical Surface("block") = Surface In BoundingBox {xmin - e, -H - e, -e, xmax + e, e, e};
@@ -97,3 +112,11 @@ Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeFromCurvature = 0;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeMax = h_far;
+// mirror = 1: the half x <= 0 is meshed as the mirror image of the half x >= 0 (gmsh copies the mesh through the
+// reflection x -> -x), so that the whole block's mesh is symmetric about x = 0 and its half x >= 0 is the mesh of
+// half = 1 with the same parameters: a half model and the whole block then run one mesh.
+If (mirror == 1)
+  right[] = Surface In BoundingBox {-e, -H - e, -e, xmax + e, e, e};
+  left[] = Surface In BoundingBox {xmin - e, -H - e, -e, e, e, e};
+  Periodic Surface{left[0]} = {right[0]} Affine{-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+EndIf

@@ -549,6 +549,9 @@ QUOTES = [
     (R, "at 45°: depth at the end of loading «pc(rung2('bed', 0.25, 10.0).h_max)», creep depth «pc(rung2('bed', 0.25, 10.0).creep)», "
         "stress under the tip «pc(rung2('bed', 0.25, 10.0).sig_hold)» (within 1 % and 5 %; the residual depth, not reported by "
         "these scenes, «pc(rung2('bed', 0.25, 10.0).h_res)»)"),
+    (R, "on the shipped mesh (the mirror halves; docs/paper.md's run) depth at the end of loading "
+        "«pc(ind.bedding_theta45.depth_end_of_load / i2.reference.bed.h_max.value - 1)», creep depth "
+        "«pc(ind.bedding_theta45.creep_depth / i2.reference.bed.creep.value - 1)»"),
     (R, "(the P1 mesh before the 2D study: «pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth)"),
     # below the table (defect 3)
     (R, "were «f(kr('old1_0.05').cpu, 0)» s for the sector but «pc(err3('old1_0.05').P, 0)» in load and "

@@ -81,7 +81,8 @@ def section(store, root=None):
                 continue
             r, c = by[v], by[v]["cpu_s"]
             spread = f" ({min(c):.1f}–{max(c):.1f})" if len(c) > 1 else ""
-            errs = [f"{r['outputs'][o]:.6g}" if v == "reference" else _cell(error(r, ref, o)) for o in names]
+            errs = [(f"{r['outputs'][o]:.6g}" if o in r["outputs"] else "") if v == "reference" else _cell(error(r, ref, o))
+                    for o in names]
             lines.append(f"| {s} | {v} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['umat_calls'] / 1e6:.1f} M | "
                          f"{r['solve_s']:.1f} | {cpu(r):.1f}{spread} | " + " | ".join(errs) + " |")
     lines.append("")

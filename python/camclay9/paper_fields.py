@@ -31,7 +31,8 @@ DPI = 90
 
 
 def half_model(F):
-    """Whether the run's mesh is a half model x >= 0 (the loading-rate scenes: mirror plane x = 0, indenter.copies 2)."""
+    """Whether the run's mesh is a half model x >= 0 (the loading-rate scenes, bedding at theta = 0 and 90: mirror plane
+    x = 0, indenter.copies 2)."""
     return bool(F.x[:, 0].min() >= -1e-9 * np.ptp(F.x[:, 0]))
 
 
@@ -147,24 +148,38 @@ def loading_rate_numbers(run):
 
 def flow_direction(run, a, theta):
     """Fig. 15: the displacement increments of the hold within 2a of the tip (vertices below the surface), their
-    principal direction (the orientation tensor's axis, weighted by |du|^2), as the angle from the downward
-    vertical, positive toward +x; and on the same convention the bedding normal's axis (BN; n = (sin t, cos t) with y
-    up, so its downward half points at -t) and the planes' (BP, at 90 - t). A principal axis tilted from the load
-    toward BN's side is flow toward BN."""
+    principal direction (flow_axis). A half model's (bedding at theta = 0 and 90) with its mirror image: the whole
+    block's field."""
     if not (Path(run) / "fields.h5").is_file():
         return None
     with Hold(run) as H:
         F = H.F
-        assert not half_model(F), f"{run}: a half model has no flow direction of its own (the bedding scenes are whole blocks)"
-        du = F.u[H.k1] - F.u[H.k0]
-        sel = (np.hypot(F.x[:, 0], F.x[:, 1]) < 2 * a) & (F.x[:, 1] < 0)
-        T = du[sel].T @ du[sel]
-        w, v = np.linalg.eigh(T)
-        d = v[:, -1] * (1 if v[1, -1] < 0 else -1)          # the principal axis, pointing down
-        beta = math.degrees(math.atan2(d[0], -d[1]))
-        mean = du[sel].mean(axis=0)
-        return {"beta": beta, "anisotropy": float(w[-1] / max(w[0], 1e-300)), "theta": theta, "beta_bn": -float(theta),
-                "mean_du": mean.tolist(), "mean_angle": math.degrees(math.atan2(mean[0], -mean[1]))}
+        x, du = F.x, F.u[H.k1] - F.u[H.k0]
+        if half_model(F):
+            x, du = mirrored(x, du)
+        return flow_axis(x, du, a, theta)
+
+
+def mirrored(x, v):
+    """A half model's nodal vectors v at x (x >= 0) with their mirror image about x = 0: the whole block's, the nodes on
+    the axis once (the mirror plane holds v_x = 0 there)."""
+    m = x[:, 0] > 1e-9 * np.ptp(x[:, 0])
+    return np.r_[x, x[m] * [-1, 1]], np.r_[v, v[m] * [-1, 1]]
+
+
+def flow_axis(x, du, a, theta):
+    """The principal direction of the increments du at x within 2a of the tip (vertices below the surface): the
+    orientation tensor's axis, weighted by |du|^2, as the angle from the downward vertical, positive toward +x; and on
+    the same convention the bedding normal's axis (BN; n = (sin t, cos t) with y up, so its downward half points at -t)
+    and the planes' (BP, at 90 - t). A principal axis tilted from the load toward BN's side is flow toward BN."""
+    sel = (np.hypot(x[:, 0], x[:, 1]) < 2 * a) & (x[:, 1] < 0)
+    T = du[sel].T @ du[sel]
+    w, v = np.linalg.eigh(T)
+    d = v[:, -1] * (1 if v[1, -1] < 0 else -1)          # the principal axis, pointing down
+    beta = math.degrees(math.atan2(d[0], -d[1]))
+    mean = du[sel].mean(axis=0)
+    return {"beta": beta, "anisotropy": float(w[-1] / max(w[0], 1e-300)), "theta": theta, "beta_bn": -float(theta),
+            "mean_du": mean.tolist(), "mean_angle": math.degrees(math.atan2(mean[0], -mean[1]))}
 
 
 # ------------------------------------------------------------------ figures

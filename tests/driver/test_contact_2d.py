@@ -89,15 +89,16 @@ def test_force_control_predicts_a_linear_response_exactly(tmp_path):
     assert h["newton_its"][1] > 0 and list(h["newton_its"][2:]) == [0, 0]
 
 
-def wedge_scene(k, h_tip, r_fine, half=False, copies=None):
-    """The wedge on the whole block, or (half) on its half x >= 0 with the mirror plane x = 0."""
+def wedge_scene(k, h_tip, r_fine, half=False, copies=None, mirror=False):
+    """The wedge on the whole block (mirror: meshed as two mirror halves), or (half) on its half x >= 0 with the mirror
+    plane x = 0."""
     sides = ("[{group: bottom, components: [x, y]}, {group: right, components: [x]}]\n  mirror: [{group: left, normal: [1, 0]}]"
              if half else "[{group: bottom, components: [x, y]}, {group: left, components: [x]}, {group: right, components: [x]}]")
     more = f", copies: {copies}" if copies else ""
     return f"""scene: fe
 mesh:
   geometry: meshes/indent_block2d.geo
-  parameters: {{W: {40 * k}, H: {20 * k}, half: {int(half)}, h_tip: {h_tip * k}, h_far: {2 * k}, r_fine: {r_fine * k}, r_contact: {3 * r_fine * k}}}
+  parameters: {{W: {40 * k}, H: {20 * k}, half: {int(half)}, h_tip: {h_tip * k}, h_far: {2 * k}, r_fine: {r_fine * k}, r_contact: {3 * r_fine * k}{", mirror: 1" if mirror else ""}}}
   kinematics: plane_strain
 material: {ELASTIC}
 boundary:
@@ -140,6 +141,24 @@ def test_wedge_half_model_carries_the_whole_load(tmp_path):
     assert a_lo * 0.98 <= a <= a_hi * 1.02
 
 
+def test_half_model_runs_the_whole_blocks_mesh(tmp_path):
+    """mirror: 1 meshes the whole block as two mirror halves (meshes/indent_block2d.geo): its mesh is symmetric about
+    x = 0 and its half x >= 0 is the half model's mesh node for node. On it the half model (the mirror plane x = 0,
+    indenter.copies 2) and the whole block solve the same discrete problem: the same loads to 1e-8, and 2 n - 1 active
+    nodes on the whole block where the half has n (the node on the axis counted once)."""
+    whole = run(wedge_scene(1, 0.004, 0.03, mirror=True), tmp_path / "whole")
+    half = run(wedge_scene(1, 0.004, 0.03, half=True, copies=2), tmp_path / "half")
+    xw, xh = msh_nodes(tmp_path / "whole" / "mesh.msh")[:, :2], msh_nodes(tmp_path / "half" / "mesh.msh")[:, :2]
+    key = lambda xy: sorted(map(tuple, np.round(xy, 9)))
+    right = xw[xw[:, 0] > -1e-12]
+    mirrored = xw * [-1, 1]
+    print(f"whole block {len(xw)} nodes ({len(right)} with x >= 0), half model {len(xh)}; loads {whole['load'][-1]:.9g} "
+          f"and {half['load'][-1]:.9g}; active nodes {int(whole['active_nodes'][-1])} and {int(half['active_nodes'][-1])}")
+    assert key(mirrored) == key(xw) and key(right) == key(xh)
+    assert np.max(np.abs(whole["load"] - half["load"])) < 1e-8 * np.max(np.abs(whole["load"]))
+    assert np.array_equal(whole["active_nodes"], np.maximum(2 * half["active_nodes"] - 1, 0)) and half["active_nodes"][-1] >= 3
+
+
 @pytest.mark.parametrize("half,copies,word", [(False, 2, "lies on both sides"), (True, 3, "or its half on one side")])
 def test_bad_plane_strain_copies(tmp_path, half, copies, word):
     """copies 2 on the whole block would report twice its load; plane strain has no cut with more than 2 copies."""
@@ -155,3 +174,22 @@ def test_wedge_self_similar(tmp_path):
     print(f"wedge scaled by 2 (block, mesh, depth): load ratio {ratio}")
     assert np.all(one["load"][1:] > 0) and np.max(np.abs(ratio - 2)) < 1e-9
     assert np.array_equal(one["active_nodes"], two["active_nodes"])
+
+
+def test_direct_package(tmp_path):
+    """The direct contact solve of a 2D model on one rank is UMFPACK's with METIS' ordering, and the log's indenter line
+    names it; MUMPS, asked by -indent_pc_factor_mat_solver_type and used on 2 ranks, solves the same systems: the same
+    loads to 1e-9 (both factorisations are exact; only round-off differs)."""
+    scene = tmp_path / "wedge.yaml"
+    scene.write_text(wedge_scene(1, 0.004, 0.03))
+    runs = {}
+    for name, options, ranks in (("umfpack", [], 1), ("mumps", ["-indent_pc_factor_mat_solver_type", "mumps"], 1),
+                                 ("mumps2", [], 2)):
+        proc = run_driver(scene, tmp_path / name, options, name="driver_elastic", root=ROOT, cwd=ROOT, ranks=ranks, timeout=600)
+        line = next(s for s in proc.stdout.splitlines() if s.startswith("indenter:"))
+        runs[name] = (line, read_history(tmp_path / name)["load"])
+        print(name, line)
+    assert "solver direct (umfpack)" in runs["umfpack"][0] and "solver direct (mumps)" in runs["mumps"][0]
+    assert "solver direct (mumps)" in runs["mumps2"][0]
+    for name in ("mumps", "mumps2"):
+        assert np.max(np.abs(runs[name][1] - runs["umfpack"][1])) < 1e-9 * np.max(np.abs(runs["umfpack"][1]))

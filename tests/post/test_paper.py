@@ -126,6 +126,26 @@ def test_fig11_zone_of_a_half_model_is_the_whole_blocks():
         assert half[k] == pytest.approx(whole[k], rel=1e-9), k
 
 
+def test_fig15_flow_of_a_half_model_is_the_whole_blocks():
+    """Fig. 15's flow axis (camclay9.paper_fields.flow_axis) of a half model (bedding at theta = 0 and 90) is that of
+    its field with the mirror image (paper_fields.mirrored): on nodes symmetric about x = 0 with a symmetric field (u_x
+    odd, u_y even) the same as the whole block's, axis on the axis of the load; the half's own would tilt (+x)."""
+    from camclay9 import paper_fields as pf
+
+    g = np.linspace(-1, 1, 41)
+    X, Y = np.meshgrid(g, -np.linspace(0.01, 1, 30), indexing="ij")
+    whole = np.c_[X.ravel(), Y.ravel()]
+    field = lambda x: np.c_[x[:, 0] * np.exp(-4 * (x ** 2).sum(1)), -(1 + x[:, 0] ** 2) * np.exp(-3 * (x ** 2).sum(1))]
+    half = whole[whole[:, 0] >= -1e-12]
+    xm, um = pf.mirrored(half, field(half))
+    a, b, c = pf.flow_axis(whole, field(whole), 0.4, 0), pf.flow_axis(xm, um, 0.4, 0), pf.flow_axis(half, field(half), 0.4, 0)
+    print(f"whole block beta {a['beta']:.3g}, anisotropy {a['anisotropy']:.6g}; half mirrored {b['beta']:.3g}, "
+          f"{b['anisotropy']:.6g}; the half alone {c['beta']:.3g}")
+    assert len(xm) == len(whole) and abs(a["beta"]) < 1e-9 and abs(b["beta"]) < 1e-9 and c["beta"] > 1
+    assert b["anisotropy"] == pytest.approx(a["anisotropy"], rel=1e-9)
+    assert b["mean_angle"] == pytest.approx(a["mean_angle"], abs=1e-9)
+
+
 @pytest.mark.parametrize("alpha", ["0.1", "1", "10"])
 def test_whole_block_of_a_shipped_half_model(alpha):
     """camclay9.indent2d_study.whole_block turns each shipped loading-rate half model back into the whole block the 2D
