@@ -145,9 +145,15 @@ def test_half_model_runs_the_whole_blocks_mesh(tmp_path):
     """mirror: 1 meshes the whole block as two mirror halves (meshes/indent_block2d.geo): its mesh is symmetric about
     x = 0 and its half x >= 0 is the half model's mesh node for node. On it the half model (the mirror plane x = 0,
     indenter.copies 2) and the whole block solve the same discrete problem: the same loads to 1e-8, and 2 n - 1 active
-    nodes on the whole block where the half has n (the node on the axis counted once)."""
-    whole = run(wedge_scene(1, 0.004, 0.03, mirror=True), tmp_path / "whole")
-    half = run(wedge_scene(1, 0.004, 0.03, half=True, copies=2), tmp_path / "half")
+    nodes on the whole block where the half has n (the node on the axis counted once). The whole block's log says its
+    mesh's periodic copy is read as one mesh, not as periodic boundary conditions."""
+    logs = {}
+    for name, text in (("whole", wedge_scene(1, 0.004, 0.03, mirror=True)), ("half", wedge_scene(1, 0.004, 0.03, half=True, copies=2))):
+        (tmp_path / f"{name}.yaml").write_text(text)
+        logs[name] = run_driver(tmp_path / f"{name}.yaml", tmp_path / name, name="driver_elastic", root=ROOT, cwd=ROOT, timeout=600).stdout
+    whole, half = read_history(tmp_path / "whole"), read_history(tmp_path / "half")
+    # the log says how the mirrored copy was read: joined, not periodic
+    assert "lists periodic copies ($Periodic)" in logs["whole"] and "$Periodic" not in logs["half"]
     xw, xh = msh_nodes(tmp_path / "whole" / "mesh.msh")[:, :2], msh_nodes(tmp_path / "half" / "mesh.msh")[:, :2]
     key = lambda xy: sorted(map(tuple, np.round(xy, 9)))
     right = xw[xw[:, 0] > -1e-12]

@@ -45,6 +45,9 @@ PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *
   PetscCallMPI(MPI_Bcast(&bad, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(msg, sizeof msg, MPI_CHAR, 0, comm));
   PetscCheck(!bad, comm, PETSC_ERR_FILE_UNEXPECTED, "%s", msg);
+  if (!rank && msh_has_periodic(msh))
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "mesh: %s lists periodic copies ($Periodic): read as one mesh joined along them, not as "
+                                           "periodic boundary conditions (the driver has none)\n", msh));
   PetscCall(PetscSNPrintf(sdim, sizeof sdim, "%d", (int)dim)); /* gmsh writes 3 coordinates even in 2D */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_spacedim", sdim));
   /* Physical groups become labels named after them, points included. */

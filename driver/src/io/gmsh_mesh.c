@@ -222,3 +222,12 @@ int msh_check(const char *msh, int dim, int axisymmetric, char *err, size_t errl
   fclose(r.fp);
   return rc;
 }
+
+int msh_has_periodic(const char *msh) {
+  Reader r     = {fopen(msh, "rb"), msh, 0, ""};
+  int    found = 0;
+  if (!r.fp) return 0;
+  while (!found && !next_line(&r)) found = !strncmp(r.buf, "$Periodic", 9);
+  fclose(r.fp);
+  return found;
+}

@@ -25,5 +25,8 @@ int gmsh_mesh(const char *geo, int dim, int nparam, const char (*names)[64], con
  * at x < 0. ASCII msh 4.1 is checked in full; other versions for the first two only. 0, or 1 with err
  * filled (naming the file). */
 int msh_check(const char *msh, int dim, int axisymmetric, char *err, size_t errlen);
+/* Whether the file has a $Periodic section (gmsh's copies of a mesh through an affine map, such as a mirrored half:
+   meshes/indent_block2d.geo, mirror = 1). */
+int msh_has_periodic(const char *msh);
 
 #endif
