@@ -12,14 +12,13 @@ docs/results/indent2d_convergence.json). Keeps every number in docs/results/half
 import argparse
 import re
 import time
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from camclay9 import half_model_study as study
 from camclay9 import indent2d_study as i2d
 from camclay9 import results_store
 from camclay9.performance_doc import publish
-from indent_convergence_bench import run
+from indent_convergence_bench import repeated, run
 
 ROOT = Path(__file__).resolve().parents[1]
 SKEY = {name: k for k, (name, *_rest) in i2d.SCENES.items() if k in i2d.REFERENCE}   # scene -> the 2D study's key
@@ -65,16 +64,9 @@ def main(argv=None):
     a = ap.parse_args(argv)
     scenes = a.scenes.split(",")
     ref = references(scenes)
-    todo = [(s, m, k) for k in range(a.repeats) for s in scenes for m in ("whole", "half")]   # interleaved
-    with ThreadPoolExecutor(a.jobs) as pool:
-        runs = list(pool.map(lambda t: one_run(*t, a.out), todo))
-    rows = []
-    for s in scenes:
-        for m in ("half", "whole"):
-            mine = [r for r in runs if r["scene"] == s and r["model"] == m]
-            row = dict(mine[0], cpu_s=[r["cpu_s"] for r in mine], wall_s=[r["wall_s"] for r in mine])
-            assert all(r["creep"] == row["creep"] for r in mine), f"{s} {m}: the repeats differ"
-            rows.append(row)
+    todo = [(s, m, k, a.out) for k in range(a.repeats) for s in scenes for m in ("whole", "half")]   # interleaved
+    rows = repeated(todo, one_run, a.jobs, [(s, m) for s in scenes for m in ("half", "whole")], lambda r: (r["scene"], r["model"]),
+                    ("creep",))
     cmd = "bench/half_model_bench.py" + "".join(f" --{k} {v}" for k, v, d in (("scenes", a.scenes, "loading_rate_a1"),
                                                                               ("repeats", a.repeats, 3), ("jobs", a.jobs, 2)) if v != d)
     provenance = {"command": re.sub(r"\s+", " ", cmd), "date": time.strftime("%Y-%m-%d", time.gmtime()),

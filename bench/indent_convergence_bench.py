@@ -43,6 +43,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
@@ -50,7 +51,7 @@ from camclay9 import results_store
 from camclay9.results_store import revision
 from camclay9.indent3d_study import MODELS, SHORT, TITLE, key, ladder, ladders, limits, section
 from camclay9.performance_doc import replace_section
-from step_control_bench import absolute, outputs
+from step_control_bench import absolute, output_tol, outputs
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -61,8 +62,7 @@ def scene(model, h_tip, tol=None, work=None):
     order, far, r_fine, base = m["order"], m["far"], m["r_fine"], m.get("nested")
     t = absolute((ROOT / "input" / f"{m['scene']}.yaml").read_text())
     if tol:  # the load and hold stages' output tolerance (shipped: 1.5e-2; the unload stage's 0.1 kept)
-        assert t.count("measure: output, tol: 1.5e-2") == 2, "expected the load and hold stages at the output measure's tol 1.5e-2"
-        t = t.replace("measure: output, tol: 1.5e-2", f"measure: output, tol: {tol:g}")   # the load's relative_to kept
+        t = output_tol(t, tol)
     t = re.sub(r"h_tip: [0-9.e-]+", f"h_tip: {base or h_tip:.6g}", t, count=1)
     t = re.sub(r"h_far: [0-9.e-]+", f"h_far: {far * (base or h_tip):.6g}", t, count=1)
     if r_fine:
@@ -110,6 +110,22 @@ def run(text, out):
                 newton=s["newton_iterations"], umat_calls=s["umat_calls"], solve_s=s["linear_solves_s"],
                 krylov=s["krylov_iterations"], factorisations=s["factorisations"],
                 unknowns=mesh_line(stdout)["unknowns"], o={k: float(v) for k, v in outputs(h).items()})
+
+
+def repeated(todo, one, jobs, keys, key, same):
+    """Whole runs of a bench that repeats them: one(*t) for each t of todo, jobs at once (the runs' CPU from wait4,
+    each its own process). The store's rows: for each of keys (in that order) that ran, its first run's row with cpu_s
+    and wall_s the lists over its repeats, which must agree in the fields same (one rank: the same answer)."""
+    with ThreadPoolExecutor(jobs) as pool:
+        runs = list(pool.map(lambda t: one(*t), todo))
+    rows = []
+    for k in keys:
+        mine = [r for r in runs if key(r) == k]
+        if mine:
+            for f in same:
+                assert all(r[f] == mine[0][f] for r in mine), f"{k}: the repeats differ in {f}"
+            rows.append(dict(mine[0], cpu_s=[r["cpu_s"] for r in mine], wall_s=[r["wall_s"] for r in mine]))
+    return rows
 
 
 def estimate(res, model, h):

@@ -14,13 +14,13 @@ import argparse
 import json
 import re
 import time
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from camclay9 import loading_steps_study as study
 from camclay9 import results_store
 from camclay9.performance_doc import publish
-from indent_convergence_bench import run
+from indent_convergence_bench import repeated, run
+from step_control_bench import output_tol
 
 ROOT = Path(__file__).resolve().parents[1]
 STAGE = ", relative_to: stage"
@@ -36,7 +36,7 @@ def scene_text(scene, variant):
     if variant in ("before", "UMFPACK"):   # the package named, whatever the driver's default for the model
         text += f'solver: {{options: "-indent_pc_factor_mat_solver_type {"mumps" if variant == "before" else "umfpack"}"}}\n'
     if variant == "reference":
-        text = text.replace("tol: 1.5e-2", "tol: 5.0e-3")
+        text = output_tol(text, 5e-3)
     return text
 
 
@@ -62,17 +62,11 @@ def main(argv=None):
     a = ap.parse_args(argv)
     scenes = a.scenes.split(",")
     variants = {s: ["before", "UMFPACK", "shipped"] for s in scenes}
-    todo = [(s, "reference", 0) for s in scenes]
-    todo += [(s, v, k) for k in range(a.repeats) for s in scenes for v in variants[s]]   # interleaved
-    with ThreadPoolExecutor(a.jobs) as pool:
-        runs = list(pool.map(lambda t: one_run(*t, a.out), todo))
-    (Path(a.out) / "runs.json").write_text(json.dumps(runs, indent=1))   # kept should the section fail
-    rows = []
-    for s in scenes:
-        for v in study.VARIANTS:
-            mine = [r for r in runs if r["scene"] == s and r["variant"] == v]
-            if mine:
-                rows.append(dict(mine[0], cpu_s=[r["cpu_s"] for r in mine], wall_s=[r["wall_s"] for r in mine]))
+    todo = [(s, "reference", 0, a.out) for s in scenes]
+    todo += [(s, v, k, a.out) for k in range(a.repeats) for s in scenes for v in variants[s]]   # interleaved
+    rows = repeated(todo, one_run, a.jobs, [(s, v) for s in scenes for v in study.VARIANTS], lambda r: (r["scene"], r["variant"]),
+                    ("steps", "outputs"))
+    (Path(a.out) / "rows.json").write_text(json.dumps(rows, indent=1))   # kept should the section fail
     defaults = (("scenes", a.scenes, "loading_rate_a1,nanoindent_kerogen_sector"), ("repeats", a.repeats, 3), ("jobs", a.jobs, 2))
     cmd = "bench/loading_steps_bench.py" + "".join(f" --{k} {v}" for k, v, d in defaults if v != d)
     provenance = {"command": cmd, "date": time.strftime("%Y-%m-%d", time.gmtime()),

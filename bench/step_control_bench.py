@@ -78,6 +78,14 @@ def with_measure(text, measure, tol, unload_tol=None):
     return "\n".join(out)
 
 
+def output_tol(text, tol):
+    """The shipped indentation scene with the output measure's tol 1.5e-2 of its load and hold stages set to tol (the
+    load's relative_to and the unload's tol kept)."""
+    old = "measure: output, tol: 1.5e-2"
+    assert text.count(old) == 2, "expected the load and hold stages at the output measure's tol 1.5e-2"
+    return text.replace(old, f"measure: output, tol: {tol:g}")
+
+
 def run(text, out, ranks=1, args=()):
     scene = out.parent / (out.name + ".yaml")
     scene.write_text(text)

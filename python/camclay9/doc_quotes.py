@@ -151,9 +151,11 @@ def _half_model(store_dir=None):
         r = rows[(scene, model)]
         return A(r | {"cpu": half_model_study.cpu(r)})
 
+    steps = results_store.load(loading_steps_study.STORE, store_dir)
+
     def lst(scene, variant="shipped"):
         """A scene's row of bench/loading_steps_bench.py's store (docs/results/loading_steps.json); cpu: its median."""
-        r = loading_steps_study.rows_of(results_store.load(loading_steps_study.STORE, store_dir), scene)[variant]
+        r = loading_steps_study.rows_of(steps, scene)[variant]
         return A(r | {"cpu": loading_steps_study.cpu(r)})
 
     return dict(hm=hm, lst=lst)

@@ -12,8 +12,9 @@ from camclay9.launch import repo_root
 
 TITLE = "## 2D indentation: mesh and element study"
 R2 = math.sqrt(2)
-# The shipped loading-rate scenes are half models (x >= 0, the mirror plane x = 0, indenter.copies 2); the study's
-# ladders ran on the whole block, and keep to it: these replacements turn the one into the other.
+# The shipped loading-rate scenes, and bedding at theta = 0 and 90, are half models (x >= 0, the mirror plane x = 0,
+# indenter.copies 2); the study's ladders ran on the whole block, and keep to it: these replacements turn the one into
+# the other.
 HALF_TO_WHOLE = (("half: 1,", "half: 0,"),
                  ("    - {group: right, components: [x]}\n  mirror:\n    - {group: left, normal: [1, 0]}   # x = 0, the indenter's axis\n",
                   "    - {group: left, components: [x]}\n    - {group: right, components: [x]}\n"),
@@ -21,7 +22,7 @@ HALF_TO_WHOLE = (("half: 1,", "half: 0,"),
 
 
 def half_model_scene(text):
-    """Whether a loading-rate scene's text is the half model (indent_block2d.geo's half: 1)."""
+    """Whether a plane-strain indentation scene's text is the half model (indent_block2d.geo's half: 1)."""
     return HALF_TO_WHOLE[0][0] in text
 
 

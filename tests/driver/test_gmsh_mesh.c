@@ -57,14 +57,14 @@ int main(int argc, char **argv) {
   CHECK(!gmsh_mesh(geo, 3, 1, (const char(*)[64])names, &long_box, msh, err, sizeof err), "Lx 2.5: %s", err);
   double x2 = max_x(msh);
   CHECK(x1 == 0.75 && x2 == 2.5, "Lx not applied: largest x %g (Lx 0.75), %g (Lx 2.5)", x1, x2);
-  CHECK(!msh_check(msh, 3, 0, err, sizeof err), "msh_check 3D: %s", err);
-  CHECK(msh_check(msh, 2, 0, err, sizeof err) && strstr(err, "a 3D mesh, but the kinematics need a 2D mesh"), "2D: %s", err);
+  CHECK(!msh_check(msh, 3, 0, NULL, err, sizeof err), "msh_check 3D: %s", err);
+  CHECK(msh_check(msh, 2, 0, NULL, err, sizeof err) && strstr(err, "a 3D mesh, but the kinematics need a 2D mesh"), "2D: %s", err);
   { /* the same mesh in format 2.2 is refused, naming the file and the conversion */
     char cmd22[2400], msh22[1200];
     snprintf(msh22, sizeof msh22, "%s/mesh22.msh", dir);
     snprintf(cmd22, sizeof cmd22, "gmsh \"%s\" -0 -format msh22 -o \"%s\" > /dev/null 2>&1", msh, msh22);
     CHECK(!system(cmd22), "gmsh could not write msh 2.2");
-    CHECK(msh_check(msh22, 3, 0, err, sizeof err) && strstr(err, "format 2.2") && strstr(err, "mesh22.msh") && strstr(err, "-format msh41"),
+    CHECK(msh_check(msh22, 3, 0, NULL, err, sizeof err) && strstr(err, "format 2.2") && strstr(err, "mesh22.msh") && strstr(err, "-format msh41"),
           "msh 2.2: %s", err);
   }
 

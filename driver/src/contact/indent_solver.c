@@ -26,7 +26,7 @@ static PetscErrorCode nest_of(Contact *ct, Mat K, Mat *A) {
 /* The direct path's package (-indent_pc_factor_mat_solver_type overrides it). A 2D model on one rank: UMFPACK with
  * METIS' ordering, whose triangular solves, the main cost of the 2D contact solve, take about 0.7 of MUMPS' time there
  * (MUMPS as Debian builds it orders by PORD only; docs/contact.md, "The linear solver"). 3D or several ranks: MUMPS
- * (in 3D its factors are the sparser, UMFPACK is serial). Both pivot, as the zero diagonal of the multiplier rows and of
+ * (in 3D its solves are the faster; UMFPACK is serial). Both pivot, as the zero diagonal of the multiplier rows and of
  * the indenter row under force control asks; MUMPS' ICNTL(14) leaves room for those delayed pivots. */
 static PetscErrorCode direct_package(MPI_Comm comm, PetscInt dim, PC pc) {
   PetscMPIInt size;
@@ -34,8 +34,8 @@ static PetscErrorCode direct_package(MPI_Comm comm, PetscInt dim, PC pc) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   if (dim == 2 && size == 1) {
-    PetscBool type;
-    PetscCall(MatSolverTypeGet(MATSOLVERUMFPACK, MATSEQAIJ, MAT_FACTOR_LU, &type, &umfpack, NULL));
+    PetscBool built; /* PETSc configured with UMFPACK; umfpack: and it factors this matrix type */
+    PetscCall(MatSolverTypeGet(MATSOLVERUMFPACK, MATSEQAIJ, MAT_FACTOR_LU, &built, &umfpack, NULL));
   }
   PetscCall(PCFactorSetMatSolverType(pc, umfpack ? MATSOLVERUMFPACK : MATSOLVERMUMPS));
   PetscCall(options_default("-indent_mat_umfpack_ordering", "METIS"));

@@ -37,15 +37,15 @@ static PetscErrorCode print_partition(DM dm, PetscPartitioner part) {
 PetscErrorCode fe_mesh_create(MPI_Comm comm, const char *msh, PetscInt dim, DM *dm) {
   DM          dist = NULL;
   char        sdim[8], msg[1024] = "";
-  int         bad = 0;
+  int         bad = 0, periodic = 0;
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (!rank) bad = msh_check(msh, (int)dim, 0, msg, sizeof msg);
+  if (!rank) bad = msh_check(msh, (int)dim, 0, &periodic, msg, sizeof msg);
   PetscCallMPI(MPI_Bcast(&bad, 1, MPI_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(msg, sizeof msg, MPI_CHAR, 0, comm));
   PetscCheck(!bad, comm, PETSC_ERR_FILE_UNEXPECTED, "%s", msg);
-  if (!rank && msh_has_periodic(msh))
+  if (periodic)
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "mesh: %s lists periodic copies ($Periodic): read as one mesh joined along them, not as "
                                            "periodic boundary conditions (the driver has none)\n", msh));
   PetscCall(PetscSNPrintf(sdim, sizeof sdim, "%d", (int)dim)); /* gmsh writes 3 coordinates even in 2D */

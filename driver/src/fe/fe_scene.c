@@ -80,7 +80,7 @@ static int read_mesh_source(YdDoc *doc, YdNode *mesh, YdNode *geo, YdNode *file,
   }
   if (file) {
     char msg[1024];
-    if (msh_check(sc->msh, sc->kin == KIN_3D ? 3 : 2, sc->kin == KIN_AXISYMMETRIC, msg, sizeof msg))
+    if (msh_check(sc->msh, sc->kin == KIN_3D ? 3 : 2, sc->kin == KIN_AXISYMMETRIC, NULL, msg, sizeof msg))
       FAIL("%s: %s", where, msg);
   }
   return 0;

@@ -112,7 +112,7 @@ int gmsh_mesh(const char *geo, int dim, int nparam, const char (*names)[64], con
     return 1;
   }
   remove(log); /* kept only when gmsh failed */
-  return msh_check(out_msh, dim, 0, err, errlen);
+  return msh_check(out_msh, dim, 0, NULL, err, errlen);
 }
 
 typedef struct {
@@ -168,7 +168,7 @@ static int scan_elements(Reader *r, int *maxdim, char *err, size_t errlen) {
   return 0;
 }
 
-static int scan_msh(Reader *r, int dim, int axisymmetric, char *err, size_t errlen) {
+static int scan_msh(Reader *r, int dim, int axisymmetric, int *periodic, char *err, size_t errlen) {
   double version = 0;
   int    filetype = 0, full, maxdim = -1, nodes = 0, elements = 0;
   double xmin = INFINITY;
@@ -196,6 +196,7 @@ static int scan_msh(Reader *r, int dim, int axisymmetric, char *err, size_t errl
       elements = 1;
     } else if (!strncmp(r->buf, "$EndNodes", 9)) nodes = 1;
     else if (!strncmp(r->buf, "$EndElements", 12)) elements = 1;
+    else if (!strncmp(r->buf, "$Periodic", 9) && periodic) *periodic = 1;
   }
   if (!nodes || !elements) TRUNC(nodes ? "no $EndElements" : "no $EndNodes");
   if (!full) return 0;
@@ -212,22 +213,14 @@ static int scan_msh(Reader *r, int dim, int axisymmetric, char *err, size_t errl
   return 0;
 }
 
-int msh_check(const char *msh, int dim, int axisymmetric, char *err, size_t errlen) {
+int msh_check(const char *msh, int dim, int axisymmetric, int *periodic, char *err, size_t errlen) {
   Reader r = {fopen(msh, "rb"), msh, 0, ""};
   if (!r.fp) {
     snprintf(err, errlen, "%s: cannot open: %s", msh, strerror(errno));
     return 1;
   }
-  int rc = scan_msh(&r, dim, axisymmetric, err, errlen);
+  if (periodic) *periodic = 0;
+  int rc = scan_msh(&r, dim, axisymmetric, periodic, err, errlen);
   fclose(r.fp);
   return rc;
-}
-
-int msh_has_periodic(const char *msh) {
-  Reader r     = {fopen(msh, "rb"), msh, 0, ""};
-  int    found = 0;
-  if (!r.fp) return 0;
-  while (!found && !next_line(&r)) found = !strncmp(r.buf, "$Periodic", 9);
-  fclose(r.fp);
-  return found;
 }

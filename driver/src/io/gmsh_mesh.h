@@ -23,10 +23,8 @@ int gmsh_mesh(const char *geo, int dim, int nparam, const char (*names)[64], con
 /* Check a .msh before PETSc reads it: a gmsh file (first line $MeshFormat), complete ($EndNodes,
  * $EndElements present), its highest element dimension equal to dim, and, when axisymmetric, no node
  * at x < 0. ASCII msh 4.1 is checked in full; other versions for the first two only. 0, or 1 with err
- * filled (naming the file). */
-int msh_check(const char *msh, int dim, int axisymmetric, char *err, size_t errlen);
-/* Whether the file has a $Periodic section (gmsh's copies of a mesh through an affine map, such as a mirrored half:
-   meshes/indent_block2d.geo, mirror = 1). */
-int msh_has_periodic(const char *msh);
+ * filled (naming the file). periodic (may be NULL): set to whether the file has a $Periodic section (gmsh's
+ * copies of a mesh through an affine map, such as a mirrored half: meshes/indent_block2d.geo, mirror = 1). */
+int msh_check(const char *msh, int dim, int axisymmetric, int *periodic, char *err, size_t errlen);
 
 #endif
