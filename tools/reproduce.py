@@ -19,6 +19,7 @@ Scenes run two at a time (--jobs), each driver on one core; the triaxial cylinde
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -40,7 +41,7 @@ IND2 = {"tol": 1.0e-3, "fields_every": 20, "order": 1}  # quick 2D: P1 (the ship
 # output times alone (issue 36, referee's defect 9).
 FIELDS_EVERY = 25
 LR_FULL = {"full": {"fields_every": FIELDS_EVERY}}
-MESH_SCALED = ("h_tip", "r_fine")  # a variant's mesh_scale: the sizes near the tip (the far field: its "full" mesh, else the scene's)
+MESH_SCALED = ("h_tip", "r_fine")  # a variant's mesh_scale: the sizes near the tip (a "full" mesh's sizes override it in the full run)
 QUICK_OUTPUT_TOL = 0.05  # quick: the output error measure's tol (the shipped scenes: 1.5e-2)
 SCENES = {
     # the 3D scenes on their cheapest exact model (README, "Which model each scene uses"): kerogen and BN on the
@@ -59,16 +60,22 @@ SCENES = {
     "bedding_theta60": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     "bedding_theta90": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     # Fig. 14's sensitivity to the plane-strain thickness (the paper gives none): 3 um, about the Berkovich-equivalent
-    # thickness at 15 mN (t = 4.9 h_B, h_B = 0.62 um), the indent about a third as wide: the mesh near the tip scaled
-    # by 1/3 (h_tip, r_fine: MESH_SCALED), the far field coarser than at 1 um (h_far 3.75 um: the block is the same
-    # 50 um, the fine zone a third as wide). Measured at theta = 45 (2026-12-01, one rank; the scene this writes,
-    # out/paper/scenes/bedding_theta45_t3.yaml, run by the driver with its mesh parameters changed) against h_tip
-    # 0.059 um and h_far 0.625 um (208 k unknowns; depth at the end of loading 0.87825 um, creep depth 0.29121 um):
-    # h_far scaled too (0.625 um: 158 k unknowns, 356 s CPU) -0.02 % and -0.19 %; h_far as at 1 um (1.875 um: 52 k,
-    # 116 s) -0.02 % and -0.37 %; as here (35.7 k, 76 s) -0.02 % and +0.04 %. The 1 um scene's mesh is -0.8 % in
-    # creep depth against its converged 2D answer (docs/performance.md, "2D indentation: mesh and element study").
+    # thickness at 15 mN (t = 4.9 h_B, h_B = 0.62 um), the indent about a third as wide: the fine zone scaled by 1/3
+    # (r_fine 3.33 um, about 1.5 times the contact's half-width), its cells h_tip 0.125 um (half the 1 um scene's), the
+    # far field coarser than at 1 um (h_far 3.75 um: the block is the same 50 um, the fine zone a third as wide).
+    # Measured (2026-12-01, one rank; the scenes this writes, out/paper/scenes/bedding_theta*_t3.yaml, run by the
+    # driver with their mesh parameters changed) against a fine mesh, h_tip 0.059 um and h_far 0.625 um: depth at the
+    # end of loading and creep depth. theta = 45 (208 k unknowns; 0.87825 and 0.29121 um): h_far 0.625 um as well
+    # (158 k) -0.02 % and -0.19 %; h_far 1.875 um (52 k) -0.02 % and -0.37 %; h_tip 0.083 um, the fine zone's cells
+    # scaled by 1/3 too (35.9 k unknowns, 73 s CPU) -0.02 % and +0.04 %; as here (19.6 k, 45 s, two runs at once)
+    # -0.03 % and -0.58 %; h_tip 0.167 um (13.5 k) -0.04 % and -0.61 %; 0.25 um (8.6 k) -0.15 % and -0.56 %.
+    # theta = 90, the half model (104 k unknowns; 0.84590 and 0.30734 um): h_tip 0.083 um -0.03 % and -0.15 %; as here
+    # (9.8 k, 13 s) -0.08 % and -0.22 %; 0.167 um -0.09 % and -0.69 %; 0.25 um -0.22 % and -1.48 %. The 1 um scene's
+    # mesh is -0.8 % in creep depth against its converged 2D answer (docs/performance.md, "2D indentation: mesh and
+    # element study").
     **{f"bedding_theta{t}_t3": dict(IND2, file=f"bedding_theta{t}", mesh={"h_tip": 1.25, "h_far": 7.5}, thickness=3,
-                                    mesh_scale=1 / 3, full={"mesh": {"h_far": 3.75}}) for t in (0, 30, 45, 60, 90)},
+                                    mesh_scale=1 / 3, full={"mesh": {"h_tip": 0.125, "h_far": 3.75}})
+       for t in (0, 30, 45, 60, 90)},
     "triaxial_theta0": {"mesh": {"size": 12.0}, "mpi": 2},
     "triaxial_theta90": {"mesh": {"size": 12.0}, "mpi": 2},
 }
@@ -81,7 +88,7 @@ def scene_file(key):
 
 def variant_scene(key, dest, quick):
     """Write the scene of key to dest: input/<file>.yaml with an absolute mesh path and the key's variant (a
-    plane-strain thickness, the mesh's lengths scaled; in the full run, the outputs and mesh sizes of "full"), and with --quick
+    plane-strain thickness, the mesh's lengths scaled; in the full run, then the outputs and mesh sizes of "full"), and with --quick
     its coarse variant (quick_scene)."""
     q = SCENES[key]
     d = yaml.safe_load(scene_file(key).read_text(encoding="utf-8"))
@@ -89,17 +96,17 @@ def variant_scene(key, dest, quick):
     d["mesh"]["geometry"] = str((ROOT / "meshes" / geo.name).resolve())
     if quick:
         quick_scene(q, d)
-    elif "full" in q:
-        full = q["full"]
-        if "fields_every" in full:
-            d["output"]["fields_every"] = full["fields_every"]
-        d["mesh"]["parameters"].update(full.get("mesh", {}))
     if "thickness" in q:
         d["mesh"]["thickness"] = q["thickness"]
         d["name"] = key
     if "mesh_scale" in q:
         for k in MESH_SCALED:
             d["mesh"]["parameters"][k] *= q["mesh_scale"]
+    if not quick and "full" in q:  # the full run's outputs and mesh sizes, as given (after the scale)
+        full = q["full"]
+        if "fields_every" in full:
+            d["output"]["fields_every"] = full["fields_every"]
+        d["mesh"]["parameters"].update(full.get("mesh", {}))
     what = "coarse variant" if quick else "variant"
     dest.write_text(f"# {what} of input/{scene_file(key).name} written by tools/reproduce.py{' --quick' if quick else ''}\n"
                     + yaml.safe_dump(d, sort_keys=False), encoding="utf-8")
@@ -170,10 +177,21 @@ def last_line(path, prefix):
     return (hits or lines or ["(no output)"])[-1]
 
 
+KEPT_LINE = re.compile(r"^adapt: level (\d+) kept from an earlier run")
+
+
+def kept_levels(log):
+    """The adapted levels a run reused from an earlier run into the same directory instead of running them (the
+    driver's "adapt: level N kept from an earlier run" lines; docs/adapt.md, "Kept meshes"): its CPU and wall time
+    then leave them out."""
+    text = log.read_text(encoding="utf-8", errors="replace") if log.is_file() else ""
+    return [int(m.group(1)) for m in map(KEPT_LINE.match, text.splitlines()) if m]
+
+
 def run_all(jobs, slots):
-    """Run the jobs, at most `slots` cores busy (an MPI job of n ranks takes n). Returns {key: wall}, {key: CPU} and
-    the keys of the runs that failed."""
-    pending, running, walls, cpus, failed = list(jobs), [], {}, {}, []
+    """Run the jobs, at most `slots` cores busy (an MPI job of n ranks takes n). Returns {key: wall}, {key: CPU},
+    the keys of the runs that failed and {key: adapted levels kept from an earlier run} (kept_levels)."""
+    pending, running, walls, cpus, failed, kept = list(jobs), [], {}, {}, [], {}
     n, done = len(jobs), 0
     while pending or running:
         busy = sum(j.ranks for j in running)
@@ -191,12 +209,14 @@ def run_all(jobs, slots):
             running.remove(j)
             done += 1
             walls[j.key], cpus[j.key] = j.wall, j.cpu
+            if kept_levels(j.out / "driver.log"):
+                kept[j.key] = kept_levels(j.out / "driver.log")
             summary = last_line(j.out / "driver.log", ("indentation", "fe scene"))
             status = "done" if rc == 0 else f"FAILED (exit {rc})"
             print(f"[{done:2d}/{n}] {status} {j.key} in {j.wall:.1f} s ({j.cpu:.1f} s CPU): {summary[:150]}", flush=True)
             if rc != 0:
                 failed.append(j.key)
-    return walls, cpus, failed
+    return walls, cpus, failed, kept
 
 
 def main(argv=None):
@@ -241,7 +261,7 @@ def main(argv=None):
         runs = prev
     else:
         print(f"reproduce ({mode}): {len(jobs)} scenes, {a.jobs} at a time, driver {a.driver}, output {out}", flush=True)
-        walls, cpus, failed = run_all(jobs, max(1, a.jobs))
+        walls, cpus, failed, kept = run_all(jobs, max(1, a.jobs))
         t_runs = time.monotonic() - t_start
         if failed:
             print(f"reproduce: {len(failed)} scene(s) failed: {', '.join(failed)} (see DIR/<scene>/driver.log)")
@@ -250,10 +270,11 @@ def main(argv=None):
         if a.only:  # the other scenes keep their runs and times; the whole run's time stays the last full run's
             walls, t_runs = {**prev.get("walls", {}), **walls}, prev.get("wall_runs", float("nan"))
             cpus = {**prev.get("cpus", {}), **cpus}
-            runs = {**prev, "walls": walls, "cpus": cpus, "rerun": rerun, "dates": dates}
+            kept = {**{k: v for k, v in prev.get("kept", {}).items() if k not in walls}, **kept}
+            runs = {**prev, "walls": walls, "cpus": cpus, "rerun": rerun, "dates": dates, "kept": kept}
         else:
             runs = {"walls": walls, "cpus": cpus, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
-                    "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs"}
+                    "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs", "kept": kept}
         meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
     print(f"runs: {t_runs:.1f} s wall; plotting", flush=True)
     t_plot = time.monotonic()
@@ -269,7 +290,7 @@ def main(argv=None):
         meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
     meta = {"mode": mode, "date": today, "wall_runs": t_runs, "wall_total": total, "walls": walls, "cpus": cpus, "out": str(out),
             "rerun": rerun, "run_dates": runs.get("dates", {}), "whole_run_date": runs.get("whole_run_date", today),
-            "load_note": runs.get("load_note", "load not recorded"),
+            "load_note": runs.get("load_note", "load not recorded"), "kept": runs.get("kept", {}),
             "scene_source": "input/*.yaml as shipped" if not a.quick else "coarse variants (out/.../scenes)"}
     paper_doc.write(out / "paper.md", numbers, trends, images, meta, image_dir=out / "figures")
     if docs:

@@ -325,12 +325,17 @@ def _wall_rows(meta, order=None):
 
 
 def _cpu_sentence(meta):
-    """The scenes' CPU against the cores' wall time: how much of the 2 cores the runs had."""
+    """The scenes' CPU against the cores' wall time: how much of the 2 cores the runs had; and the adapted levels a run
+    reused from an earlier one (meta "kept", tools/reproduce.py kept_levels), which its times leave out."""
+    kept = meta.get("kept") or {}
+    note = ("" if not kept else " Not from scratch: " + "; ".join(
+        f"{k} reused its adapted level{'s' if len(v) > 1 else ''} {', '.join(map(str, v))} from an earlier run"
+        for k, v in sorted(kept.items())) + " (docs/adapt.md, \"Kept meshes\"), whose times these leave out.")
     cpus = [c for c in meta.get("cpus", {}).values() if c is not None]
     if len(cpus) < len(meta["walls"]) or math.isnan(meta["wall_runs"]):
-        return ""
+        return note
     return (f" The scenes' CPU adds up to {sum(cpus):.0f} s, {sum(cpus) / (2 * meta['wall_runs']):.0%} of the 2 cores over the "
-            "runs' wall time.")
+            "runs' wall time." + note)
 
 
 def timings(meta):

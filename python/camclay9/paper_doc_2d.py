@@ -251,7 +251,8 @@ def bedding(n, trends, images, rel, img):
          "BN direction” (Fig. 15).", "",
          "**Ours.** The thickness of the plane-strain model is not the paper's (it gives none): 1 µm as shipped, and as a "
          "sensitivity check 3 µm, about the Berkovich-equivalent thickness at 15 mN (equal mean pressure: t = 4.9 h_B, "
-         "h_B ≈ 0.62 µm; the mesh near the tip scaled with the indent, the far field coarser: tools/reproduce.py). Every angle "
+         "h_B ≈ 0.62 µm; the fine zone scaled with the indent, its cells half as large as at 1 µm, the far field "
+         "coarser, as accurate at θ = 45 and 90 as the 1 µm scene, measured against fine meshes: tools/reproduce.py). Every angle "
          "runs one mesh: θ = 0 and 90, whose bedding keeps the mirror plane x = 0, on the half model, the others on the whole "
          "block meshed as that half and its mirror image (README, Which model each scene uses). The flow's direction: the "
          "principal axis of the hold's displacement increments within 2a of the tip (a = 5 µm), as an angle from the "

@@ -160,3 +160,24 @@ def test_whole_block_of_a_shipped_half_model(alpha):
     assert whole_block(whole) == whole
     strip = lambda t: [l for l in t.splitlines() if not l.startswith("#")]
     assert len(strip(half)) - len(strip(whole)) == 1          # the mirror key and its entry against the left side's entry
+
+
+def test_run_times_say_which_adapted_levels_were_reused(tmp_path):
+    """tools/reproduce.py reads the levels a run reused from the driver's log, and the run-time sentence of
+    docs/paper.md and docs/performance.md says so: those times are not from scratch."""
+    import importlib.util
+    from camclay9 import paper_doc
+    spec = importlib.util.spec_from_file_location("reproduce", ROOT / "tools" / "reproduce.py")
+    rp = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(rp)
+    log = tmp_path / "driver.log"
+    log.write_text("adapt: level 0 kept from an earlier run of this scene (out/x/adapt/level0, 923 cells; docs/adapt.md)\n"
+                   "adapt: level 1 kept from an earlier run of this scene (out/x/adapt/level1, 3264 cells; docs/adapt.md)\n"
+                   "adapt: level 2 of 2 into out/x/adapt/level2\nadapt: level 2: 6201 cells, 28163 unknowns, 238.6 s CPU\n")
+    assert rp.kept_levels(log) == [0, 1]
+    assert rp.kept_levels(tmp_path / "none.log") == []
+    meta = {"walls": {"bp": 240.0, "bn": 120.0}, "cpus": {"bp": 239.0, "bn": 119.0}, "wall_runs": 250.0, "wall_total": 255.0,
+            "date": "2026-12-01"}
+    assert "Not from scratch" not in paper_doc.performance_section(meta)
+    text = paper_doc.performance_section({**meta, "kept": {"bp": rp.kept_levels(log)}})
+    assert "bp reused its adapted levels 0, 1 from an earlier run" in text and "bn reused" not in text
