@@ -219,6 +219,18 @@ def run_all(jobs, slots):
     return walls, cpus, failed, kept
 
 
+def record_runs(prev, walls, cpus, kept, t_runs, rerun, today, only):
+    """What runs.json keeps of this run. With --only the other scenes keep their runs, times and kept levels from
+    prev (the previous runs.json), and the whole run's time stays the last full run's."""
+    dates = {**prev.get("dates", {}), **{k: today for k in walls}}
+    if only:
+        return {**prev, "walls": {**prev.get("walls", {}), **walls}, "cpus": {**prev.get("cpus", {}), **cpus},
+                "wall_runs": prev.get("wall_runs", float("nan")), "rerun": rerun, "dates": dates,
+                "kept": {**{k: v for k, v in prev.get("kept", {}).items() if k not in walls}, **kept}}
+    return {"walls": walls, "cpus": cpus, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
+            "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs", "kept": kept}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="coarse variants, check the paper's trends")
@@ -266,15 +278,8 @@ def main(argv=None):
         if failed:
             print(f"reproduce: {len(failed)} scene(s) failed: {', '.join(failed)} (see DIR/<scene>/driver.log)")
             return 1
-        dates = {**prev.get("dates", {}), **{k: today for k in walls}}
-        if a.only:  # the other scenes keep their runs and times; the whole run's time stays the last full run's
-            walls, t_runs = {**prev.get("walls", {}), **walls}, prev.get("wall_runs", float("nan"))
-            cpus = {**prev.get("cpus", {}), **cpus}
-            kept = {**{k: v for k, v in prev.get("kept", {}).items() if k not in walls}, **kept}
-            runs = {**prev, "walls": walls, "cpus": cpus, "rerun": rerun, "dates": dates, "kept": kept}
-        else:
-            runs = {"walls": walls, "cpus": cpus, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
-                    "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs", "kept": kept}
+        runs = record_runs(prev, walls, cpus, kept, t_runs, rerun, today, bool(a.only))
+        walls, cpus, t_runs = runs["walls"], runs["cpus"], runs["wall_runs"]
         meta_path.write_text(json.dumps(runs) + "\n", encoding="utf-8")
     print(f"runs: {t_runs:.1f} s wall; plotting", flush=True)
     t_plot = time.monotonic()

@@ -181,3 +181,9 @@ def test_run_times_say_which_adapted_levels_were_reused(tmp_path):
     assert "Not from scratch" not in paper_doc.performance_section(meta)
     text = paper_doc.performance_section({**meta, "kept": {"bp": rp.kept_levels(log)}})
     assert "bp reused its adapted levels 0, 1 from an earlier run" in text and "bn reused" not in text
+    # a rerun of one scene (--only) keeps the other scenes' kept levels, and its own from this run
+    prev = {"walls": {"bp": 240.0, "bn": 120.0}, "cpus": {"bp": 239.0, "bn": 119.0}, "wall_runs": 250.0,
+            "kept": {"bp": [0, 1], "bn": [0]}}
+    runs = rp.record_runs(prev, {"bn": 180.0}, {"bn": 179.0}, {}, 181.0, ["bn"], "2026-12-01", only=True)
+    assert runs["kept"] == {"bp": [0, 1]} and runs["walls"] == {"bp": 240.0, "bn": 180.0} and runs["wall_runs"] == 250.0
+    assert rp.record_runs(prev, {"bn": 180.0}, {"bn": 179.0}, {}, 181.0, [], "2026-12-01", only=False)["kept"] == {}
