@@ -9,16 +9,13 @@ docs/results/indent2d_convergence.json). Keeps every number in docs/results/half
 
     bench/half_model_bench.py [--scenes loading_rate_a1,...] [--repeats 3] [--jobs 2] [--out DIR] [--machine NOTE] [--no-doc]
 """
-import argparse
-import re
-import time
 from pathlib import Path
 
 from camclay9 import half_model_study as study
 from camclay9 import indent2d_study as i2d
 from camclay9 import results_store
 from camclay9.performance_doc import publish
-from indent_convergence_bench import repeated, run
+from indent_convergence_bench import repeat_args, repeat_provenance, repeated, run
 
 ROOT = Path(__file__).resolve().parents[1]
 SKEY = {name: k for k, (name, *_rest) in i2d.SCENES.items() if k in i2d.REFERENCE}   # scene -> the 2D study's key
@@ -54,24 +51,13 @@ def references(scenes):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--scenes", default="loading_rate_a1")
-    ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--jobs", type=int, default=2, help="runs at once (default: %(default)s)")
-    ap.add_argument("--out", default=str(ROOT / "out" / "half_model"), help="the runs' folders (default: %(default)s)")
-    ap.add_argument("--machine", default="2 cores, two runs at once, the machine otherwise idle")
-    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
-    a = ap.parse_args(argv)
+    a = repeat_args(argv, __doc__.splitlines()[0], "loading_rate_a1", "half_model")
     scenes = a.scenes.split(",")
     ref = references(scenes)
     todo = [(s, m, k, a.out) for k in range(a.repeats) for s in scenes for m in ("whole", "half")]   # interleaved
     rows = repeated(todo, one_run, a.jobs, [(s, m) for s in scenes for m in ("half", "whole")], lambda r: (r["scene"], r["model"]),
                     ("creep",))
-    cmd = "bench/half_model_bench.py" + "".join(f" --{k} {v}" for k, v, d in (("scenes", a.scenes, "loading_rate_a1"),
-                                                                              ("repeats", a.repeats, 3), ("jobs", a.jobs, 2)) if v != d)
-    provenance = {"command": re.sub(r"\s+", " ", cmd), "date": time.strftime("%Y-%m-%d", time.gmtime()),
-                  "rev": results_store.revision(ROOT) or "unknown", "machine": a.machine}
-    store = {"provenance": provenance, "reference": ref, "rows": rows}
+    store = {"provenance": repeat_provenance("half_model_bench.py", a), "reference": ref, "rows": rows}
     publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
 
 

@@ -128,6 +128,29 @@ def repeated(todo, one, jobs, keys, key, same):
     return rows
 
 
+def repeat_args(argv, description, scenes, out):
+    """The options of a bench that repeats whole runs of shipped scenes (repeated): --scenes (default scenes), --repeats,
+    --jobs, --out (default out/<out>), --machine, --no-doc; parsed from argv."""
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--scenes", default=scenes)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--jobs", type=int, default=2, help="runs at once (default: %(default)s)")
+    ap.add_argument("--out", default=str(ROOT / "out" / out), help="the runs' folders (default: %(default)s)")
+    ap.add_argument("--machine", default="2 cores, two runs at once, the machine otherwise idle")
+    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
+    a = ap.parse_args(argv)
+    a.defaults = {"scenes": scenes, "repeats": 3, "jobs": 2}
+    return a
+
+
+def repeat_provenance(script, a):
+    """The store's provenance of such a bench's run (repeat_args): the command with the options that differ from
+    their defaults, the date, the revision and the machine."""
+    cmd = f"bench/{script}" + "".join(f" --{k} {getattr(a, k)}" for k, d in a.defaults.items() if getattr(a, k) != d)
+    return {"command": cmd, "date": time.strftime("%Y-%m-%d", time.gmtime()), "rev": revision(ROOT) or "unknown",
+            "machine": a.machine}
+
+
 def estimate(res, model, h):
     """The rung's unknowns, CPU and memory extrapolated from the ladder's two finest finished rungs coarser than h
     (power laws in h_tip); None without two."""

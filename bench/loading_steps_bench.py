@@ -10,16 +10,13 @@ and the loading steps" of docs/performance.md from it.
     bench/loading_steps_bench.py [--scenes loading_rate_a1,nanoindent_kerogen_sector] [--repeats 3] [--jobs 2]
                                  [--out DIR] [--machine NOTE] [--no-doc]
 """
-import argparse
 import json
 import re
-import time
 from pathlib import Path
 
 from camclay9 import loading_steps_study as study
-from camclay9 import results_store
 from camclay9.performance_doc import publish
-from indent_convergence_bench import repeated, run
+from indent_convergence_bench import repeat_args, repeat_provenance, repeated, run
 from step_control_bench import output_tol
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -31,9 +28,8 @@ def scene_text(scene, variant):
     text = (ROOT / "input" / f"{scene}.yaml").read_text().replace("geometry: ../meshes/", f"geometry: {ROOT}/meshes/")
     if STAGE not in text or re.search(r"^solver:", text, re.M):
         raise SystemExit(f"input/{scene}.yaml: expected its loading steps relative to the stage and no solver key")
-    if variant in ("before", "UMFPACK"):
+    if variant in ("before", "UMFPACK"):   # the loading relative to each step, the package named whatever the default
         text = text.replace(STAGE, "")
-    if variant in ("before", "UMFPACK"):   # the package named, whatever the driver's default for the model
         text += f'solver: {{options: "-indent_pc_factor_mat_solver_type {"mumps" if variant == "before" else "umfpack"}"}}\n'
     if variant == "reference":
         text = output_tol(text, 5e-3)
@@ -52,14 +48,7 @@ def one_run(scene, variant, k, out):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--scenes", default="loading_rate_a1,nanoindent_kerogen_sector")
-    ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--jobs", type=int, default=2, help="runs at once (default: %(default)s)")
-    ap.add_argument("--out", default=str(ROOT / "out" / "loading_steps"), help="the runs' folders (default: %(default)s)")
-    ap.add_argument("--machine", default="2 cores, two runs at once, the machine otherwise idle")
-    ap.add_argument("--no-doc", action="store_true", help="print the section; write neither the store nor the document")
-    a = ap.parse_args(argv)
+    a = repeat_args(argv, __doc__.splitlines()[0], "loading_rate_a1,nanoindent_kerogen_sector", "loading_steps")
     scenes = a.scenes.split(",")
     variants = {s: ["before", "UMFPACK", "shipped"] for s in scenes}
     todo = [(s, "reference", 0, a.out) for s in scenes]
@@ -67,13 +56,8 @@ def main(argv=None):
     rows = repeated(todo, one_run, a.jobs, [(s, v) for s in scenes for v in study.VARIANTS], lambda r: (r["scene"], r["variant"]),
                     ("steps", "outputs"))
     (Path(a.out) / "rows.json").write_text(json.dumps(rows, indent=1))   # kept should the section fail
-    defaults = (("scenes", a.scenes, "loading_rate_a1,nanoindent_kerogen_sector"), ("repeats", a.repeats, 3), ("jobs", a.jobs, 2))
-    cmd = "bench/loading_steps_bench.py" + "".join(f" --{k} {v}" for k, v, d in defaults if v != d)
-    provenance = {"command": cmd, "date": time.strftime("%Y-%m-%d", time.gmtime()),
-                  "rev": results_store.revision(ROOT) or "unknown", "machine": a.machine}
-    store = {"provenance": provenance, "rows": rows}
+    store = {"provenance": repeat_provenance("loading_steps_bench.py", a), "rows": rows}
     publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
-
 
 if __name__ == "__main__":
     main()

@@ -19,7 +19,6 @@ Scenes run two at a time (--jobs), each driver on one core; the triaxial cylinde
 import argparse
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -177,15 +176,12 @@ def last_line(path, prefix):
     return (hits or lines or ["(no output)"])[-1]
 
 
-KEPT_LINE = re.compile(r"^adapt: level (\d+) kept from an earlier run")
-
-
-def kept_levels(log):
-    """The adapted levels a run reused from an earlier run into the same directory instead of running them (the
-    driver's "adapt: level N kept from an earlier run" lines; docs/adapt.md, "Kept meshes"): its CPU and wall time
-    then leave them out."""
-    text = log.read_text(encoding="utf-8", errors="replace") if log.is_file() else ""
-    return [int(m.group(1)) for m in map(KEPT_LINE.match, text.splitlines()) if m]
+def kept_levels(out):
+    """The adapted levels a run reused from an earlier run into the same directory instead of running them (its
+    summary.json, levels[].kept; docs/adapt.md, "Kept meshes"): its CPU and wall time leave them out."""
+    path = out / "summary.json"
+    levels = json.loads(path.read_text(encoding="utf-8")).get("levels", []) if path.is_file() else []
+    return [k for k, lv in enumerate(levels) if lv.get("kept")]
 
 
 def run_all(jobs, slots):
@@ -209,8 +205,9 @@ def run_all(jobs, slots):
             running.remove(j)
             done += 1
             walls[j.key], cpus[j.key] = j.wall, j.cpu
-            if kept_levels(j.out / "driver.log"):
-                kept[j.key] = kept_levels(j.out / "driver.log")
+            levels = kept_levels(j.out)
+            if levels:
+                kept[j.key] = levels
             summary = last_line(j.out / "driver.log", ("indentation", "fe scene"))
             status = "done" if rc == 0 else f"FAILED (exit {rc})"
             print(f"[{done:2d}/{n}] {status} {j.key} in {j.wall:.1f} s ({j.cpu:.1f} s CPU): {summary[:150]}", flush=True)

@@ -137,12 +137,14 @@ def test_adaptation_failed_level(tmp_path):
     s = summary(out / "summary.json.part")
     print(f"adaptation: {s['failure']}; levels {[lv['dir'] for lv in s['levels']]}")
     assert s["completed"] is False and s["failure"]["level"] == 1 and s["failure"]["stage"] == "push"
-    assert [Path(lv["dir"]).name for lv in s["levels"]] == ["level0", "level1"] and s["levels"][0] == first["levels"][0]
+    assert [Path(lv["dir"]).name for lv in s["levels"]] == ["level0", "level1"] and s["levels"][0] == first["levels"][0] | {"kept": True}
+    assert [lv["kept"] for lv in first["levels"]] == [False, False] and [lv["kept"] for lv in s["levels"]] == [True, False]
     # the next run keeps level 0 and reruns level 1: the first run's answer
     proc = hertz(out, [])
     assert proc.returncode == 0 and "level 0 kept" in proc.stdout
     again = summary(out / "summary.json")
     assert again["stages"] == first["stages"] and not (out / "summary.json.part").exists()
+    assert [lv["kept"] for lv in again["levels"]] == [True, False]    # summary.json says which levels this run reused
     # a level stopped by -max_steps is not kept for a later run
     stop = tmp_path / "stop"
     assert hertz(stop, ["-max_steps", "2"]).returncode == 0

@@ -1,5 +1,6 @@
 """camclay9.paper_numbers: the numbers of docs/paper.md and the trend checks of tools/reproduce.py --quick,
 on synthetic runs whose answers are known."""
+import json
 from pathlib import Path
 
 import numpy as np
@@ -163,23 +164,23 @@ def test_whole_block_of_a_shipped_half_model(alpha):
 
 
 def test_run_times_say_which_adapted_levels_were_reused(tmp_path):
-    """tools/reproduce.py reads the levels a run reused from the driver's log, and the run-time sentence of
-    docs/paper.md and docs/performance.md says so: those times are not from scratch."""
+    """tools/reproduce.py reads the levels a run reused from its summary.json (levels[].kept), and the run-time sentence
+    of docs/paper.md and docs/performance.md says so: those times are not from scratch."""
     import importlib.util
     from camclay9 import paper_doc
     spec = importlib.util.spec_from_file_location("reproduce", ROOT / "tools" / "reproduce.py")
     rp = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(rp)
-    log = tmp_path / "driver.log"
-    log.write_text("adapt: level 0 kept from an earlier run of this scene (out/x/adapt/level0, 923 cells; docs/adapt.md)\n"
-                   "adapt: level 1 kept from an earlier run of this scene (out/x/adapt/level1, 3264 cells; docs/adapt.md)\n"
-                   "adapt: level 2 of 2 into out/x/adapt/level2\nadapt: level 2: 6201 cells, 28163 unknowns, 238.6 s CPU\n")
-    assert rp.kept_levels(log) == [0, 1]
-    assert rp.kept_levels(tmp_path / "none.log") == []
+    run = tmp_path / "bp"   # a run's summary.json as the driver writes it (its levels' other keys left out)
+    run.mkdir()
+    (run / "summary.json").write_text(json.dumps({"levels": [{"cells": 923, "kept": True}, {"cells": 3264, "kept": True},
+                                                             {"cells": 6201, "kept": False}]}))
+    assert rp.kept_levels(run) == [0, 1]
+    assert rp.kept_levels(tmp_path / "none") == []
     meta = {"walls": {"bp": 240.0, "bn": 120.0}, "cpus": {"bp": 239.0, "bn": 119.0}, "wall_runs": 250.0, "wall_total": 255.0,
             "date": "2026-12-01"}
     assert "Not from scratch" not in paper_doc.performance_section(meta)
-    text = paper_doc.performance_section({**meta, "kept": {"bp": rp.kept_levels(log)}})
+    text = paper_doc.performance_section({**meta, "kept": {"bp": rp.kept_levels(run)}})
     assert "bp reused its adapted levels 0, 1 from an earlier run" in text and "bn reused" not in text
     # a rerun of one scene (--only) keeps the other scenes' kept levels, and its own from this run
     prev = {"walls": {"bp": 240.0, "bn": 120.0}, "cpus": {"bp": 239.0, "bn": 119.0}, "wall_runs": 250.0,

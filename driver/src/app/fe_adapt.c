@@ -243,6 +243,7 @@ static int reuse_level(const char *outdir, int k, int last, unsigned long long k
   if (!rank) ok = k < last && level_load(dir, key, 1, lv);
   MPI_Bcast(&ok, 1, MPI_INT, 0, PETSC_COMM_WORLD);
   if (ok) MPI_Bcast(lv, (int)sizeof *lv, MPI_BYTE, 0, PETSC_COMM_WORLD);
+  lv->kept = ok;
   return ok;
 }
 
@@ -265,7 +266,7 @@ int fe_adapt_run(YdDoc *doc, FeScene *sc, IndentScene *isc, RunnerOptions *opt, 
       n = k + 1;
       if (!stop) continue;
     }
-    fresh = 1;
+    fresh = 1, lv[k].kept = 0; /* run here, also where a kept level is the answer and runs again */
     rc    = run_level(doc, sc, isc, opt, outdir, k, k ? &lv[k - 1] : NULL, &lv[k], err, errlen);
     if (rc && !rank) { /* the level's summary beside its files; OUT's as summary.json.part: nothing of OUT was replaced */
       run_summary_failed(sc, lv[k].dir, lv, k + 1, k, lv[k].sum.replaced, rc, err);

@@ -90,8 +90,8 @@ static void level_entry(FILE *fp, const RunInfo *r, int last) {
   json_str(fp, r->dir);
   fprintf(fp, ", \"cells\": %ld, \"unknowns\": %ld, \"error_indicator\": ", r->cells, r->unknowns);
   json_num(fp, r->eta);
-  fprintf(fp, ", \"cpu_s\": %.3f, \"wall_s\": %.3f, \"steps\": %d, \"cutbacks\": %d, \"newton_its\": %d, \"umat_calls\": %ld}%s\n", r->cpu,
-          r->sum.wall, r->sum.steps, r->sum.cutbacks, r->sum.its, r->sum.umat_calls, last ? "" : ",");
+  fprintf(fp, ", \"cpu_s\": %.3f, \"wall_s\": %.3f, \"steps\": %d, \"cutbacks\": %d, \"newton_its\": %d, \"umat_calls\": %ld, \"kept\": %s}%s\n",
+          r->cpu, r->sum.wall, r->sum.steps, r->sum.cutbacks, r->sum.its, r->sum.umat_calls, r->kept ? "true" : "false", last ? "" : ",");
 }
 
 int run_summary_write(const FeScene *sc, const char *dir, const RunInfo *levels, int nlevels, const MeshError *me, const RunEnd *end,

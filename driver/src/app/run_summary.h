@@ -16,6 +16,8 @@ typedef struct {
   double        cpu;       /* CPU seconds of the run, all ranks (set-up, stages, output) */
   double        predicted; /* cells the size field written after it predicts (0: none written) */
   char          dir[512];  /* where its files are */
+  int           kept;      /* 1: reused from an earlier run into the same directory, not run by this one (docs/adapt.md,
+                              "Kept meshes"): cpu and the counters are that run's */
 } RunInfo;
 
 /* The estimated mesh error of each reported quantity (docs/adapt.md): at the start and each stage's end (end[s + 1])
