@@ -10,7 +10,7 @@ Modules: history (history.csv), summary (summary.json), log (the summary and mes
 path and one run), fields (fields.h5 and the tensors' layout). The code that post/, bench/, tools/ and tests/ share
 (post/README.md, "Shared code"): reference (the independent Radau integration), indent_plots, point_plots,
 triaxial_plots, lomnitz, indent_fields, paper_numbers, paper_fields, paper_figures, paper_doc, paper_doc_2d,
-paper_doc_tri, results_store, doc_quotes, performance_doc, indent2d_study, half_model_study, loading_steps_study, convergence, normal_gap, instrument_record,
+paper_doc_tri, results_store, doc_quotes, performance_doc, indent2d_study, half_model_study, loading_steps_study, error_floor_study, convergence, normal_gap, instrument_record,
 sector_mesh, calculix_inputs, calculix_mesh, ti_constants; these need the packages of post/requirements.txt
 (matplotlib, scipy, h5py, PyYAML). Installed by tools/setup.sh (pip install python/).
 """

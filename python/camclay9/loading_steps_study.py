@@ -17,8 +17,6 @@ The store: {"provenance": {"command", "date", "rev", "machine"}, "rows": [...]},
 linear solves, first repeat), "cpu_s" and "wall_s" (one per repeat: user + system of the driver and its gmsh, from
 wait4; wall), "outputs" {name: value} (indent_convergence_bench's outputs: loads µN, depths µm; the first repeat's)}.
 """
-import statistics
-
 from camclay9 import results_store
 
 STORE = "loading_steps"
@@ -30,32 +28,14 @@ OUTPUTS = ("load at end of loading", "depth at end of loading", "creep depth", "
 
 
 def checked(store):
-    results_store.require(STORE, "the store", store, ("provenance", "rows"))
-    results_store.require(STORE, "provenance", store["provenance"], ("command", "date", "rev", "machine"))
-    for i, r in enumerate(store["rows"]):
-        results_store.require(STORE, f"rows[{i}]", r, ROW_KEYS)
-        if r["variant"] not in VARIANTS:
-            raise ValueError(f"docs/results/{STORE}.json: rows[{i}]: variant {r['variant']!r}, expected one of {VARIANTS}")
-    return store["rows"]
+    return results_store.variant_rows(STORE, store, ROW_KEYS, VARIANTS, ("provenance", "rows"))
 
 
-def cpu(row):
-    """A row's median CPU over its repeats [s]."""
-    return statistics.median(row["cpu_s"])
+cpu = results_store.median_cpu
 
 
 def rows_of(store, scene):
     return {r["variant"]: r for r in checked(store) if r["scene"] == scene}
-
-
-def error(row, ref, name):
-    """The relative error of an output against the reference run's (None where the scene does not report it)."""
-    a, b = row["outputs"].get(name), ref["outputs"].get(name) if ref else None
-    return None if a is None or not b else a / b - 1
-
-
-def _cell(e):
-    return "" if e is None else f"{e:+.2%}"
 
 
 def section(store, root=None):
@@ -81,12 +61,10 @@ def section(store, root=None):
         for v in VARIANTS:
             if v not in by:
                 continue
-            r, c = by[v], by[v]["cpu_s"]
-            spread = f" ({min(c):.1f}–{max(c):.1f})" if len(c) > 1 else ""
-            errs = [(f"{r['outputs'][o]:.6g}" if o in r["outputs"] else "") if v == "reference" else _cell(error(r, ref, o))
-                    for o in names]
+            r = by[v]
+            c, errs = results_store.variant_cells(r, None if v == "reference" else ref, names)
             lines.append(f"| {s} | {v} | {r['steps']} | {r['newton']} | {r['krylov']} | {r['umat_calls'] / 1e6:.1f} M | "
-                         f"{r['solve_s']:.1f} | {cpu(r):.1f}{spread} | " + " | ".join(errs) + " |")
+                         f"{r['solve_s']:.1f} | {c} | " + " | ".join(errs) + " |")
     lines.append("")
     for s in scenes:
         by = rows_of(store, s)

@@ -10,6 +10,7 @@ A file holds {"provenance": {...}, ...}: where its numbers come from (command, d
 from an earlier document rather than from a run, which and to what digits).
 """
 import json
+import statistics
 import subprocess
 from pathlib import Path
 
@@ -59,3 +60,37 @@ def require(name, where, d, keys):
     missing = [k for k in keys if not isinstance(d, dict) or k not in d]
     if missing:
         raise ValueError(f"docs/results/{name}.json: {where} lacks {', '.join(missing)} (expected {', '.join(keys)})")
+
+
+def variant_rows(name, store, row_keys, variants, top=("provenance", "rows")):
+    """The rows of a store of repeated runs by variant (a bench built on indent_convergence_bench.repeated), checked:
+    the store's top keys, its provenance's (command, date, rev, machine), each row's keys and a variant of
+    `variants`; a ValueError naming the file and what is wrong."""
+    require(name, "the store", store, top)
+    require(name, "provenance", store["provenance"], ("command", "date", "rev", "machine"))
+    for i, r in enumerate(store["rows"]):
+        require(name, f"rows[{i}]", r, row_keys)
+        if r["variant"] not in variants:
+            raise ValueError(f"docs/results/{name}.json: rows[{i}]: variant {r['variant']!r}, expected one of {variants}")
+    return store["rows"]
+
+
+def median_cpu(row):
+    """A repeated run's median CPU over its repeats (its cpu_s) [s]."""
+    return statistics.median(row["cpu_s"])
+
+
+def relative_error(row, ref, name):
+    """The relative error of a row's output `name` against a reference row's (None where either lacks it)."""
+    a, b = row["outputs"].get(name), ref["outputs"].get(name) if ref else None
+    return None if a is None or not b else a / b - 1
+
+
+def variant_cells(row, ref, names, fmt="+.2%"):
+    """A repeated run's table cells: its CPU (median, and the range over several repeats) and, per output of `names`,
+    its value (the reference row itself, ref None) or its error against ref in `fmt` (blank where it has none)."""
+    c = row["cpu_s"]
+    cpu = f"{median_cpu(row):.1f}" + (f" ({min(c):.1f}–{max(c):.1f})" if len(c) > 1 else "")
+    if ref is None:
+        return cpu, [f"{row['outputs'][o]:.6g}" if o in row["outputs"] else "" for o in names]
+    return cpu, ["" if relative_error(row, ref, o) is None else format(relative_error(row, ref, o), fmt) for o in names]

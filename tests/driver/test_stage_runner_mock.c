@@ -39,6 +39,12 @@
  *                one jump, every step after it is accepted at its first try (x is constant there: the extrapolation
  *                is exact, so no cutback), and the
  *                stated time-step error of x's change over the (held) stage is below 1e-9 J (the jump is exact).
+ *  9 floor     (error.floor, docs/driver.md "Error measures") x = x0 exp(-t/tau) + c/2 max(t - 0.7, 0)^2, tau 0.02 s: a
+ *                decay that settles (the stage's change, -x0), then a quadratic onset whose increments are tiny against
+ *                it; the 'output' measure at tol 0.02 with the floor 1e-3: in the onset, the steps settle at the PI
+ *                controller's fixed point with the departure c h^2 relative to the floor 1e-3 |x - x0|,
+ *                h = sqrt(tol 0.9^(1/0.85) 1e-3 |x - x0| / c) (1 %; x0 the solver's start value, StepSolver.outputs,
+ *                not 0); without the floor the onset takes more than twice the steps (relative to its own increments).
  *  7 errors      (stage_runner.h, docs/driver.md "Error codes") a check that fails with STEP_FAIL after t = 0.45 (0.1 s
  *                steps): status 1, err exactly the callback's message, 5 steps accepted; a solve that fails with a PETSc
  *                error (PETSC_ERR_MEM) on its 3rd call: that code returned, err empty (main prints PETSc's message), 2
@@ -78,6 +84,9 @@ typedef struct {
   double fail_after;            /* > 0: the check fails (STEP_FAIL) once t is past it */
   int    spike_solve;           /* this solve call's estimate is spike x tol */
   double t_jump, jump;          /* jump != 0: x jumps by it in the step across t_jump (a snap) */
+  double t_onset, onset_c;      /* onset_c != 0: x(t) = x0 exp(-t/tau) + onset_c/2 max(t - t_onset, 0)^2 */
+  int    naccept_late;          /* onset: accepted steps that end after t_onset */
+  double h_probe, t_probe, x_probe; /* onset: the first accepted step that ends after t_probe, and x there */
   int    nsolve_after, naccept_after; /* solves and accepts of the steps that start after the jump */
   int    held;                  /* the stages are held (StageView.held): the runner states x's time-step error */
   double spike, err_level;      /* otherwise err_level x tol, or ... */
@@ -101,6 +110,12 @@ static PetscErrorCode stage_begin(void *ctx, int s, int resumed, StageView *v, c
   return 0;
 }
 
+/* The onset case's answer in closed form: a decay that settles, then a quadratic onset (x'' = onset_c). */
+static double onset_x(const Mock *m, double t) {
+  double s = fmax(t - m->t_onset, 0);
+  return m->x0 * exp(-t / m->tau) + 0.5 * m->onset_c * s * s;
+}
+
 static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, char *err, size_t errlen) {
   Mock *m = ctx;
   int   call = ++m->nsolve;
@@ -110,6 +125,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   m->x_trial   = m->x * exp(-rq->h / m->tau);
   if (m->jump != 0 && m->t < m->t_jump && m->t + rq->h >= m->t_jump) m->x_trial += m->jump;
   if (m->jump != 0 && m->t >= m->t_jump) m->nsolve_after++;
+  if (m->onset_c != 0) m->x_trial = onset_x(m, m->t + rq->h);
   o->converged = call != m->fail_solve;
   o->why       = "mock: not converged on purpose";
   o->its       = 1;
@@ -127,6 +143,8 @@ static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t
   Mock *m = ctx;
   if (m->jump != 0 && m->t >= m->t_jump) m->naccept_after++;
   m->x = m->x_trial, m->t += rq->h;
+  if (m->onset_c != 0 && m->t > m->t_onset) m->naccept_late++;
+  if (m->onset_c != 0 && m->t > m->t_probe && m->h_probe == 0) m->h_probe = rq->h, m->x_probe = m->x;
   if (m->naccept < MAXREC) m->accept_t[m->naccept] = m->t, m->accept_h[m->naccept] = rq->h;
   m->naccept++;
   return 0;
@@ -166,11 +184,12 @@ static PetscErrorCode load(void *ctx, BinFile *f) {
 }
 
 static void report_x(void *ctx, double *v) { v[0] = ((const Mock *)ctx)->x; }
+static void outputs_x(void *ctx, double *out) { out[0] = ((const Mock *)ctx)->x; } /* x0 at the start, not 0 */
 
 static StepSolver mock_solver(Mock *m) {
   return (StepSolver){.ctx = m, .kind = "mock", .nstage = m->nstage, .comm = PETSC_COMM_SELF, .stage_begin = stage_begin,
                       .solve = solve, .accept = accept, .check = check, .columns = columns, .ncolumns = 1,
-                      .write_fields = write_fields, .save = save, .load = load, .nreport = 1, .report = report_x,
+                      .write_fields = write_fields, .save = save, .load = load, .nreport = 1, .report = report_x, .outputs = outputs_x,
                       .report_names = {"x"}};
 }
 
@@ -407,6 +426,32 @@ static void case_jump(void) {
         m.nsolve_after, m.naccept_after);
 }
 
+/* A small late onset after the stage's change (module comment, case 9): the steps with and without the floor. */
+static void onset_run(Mock *m, double floor, RunnerSummary *sum) {
+  mock_init(m);
+  m->tau = 0.02, m->t_onset = 0.7, m->onset_c = 10, m->t_probe = 0.75;
+  m->nstage = 1, m->stage[0] = adaptive_stage(1.0, 1e-3, 1.5, 0.05, MEASURE_OUTPUT, 0.02);
+  m->stage[0].steps.floor = floor;
+  run_quiet(m, sum);
+}
+
+static void case_floor(void) {
+  Mock          m, none;
+  RunnerSummary sum, sum_none;
+  const double  f = 1e-3, tol = 0.02;
+  onset_run(&m, f, &sum);
+  onset_run(&none, 0, &sum_none);
+  check_end_exactly(__func__, &m, &sum, 1.0);
+  /* equal steps h in the onset: the departure is onset_c h^2 (x quadratic), the increment it is relative to the floor
+     f |x - x0| (the increment is below it), so the PI controller's fixed point 0.9 ratio^-(alpha - beta) = 1 holds h at */
+  double h_star = sqrt(tol * pow(STEP_SAFETY, 1 / (1 - 0.15)) * f * fabs(m.x_probe - m.x0) / m.onset_c);
+  printf("floor: %d steps (%d after the onset), without it %d (%d); h at t = %g: %.6g, the fixed point %.6g\n", m.naccept,
+         m.naccept_late, none.naccept, none.naccept_late, m.t_probe, m.h_probe, h_star);
+  CHECK(near(m.h_probe, h_star, 0.01), "the onset's steps with the floor: h = %.6g, expected the fixed point %.6g (1 %%)", m.h_probe, h_star);
+  CHECK(2 * m.naccept_late < none.naccept_late, "steps after the onset: %d with the floor, %d without (expected 2 times fewer)",
+        m.naccept_late, none.naccept_late);
+}
+
 /* ---------------------------------------------------------------------------------------------------- */
 /* Errors                                                                                               */
 
@@ -444,6 +489,7 @@ int main(int argc, char **argv) {
   case_checkpoint(tmp);
   case_errors();
   case_jump();
+  case_floor();
   char cmd[128];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
   if (!failures && system(cmd)) fprintf(stderr, "note: could not remove %s\n", tmp);

@@ -113,6 +113,7 @@ static const KeyDecl decl[] = {
   {"{stage}.steps.error.measure", FE | PT, KEY_WORD, N, N, 0, "worst_point, volume, output", "worst_point", NULL, "the UMAT's own (PNEWDT), the volume norm of the vp rate change, or what the scene reports"},
   {"{stage}.steps.error.tol", FE | PT, KEY_NUMBER, 0, 1, GT | LT, NULL, "worst_point: PROPS tol", NULL, "the tolerance (required with volume and output)"},
   {"{stage}.steps.error.relative_to", FE | PT, KEY_WORD, N, N, 0, "step, stage", "step", NULL, "output: the error relative to the step's increment, or to the larger of it and its share of the stage's mean change so far"},
+  {"{stage}.steps.error.floor", FE | PT, KEY_NUMBER, 0, 1, LT, NULL, "0 (none)", NULL, "output: the increment the error is relative to is at least this share of the stage's change so far"},
   {"{stage}.until", FE | PT, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "an end event, one of its keys (an indentation stage's indenter.until, not both)"},
   {"{stage}.until.evp_rate_below", FE | PT, KEY_NUMBER, 0, N, GT, NULL, NULL, "1/s", "end after the first step whose volume-mean viscoplastic strain rate is below this"},
   {"{stage}.until.q_above", FE | PT, KEY_NUMBER, 0, N, GT, NULL, NULL, "MPa", "end when the (volume-mean) deviatoric stress q reaches this (landed on within 1e-5)"},

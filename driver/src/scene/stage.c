@@ -16,7 +16,7 @@ static const char *measure_names[] = {"worst_point", "volume", "output"};
 
 const char *step_control_measure_name(ErrorMeasure m) { return measure_names[m]; }
 
-/* error: {measure: worst_point | volume | output, tol: t, relative_to: step | stage} */
+/* error: {measure: worst_point | volume | output, tol: t, relative_to: step | stage, floor: f} */
 static int read_error(const YdDoc *doc, YdNode *x, const char *path, StepControl *sc, char *err, size_t errlen) {
   char sub[256];
   int  k = MEASURE_WORST_POINT;
@@ -34,6 +34,10 @@ static int read_error(const YdDoc *doc, YdNode *x, const char *path, StepControl
     FAIL("%s:%d: key '%s.relative_to': only the output measure takes it (this one is %s)", doc->file, v->line, sub,
          measure_names[sc->measure]);
   sc->per_stage = rel == 1;
+  if (keys_number(doc, x, "floor", &sc->floor, &v, err, errlen)) return 1;
+  if (v && sc->measure != MEASURE_OUTPUT)
+    FAIL("%s:%d: key '%s.floor': only the output measure takes it (this one is %s)", doc->file, v->line, sub,
+         measure_names[sc->measure]);
   return keys_check_unused(doc, x, NULL, err, errlen);
 }
 

@@ -34,6 +34,8 @@ typedef struct {
   double       tol;                     /* <= 0 with worst_point: PROPS tol as the material gives it */
   int          per_stage;               /* output: relative to the larger of the step's increment and its share of the
                                            stage's mean change so far (relative_to: stage), not the increment alone */
+  double       floor;                   /* output: the increment measured against at least floor times the stage's
+                                           change so far (error.floor, default 0: an ODE solver's absolute tolerance) */
 } StepControl;
 
 /* End events ('until'). Rising events (ABOVE, DEPTH, LOAD) and Q_BELOW are landed on: a step that overshoots is

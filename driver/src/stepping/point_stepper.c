@@ -169,6 +169,14 @@ static const HistColumn columns[] = {
 
 /* What a point reports (summary.json, with the time-step error of its change over a held segment): the strain
    along the loading axis (that of the first creep segment, else of the first) and the volumetric strain. */
+/* The outputs observe reports, at the committed state (StepSolver.outputs): strain and stress, the stress not 0 at
+ * the start (the initial state). */
+static void outputs(void *ctx, double *out) {
+  const Point *pt = ctx;
+  int          n  = pt->sc->mat.ntens;
+  for (int i = 0; i < n; i++) out[i] = pt->cur.stran[i], out[n + i] = pt->cur.stress[i];
+}
+
 static void report(void *ctx, double *v) {
   const Point      *pt = ctx;
   const PointScene *sc = pt->sc;
@@ -266,8 +274,8 @@ int point_run(const PointScene *sc, const RunnerOptions *given, PointSummary *su
   StepSolver sv = {.ctx = &pt, .kind = "point", .nstage = sc->nseg, .comm = MPI_COMM_SELF, .stage_begin = stage_begin,
                    .solve = solve, .accept = accept, .columns = columns, .ncolumns = sizeof columns / sizeof columns[0],
                    .history_prepare = history_prepare, .stage_name = stage_name, .nreport = 2,
-                   .report_names = {"strain_axial", "strain_volumetric"}, .report = report, .umat_calls = umat_calls,
-                   .progress = progress, .save = save, .load = load, .replay = replay};
+                   .report_names = {"strain_axial", "strain_volumetric"}, .report = report, .outputs = outputs,
+                   .umat_calls = umat_calls, .progress = progress, .save = save, .load = load, .replay = replay};
   RunnerOptions opt;
   memset(&opt, 0, sizeof opt);
   if (given) opt = *given;

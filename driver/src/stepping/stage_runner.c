@@ -112,7 +112,8 @@ static double departure(double d, double d_prev, double h, double h_prev) { retu
  * larger of the increment and the step's share of the stage's mean change so far, h |y - y_start| / (t - t_start):
  * a step whose increment is small against the stage's mean rate (the tail of a transient, an exponential load's
  * start) is asked for tol of that share, not of its own small increment: a share of the stage's change in
- * proportion to the step's length. *size tells a jump apart (judge): for 'output' the departure itself over the
+ * proportion to the step's length. The floor (error.floor f): over at least f |y - y_start|, an absolute tolerance
+ * (docs/driver.md, Error measures). *size tells a jump apart (judge): for 'output' the departure itself over the
  * outputs' scale, which falls as h (h + h_prev) where the answer is smooth and stays that of the jump where it
  * jumps (the ratio, relative to the increment, tends to h_prev y''/(2 y') as h goes to 0); for 'volume' the ratio. */
 static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq, double *size) {
@@ -128,8 +129,9 @@ static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq, d
     for (int k = 0; k < o->nout; k++)
       if (o->group[k] == g) {
         double d = o->out[k] - st->out_prev[k], s = 0;
+        double c = sc->floor * (o->out[k] - st->out_start[k]); /* the floor: a share of the stage's change so far */
         if (sc->per_stage) s = rq->h * (o->out[k] - st->out_start[k]) / (rq->ts0 + rq->h);
-        num += pow(departure(d, st->dout_prev[k], rq->h, st->h_prev), 2), den += fmax(d * d, s * s);
+        num += pow(departure(d, st->dout_prev[k], rq->h, st->h_prev), 2), den += fmax(fmax(d * d, s * s), c * c);
         scale += fmax(st->out_scale[k] * st->out_scale[k], o->out[k] * o->out[k]);
       }
     double e   = sqrt(num) / fmax(fmax(sqrt(den), 1e-6 * sqrt(scale)), 1e-300);
@@ -450,6 +452,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
   if (!opt->restart) {
     r.view.name = NULL; /* row 0: the solver names it */
     keep_report(&r, 0);
+    if (sv->outputs) sv->outputs(sv->ctx, r.st.out_prev); /* the first stage's start values (else 0) */
     if ((rc = history_row(&r, 0, 0, 0, err, errlen)) || (rc = write_fields(&r, err, errlen))) return rc;
   }
   while (!rc && r.st.stage < sv->nstage) {

@@ -137,6 +137,10 @@ typedef struct {
   int         nreport;
   const char *report_names[RUNNER_MAX_REPORT];
   void (*report)(void *ctx, double *v);
+  /* Optional: the outputs ('output' measure, as solve reports them in StepOutcome.out) at the committed state, read
+   * at the run's start: the first stage's change is counted from them (relative_to: stage, error.floor). NULL: they
+   * start at 0 (an indenter's depth and load, an FE scene's mean strain). */
+  void (*outputs)(void *ctx, double *out);
 } StepSolver;
 
 typedef struct {
