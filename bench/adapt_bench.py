@@ -24,6 +24,9 @@ Converged answers (where each comes from):
   level of P1 ("reference" rows), i.e. another element order on its own meshes. sphere_coarse: the sphere from a coarse
   first mesh (h_tip 0.1 um, h_far 0.3 um), against the sphere's reference (run the sphere first).
 - sector_p1: the same sector on P1 elements from the same coarse start, against the sector's level 5.
+- bed0, bed30, bed45, bed60, bed90: bedding_theta*.yaml (Fig. 14) from the first mesh they ship, against their own
+  level 3 (run --levels 3). At 45 degrees the 2D study's P2 ladder converges the creep depth to 800.2 nm +- 0.6 %
+  (Richardson, p 0.85; docs/performance.md, "2D indentation: mesh and element study"), an independent check.
 - bn, bp: microindent_BN_sector and microindent_BP: no 3D answer is known (no reference run: their rows give the levels'
   own changes); BN's axisymmetric twin converges to a residual depth of 2.112 um (docs/performance.md, the 3D mesh
   study), which BN's 3D value should approach.
@@ -92,6 +95,8 @@ CASES = {
                                                       "indenter: {shape: sphere, radius: 2, contact: contact}",
                                                       "until: {depth: 0.2}": "until: {depth: 0.1}",
                                                       "h_tip: 0.02, h_far: 0.15": "h_tip: 0.1, h_far: 0.3"}, False, "sphere"),
+    # the bedding scenes from their shipped first mesh (P2, h_tip 0.7071 um within 10 um), against their own level 3
+    **{f"bed{t}": (f"bedding_theta{t}.yaml", {}, False, LevelOf(f"bed{t}", 3)) for t in (0, 30, 45, 60, 90)},
     "bn": ("microindent_BN_sector.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, None),
     "bp": ("microindent_BP.yaml", {"h_tip: 2.5, h_far: 20": "h_tip: 5, h_far: 20"}, False, None),
 }

@@ -60,7 +60,7 @@ SCENES = {
     "bedding_theta90": dict(IND2, mesh={"h_tip": 1.25, "h_far": 7.5}),
     # Fig. 14's sensitivity to the plane-strain thickness (the paper gives none): 3 um, about the Berkovich-equivalent
     # thickness at 15 mN (t = 4.9 h_B, h_B = 0.62 um), the indent about a third as wide: the fine zone scaled by 1/3
-    # (r_fine 3.33 um, about 1.5 times the contact's half-width), its cells h_tip 0.125 um (half the 1 um scene's), the
+    # (r_fine 3.33 um, about 1.5 times the contact's half-width), its cells h_tip 0.125 um (half the 0.25 um of the 1 um scene's uniform mesh before it adapted), the
     # far field coarser than at 1 um (h_far 3.75 um: the block is the same 50 um, the fine zone a third as wide).
     # Measured (2026-12-01, one rank; the scenes this writes, out/paper/scenes/bedding_theta*_t3.yaml, run by the
     # driver with their mesh parameters changed) against a fine mesh, h_tip 0.059 um and h_far 0.625 um: depth at the
@@ -70,10 +70,10 @@ SCENES = {
     # -0.03 % and -0.58 %; h_tip 0.167 um (13.5 k) -0.04 % and -0.61 %; 0.25 um (8.6 k) -0.15 % and -0.56 %.
     # theta = 90, the half model (104 k unknowns; 0.84590 and 0.30734 um): h_tip 0.083 um -0.03 % and -0.15 %; as here
     # (9.8 k, 13 s) -0.08 % and -0.22 %; 0.167 um -0.09 % and -0.69 %; 0.25 um -0.22 % and -1.48 %. The 1 um scene's
-    # mesh is -0.8 % in creep depth against its converged 2D answer (docs/performance.md, "2D indentation: mesh and
-    # element study").
+    # uniform mesh was -0.8 % in creep depth against its converged 2D answer (docs/performance.md, "2D indentation: mesh
+    # and element study"). One mesh each ("adapt": False): the 1 um scenes rerun on an adapted mesh, these do not.
     **{f"bedding_theta{t}_t3": dict(IND2, file=f"bedding_theta{t}", mesh={"h_tip": 1.25, "h_far": 7.5}, thickness=3,
-                                    mesh_scale=1 / 3, full={"mesh": {"h_tip": 0.125, "h_far": 3.75}})
+                                    mesh_scale=1 / 3, full={"mesh": {"h_tip": 0.125, "h_far": 3.75}, "adapt": False})
        for t in (0, 30, 45, 60, 90)},
     "triaxial_theta0": {"mesh": {"size": 12.0}, "mpi": 2},
     "triaxial_theta90": {"mesh": {"size": 12.0}, "mpi": 2},
@@ -106,6 +106,8 @@ def variant_scene(key, dest, quick):
         if "fields_every" in full:
             d["output"]["fields_every"] = full["fields_every"]
         d["mesh"]["parameters"].update(full.get("mesh", {}))
+        if full.get("adapt") is False:   # the mesh as given, no rerun on an adapted one
+            d["mesh"].pop("adapt", None)
     what = "coarse variant" if quick else "variant"
     dest.write_text(f"# {what} of input/{scene_file(key).name} written by tools/reproduce.py{' --quick' if quick else ''}\n"
                     + yaml.safe_dump(d, sort_keys=False), encoding="utf-8")

@@ -70,7 +70,6 @@ FT = contact_solver_study.FORCING  # ... with GMRES' tolerance by the inexact Ne
 SP, R2 = "fieldsplit, simple partition", "ranks0.0425"  # its field split on the simple partition; its 2-rank partition case
 DN, BO, CF = "drift_noise, drift: fit", "both, drift: fit", "clean, drift: fit"  # bench/calibrate_coverage.py's cases
 CN, IG = "clean, drift: none", "ignored, drift: none"
-BED = ("bedding_theta0", "bedding_theta45", "bedding_theta90")
 
 
 def _fe_scaling(store_dir=None):
@@ -275,7 +274,7 @@ def namespace(store_dir=None):
     ns = dict(meta=A(paper.get("meta", {})), pc=pc, pu=pu, f=f, g=g, min=min, max=max, abs=abs, float=float, zip=zip, tri=tri, ind=A(n.get("indent", {})),
               walls=A(paper.get("meta", {}).get("walls", {})), k=A(i3.get("kerogen", {})), bn=A(i3.get("BN", {})),
               bp=A(i3.get("BP", {})), i2=A(i2), rung2=rung2, err3=err3, kr=kr, half_over_sector=indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE, store_dir)), fe=fe_row, cs=cs, csr=csr, kbu=kbu, kpn=kpn, kps=kps, fband=fband, ku=ku, S3=S3, S2=S2, BIG=BIG, MIL=MIL, G=G, LU=LU, FT=FT,
-              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd, BED=BED,
+              pcopies=pcopies, SP=SP, R2=R2, im=im, imd=imd,
               tef=tef, tet=tet, stc=stc, cb=cb, cbe=cbe,
               cc=cc, cd=cov.get("draws", {}), cc6=cc6, cd6=cov6.get("draws", {}), covered=coverage_study.covered, rmsz=rmsz, sum=sum, len=len, median=statistics.median, DN=DN, BO=BO, CF=CF, CN=CN, IG=IG, th=th)
     ns.update(_fe_scaling(store_dir), **_adapted(store_dir), **_indent_speed(store_dir), **_half_model(store_dir))
@@ -534,7 +533,6 @@ QUOTES = [
         "\"Indentation: the direct solver and the loading steps\"); the whole block took «f(hm('loading_rate_a1', 'whole').cpu, 0)» s "
         "against the half model's «f(hm('loading_rate_a1').cpu, 0)» s in an earlier bench, before both changes (medians of "
         "«len(hm('loading_rate_a1').cpu_s)» runs, docs/performance.md, \"2D indentation: the half model\")"),
-    (R, "| «f(min(isp(s).cpu for s in BED), 0)»–«f(max(isp(s).cpu for s in BED), 0)» s CPU each on a shared machine (the P1 mesh before"),
     (R, "residual depth «f(ad('bn', 1).q['h_res'] / 1e3, 2)» and «f(ad('bn', 2).q['h_res'] / 1e3, 2)» µm on its first two "
         "reruns, «f(ad('bn', 3).q['h_res'] / 1e3, 3)» µm on its last level («f(ad('bn', 3).unknowns / 1e3, 1)» k unknowns) and "
         "«f(ad('bn', 4).q['h_res'] / 1e3, 3)» µm one level further («f(ad('bn', 4).unknowns / 1e3, 1)» k): converged, "
@@ -556,16 +554,16 @@ QUOTES = [
     (R, "(at 20 k unknowns: creep «pc(rung2('bed', 0.3536, 10.0).creep)» against "
         "«pc(rung2('bed', 0.1768, 10.0, 1).creep)», residual depth «pc(rung2('bed', 0.3536, 10.0).h_res)» against "
         "«pc(rung2('bed', 0.1768, 10.0, 1).h_res)»)"),
-    (R, "at 45°: depth at the end of loading «pc(rung2('bed', 0.25, 10.0).h_max)», creep depth «pc(rung2('bed', 0.25, 10.0).creep)», "
-        "stress under the tip «pc(rung2('bed', 0.25, 10.0).sig_hold)» (within 1 % and 5 %; the residual depth, not reported by "
-        "these scenes, «pc(rung2('bed', 0.25, 10.0).h_res)»)"),
-    (R, "on the shipped mesh (the mirror halves; docs/paper.md's run) depth at the end of loading "
+    (R, "docs/paper.md's run at 45° against the converged 2D answer: depth at the end of loading "
         "«pc(ind.bedding_theta45.depth_end_of_load / i2.reference.bed.h_max.value - 1)», creep depth "
         "«pc(ind.bedding_theta45.creep_depth / i2.reference.bed.creep.value - 1)»"),
-    (R, "(the P1 mesh before the 2D study: «pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth)"),
+    (R, "The uniform mesh shipped before (h_tip 0.25 µm), at 45°: depth at the end of loading «pc(rung2('bed', 0.25, 10.0).h_max)», "
+        "creep depth «pc(rung2('bed', 0.25, 10.0).creep)», stress under the tip «pc(rung2('bed', 0.25, 10.0).sig_hold)» (the residual "
+        "depth, not reported by these scenes, «pc(rung2('bed', 0.25, 10.0).h_res)»); before the 2D study, P1: "
+        "«pc(rung2('bed', 0.5, 10.0, 1).creep)» in creep, «pc(rung2('bed', 0.5, 10.0, 1).h_res)» in residual depth"),
     (R, "in the full reproduction (docs/paper.md) «f(min(meta.cpus[f'bedding_theta{t}'] for t in (0, 90)), 0)»–«f(max(meta.cpus[f'bedding_theta{t}'] "
         "for t in (0, 90)), 0)» s on the half model, «f(min(meta.cpus[f'bedding_theta{t}'] for t in (30, 45, 60)), 0)»–"
-        "«f(max(meta.cpus[f'bedding_theta{t}'] for t in (30, 45, 60)), 0)» s on the whole block |"),
+        "«f(max(meta.cpus[f'bedding_theta{t}'] for t in (30, 45, 60)), 0)» s on the whole block, both runs of each |"),
     # below the table (defect 3)
     (R, "were «f(kr('old1_0.05').cpu, 0)» s for the sector but «pc(err3('old1_0.05').P, 0)» in load and "
         "«pc(err3('old1_0.05').creep, 0)» in creep depth"),

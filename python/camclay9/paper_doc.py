@@ -14,7 +14,7 @@ from pathlib import Path
 
 from camclay9 import indent3d_study, indent_models_study, paper_doc_2d, paper_doc_tri, results_store
 from camclay9.indent2d_study import shipped_rung
-from camclay9.paper_numbers import THETAS_BEDDING, check_trends
+from camclay9.paper_numbers import THETAS_BEDDING, check_trends, stated_text
 
 REF = "Yin, Liu & Borja (2021)"
 
@@ -190,14 +190,6 @@ def setup_differences(n, quick=False):
     return L + [""]
 
 
-def _stated(s, mesh_key, time_key=None):
-    """' (± e mesh, ± t time steps)' of the errors a run stated (paper_numbers.stated_errors), or ''."""
-    parts = [f"± {s[mesh_key]:.2g} mesh, {s['meshes']} meshes" if mesh_key in s else "",
-             f"± {s[time_key]:.2g} time steps" if time_key and time_key in s else ""]
-    parts = [p for p in parts if p]
-    return f" ({'; '.join(parts)})" if parts else ""
-
-
 def lower_bounds():
     """BN's and BP's converged residual depths (their adapted meshes' last level, camclay9.indent3d_study): the
     shipped uniform meshes' residual depths are lower bounds against them."""
@@ -287,9 +279,9 @@ def indentation(n, images, rel):
                 res = _f(s['residual_depth'], '.3g') + (f" (a lower bound: {conv:.3f} converged, "
                                                         f"{_pct(s['residual_depth'] / conv - 1)})" if conv else "")
             else:  # an adapted run: the error it states, and its value against the adapted ladder's converged one
-                res = _f(s['residual_depth'], '.3g') + _stated(s, "residual_mesh_error") + (
+                res = _f(s['residual_depth'], '.3g') + stated_text(s, "residual_mesh_error") + (
                     f"; {_pct(s['residual_depth'] / conv - 1)} against the adapted ladder's {conv:.3f}" if conv else "")
-            creep = _f(s['creep_depth'], '.3g') + _stated(s, "creep_mesh_error", "creep_time_error")
+            creep = _f(s['creep_depth'], '.3g') + stated_text(s, "creep_mesh_error", "creep_time_error")
             L.append(f"| {k} | {_f(s['max_load'], '.4g')} | {_f(s['depth_end_of_load'], '.4g')} | {creep} | {res} |")
     L += kerogen_against_reference(ind.get("nanoindent_kerogen"))
     hs = indent_models_study.half_over_sector(results_store.load(indent_models_study.STORE))

@@ -109,6 +109,14 @@ def stated_errors(run):
     return out
 
 
+def stated_text(s, mesh_key, time_key=None):
+    """' (± e mesh, n meshes; ± t time steps)' of the errors a run stated (stated_errors), or ''."""
+    parts = [f"± {s[mesh_key]:.2g} mesh, {s['meshes']} meshes" if mesh_key in s else "",
+             f"± {s[time_key]:.2g} time steps" if time_key and time_key in s else ""]
+    parts = [p for p in parts if p]
+    return f" ({'; '.join(parts)})" if parts else ""
+
+
 # ------------------------------------------------------------------ all
 def collect(out):
     """All numbers of the runs in `out` (missing runs are left out); writes out/numbers.json."""

@@ -80,7 +80,6 @@ def test_stated_errors_of_an_adapted_run(tmp_path):
     lower-bound flag: the creep depth's mesh and time-step errors (the hold's), the residual depth's (the unload's
     end), the number of meshes; a run on one mesh states none."""
     import json
-    from camclay9 import paper_doc
     run = tmp_path / "bn"
     run.mkdir()
     stage = lambda name, me, te: {"name": name, "end": {"depth": 1.0}, "change": {"depth": 0.1}, "mesh_error": me, "time_error": te}
@@ -91,7 +90,7 @@ def test_stated_errors_of_an_adapted_run(tmp_path):
     (run / "summary.json").write_text(json.dumps(js))
     s = pn.stated_errors(run)
     assert s == {"meshes": 4, "creep_mesh_error": 0.003, "creep_time_error": 0.0004, "residual_mesh_error": 0.021}
-    assert paper_doc._stated(s, "creep_mesh_error", "creep_time_error") == " (± 0.003 mesh, 4 meshes; ± 0.0004 time steps)"
+    assert pn.stated_text(s, "creep_mesh_error", "creep_time_error") == " (± 0.003 mesh, 4 meshes; ± 0.0004 time steps)"
     assert pn.stated_errors(tmp_path) == {}
 
 
@@ -188,3 +187,22 @@ def test_run_times_say_which_adapted_levels_were_reused(tmp_path):
     runs = rp.record_runs(prev, {"bn": 180.0}, {"bn": 179.0}, {}, 181.0, ["bn"], "2026-12-01", only=True)
     assert runs["kept"] == {"bp": [0, 1]} and runs["walls"] == {"bp": 240.0, "bn": 180.0} and runs["wall_runs"] == 250.0
     assert rp.record_runs(prev, {"bn": 180.0}, {"bn": 179.0}, {}, 181.0, [], "2026-12-01", only=False)["kept"] == {}
+
+
+def test_bedding_variants_adapt_at_1um_and_keep_one_mesh_at_3um(tmp_path):
+    """tools/reproduce.py's bedding scenes: at 1 µm the shipped scene as it is (a first mesh and one rerun on an adapted
+    mesh), at 3 µm one mesh of the sizes measured for it (h_tip 0.125 µm, h_far 3.75 µm, the fine zone's reach scaled by
+    1/3), no rerun; the quick run's coarse variant never adapts."""
+    import importlib.util
+    import yaml
+    spec = importlib.util.spec_from_file_location("reproduce", ROOT / "tools" / "reproduce.py")
+    rp = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(rp)
+    one = yaml.safe_load(rp.variant_scene("bedding_theta45", tmp_path / "a.yaml", quick=False).read_text())
+    shipped = yaml.safe_load((ROOT / "input" / "bedding_theta45.yaml").read_text())
+    assert one["mesh"]["adapt"] == shipped["mesh"]["adapt"] and one["mesh"]["adapt"]["levels"] >= 1
+    three = yaml.safe_load(rp.variant_scene("bedding_theta45_t3", tmp_path / "b.yaml", quick=False).read_text())
+    p = three["mesh"]["parameters"]
+    assert "adapt" not in three["mesh"] and (p["h_tip"], p["h_far"]) == (0.125, 3.75)
+    assert abs(p["r_fine"] - shipped["mesh"]["parameters"]["r_fine"] / 3) < 1e-12 and three["mesh"]["thickness"] == 3
+    assert "adapt" not in yaml.safe_load(rp.variant_scene("bedding_theta45", tmp_path / "c.yaml", quick=True).read_text())["mesh"]
