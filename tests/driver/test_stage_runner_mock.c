@@ -45,6 +45,12 @@
  *                controller's fixed point with the departure c h^2 relative to the floor 1e-3 |x - x0|,
  *                h = sqrt(tol 0.9^(1/0.85) 1e-3 |x - x0| / c) (1 %; x0 the solver's start value, StepSolver.outputs,
  *                not 0); without the floor the onset takes more than twice the steps (relative to its own increments).
+ * 10 kinks     (docs/driver.md "Stages, steps and error control") the onset of case 9 without the floor, every step reported as crossing a kink (a node
+ *                entering contact: StepOutcome.kink): no step is rejected on its estimate, but the estimate sets the next
+ *                step's length, so in the onset the steps follow the curvature: the I controller (no memory across a kink)
+ *                holds the ratio h_mean / (s + h/2) / tol at about STEP_SAFETY (s the step's start after the onset), i.e.
+ *                h = 0.9 tol s within 5 %; held at their length instead (before), the steps kept the 0.05 s they had
+ *                before the onset, 14 times that at t = 0.9.
  *  7 errors      (stage_runner.h, docs/driver.md "Error codes") a check that fails with STEP_FAIL after t = 0.45 (0.1 s
  *                steps): status 1, err exactly the callback's message, 5 steps accepted; a solve that fails with a PETSc
  *                error (PETSC_ERR_MEM) on its 3rd call: that code returned, err empty (main prints PETSc's message), 2
@@ -89,6 +95,8 @@ typedef struct {
   double h_probe, t_probe, x_probe; /* onset: the first accepted step that ends after t_probe, and x there */
   int    nsolve_after, naccept_after; /* solves and accepts of the steps that start after the jump */
   int    held;                  /* the stages are held (StageView.held): the runner states x's time-step error */
+  int    kink_all;              /* every step crosses a kink (StepOutcome.kink) */
+  double t_probe_end;           /* onset: where the probe's step ended */
   double spike, err_level;      /* otherwise err_level x tol, or ... */
   double err_coef;              /* ... when > 0: err_coef h (1 + 0.5 sin 5 t0), an estimate that varies */
   int    nsolve, naccept, nwrite;
@@ -129,6 +137,7 @@ static PetscErrorCode solve(void *ctx, const StepRequest *rq, StepOutcome *o, ch
   o->converged = call != m->fail_solve;
   o->why       = "mock: not converged on purpose";
   o->its       = 1;
+  o->kink      = m->kink_all;
   o->event[EVENT_Q_ABOVE] = rq->t0 + rq->h;
   o->nout = 1, o->out[0] = m->x_trial, o->group[0] = 0; /* the 'output' measure's estimate: the runner's own */
   if (rq->want_volume_error) {
@@ -144,7 +153,7 @@ static PetscErrorCode accept(void *ctx, const StepRequest *rq, char *err, size_t
   if (m->jump != 0 && m->t >= m->t_jump) m->naccept_after++;
   m->x = m->x_trial, m->t += rq->h;
   if (m->onset_c != 0 && m->t > m->t_onset) m->naccept_late++;
-  if (m->onset_c != 0 && m->t > m->t_probe && m->h_probe == 0) m->h_probe = rq->h, m->x_probe = m->x;
+  if (m->onset_c != 0 && m->t > m->t_probe && m->h_probe == 0) m->h_probe = rq->h, m->x_probe = m->x, m->t_probe_end = m->t;
   if (m->naccept < MAXREC) m->accept_t[m->naccept] = m->t, m->accept_h[m->naccept] = rq->h;
   m->naccept++;
   return 0;
@@ -452,6 +461,24 @@ static void case_floor(void) {
         m.naccept_late, none.naccept_late);
 }
 
+/* Every step across a kink (module comment, case 10): the estimate still sets the steps' length. */
+static void case_kinks(void) {
+  Mock          m;
+  RunnerSummary sum;
+  const double  tol = 0.02;
+  mock_init(&m);
+  m.tau = 0.02, m.t_onset = 0.7, m.onset_c = 10, m.t_probe = 0.9, m.kink_all = 1;
+  m.x0 = m.x = 0; /* x = 0 before the onset: the steps grow to max there */
+  m.nstage = 1, m.stage[0] = adaptive_stage(1.0, 1e-3, 1.5, 0.05, MEASURE_OUTPUT, tol);
+  if (run_quiet(&m, &sum)) return;
+  check_end_exactly(__func__, &m, &sum, 1.0);
+  double s = m.t_probe_end - m.h_probe - m.t_onset, h_star = STEP_SAFETY * tol * s;
+  printf("kinks: %d steps (%d after the onset), %d cutbacks; h at t = %g: %.6g, 0.9 tol s = %.6g\n", m.naccept, m.naccept_late,
+         sum.cutbacks, m.t_probe, m.h_probe, h_star);
+  CHECK(sum.cutbacks == 0, "%d steps rejected, expected none (a step across a kink is not rejected on its estimate)", sum.cutbacks);
+  CHECK(near(m.h_probe, h_star, 0.05), "the onset's steps across kinks: h = %.6g, expected 0.9 tol s = %.6g (5 %%)", m.h_probe, h_star);
+}
+
 /* ---------------------------------------------------------------------------------------------------- */
 /* Errors                                                                                               */
 
@@ -490,6 +517,7 @@ int main(int argc, char **argv) {
   case_errors();
   case_jump();
   case_floor();
+  case_kinks();
   char cmd[128];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
   if (!failures && system(cmd)) fprintf(stderr, "note: could not remove %s\n", tmp);

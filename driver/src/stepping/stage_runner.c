@@ -148,6 +148,7 @@ static double error_ratio(Run *r, const StepOutcome *o, const StepRequest *rq, d
  * estimates start afresh from the next step's increment, as after a stage's first step. */
 enum { KINK_NONE, KINK_RATE, KINK_JUMP };
 #define JUMP_SHARE 0.5 /* a jump's departure from the extrapolation: at least this share of the step's increment */
+#define KINK_CUT 0.5   /* the next step after a kink: at least this share of it (after_accept) */
 
 static void remember_output(Run *r, const StepOutcome *o, const StepRequest *rq) {
   RunState *st = &r->st;
@@ -281,9 +282,14 @@ static void after_accept(Run *r, const StepRequest *rq, const StepOutcome *o, do
   RunState *st = &r->st;
   if (st->pending_instant) st->pending_instant = 0, st->dt = step_control_planned(r->view.steps, r->view.duration, 0);
   else st->dt = next_length(r, rq, o, ratio);
-  /* After a kink the estimate may hold the step, not shorten it: a jump of the rate would otherwise cut every
-     step where nodes keep entering contact (3D), and without it the steps there would grow unchecked. */
-  if (kink_ratio >= 0 && r->view.steps->adaptive) st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, &r->gains, rq->h, o->pnewdt, kink_ratio, -1), rq->h));
+  /* A step across a kink is not rejected on its estimate (a jump of the rate would cut every step where nodes keep
+     entering contact), but its estimate sets the next step as any step's does, shortened by at most KINK_CUT. Where
+     every step crosses a kink (a fine contact surface: each node's jump small, the estimate the answer's curvature),
+     the estimate must still shorten the steps; held at their length instead, they grew past what the curvature
+     asked for on an adapted 3D level and its creep depth came out low (docs/performance.md, "Time steps across
+     contact kinks"; docs/driver.md, "Stages, steps and error control"). */
+  if (kink_ratio >= 0 && r->view.steps->adaptive)
+    st->dt = fmin(st->dt, fmax(step_control_next(r->view.steps, &r->gains, rq->h, o->pnewdt, kink_ratio, -1), KINK_CUT * rq->h));
   st->ratio_prev = ratio; /* the PI controller's memory: none across a kink, a rejection or a stage's start */
   st->landing = 0;
   int dir = event_direction(r->view.until.kind);
