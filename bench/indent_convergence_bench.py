@@ -92,14 +92,15 @@ def nested_mesh(text, n, work):
 TIMEOUT = 24 * 3600  # s, one rung (the finest 3D rungs take hours)
 
 
-def run(text, out):
+def run(text, out, driver=None):
     """One rung under nice -n 10: its outputs, and the driver's CPU (user + system, gmsh's meshing included) and
-    peak memory (camclay9.run_measured, wait4), counts from its summary line."""
+    peak memory (camclay9.run_measured, wait4), counts from its summary line. driver: another executable than this
+    tree's build/bin/driver."""
     out.parent.mkdir(parents=True, exist_ok=True)
     path = out.parent / (out.name + ".yaml")
     path.write_text(text)
     log = out.parent / (out.name + ".log")
-    rc, cpu, rss_mb, wall = run_measured(driver_command(path, out, root=ROOT, prefix=["nice", "-n", "10"]), log,
+    rc, cpu, rss_mb, wall = run_measured(driver_command(path, out, driver=driver, root=ROOT, prefix=["nice", "-n", "10"]), log,
                                          timeout=TIMEOUT, cwd=out.parent)
     stdout = log.read_text()
     if rc:

@@ -24,10 +24,14 @@ def store_dir(store=None):
 
 
 def revision(root=None):
-    """The repository's commit (short hash) for a store's provenance: what the bench's tree was; "" outside git."""
-    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root or repo_root(), capture_output=True, text=True,
-                         timeout=60)
-    return out.stdout.strip()
+    """The repository's commit (short hash) for a store's provenance: what the bench's tree was, with "+changes" when
+    its tracked files differ from that commit (the run's code is then not the commit's); "" outside git."""
+    cwd = root or repo_root()
+    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=cwd, capture_output=True, text=True, timeout=60)
+    rev = out.stdout.strip()
+    if rev and subprocess.run(["git", "diff", "--quiet", "HEAD", "--"], cwd=cwd, timeout=60).returncode == 1:
+        rev += "+changes"
+    return rev
 
 
 def path(name, store=None):
