@@ -448,8 +448,8 @@ QUOTES = [
     (R, "its time steps «pc(tet('kerogen_sector'), 2)» in creep depth (docs/adapt.md, \"The time-step error\")"),
     (R, "P1 locks under the soft frame's nearly isochoric flow (creep depth «pc(rung2('lr', 0.02, 0.9, order=1).creep, 0)» on P1 at "
         "h_tip 0.02 µm, «pc(rung2('lr', 0.005, 0.4, order=1).creep, 0)» at 0.005 µm and «f(rung2('lr', 0.005, 0.4, order=1).cpu, 0)» s of "
-        "CPU, against «pc(rung2('lr', 0.01414, 0.9).creep, 1)» for the shipped P2 density on the whole block at «f(rung2('lr', 0.01414, 0.9).cpu, 0)» s)"),
-    (R, "at α = 10 −0.3 %; its time steps «pc(stc('loading_rate_a1', 'creep depth'), 2)» in creep depth"),
+        "CPU, against «pc(rung2('lr', 0.01414, 0.9).creep, 1)» for the uniform P2 zone shipped before on the whole block at «f(rung2('lr', 0.01414, 0.9).cpu, 0)» s)"),
+
     (R, "last level («f(ad('sector', 3).unknowns / 1000, 1)» k unknowns): load «pc(ade('sector', 3, 'P'), 2)», creep depth "
         "«pc(ade('sector', 3, 'creep'), 2)», residual depth «pc(ade('sector', 3, 'h_res'), 2)» against the sector adapted to level 5 "
         "(«f(ad('sector', 5).unknowns / 1000, 1)» k unknowns), whose creep depth «f(adr('sector').creep, 2)» nm is "
@@ -528,11 +528,9 @@ QUOTES = [
         "isp('microindent_BP').log_view.total, 0)» of its time in the contact solve's factorisations |"),
     # the axisymmetric twin's and the 2D scenes' CPU (bench/indent_speed_bench.py)
     (R, "of its own converged answer | «f(isp('nanoindent_kerogen_axi').cpu, 1)» s |"),
-    (R, "| «f(lst('loading_rate_a1').cpu, 0)» s CPU for α = 1 as shipped, «f(lst('loading_rate_a1', 'before').cpu, 0)» s before "
-        "its direct solver and loading steps (medians of «len(lst('loading_rate_a1').cpu_s)» runs, docs/performance.md, "
-        "\"Indentation: the direct solver and the loading steps\"); the whole block took «f(hm('loading_rate_a1', 'whole').cpu, 0)» s "
-        "against the half model's «f(hm('loading_rate_a1').cpu, 0)» s in an earlier bench, before both changes (medians of "
-        "«len(hm('loading_rate_a1').cpu_s)» runs, docs/performance.md, \"2D indentation: the half model\")"),
+    (R, "in the full reproduction (docs/paper.md) «f(meta.cpus['loading_rate_a1'], 0)» s CPU for α = 1, «f(meta.cpus['loading_rate_a10'], 0)» s for α = 10 "
+        "(both levels), «f(meta.cpus['loading_rate_a0.1'], 0)» s for α = 0.1 (three levels); the uniform zone shipped before: «f(lst('loading_rate_a1').cpu, 0)» s "
+        "CPU for α = 1 (medians of «len(lst('loading_rate_a1').cpu_s)» runs, docs/performance.md, \"Indentation: the direct solver and the loading steps\") |"),
     (R, "residual depth «f(ad('bn', 1).q['h_res'] / 1e3, 2)» and «f(ad('bn', 2).q['h_res'] / 1e3, 2)» µm on its first two "
         "reruns, «f(ad('bn', 3).q['h_res'] / 1e3, 3)» µm on its last level («f(ad('bn', 3).unknowns / 1e3, 1)» k unknowns) and "
         "«f(ad('bn', 4).q['h_res'] / 1e3, 3)» µm one level further («f(ad('bn', 4).unknowns / 1e3, 1)» k): converged, "
@@ -544,13 +542,16 @@ QUOTES = [
         "«pu(ad('bp', 2).q['h_res'] / 1e3 / bp.p2.ship.h_res - 1, 0)» above the shipped mesh's «f(bp.p2.ship.h_res, 3)» µm |"),
     (R, "| 2D twin of BN | as the kerogen twin | «f(isp('microindent_BN_axi').cpu, 1)» s |"),
     # the 2D scenes (defects 2, 10)
-    (R, "depth at the end of loading «pc(rung2('lr', 0.01414, 0.9).h_max)», creep depth «pc(rung2('lr', 0.01414, 0.9).creep)», "
-        "residual depth «pc(rung2('lr', 0.01414, 0.9).h_res)» (with an unload added), stress under the tip "
-        "«pc(rung2('lr', 0.01414, 0.9).sig_hold)» and its change over the hold (Fig. 13's quantity) "
-        "«pc(rung2('lr', 0.01414, 0.9).dsig)»; the shipped half model on its own mesh (its h_far rounded) "
-        "«pc(ind.loading_rate_a1.creep_depth / i2.reference.lr.creep.value - 1)» in creep depth"),
-    (R, "the same mesh at α = 0.1 «pc(rung2('lr01', 0.01414, 0.9).creep)» in creep depth (its ladder has not settled; adapted meshes pass its finest rung with a fifth of "
-        "the unknowns and head below its extrapolation: docs/performance.md, \"Adapted meshes\") and at α = 10 «pc(rung2('lr10', 0.01414, 0.9).creep)»"),
+    (R, "docs/paper.md's runs: α = 1 depth at the end of loading «pc(ind.loading_rate_a1.depth_end_of_load / i2.reference.lr.h_max.value - 1)», creep depth "
+        "«pc(ind.loading_rate_a1.creep_depth / i2.reference.lr.creep.value - 1)»; α = 10 «pc(ind.loading_rate_a10.depth_end_of_load / i2.reference.lr10.h_max.value - 1)» "
+        "and «pc(ind.loading_rate_a10.creep_depth / i2.reference.lr10.creep.value - 1)»; α = 0.1 «pc(ind['loading_rate_a0.1']['depth_end_of_load'] / i2.reference.lr01.h_max.value - 1)» "
+        "and «pc(ind['loading_rate_a0.1']['creep_depth'] / i2.reference.lr01.creep.value - 1)» (its answer an extrapolation, ± «pu(i2.reference.lr01.creep.hw)»); "
+        "from the same coarse start with an unload added, α = 1's first rerun is «pc(ade('lr1', 1, 'h_res'), 2)» in residual depth"),
+    (R, "The uniform zone shipped before (h_tip 0.0141 µm within 0.9 µm), at α = 1: depth at the end of loading «pc(rung2('lr', 0.01414, 0.9).h_max)», "
+        "creep depth «pc(rung2('lr', 0.01414, 0.9).creep)», residual depth «pc(rung2('lr', 0.01414, 0.9).h_res)» (with an unload added), stress under the tip "
+        "«pc(rung2('lr', 0.01414, 0.9).sig_hold)» and its change over the hold (Fig. 13's quantity) «pc(rung2('lr', 0.01414, 0.9).dsig)»; "
+        "at α = 0.1 «pc(rung2('lr01', 0.01414, 0.9).creep)» in creep depth and at α = 10 «pc(rung2('lr10', 0.01414, 0.9).creep)»; the time steps "
+        "«pc(stc('loading_rate_a1', 'creep depth'), 2)» in creep depth"),
     (R, "(at 20 k unknowns: creep «pc(rung2('bed', 0.3536, 10.0).creep)» against "
         "«pc(rung2('bed', 0.1768, 10.0, 1).creep)», residual depth «pc(rung2('bed', 0.3536, 10.0).h_res)» against "
         "«pc(rung2('bed', 0.1768, 10.0, 1).h_res)»)"),

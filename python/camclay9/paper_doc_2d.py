@@ -45,8 +45,10 @@ def fig11(alpha, z):
 
 
 FIG11_RULE = ("rules: α = 0.1 the sector beside the indent holds the largest share; α = 10 the zone fills ≥ half its "
-              "half-disc with no sector above half; α = 1 fills ≥ half; the zone: Δ‖εvp‖ above 10 % of its 99th percentile "
-              "within 3a; each rule at every hold time of the paper's panels, " + ", ".join(f"{t} s" for t in TIMES11))
+              "half-disc with no sector above half; α = 1 fills ≥ half; the zone: Δ‖εvp‖ above 10 % of its 99th percentile (by area) "
+              "within 3a; each rule at every hold time of the paper's panels, " + ", ".join(f"{t} s" for t in TIMES11)
+              + "; percentiles by area since 2026-12-02: by cell count they moved with the mesh, docs/performance.md, "
+              "\"Figs. 9 and 11: percentiles by area, not by cell count\"")
 
 
 def fig11_times(alpha, s):
@@ -192,7 +194,7 @@ def fields_tables(S):
     if not all(s.get("regions") and s.get("fig11") for s in S.values()):
         return []
     L = ["", "Figs. 9–12 as numbers (end of the hold unless said; the regions: beneath |x| < a/4, beside a/2 < |x| < 3a/2, "
-         "both −a/2 < y < 0, cells clipped to them; rings around the tip of width a/6; Fig. 11's zone: Δ‖εvp‖ above 10 % of "
+         "both −a/2 < y < 0, cells clipped to them; rings around the tip of width a/6; percentiles by area, not by cell count; Fig. 11's zone: Δ‖εvp‖ above 10 % of "
          "its 99th percentile within 3a, its sectors 0–30°, 30–60°, 60–90° from the surface):", "",
          "| α | ‖dev εvp‖ / \\|tr εvp\\| (99th percentiles within 2a) | share of r < 2a above 10 % of it, dev / tr | ring of "
          "the peak, peak / innermost ring: hold's growth of ‖εvp‖; total ‖εvp‖ | Fig. 11 at " + " / ".join(f"{t} s" for t in TIMES11)
@@ -228,7 +230,7 @@ def fields_verdicts(S, f13):
                  "give the same verdict): " + "; ".join(f"α = {a}: {fig11_verdict(a, s)}: {fig11_text(a, s)}" for a, s in S.items()) + ".")
     if all(R.values()):
         r01 = R["0.1"]
-        L += [f"Fig. 9 (rule: for every α, dev's 99th percentile within 2a above tr's, and dev above 10 % of its own 99th "
+        L += [f"Fig. 9 (rule: for every α, dev's 99th percentile (by area) within 2a above tr's, and dev above 10 % of its own 99th "
               f"percentile over a smaller share of r < 2a than tr): {_v(fig9(R))}.",
               f"Fig. 12, α = 1 and 10 (rule: Δ‖σ‖ beneath the tip < 0): {_v(all(R[a]['dsig_beneath'] < 0 for a in ('1', '10')))}. "
               f"α = 0.1 (rule: the sides relax, Δ‖σ‖ beside < 0 < beneath): {_v(r01['dsig_sides'] < 0 < r01['dsig_beneath'])}: "

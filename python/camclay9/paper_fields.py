@@ -63,6 +63,15 @@ class Hold:
 
 
 # ------------------------------------------------------------------ numbers
+def area_percentile(values, areas, q):
+    """The q-th percentile of cell values weighted by the cells' areas: the value below which q % of the area lies.
+    Not the cells' count: on a graded or adapted mesh the small cells near the tip would outweigh the rest, and a
+    count percentile would move with the mesh, not with the field."""
+    o = np.argsort(values)
+    cum = np.cumsum(areas[o])
+    return float(values[o][min(np.searchsorted(cum, q / 100 * cum[-1]), cum.size - 1)])
+
+
 def ring_profile(H, values, a, nbins=12, rmax=2.0):
     """Area means of cell values (below the surface) in rings around the tip, r/a in [0, rmax] in nbins rings."""
     F = H.F
@@ -75,20 +84,20 @@ def ring_profile(H, values, a, nbins=12, rmax=2.0):
 
 def sector_shares(H, values, a, rmax=3.0, level=0.1):
     """Fig. 11: the inelastic zone (cells within rmax a of the tip where values > level x their 99th percentile
-    there), split by the angle from the surface (0-30, 30-60, 60-90 deg: beside the indent ... beneath it): each
+    there, by area), split by the angle from the surface (0-30, 30-60, 60-90 deg: beside the indent ... beneath it): each
     part's share of the zone's integral of values; and the zone's fill of the half-disc of its 95th-percentile
-    radius (1: a whole circular region)."""
+    radius (by area) (1: a whole circular region)."""
     F = H.F
     x, y = F.centroids[:, 0], F.centroids[:, 1]
     r = np.hypot(x, y)
     near = (r < rmax * a) & (y < 0)
-    top = np.percentile(values[near], 99)
+    top = area_percentile(values[near], H.A[near], 99)
     zone = near & (values > level * top)
     ang = np.degrees(np.arctan2(-y, np.abs(x)))          # 0: along the surface, 90: straight down
     w = values * H.A
     tot = np.sum(w[zone])
     shares = [float(np.sum(w[zone & (ang >= lo) & (ang < hi)]) / tot) for lo, hi in ((0, 30), (30, 60), (60, 90.01))]
-    R = np.percentile(r[zone], 95)
+    R = area_percentile(r[zone], H.A[zone], 95)
     whole = 2 if half_model(F) else 1                 # a half model holds half of the zone's area
     fill = float(whole * np.sum(H.A[zone & (r <= R)]) / (0.5 * math.pi * R * R))
     return dict(surface=shares[0], middle=shares[1], beneath=shares[2], fill=fill, radius=float(R / a))
@@ -110,7 +119,7 @@ def loading_rate_numbers(run):
         ev = six(F, "evp", H.k1)
         near = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < 2 * a
         for name, v in (("tr", np.abs(trace(ev))), ("dev", dev_norm(ev, True))):
-            top = float(np.percentile(v[near], 99))
+            top = area_percentile(v[near], H.A[near], 99)
             res[f"{name}_p99"] = top
             res[f"{name}_frac"] = float(H.A[near & (v > 0.1 * top)].sum() / H.A[near].sum())
         # Fig. 10(b): where the hold's vp strain grows most, relative to the tip
@@ -197,8 +206,10 @@ def _map(fig, ax, F, nodal, lim, clim, cmap, title):
 
 
 def _clim(arrays, F, lim, diverging):
-    m = (np.abs(F.x[:, 0]) <= lim) & (F.x[:, 1] >= -lim)
-    v = np.concatenate([x[m] for x in arrays])
+    """The colour limits of nodal arrays within the window; F: their fields, one for all or one per array (runs on
+    meshes of their own, as adapted ones are)."""
+    Fs = F if isinstance(F, (list, tuple)) else [F] * len(arrays)
+    v = np.concatenate([x[(np.abs(G.x[:, 0]) <= lim) & (G.x[:, 1] >= -lim)] for x, G in zip(arrays, Fs)])
     v = v[np.isfinite(v)]
     if diverging:
         s = float(np.percentile(np.abs(v), 99)) or 1.0
@@ -212,7 +223,7 @@ def _grid(runs, labels, columns, fields, title, label, path, diverging=False):
     Hs = [Hold(r) for r in runs]
     try:
         nods = [[nodal_average(H.F, v) for v in fields(H)] for H in Hs]
-        clim, cmap = _clim([x for row in nods for x in row], Hs[0].F, WINDOW, diverging)
+        clim, cmap = _clim([x for row in nods for x in row], [H.F for H, row in zip(Hs, nods) for _ in row], WINDOW, diverging)
         fig = Figure(figsize=(3.3 * len(columns) + 1.2, 2.3 * len(Hs) + 0.6), layout="constrained")
         axs = np.atleast_2d(fig.subplots(len(Hs), len(columns), squeeze=False))
         for i, (H, row) in enumerate(zip(Hs, nods)):

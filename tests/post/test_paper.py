@@ -206,3 +206,51 @@ def test_bedding_variants_adapt_at_1um_and_keep_one_mesh_at_3um(tmp_path):
     assert "adapt" not in three["mesh"] and (p["h_tip"], p["h_far"]) == (0.125, 3.75)
     assert abs(p["r_fine"] - shipped["mesh"]["parameters"]["r_fine"] / 3) < 1e-12 and three["mesh"]["thickness"] == 3
     assert "adapt" not in yaml.safe_load(rp.variant_scene("bedding_theta45", tmp_path / "c.yaml", quick=True).read_text())["mesh"]
+
+
+def test_area_percentile():
+    """camclay9.paper_fields.area_percentile: the value below which q % of the area lies; two cells of values 1 and 2
+    and areas 3 and 1 put 75 % of the area at 1, so the 50th and 75th percentiles are 1 and the 80th is 2 (by count,
+    numpy's median would be 1.5)."""
+    from camclay9 import paper_fields as pf
+    v, a = np.array([2.0, 1.0]), np.array([1.0, 3.0])
+    assert (pf.area_percentile(v, a, 50), pf.area_percentile(v, a, 75), pf.area_percentile(v, a, 80)) == (1.0, 1.0, 2.0)
+
+
+def test_fig11_zone_does_not_follow_the_mesh():
+    """Fig. 11's zone numbers (paper_fields.sector_shares) of one smooth field on a uniform mesh and on a mesh whose
+    cells crowd near the tip (as an adapted one's do): by area (the percentiles since 2026-12-02) within 0.01 of each
+    other; by cell count, as before, the crowded cells raise the zone's threshold and the numbers move by more than 0.04."""
+    from types import SimpleNamespace
+    from camclay9 import paper_fields as pf
+
+    def mesh(n, grade):
+        s = np.linspace(0, 1, n + 1) ** grade              # grade > 1: the cells crowd near x = 0 and y = 0
+        X, Y = np.meshgrid(s, -s, indexing="ij")
+        x = np.c_[X.ravel(), Y.ravel()]
+        v = lambda i, j: i * (n + 1) + j
+        cells = np.array([c for i in range(n) for j in range(n)
+                          for c in ((v(i, j), v(i + 1, j), v(i + 1, j + 1)), (v(i, j), v(i + 1, j + 1), v(i, j + 1)))])
+        F = SimpleNamespace(x=x, cells=cells, centroids=x[cells].mean(axis=1))
+        e1, e2 = (x[cells[:, 1]] - x[cells[:, 0]]), (x[cells[:, 2]] - x[cells[:, 0]])
+        return SimpleNamespace(F=F, A=0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]))
+
+    def zone(H):
+        c = H.F.centroids
+        r = np.hypot(c[:, 0], c[:, 1])
+        field = np.exp(-((c[:, 0] / 0.3) ** 2 + ((c[:, 1] + 0.1) / 0.2) ** 2)) + 0.5 * np.exp(-(r / 0.02) ** 2)
+        return pf.sector_shares(H, field, 0.25)
+
+    uniform, graded = mesh(120, 1.0), mesh(120, 2.5)
+    by_area = [zone(uniform), zone(graded)]
+    keep = pf.area_percentile
+    pf.area_percentile = lambda v, w, q: float(np.percentile(v, q))
+    try:
+        by_count = [zone(uniform), zone(graded)]
+    finally:
+        pf.area_percentile = keep
+    keys = ("surface", "middle", "beneath", "fill")
+    d_area = max(abs(by_area[0][k] - by_area[1][k]) for k in keys)
+    d_count = max(abs(by_count[0][k] - by_count[1][k]) for k in keys)
+    print(f"by area {by_area}\nby count {by_count}\nlargest difference: by area {d_area:.3f}, by count {d_count:.3f}")
+    assert d_area < 0.01 and d_count > 0.04
