@@ -259,7 +259,7 @@ def bedding(n, trends, images, rel, img):
          "half model, the others on the whole block meshed as that half and its mirror image) and reruns once on a mesh made "
          "from its own error indicator (docs/adapt.md), which states the creep depth's mesh error beside its time-step error "
          "(README, Which model each scene uses). The flow's direction: the "
-         "principal axis of the hold's displacement increments within 2a of the tip (a = 5 µm), as an angle from the "
+         "principal axis of the hold's displacement increments within 2a of the tip (a = 5 µm; the vertices weighed by their areas since 2026-12-02, not by their count), as an angle from the "
          "downward load axis; the bedding normal's axis (BN) is at −θ on that convention, the planes' (BP) at 90° − θ.", "",
          "| θ | h at end of load [µm] | creep depth in 2000 s [µm] | flow axis [°] | at t = 3 µm: h at end of load, creep depth [µm] |",
          "|---|---|---|---|---|"]

@@ -163,10 +163,19 @@ def flow_direction(run, a, theta):
         return None
     with Hold(run) as H:
         F = H.F
-        x, du = F.x, F.u[H.k1] - F.u[H.k0]
+        x, du, w = F.x, F.u[H.k1] - F.u[H.k0], nodal_areas(F, H.A)
         if half_model(F):
-            x, du = mirrored(x, du)
-        return flow_axis(x, du, a, theta)
+            m = x[:, 0] > 1e-9 * np.ptp(x[:, 0])
+            (x, du), w = mirrored(x, du), np.r_[w, w[m]]
+        return flow_axis(x, du, a, theta, w)
+
+
+def nodal_areas(F, areas):
+    """Each vertex's share of the area around it: every cell's area split equally among its vertices (a lumped mass),
+    so that sums over the vertices weigh the field by area, not by how densely the mesh holds vertices."""
+    w = np.zeros(len(F.x))
+    np.add.at(w, F.cells.ravel(), np.repeat(areas / F.cells.shape[1], F.cells.shape[1]))
+    return w
 
 
 def mirrored(x, v):
@@ -176,17 +185,18 @@ def mirrored(x, v):
     return np.r_[x, x[m] * [-1, 1]], np.r_[v, v[m] * [-1, 1]]
 
 
-def flow_axis(x, du, a, theta):
+def flow_axis(x, du, a, theta, w=None):
     """The principal direction of the increments du at x within 2a of the tip (vertices below the surface): the
-    orientation tensor's axis, weighted by |du|^2, as the angle from the downward vertical, positive toward +x; and on
+    orientation tensor's axis, weighted by |du|^2 and by the vertices' areas w (nodal_areas; None: equal weights), as the angle from the downward vertical, positive toward +x; and on
     the same convention the bedding normal's axis (BN; n = (sin t, cos t) with y up, so its downward half points at -t)
     and the planes' (BP, at 90 - t). A principal axis tilted from the load toward BN's side is flow toward BN."""
     sel = (np.hypot(x[:, 0], x[:, 1]) < 2 * a) & (x[:, 1] < 0)
-    T = du[sel].T @ du[sel]
+    wt = np.ones(len(x)) if w is None else np.asarray(w)
+    T = (du[sel] * wt[sel, None]).T @ du[sel]
     w, v = np.linalg.eigh(T)
     d = v[:, -1] * (1 if v[1, -1] < 0 else -1)          # the principal axis, pointing down
     beta = math.degrees(math.atan2(d[0], -d[1]))
-    mean = du[sel].mean(axis=0)
+    mean = np.average(du[sel], axis=0, weights=wt[sel])
     return {"beta": beta, "anisotropy": float(w[-1] / max(w[0], 1e-300)), "theta": theta, "beta_bn": -float(theta),
             "mean_du": mean.tolist(), "mean_angle": math.degrees(math.atan2(mean[0], -mean[1]))}
 

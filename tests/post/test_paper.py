@@ -254,3 +254,31 @@ def test_fig11_zone_does_not_follow_the_mesh():
     d_count = max(abs(by_count[0][k] - by_count[1][k]) for k in keys)
     print(f"by area {by_area}\nby count {by_count}\nlargest difference: by area {d_area:.3f}, by count {d_count:.3f}")
     assert d_area < 0.01 and d_count > 0.04
+
+
+def test_fig15_flow_axis_does_not_follow_the_mesh():
+    """Fig. 15's flow axis (paper_fields.flow_axis) of one displacement field on a uniform mesh and on one whose vertices
+    crowd near the tip: with the vertices weighed by their areas (paper_fields.nodal_areas, since 2026-12-02) within
+    0.2 deg of each other; weighed by their count, as before, more than 1 deg apart."""
+    from types import SimpleNamespace
+    from camclay9 import paper_fields as pf
+
+    def mesh(n, grade):
+        s = np.linspace(0, 1, n + 1) ** grade
+        X, Y = np.meshgrid(np.r_[-s[:0:-1], s], -s, indexing="ij")
+        x = np.c_[X.ravel(), Y.ravel()]
+        m = 2 * n + 1
+        v = lambda i, j: i * (n + 1) + j
+        cells = np.array([c for i in range(m - 1) for j in range(n)
+                          for c in ((v(i, j), v(i + 1, j), v(i + 1, j + 1)), (v(i, j), v(i + 1, j + 1), v(i, j + 1)))])
+        F = SimpleNamespace(x=x, cells=cells)
+        e1, e2 = (x[cells[:, 1]] - x[cells[:, 0]]), (x[cells[:, 2]] - x[cells[:, 0]])
+        return x, pf.nodal_areas(F, 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]))
+
+    # a flow tilted near the tip and straight down away from it: the vertices' density decides the axis by count
+    du = lambda x: np.c_[0.6 * np.exp(-(np.hypot(*x.T) / 0.05) ** 2), -np.ones(len(x))]
+    (xu, wu), (xg, wg) = mesh(60, 1.0), mesh(60, 2.5)
+    by_area = [pf.flow_axis(xu, du(xu), 0.5, 0, wu)["beta"], pf.flow_axis(xg, du(xg), 0.5, 0, wg)["beta"]]
+    by_count = [pf.flow_axis(xu, du(xu), 0.5, 0)["beta"], pf.flow_axis(xg, du(xg), 0.5, 0)["beta"]]
+    print(f"beta by area {by_area}, by count {by_count}")
+    assert abs(by_area[0] - by_area[1]) < 0.2 and abs(by_count[0] - by_count[1]) > 1
