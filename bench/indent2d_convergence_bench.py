@@ -50,11 +50,10 @@ UNLOAD = ("  - name: unload\n    duration: 20\n    indenter: {load: 0}\n"
 
 
 def scene_text(skey, order, h_tip, r_fine, tol=None, far=FAR):
-    """The scene as shipped with this mesh (one uniform mesh: a shipped mesh.adapt is dropped), fields at the stages' ends only, and the unload stage; tol: the load and
+    """The scene as shipped with this mesh (one uniform mesh: step_control_bench.absolute drops a mesh.adapt), fields at the stages' ends only, and the unload stage; tol: the load and
     hold stages' output error tolerance (shipped 1.5e-2)."""
     name, scale, _, change = SCENES[skey]
     t = whole_block(absolute((ROOT / "input" / f"{name}.yaml").read_text()))   # the ladders' model: the whole block
-    t = re.sub(r"\n  adapt: \{[^}]*\}[^\n]*", "", t)   # a rung is one uniform mesh: no reruns on adapted ones (mesh.adapt)
     if change:
         assert change[0] in t, f"{name}.yaml: no '{change[0]}' to change"
         t = t.replace(change[0], change[1])

@@ -15,18 +15,18 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-import numpy as np
 import yaml
 from camclay9 import driver_command, read_summary, run_command
 from camclay9 import paper_fields
 from camclay9 import paper_measures_study as study
-from camclay9.paper_doc_2d import fig11
+from camclay9.indent2d_study import SHIPPED
+from camclay9.paper_doc_2d import fig9, fig11
 from camclay9.performance_doc import publish
 from camclay9.results_store import revision
 
 ROOT = Path(__file__).resolve().parents[1]
 ALPHAS = ("0.1", "1", "10")
-UNIFORM = {"h_tip": 0.01414, "h_far": 0.106}   # the fine zone the loading-rate scenes shipped until 2026-12-02 (r_fine 0.9)
+UNIFORM = {"h_tip": SHIPPED["lr"][2], "h_far": 0.106}   # the fine zone the loading-rate scenes shipped until 2026-12-02 (r_fine 0.9)
 
 
 def uniform_run(paper, out, alpha):
@@ -44,22 +44,12 @@ def uniform_run(paper, out, alpha):
     return run
 
 
-def count_percentile(values, areas, q):
-    """The percentile over the cells by their count (docs/paper.md before 2026-12-02)."""
-    return float(np.percentile(values, q))
-
-
 def measure(run, alpha, mesh, weight):
     """One row of the store: Figs. 9 and 11 of a run, with the percentiles by `weight`."""
-    keep = paper_fields.area_percentile
-    if weight == "count":
-        paper_fields.area_percentile = count_percentile
-    try:
-        r = paper_fields.loading_rate_numbers(run)
-    finally:
-        paper_fields.area_percentile = keep
+    by = paper_fields.count_percentile if weight == "count" else paper_fields.area_percentile
+    r = paper_fields.loading_rate_numbers(run, percentile=by)
     f9 = {k: r[k] for k in ("dev_p99", "tr_p99", "dev_frac", "tr_frac")}
-    f9["verdict"] = bool(f9["dev_p99"] > f9["tr_p99"] and f9["dev_frac"] < f9["tr_frac"])
+    f9["verdict"] = bool(fig9({alpha: f9}))
     z = {t: {k: r["fig11"][t][k] for k in ("surface", "middle", "beneath", "fill")} for t in study.TIMES}
     for t in study.TIMES:
         z[t]["verdict"] = bool(fig11(alpha, r["fig11"][t]))

@@ -201,8 +201,8 @@ def shipped_lines(skey, ref, paper, root=None):
     e = {"h_max": s["depth_end_of_load"] / ref["h_max"]["value"] - 1, "creep": s["creep_depth"] / ref["creep"]["value"] - 1}
     text = (Path(root or repo_root()) / "input" / f"{SHIPPED[skey][0]}.yaml").read_text()
     first = adapted_from(text)
-    reruns = {1: "once", 2: "twice"}.get(yaml.safe_load(text)["mesh"].get("adapt", {}).get("levels"), "by reruns") if first else ""
-    model = (f"a mesh adapted {reruns} to its answer from a first mesh of h_tip {first:g} µm (docs/adapt.md)" if first else
+    reruns = {1: "once", 2: "twice"}.get(first[1], "by reruns") if first else ""
+    model = (f"a mesh adapted {reruns} to its answer from a first mesh of h_tip {first[0]:g} µm (docs/adapt.md)" if first else
              "the half model x ≥ 0 on a mesh of the shipped density (\"2D indentation: the half model\"), another draw of the "
              "same mesh noise" if half_model_scene(text) else "its own mesh of the shipped density, another draw of the same mesh noise")
     return [f"The shipped scene itself ({SHIPPED[skey][0]}.yaml, as docs/paper.md runs it; {model}): depth at the end of loading {s['depth_end_of_load'] * 1e3:.4g} nm "
@@ -210,9 +210,9 @@ def shipped_lines(skey, ref, paper, root=None):
 
 
 def adapted_from(text):
-    """A scene's first mesh's h_tip where it adapts its mesh (mesh.adapt), else None."""
+    """(its first mesh's h_tip, its reruns) where a scene adapts its mesh (mesh.adapt), else None."""
     mesh = yaml.safe_load(text).get("mesh", {})
-    return mesh["parameters"]["h_tip"] if mesh.get("adapt") else None
+    return (mesh["parameters"]["h_tip"], mesh["adapt"].get("levels")) if mesh.get("adapt") else None
 
 
 def within_table(res, skey, ref, root=None):

@@ -72,6 +72,12 @@ def area_percentile(values, areas, q):
     return float(values[o][min(np.searchsorted(cum, q / 100 * cum[-1]), cum.size - 1)])
 
 
+def count_percentile(values, areas, q):
+    """The q-th percentile of cell values over the cells by their count, whatever their areas (docs/paper.md before
+    2026-12-02; bench/paper_measures_bench.py compares the two)."""
+    return float(np.percentile(values, q))
+
+
 def ring_profile(H, values, a, nbins=12, rmax=2.0):
     """Area means of cell values (below the surface) in rings around the tip, r/a in [0, rmax] in nbins rings."""
     F = H.F
@@ -82,29 +88,29 @@ def ring_profile(H, values, a, nbins=12, rmax=2.0):
     return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
 
 
-def sector_shares(H, values, a, rmax=3.0, level=0.1):
+def sector_shares(H, values, a, rmax=3.0, level=0.1, percentile=area_percentile):
     """Fig. 11: the inelastic zone (cells within rmax a of the tip where values > level x their 99th percentile
     there, by area), split by the angle from the surface (0-30, 30-60, 60-90 deg: beside the indent ... beneath it): each
     part's share of the zone's integral of values; and the zone's fill of the half-disc of its 95th-percentile
-    radius (by area) (1: a whole circular region)."""
+    radius (by area) (1: a whole circular region). percentile: area_percentile, or count_percentile to compare."""
     F = H.F
     x, y = F.centroids[:, 0], F.centroids[:, 1]
     r = np.hypot(x, y)
     near = (r < rmax * a) & (y < 0)
-    top = area_percentile(values[near], H.A[near], 99)
+    top = percentile(values[near], H.A[near], 99)
     zone = near & (values > level * top)
     ang = np.degrees(np.arctan2(-y, np.abs(x)))          # 0: along the surface, 90: straight down
     w = values * H.A
     tot = np.sum(w[zone])
     shares = [float(np.sum(w[zone & (ang >= lo) & (ang < hi)]) / tot) for lo, hi in ((0, 30), (30, 60), (60, 90.01))]
-    R = area_percentile(r[zone], H.A[zone], 95)
+    R = percentile(r[zone], H.A[zone], 95)
     whole = 2 if half_model(F) else 1                 # a half model holds half of the zone's area
     fill = float(whole * np.sum(H.A[zone & (r <= R)]) / (0.5 * math.pi * R * R))
     return dict(surface=shares[0], middle=shares[1], beneath=shares[2], fill=fill, radius=float(R / a))
 
 
-def loading_rate_numbers(run):
-    """Figs. 9-13 as numbers (docs/paper.md), None without fields.h5."""
+def loading_rate_numbers(run, percentile=area_percentile):
+    """Figs. 9-13 as numbers (docs/paper.md), None without fields.h5; percentile: as sector_shares'."""
     if not (Path(run) / "fields.h5").is_file():
         return None
     with Hold(run) as H:
@@ -119,7 +125,7 @@ def loading_rate_numbers(run):
         ev = six(F, "evp", H.k1)
         near = np.hypot(F.centroids[:, 0], F.centroids[:, 1]) < 2 * a
         for name, v in (("tr", np.abs(trace(ev))), ("dev", dev_norm(ev, True))):
-            top = area_percentile(v[near], H.A[near], 99)
+            top = percentile(v[near], H.A[near], 99)
             res[f"{name}_p99"] = top
             res[f"{name}_frac"] = float(H.A[near & (v > 0.1 * top)].sum() / H.A[near].sum())
         # Fig. 10(b): where the hold's vp strain grows most, relative to the tip
@@ -139,8 +145,8 @@ def loading_rate_numbers(run):
         res["fig11"], res["fig11_sens"] = {}, {}
         for th, k in zip(HOLD_TIMES, H.ks):
             d = H.evp(k) - e0
-            res["fig11"][f"{th:g}"] = sector_shares(H, d, a)
-            res["fig11_sens"][f"{th:g}"] = {f"{lv:g}/{rm:g}": sector_shares(H, d, a, rmax=rm, level=lv)
+            res["fig11"][f"{th:g}"] = sector_shares(H, d, a, percentile=percentile)
+            res["fig11_sens"][f"{th:g}"] = {f"{lv:g}/{rm:g}": sector_shares(H, d, a, rmax=rm, level=lv, percentile=percentile)
                                             for lv in ZONE_LEVELS for rm in ZONE_CUTOFFS}
         # Figs. 12, 13: |sigma| beneath the tip and beside the indent (region means)
         s0 = H.sig(H.k0)
@@ -165,8 +171,7 @@ def flow_direction(run, a, theta):
         F = H.F
         x, du, w = F.x, F.u[H.k1] - F.u[H.k0], nodal_areas(F, H.A)
         if half_model(F):
-            m = x[:, 0] > 1e-9 * np.ptp(x[:, 0])
-            (x, du), w = mirrored(x, du), np.r_[w, w[m]]
+            x, du, w = mirrored(x, du, w)
         return flow_axis(x, du, a, theta, w)
 
 
@@ -178,11 +183,11 @@ def nodal_areas(F, areas):
     return w
 
 
-def mirrored(x, v):
+def mirrored(x, v, *scalars):
     """A half model's nodal vectors v at x (x >= 0) with their mirror image about x = 0: the whole block's, the nodes on
-    the axis once (the mirror plane holds v_x = 0 there)."""
+    the axis once (the mirror plane holds v_x = 0 there); nodal scalars (weights) follow their nodes unchanged."""
     m = x[:, 0] > 1e-9 * np.ptp(x[:, 0])
-    return np.r_[x, x[m] * [-1, 1]], np.r_[v, v[m] * [-1, 1]]
+    return (np.r_[x, x[m] * [-1, 1]], np.r_[v, v[m] * [-1, 1]], *(np.r_[s, s[m]] for s in scalars))
 
 
 def flow_axis(x, du, a, theta, w=None):
@@ -215,10 +220,9 @@ def _map(fig, ax, F, nodal, lim, clim, cmap, title):
     return pc
 
 
-def _clim(arrays, F, lim, diverging):
-    """The colour limits of nodal arrays within the window; F: their fields, one for all or one per array (runs on
-    meshes of their own, as adapted ones are)."""
-    Fs = F if isinstance(F, (list, tuple)) else [F] * len(arrays)
+def _clim(arrays, Fs, lim, diverging):
+    """The colour limits of nodal arrays within the window; Fs: each array's fields (runs on meshes of their own, as
+    adapted ones are)."""
     v = np.concatenate([x[(np.abs(G.x[:, 0]) <= lim) & (G.x[:, 1] >= -lim)] for x, G in zip(arrays, Fs)])
     v = v[np.isfinite(v)]
     if diverging:
@@ -261,7 +265,7 @@ def draw_loading_rate(runs, labels, figs):
         axs = fig.subplots(2, 2)
         for i, (name, f) in enumerate((("tr ε^vp", lambda e: trace(e)), ("‖dev ε^vp‖", lambda e: dev_norm(e, True)))):
             vals = [nodal_average(H.F, f(six(H.F, "evp", k))) for k in (H.k0, H.k1)]
-            clim, cmap = _clim(vals, H.F, WINDOW, name.startswith("tr") and min(v.min() for v in vals) < 0 < max(v.max() for v in vals))
+            clim, cmap = _clim(vals, [H.F] * len(vals), WINDOW, name.startswith("tr") and min(v.min() for v in vals) < 0 < max(v.max() for v in vals))
             for j, (v, when) in enumerate(zip(vals, ("start of hold", "end of hold"))):
                 pc = _map(fig, axs[i, j], H.F, v, WINDOW, clim, cmap, f"{name}, {when}")
             fig.colorbar(pc, ax=axs[i, :], shrink=0.8).set_label(name, fontsize=8)

@@ -14,12 +14,12 @@ The store: {"provenance": {"command", "date", "rev", "machine"}, "rows": [...]},
 claim holds by docs/paper.md's rule (camclay9.paper_doc_2d).
 """
 from camclay9 import results_store
+from camclay9.paper_doc_2d import TIMES11 as TIMES
 
 STORE = "paper_measures"
 TITLE = "## Figs. 9 and 11: percentiles by area, not by cell count"
 MESHES = ("uniform", "adapted")
 WEIGHTS = ("count", "area")
-TIMES = ("100", "500", "2000")
 ROW_KEYS = ("alpha", "mesh", "weight", "unknowns", "fig9", "fig11")
 
 

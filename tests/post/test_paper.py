@@ -235,20 +235,15 @@ def test_fig11_zone_does_not_follow_the_mesh():
         e1, e2 = (x[cells[:, 1]] - x[cells[:, 0]]), (x[cells[:, 2]] - x[cells[:, 0]])
         return SimpleNamespace(F=F, A=0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]))
 
-    def zone(H):
+    def zone(H, percentile):
         c = H.F.centroids
         r = np.hypot(c[:, 0], c[:, 1])
         field = np.exp(-((c[:, 0] / 0.3) ** 2 + ((c[:, 1] + 0.1) / 0.2) ** 2)) + 0.5 * np.exp(-(r / 0.02) ** 2)
-        return pf.sector_shares(H, field, 0.25)
+        return pf.sector_shares(H, field, 0.25, percentile=percentile)
 
     uniform, graded = mesh(120, 1.0), mesh(120, 2.5)
-    by_area = [zone(uniform), zone(graded)]
-    keep = pf.area_percentile
-    pf.area_percentile = lambda v, w, q: float(np.percentile(v, q))
-    try:
-        by_count = [zone(uniform), zone(graded)]
-    finally:
-        pf.area_percentile = keep
+    by_area = [zone(uniform, pf.area_percentile), zone(graded, pf.area_percentile)]
+    by_count = [zone(uniform, pf.count_percentile), zone(graded, pf.count_percentile)]
     keys = ("surface", "middle", "beneath", "fill")
     d_area = max(abs(by_area[0][k] - by_area[1][k]) for k in keys)
     d_count = max(abs(by_count[0][k] - by_count[1][k]) for k in keys)
