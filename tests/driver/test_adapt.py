@@ -286,6 +286,29 @@ stages:
     assert 1.4 < ratio < 2.8
 
 
+def test_fields_every_does_not_shape_the_mesh(tmp_path):
+    """The adapted mesh serves the times the run reports at (its start, the stages' output times and ends), not the
+    times a user asks fields at: Hertz pushed in 4 steps, once with fields at the start and the end only and once at
+    every step (output.fields_every 1), gives the same size field byte for byte and the same level-1 mesh and load.
+    Before the indicator's history kept report times only, each field output entered it: the contact's edge at the
+    intermediate steps (radius 0.05 to 0.087 of the final 0.1) raised the indicator inside the final contact, and the
+    level-1 meshes differed."""
+    base = hertz_scene(1, 0.05, 1.0, adapt="\n  adapt: {levels: 1, growth: 2}").replace("steps: {count: 2}", "steps: {count: 4}")
+    runs = {}
+    for every in (0, 1):
+        out = tmp_path / f"every{every}"
+        run(base + f"output: {{fields_every: {every}}}\n", out, exe="driver_elastic")
+        runs[every] = out
+    written = [len(re.findall(r"<Grid Name=\"output ", (runs[e] / "fields.xmf").read_text())) for e in (0, 1)]
+    sizes = [(runs[e] / "adapt" / "level0" / "sizes.pos").read_bytes() for e in (0, 1)]
+    s = [summary(runs[e]) for e in (0, 1)]
+    cells = [[lv["cells"] for lv in x["levels"]] for x in s]
+    print(f"field outputs {written}, cells {cells}, loads {[x['stages'][-1]['end']['load'] for x in s]}")
+    assert written[1] > written[0]
+    assert sizes[0] == sizes[1] and cells[0] == cells[1]
+    assert s[0]["stages"][-1]["end"]["load"] == s[1]["stages"][-1]["end"]["load"]
+
+
 def test_restart_checks_the_checkpoint_first(tmp_path):
     """A damaged checkpoint (its rank-0 file cut short) or none at all: the checkpoint's own message (exit status 1),
     found before the earlier fields.h5 is opened, so the earlier history, fields and mesh are untouched; with the

@@ -23,7 +23,8 @@
  *                more than accepts), its retried length 0.03 (q linear: the secant is exact), and lands on 0.567
  *                the same way; no cutback counted.
  *  5 output      output times 0.25, 0.5, 0.8 of a 1 s stage in 3 steps: write_fields at t = 0, 0.25, 0.5, 0.8, 1
- *                exactly (==), nothing else.
+ *                exactly (==), nothing else, each a report time; with output.fields_every 1 over 10 steps and the
+ *                output time 0.25: 12 writes, of which t = 0, 0.25 and 1 alone are report times.
  *  6 checkpoint  an adaptive two-stage run (the 'output' measure on x, then the mock's estimate varying in time;
  *                the PI controller and the output measure both carry memory across steps): its steps in stage 0
  *                settle at the controller's fixed point h = tau ln(1 + tol 0.9^(1/0.85)) (1e-5); run once
@@ -102,6 +103,7 @@ typedef struct {
   int    nsolve, naccept, nwrite;
   double stage_t0[3]; /* the time each stage began at */
   double solve_h[MAXREC], accept_t[MAXREC], accept_h[MAXREC], write_t[MAXREC];
+  int    write_report[MAXREC]; /* each fields time: one the run reports at (write_fields' report) */
 } Mock;
 
 static void mock_init(Mock *m) {
@@ -167,9 +169,9 @@ static PetscErrorCode check(void *ctx, double t, char *err, size_t errlen) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode write_fields(void *ctx, double t, char *err, size_t errlen) {
+static PetscErrorCode write_fields(void *ctx, double t, int report, char *err, size_t errlen) {
   Mock *m = ctx;
-  if (m->nwrite < MAXREC) m->write_t[m->nwrite] = t;
+  if (m->nwrite < MAXREC) m->write_t[m->nwrite] = t, m->write_report[m->nwrite] = report;
   m->nwrite++;
   return 0;
 }
@@ -337,7 +339,24 @@ static void case_output_times(void) {
   memcpy(m.stage[0].out_times, times, sizeof times);
   if (run_quiet(&m, &sum)) return;
   CHECK(m.nwrite == 5, "%d field outputs, expected 5 (t = 0, the three times, the stage's end)", m.nwrite);
-  for (int k = 0; k < m.nwrite && k < 5; k++) CHECK(m.write_t[k] == want[k], "fields %d at t = %.17g, expected %g exactly", k, m.write_t[k], want[k]);
+  for (int k = 0; k < m.nwrite && k < 5; k++) {
+    CHECK(m.write_t[k] == want[k], "fields %d at t = %.17g, expected %g exactly", k, m.write_t[k], want[k]);
+    CHECK(m.write_report[k], "fields %d at t = %g: not marked a report time (the start, an output time, the end)", k, want[k]);
+  }
+  /* every step's fields as well (output.fields_every 1): 10 steps of 0.1 s and the output time 0.25; only the start,
+     0.25 and the end are report times, the times the error indicator's history keeps (fe_estimate.h) */
+  RunnerOptions opt = quiet_options();
+  opt.fields_every  = 1;
+  mock_init(&m);
+  m.nstage = 1, m.stage[0] = fixed_stage(1.0, 10, 1), m.stage[0].nout_times = 1, m.stage[0].out_times[0] = 0.25;
+  if (run(&m, &opt, &sum)) return;
+  int nreport = 0;
+  for (int k = 0; k < m.nwrite && k < MAXREC; k++) {
+    const int want_report = m.write_t[k] == 0 || m.write_t[k] == 0.25 || m.write_t[k] == 1.0;
+    CHECK(m.write_report[k] == want_report, "fields_every 1: fields at t = %.17g marked %s", m.write_t[k], m.write_report[k] ? "a report time" : "not a report time");
+    nreport += m.write_report[k];
+  }
+  CHECK(m.nwrite == 12 && nreport == 3, "fields_every 1: %d field outputs (%d report times), expected 12 (3)", m.nwrite, nreport);
 }
 
 /* ---------------------------------------------------------------------------------------------------- */

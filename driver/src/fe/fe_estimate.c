@@ -228,7 +228,7 @@ void fe_estimate_add_surface(FeProblem *p, PetscInt cell, PetscReal e2) {
   if (p->est.surf) p->est.surf[cell - p->space.cStart] += e2;
 }
 
-PetscErrorCode fe_estimate_update(FeProblem *p) {
+PetscErrorCode fe_estimate_update(FeProblem *p, PetscBool report) {
   const PetscInt ncell = p->space.cEnd - p->space.cStart;
   PetscReal     *eta_e, norm2[2] = {0, 0};
   PetscFunctionBeginUser;
@@ -251,9 +251,11 @@ PetscErrorCode fe_estimate_update(FeProblem *p) {
       const PetscReal s = norm2[0] > 0 ? p->est.eta[c] * p->est.eta[c] / norm2[0] : 0, e = eta_e[c] * eta_e[c] / norm2[1];
       p->est.eta[c] = PetscSqrtReal(norm2[0] > 0 ? norm2[0] : 1) * PetscSqrtReal(s + e);
     }
-  for (PetscInt c = 0; c < ncell; c++) p->est.eta_max[c] = PetscMax(p->est.eta_max[c], p->est.eta[c]);
+  if (report) {
+    for (PetscInt c = 0; c < ncell; c++) p->est.eta_max[c] = PetscMax(p->est.eta_max[c], p->est.eta[c]);
+    p->est.nupdates++;
+  }
   PetscCall(PetscFree(eta_e));
-  p->est.nupdates++;
   PetscFunctionReturn(0);
 }
 

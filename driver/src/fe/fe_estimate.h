@@ -19,17 +19,19 @@
  * see a traction that disagrees with the contact pressure, and the creep and residual depths are carried by the
  * contact surface's resolution (docs/adapt.md, "The contact surface").
  *
- * History: the fields of a run are written at its output times; each writes the indicator of the committed
- * state and keeps the largest value of every cell over those times (eta_max), the quantity the size field
- * equidistributes, since the mesh must serve every time the run reports. */
+ * History: every field output writes the indicator of the committed state; at the times the run reports at (its
+ * start, each stage's output times and end) it also keeps the largest value of every cell (eta_max), the quantity
+ * the size field equidistributes, since the mesh must serve every time the run reports. Fields written only
+ * because output.fields_every asks for them do not enter eta_max: how often a user looks at the fields does not
+ * change the adapted meshes. */
 #ifndef FE_ESTIMATE_H
 #define FE_ESTIMATE_H
 
 #include "fe_problem.h"
 
-/* The indicator of the committed state (per local cell, into p->est.eta) and its running maximum (eta_max).
-   Collective. */
-PetscErrorCode fe_estimate_update(FeProblem *p);
+/* The indicator of the committed state (per local cell, into p->est.eta) and, at a report time (report), its running
+   maximum (eta_max). Collective. */
+PetscErrorCode fe_estimate_update(FeProblem *p, PetscBool report);
 
 /* The stress of local plex cell 'cell' at the point x (the cell's own linear fit through its quadrature points, the
    field the recovery compares with), Voigt order 11, 22, 33, 12 (, 13, 23). */

@@ -31,7 +31,7 @@ static const CellField cell_fields[] = {
   {"pc_soft", 1, FROM_STATEV, MATERIAL_PC_SOFT, PETSC_FALSE},
   {"phi", 1, FROM_PHI, 0, PETSC_FALSE},
   {"error_indicator", 1, FROM_ETA, 0, PETSC_FALSE},     /* fe_estimate.h: at this output */
-  {"error_indicator_max", 1, FROM_ETA_MAX, 0, PETSC_FALSE}, /* ... its largest over the outputs so far */
+  {"error_indicator_max", 1, FROM_ETA_MAX, 0, PETSC_FALSE}, /* ... its largest over the report times so far */
 };
 enum { NCELLFIELDS = sizeof cell_fields / sizeof cell_fields[0] };
 /* The row-major place of each Voigt component 11 22 33 12 13 23 in a 3x3 tensor (and of its mirror). */
@@ -391,7 +391,7 @@ PetscErrorCode fe_output_resume(FeOutput *o, PetscInt nout, const PetscReal *tim
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o) {
+PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, PetscBool report, FeOutput *o) {
   char group[64], name[16];
   Vec  v;
   PetscFunctionBeginUser;
@@ -400,7 +400,7 @@ PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o)
   PetscCall(displacement_vec(p, U, o, name, &v));
   PetscCall(view_in(o->viewer, "/fields/displacement", (PetscObject)v));
   PetscCall(VecDestroy(&v));
-  PetscCall(fe_estimate_update(p));
+  PetscCall(fe_estimate_update(p, report));
   for (PetscInt f = 0; f < NCELLFIELDS; f++) {
     const CellField *cf = &cell_fields[f];
     if (!field_present(p, cf)) continue;

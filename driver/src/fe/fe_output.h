@@ -41,7 +41,8 @@ typedef struct {
 /* append: continue the fields.h5 of a checkpointed run (-restart), whose times fe_output_resume gives. */
 PetscErrorCode fe_output_open(FeProblem *p, const char *outdir, PetscBool append, FeOutput *o);
 PetscErrorCode fe_output_resume(FeOutput *o, PetscInt nout, const PetscReal *times);
-PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, FeOutput *o);
+/* The fields at time; report: a time the run reports at, whose error indicator enters its history (fe_estimate.h). */
+PetscErrorCode fe_output_write(FeProblem *p, Vec U, PetscReal time, PetscBool report, FeOutput *o);
 /* Rename fields.h5.part to fields.h5, write fields.xmf for it and remove fields.xmf.part (collective; rank 0
  * renames). Safe to call more than once; a no-op when appending. */
 PetscErrorCode fe_output_promote(FeProblem *p, FeOutput *o);

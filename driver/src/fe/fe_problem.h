@@ -89,7 +89,7 @@ typedef struct FeProblem FeProblem;
 typedef struct {
   PetscReal *eta, *eta_max;
   PetscReal *surf;     /* per local cell: a boundary's share of eta^2 at this output (fe_estimate_add_surface) */
-  PetscInt   nupdates; /* outputs folded into eta_max */
+  PetscInt   nupdates; /* report times folded into eta_max */
   DM         dmv;      /* the mesh with 7 values per vertex (a stress and a weight), for the recovery */
   /* a boundary term's source (the contact surface's, contact_mortar.h), called at each output before the fields'
      recovery; NULL: none */

@@ -168,7 +168,7 @@ static const KeyDecl decl[] = {
   {"output", FE | PT, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "where and how often the results are written"},
   {"output.directory", FE, KEY_TEXT, N, N, 0, NULL, "out/NAME", NULL, "the output directory, relative to the working directory (-output_dir overrides)"},
   {"output.directory", PT, KEY_TEXT, N, N, 0, NULL, "out/point/NAME", NULL, "the output directory, relative to the working directory (-output_dir overrides)"},
-  {"output.fields_every", FE, KEY_INTEGER, 0, N, 0, NULL, "0", NULL, "fields every N steps besides the start and each stage's end (0: only those)"},
+  {"output.fields_every", FE, KEY_INTEGER, 0, N, 0, NULL, "0", NULL, "fields every N steps besides the start and each stage's end (0: only those); they do not shape adapted meshes"},
   {"output.progress_every", PT, KEY_INTEGER, 0, N, 0, NULL, "0", NULL, "a progress line every N steps (0: none)"},
   {"solver", FE, KEY_MAPPING, N, N, 0, NULL, NULL, NULL, "the solvers"},
   {"solver.options", FE, KEY_TEXT, N, N, 0, NULL, NULL, NULL, "PETSc options ('-snes_monitor -ksp_...'); the command line wins"},

@@ -97,11 +97,11 @@ PetscErrorCode fe_common_accept(FeCommon *c, const StepRequest *rq) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen) {
+PetscErrorCode fe_common_fields(FeCommon *c, Vec U, double t, int report, char *err, size_t errlen) {
   PetscFunctionBeginUser;
   if (!c->fields) PetscFunctionReturn(0);
   if (c->out.nout > 0 && c->out.times[c->out.nout - 1] == t) PetscFunctionReturn(0); /* already written at this time */
-  if (fe_output_write(c->p, U, t, &c->out)) STEP_FAIL(err, errlen, "%s: cannot write the fields at t = %g s", c->out.dir, t);
+  if (fe_output_write(c->p, U, t, report ? PETSC_TRUE : PETSC_FALSE, &c->out)) STEP_FAIL(err, errlen, "%s: cannot write the fields at t = %g s", c->out.dir, t);
   PetscFunctionReturn(0);
 }
 

@@ -147,10 +147,10 @@ static PetscErrorCode progress(void *ctx, char *buf, size_t n) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode write_fields(void *ctx, double t, char *err, size_t errlen) {
+static PetscErrorCode write_fields(void *ctx, double t, int report, char *err, size_t errlen) {
   FeSolver *f = ctx;
   PetscFunctionBeginUser;
-  PetscCall(fe_common_fields(&f->c, f->U0, t, err, errlen));
+  PetscCall(fe_common_fields(&f->c, f->U0, t, report, err, errlen));
   PetscFunctionReturn(0);
 }
 

@@ -56,7 +56,7 @@ PetscErrorCode fe_common_set_loads(FeCommon *c, const StepRequest *rq);
 PetscErrorCode fe_common_observe(FeCommon *c, const StepRequest *rq, StepOutcome *o);
 /* After a commit: the loads now in force, the supports' reactions (all ranks). */
 PetscErrorCode fe_common_accept(FeCommon *c, const StepRequest *rq);
-PetscErrorCode fe_common_fields(FeCommon *c, Vec U, double t, char *err, size_t errlen); /* STEP_FAIL: a file that cannot be written */
+PetscErrorCode fe_common_fields(FeCommon *c, Vec U, double t, int report, char *err, size_t errlen); /* STEP_FAIL: a file that cannot be written */
 PetscErrorCode fe_common_promote(FeCommon *c);
 /* A checkpoint: the loads and output times (the same on every rank: in each rank's file), and the shared
  * file (PETSc HDF5) that holds the fields and states in the serial mesh's order (fe/fe_state.h), so that a run

@@ -348,8 +348,8 @@ static void time_error_step(Run *r, const StepRequest *rq) {
   st->rep_h_prev    = rq->h;
 }
 
-static int write_fields(Run *r, char *err, size_t errlen) {
-  if (r->sv->write_fields) SOLVER_CALL(r->sv->write_fields(r->sv->ctx, r->st.t, err, errlen));
+static int write_fields(Run *r, int report, char *err, size_t errlen) {
+  if (r->sv->write_fields) SOLVER_CALL(r->sv->write_fields(r->sv->ctx, r->st.t, report, err, errlen));
   return 0;
 }
 
@@ -408,7 +408,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
     rate_done = !was_instant && r->view.until.kind == EVENT_EVP_RATE_BELOW && o.event[EVENT_EVP_RATE_BELOW] < r->view.until.value;
     int stage_done = landed || rate_done || (!st->pending_instant && st->t_stage >= r->view.duration * (1 - 1e-12));
     if (at_output || (opt->fields_every > 0 && st->step % opt->fields_every == 0) || stage_done)
-      if ((rc = write_fields(r, err, errlen))) return rc;
+      if ((rc = write_fields(r, at_output || stage_done, err, errlen))) return rc;
     if (stage_done && !landed && r->view.must_reach && r->view.until.kind != EVENT_NONE) {
       char key[128];
       if (r->view.until_key) snprintf(key, sizeof key, "%s", r->view.until_key);
@@ -424,7 +424,7 @@ static int run_stage(Run *r, char *err, size_t errlen) {
       st->history_offset = r->hist.fp ? ftell(r->hist.fp) : 0;
       if ((rc = checkpoint_write(sv, opt, &r->st, &r->last_ckpt, err, errlen))) return rc;
     }
-    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, err, errlen)) ? rc : 3; /* its last step's fields too */
+    if (opt->max_steps >= 0 && st->step >= opt->max_steps) return (rc = write_fields(r, 0, err, errlen)) ? rc : 3; /* its last step's fields too */
     if (stage_done) return 0;
   }
   keep_report(r, st->stage + 1);
@@ -459,7 +459,7 @@ int stage_runner_run(StepSolver *sv, const RunnerOptions *opt, RunnerSummary *su
     r.view.name = NULL; /* row 0: the solver names it */
     keep_report(&r, 0);
     if (sv->outputs) sv->outputs(sv->ctx, r.st.out_prev); /* the first stage's start values (else 0) */
-    if ((rc = history_row(&r, 0, 0, 0, err, errlen)) || (rc = write_fields(&r, err, errlen))) return rc;
+    if ((rc = history_row(&r, 0, 0, 0, err, errlen)) || (rc = write_fields(&r, 1, err, errlen))) return rc;
   }
   while (!rc && r.st.stage < sv->nstage) {
     rc = opt->max_steps >= 0 && r.st.step >= opt->max_steps ? 3 : run_stage(&r, err, errlen);

@@ -113,7 +113,9 @@ typedef struct {
   void (*history_prepare)(void *ctx);
   const char *(*stage_name)(void *ctx, int s);
   PetscErrorCode (*progress)(void *ctx, char *buf, size_t n);
-  PetscErrorCode (*write_fields)(void *ctx, double t, char *err, size_t errlen); /* may be NULL */
+  /* the fields at time t (may be NULL); report: t is a time the run reports at (its start, a stage's output time or
+     end), not one only output.fields_every asks for (fe_estimate.h: the indicator's history keeps report times) */
+  PetscErrorCode (*write_fields)(void *ctx, double t, int report, char *err, size_t errlen);
   PetscErrorCode (*promote)(void *ctx);                                           /* the solver's .part files; may be NULL */
   /* Checkpoint: the solver's state (this rank's file). */
   PetscErrorCode (*save)(void *ctx, BinFile *f);
