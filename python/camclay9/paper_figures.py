@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from camclay9 import indent_plots, paper_fields, triaxial_plots
+from camclay9 import indent_plots, paper_fields, read_summary, triaxial_plots
 from camclay9.lomnitz import lomnitz
 from camclay9.paper_numbers import (ALPHAS, PAPER_LOMNITZ, SOFT_OVER_HARD, THETAS_BEDDING, THETAS_TRIAXIAL,
                            triaxial_series)
@@ -107,6 +107,14 @@ def fig18_ratio(out, figs):
     return _save(fig, figs / "fig18_ratio.png")
 
 
+def _adapted(run):
+    """Whether the run in this folder was made on adapted meshes (its summary.json states a mesh error)."""
+    try:
+        return read_summary(run)["mesh_error"] is not None
+    except (OSError, ValueError, KeyError):
+        return False
+
+
 def draw_all(out, numbers=None):
     out = Path(out)
     figs = out / "figures"
@@ -123,8 +131,10 @@ def draw_all(out, numbers=None):
                 add(fid, _copy(out / key / "ph.png", figs / f"{fid}_ph.png"), f"P–h, {key}")
         if _plot(log, ["profile", out / "microindent_BN", "--out", out / "microindent_BN"]):
             add("fig5", _copy(out / "microindent_BN" / "profile.png", figs / "fig5_profile.png"),
-                "residual surface profile after unloading, microindent_BN (the shipped uniform mesh's: a lower bound, "
-                "its residual depth below the converged one; § Nano- and microindentation)")
+                "residual surface profile after unloading, microindent_BN (" + (
+                    "on meshes adapted to the answer: the run of the table above, with the mesh error it states"
+                    if _adapted(out / "microindent_BN") else
+                    "one mesh: a lower bound, its residual depth below the converged one") + "; § Nano- and microindentation)")
         runs = [out / f"loading_rate_a{a}" for a in ALPHAS]
         if _plot(log, ["compare", *runs, "--labels", *[f"α = {a}" for a in ALPHAS], "--out", figs / "lr"]):
             add("fig7", _copy(figs / "lr" / "compare_ph.png", figs / "fig7_ph.png"), "P–h for α = 0.1, 1, 10")
