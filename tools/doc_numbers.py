@@ -42,7 +42,7 @@ from pathlib import Path
 
 from camclay9 import (adapt_study, calculix_study, calibrate_study, contact_solver_study, coverage_study, doc_quotes,
                       fe_main_job_study, fe_scaling_study, fe_solver_study, fe_triaxial_study, half_model_study, indent3d_study, indent_models_study,
-                      loading_steps_study, error_floor_study, kink_steps_study, paper_measures_study,
+                      loading_steps_study, error_floor_study, kink_steps_study, paper_measures_study, blas_kernels_study,
                       indent_ranks_study, indent_speed_study, paper_doc, point_creep_study, results_store, step_control_study,
                       time_error_study, umat_time_study)
 from camclay9 import indent2d_study as i2d
@@ -54,7 +54,7 @@ ROOT = Path(__file__).resolve().parents[1]
 STUDIES = (adapt_study, contact_solver_study, fe_triaxial_study, coverage_study, time_error_study, umat_time_study,
            point_creep_study, calibrate_study, indent_ranks_study, step_control_study, fe_main_job_study, indent_models_study,
            fe_scaling_study, calculix_study, fe_solver_study, indent_speed_study, indent3d_study, half_model_study,
-           loading_steps_study, error_floor_study, kink_steps_study, paper_measures_study)
+           loading_steps_study, error_floor_study, kink_steps_study, paper_measures_study, blas_kernels_study)
 
 def section_of(text, title):
     """The section of a '## ' Markdown file that starts with title, up to the next '## ' (as camclay9.performance_doc

@@ -29,6 +29,9 @@ import yaml
 from camclay9 import paper_doc, paper_figures, paper_numbers, results_store
 from camclay9.performance_doc import replace_section
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))   # tools/: blas_core, beside this script
+from blas_core import openblas_core  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 
 # key: (scene file in input/, quick overrides). Quick: mesh parameters, a looser step control (the stages'
@@ -228,7 +231,14 @@ def record_runs(prev, walls, cpus, kept, t_runs, rerun, today, only):
                 "wall_runs": prev.get("wall_runs", float("nan")), "rerun": rerun, "dates": dates,
                 "kept": {**{k: v for k, v in prev.get("kept", {}).items() if k not in walls}, **kept}}
     return {"walls": walls, "cpus": cpus, "wall_runs": t_runs, "rerun": [], "dates": dates, "whole_run_date": today,
-            "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs", "kept": kept}
+            "load_note": f"load average {os.getloadavg()[0]:.1f} at the end of the runs; {blas_note()}", "kept": kept}
+
+
+def blas_note():
+    """Which OpenBLAS kernels the runs used (tools/blas_core.py; reproduce.sh names the core where OpenBLAS fell back)."""
+    core = openblas_core()
+    named = os.environ.get("OPENBLAS_CORETYPE")
+    return (f"OpenBLAS' {core} kernels" + (" (OPENBLAS_CORETYPE)" if named else "")) if core else "the BLAS is not OpenBLAS"
 
 
 def main(argv=None):

@@ -9,4 +9,7 @@ if [ -z "${DRIVER:-}" ]; then
   cmake --build build -j 2 --target driver > /dev/null
   export DRIVER=$PWD/build/bin/driver
 fi
+# An OpenBLAS that does not recognise this CPU runs its SSE3 kernels, 2.6 times as slow in the 3D factorisations
+# (docs/performance.md, "BLAS kernels"): name the core the CPU has, unless OPENBLAS_CORETYPE is set.
+eval "$(python3 tools/blas_core.py --export)"
 exec python3 tools/reproduce.py "$@"

@@ -14,7 +14,10 @@
   one rank's file missing stops with a message on every rank (no hang); a changed scene is refused;
 * a run that fails before its first step leaves an earlier run's results untouched.
 """
+import ctypes
+import ctypes.util
 import math
+import os
 import re
 import signal
 import subprocess
@@ -257,6 +260,24 @@ def test_kill_at_any_moment_then_restart(tmp_path):
     final = run(scene, out, args=["-restart", "-checkpoint_every", "1"])
     assert len(final) == len(full) and np.array_equal(final["depth"], full["depth"])
     assert len(list(out.glob("checkpoint.*.rank0.bin"))) == 1   # the previous set is removed
+
+
+def test_restart_after_a_locked_semaphore(tmp_path):
+    """A run killed by -9 while Open MPI's MPI-IO held the named semaphore of a file it opened (its shared-file-pointer
+    component 'sm': /dev/shm/sem.OMPIO_<file name>) leaves it locked; the driver leaves that component out, so a later
+    run that writes a file of that name, in any folder, does not wait for it forever (it did: the kill of
+    test_kill_at_any_moment_then_restart once left checkpoint.64.h5.tmp's locked, and every restart past step 63 on
+    that machine hung). Here the locked semaphore is made directly, as the killed run leaves it."""
+    libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
+    libc.sem_open.restype = ctypes.c_void_p
+    name = b"/OMPIO_checkpoint.3.h5.tmp"
+    assert libc.sem_open(name, os.O_CREAT, 0o644, 0), "could not make the semaphore"   # value 0: locked
+    try:
+        run(camclay_cone(load_hold(0.03, hold=10)), tmp_path / "run", args=["-checkpoint_every", "1", "-max_steps", "5"],
+            timeout=120)
+        assert (tmp_path / "run" / "checkpoint.latest").read_text().split()[0] == "5"
+    finally:
+        libc.sem_unlink(name)
 
 
 def test_restart_checks_agree_on_every_rank(tmp_path):
