@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""BLAS kernels (tools/blas_core.py): the same scenes under OpenBLAS' own pick of kernels and under the cores named by
+"""BLAS kernels (camclay9.blas, tools/blas_core.py): the same scenes under OpenBLAS' own pick of kernels and under the cores named by
 OPENBLAS_CORETYPE, the runs alternating, one at a time. Keeps every number in docs/results/blas_kernels.json
 (camclay9.blas_kernels_study) and writes the section "BLAS kernels" of docs/performance.md from it.
 
@@ -10,13 +10,13 @@ Cases: sector0.0707, the kerogen sector (nanoindent_kerogen_sector.yaml) at h_ti
 first 30 steps, where MUMPS' factorisations dominate; sector, the shipped kerogen sector whole (5 882 unknowns);
 lr1, loading_rate_a1's first mesh (2D, UMFPACK), whole, without its rerun (-adapt_levels 0)."""
 import argparse
-import ctypes
 import re
 import time
 from pathlib import Path
 
 from camclay9 import driver_command, mesh_line, read_history, run_measured, summary_line
 from camclay9 import blas_kernels_study as study
+from camclay9.blas import openblas_core
 from camclay9.performance_doc import publish
 from camclay9.results_store import revision
 
@@ -63,15 +63,6 @@ def one(case, core, k, out):
             "outputs": {"depth": float(last["depth"]), "load": float(last["load"])}}
 
 
-def openblas_core():
-    try:
-        f = ctypes.CDLL("libblas.so.3").openblas_get_corename
-    except (OSError, AttributeError):
-        return "not OpenBLAS"
-    f.restype = ctypes.c_char_p
-    return f().decode()
-
-
 def cpu_model():
     info = Path("/proc/cpuinfo").read_text()
     get = lambda key: re.search(rf"^{key}\s*:\s*(.*)$", info, re.M).group(1).strip()
@@ -105,7 +96,7 @@ def main():
                      "solve_s": [r["solve"] for r in rs], "outputs": rs[0]["outputs"]})
     store = {"provenance": {"command": f"bench/blas_kernels_bench.py --repeats {a.repeats} --cores {a.cores}",
                             "date": time.strftime("%Y-%m-%d", time.gmtime()), "rev": revision(ROOT), "machine": a.machine},
-             "cpu_model": cpu_model(), "openblas_core": openblas_core(), "rows": rows}
+             "cpu_model": cpu_model(), "openblas_core": openblas_core() or "not OpenBLAS", "rows": rows}
     publish(study.TITLE, study.section(store), study.STORE, store, write=not a.no_doc)
 
 

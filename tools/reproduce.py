@@ -27,10 +27,8 @@ from pathlib import Path
 
 import yaml
 from camclay9 import paper_doc, paper_figures, paper_numbers, results_store
+from camclay9.blas import openblas_core
 from camclay9.performance_doc import replace_section
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))   # tools/: blas_core, beside this script
-from blas_core import openblas_core  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -235,7 +233,7 @@ def record_runs(prev, walls, cpus, kept, t_runs, rerun, today, only):
 
 
 def blas_note():
-    """Which OpenBLAS kernels the runs used (tools/blas_core.py; reproduce.sh names the core where OpenBLAS fell back)."""
+    """Which OpenBLAS kernels the runs used (camclay9.blas; reproduce.sh names the core where OpenBLAS fell back)."""
     core = openblas_core()
     named = os.environ.get("OPENBLAS_CORETYPE")
     return (f"OpenBLAS' {core} kernels" + (" (OPENBLAS_CORETYPE)" if named else "")) if core else "the BLAS is not OpenBLAS"

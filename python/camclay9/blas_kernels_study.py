@@ -5,9 +5,9 @@ tools/doc_numbers.py.
 The 3D contact solve factors its matrix with MUMPS, whose dense frontal kernels are the BLAS's (Debian's
 libblas.so.3: OpenBLAS, tools/setup.sh). Debian builds OpenBLAS with DYNAMIC_ARCH: it picks its kernels by the CPU
 when it is loaded, and the variable OPENBLAS_CORETYPE names the core to use instead (OpenBLAS' README, "Support for
-multiple targets in a single library"). A CPU newer than the library is not recognised, and it falls back to its
-SSE3 kernels ("Prescott"): so on the 2-core machines of 2026-12-02 (an Intel Xeon of family 6, model 207), whose
-AVX-512 and AVX2 kernels it has. The bench runs the same scenes under OpenBLAS' own pick and under the cores named
+multiple targets in a single library"). A CPU newer than the library is not recognised, and it falls back to a core
+without AVX2 (camclay9.blas): on the 2-core machines of 2026-12-02 (an Intel Xeon of family 6, model 207) to its SSE3
+kernels ("Prescott"), though it has kernels for their AVX-512 and AVX2. The bench runs the same scenes under OpenBLAS' own pick and under the cores named
 (Haswell: AVX2; SkylakeX: AVX-512), the runs alternating, and checks that the answers agree. tools/blas_core.py names
 the core where OpenBLAS fell back; tools/reproduce.sh uses it.
 
@@ -20,6 +20,7 @@ repeats' seconds in the factorisations (MatLUFactorNum) and the triangular solve
 import statistics
 
 from camclay9 import results_store
+from camclay9.blas import FALLBACKS
 
 STORE = "blas_kernels"
 TITLE = "## BLAS kernels: OpenBLAS' own pick and the cores named"
@@ -60,7 +61,7 @@ def section(store, root=None):
     rows = checked(store)
     n = len(rows[0]["cpu_s"]) if rows else 0
     core = store["openblas_core"]
-    fallback = ": a fallback, OpenBLAS not recognising the CPU (tools/blas_core.py)" if core == "Prescott" else ""
+    fallback = ": a fallback, OpenBLAS not recognising the CPU (tools/blas_core.py)" if core in FALLBACKS else ""
     lines = [TITLE, "",
              f"Command: `{pv['command']}` ({pv['date']}, the driver at {pv['rev']}; {pv['machine']}; CPU: {store['cpu_model']}, "
              f"OpenBLAS' own pick {core}{fallback}). "

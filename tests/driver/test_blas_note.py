@@ -1,4 +1,4 @@
-"""The driver's BLAS note (driver/src/app/blas_check.h) against tools/blas_core.py, the same check for a shell: after
+"""The driver's BLAS note (driver/src/app/blas_check.h) against tools/blas_core.py (camclay9.blas), the same rule in Python: after
 a run the driver says that OpenBLAS fell back to kernels below what the CPU runs exactly where tools/blas_core.py
 would name a core, and names the same one; with OPENBLAS_CORETYPE set it says nothing. On a machine where OpenBLAS
 recognises the CPU both say nothing (the case the note is for is measured in docs/performance.md, "BLAS kernels";
@@ -35,5 +35,5 @@ def test_note_as_blas_core_says(tmp_path):
     want = blas_core_export(env)
     print(f"tools/blas_core.py names: {want}")
     assert note(tmp_path, env, "own_pick") == want
-    named = dict(env, OPENBLAS_CORETYPE=want or "Haswell")
+    named = dict(env, OPENBLAS_CORETYPE=want or "Prescott")   # Prescott (SSE3) runs on every x86-64
     assert blas_core_export(named) is None and note(tmp_path, named, "named") is None

@@ -1,4 +1,4 @@
-/* Whether the BLAS runs kernels below what this CPU can run (blas_check.h). */
+/* Whether the BLAS runs kernels below what this CPU can run (blas_check.h; camclay9.blas is the same rule). */
 #define _GNU_SOURCE
 #include "blas_check.h"
 
@@ -20,15 +20,15 @@ const char *blas_core_to_name(const char *core, int named, int avx512, int avx2)
 PetscErrorCode blas_check_note(MPI_Comm comm) {
   /* looked up, not linked: libblas.so.3 may be another BLAS, which has no such function */
   char *(*corename)(void) = (char *(*)(void))dlsym(RTLD_DEFAULT, "openblas_get_corename");
-  const char *core = corename ? corename() : NULL, *want;
+  const char *core = corename ? corename() : NULL, *named = getenv("OPENBLAS_CORETYPE"), *want;
   PetscFunctionBeginUser;
   __builtin_cpu_init();
-  want = blas_core_to_name(core, getenv("OPENBLAS_CORETYPE") != NULL,
+  want = blas_core_to_name(core, named && *named, /* set and not empty, as camclay9.blas reads it */
                            __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
                                __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl"),
                            __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"));
   if (want)
-    PetscCall(PetscPrintf(comm, "note: OpenBLAS did not recognise this CPU and ran its %s kernels (SSE3), which made the 3D "
+    PetscCall(PetscPrintf(comm, "note: OpenBLAS did not recognise this CPU and ran its %s kernels (without AVX2), which made the 3D "
                                 "factorisations about 2.6 times as long where measured; export OPENBLAS_CORETYPE=%s before "
                                 "the driver starts (tools/blas_core.py; docs/performance.md, \"BLAS kernels\")\n",
                           core, want));
